@@ -1,0 +1,82 @@
+#include "cli_common.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+
+namespace tessera::cli {
+namespace {
+int g_verbosity = 0;  // set once by main before any command runs
+}
+
+void set_verbosity(int level) { g_verbosity = level; }
+int verbosity() { return g_verbosity; }
+void log_info(std::string_view message) {
+  if (g_verbosity >= 0) std::cerr << "tessera: " << message << "\n";
+}
+void log_debug(std::string_view message) {
+  if (g_verbosity >= 1) std::cerr << "tessera: " << message << "\n";
+}
+
+std::optional<float> parse_float(std::string_view text) {
+  if (text.empty() || text.size() > 64) return std::nullopt;
+  const std::string s(text);
+  if (std::isspace(static_cast<unsigned char>(s.front()))) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const float value = std::strtof(s.c_str(), &end);
+  if (end != s.c_str() + s.size()) return std::nullopt;
+  // strtof reports overflow with ERANGE and +-HUGE_VALF; an explicit "inf" is fine.
+  if (errno == ERANGE && std::isinf(value)) return std::nullopt;
+  return value;
+}
+
+std::vector<float> parse_float_list(std::string_view text, std::string_view what) {
+  std::vector<float> values;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string_view token = text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const auto value = parse_float(token);
+    if (!value) throw UsageError(std::string(what) + ": '" + std::string(token) + "' is not a number (use e.g. 4, 3.5, nan, inf, -0)");
+    values.push_back(*value);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return values;
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  fs::path dir = target.parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir)) throw InputError(path + ": directory '" + dir.string() + "' does not exist");
+  // Keep the extension last: image writers pick the format from it.
+  const fs::path temp = dir / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+  try {
+    write(temp.string());
+    fs::rename(temp, target);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw;
+  }
+}
+
+std::string float_text(float x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[32];
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, double(x));
+    if (std::strtof(buf, nullptr) == x) break;
+  }
+  return buf;
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,48 @@
+// What every `tessera` subcommand shares: exit codes, logging, number-list parsing, and writing
+// output files atomically (a temporary in the same directory, then rename: a failed run never
+// leaves a half-written file behind).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tessera::cli {
+
+// Exit codes: 0 ok, 1 bad input or failed check, 2 usage error.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitUsage = 2;
+
+// A usage error (bad flag value, wrong count): reported as one line, exit 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// Bad input data or a failed check: reported as one line, exit 1.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// -q: -1, default 0, -v: 1. Logs go to stderr.
+void set_verbosity(int level);
+int verbosity();
+void log_info(std::string_view message);
+void log_debug(std::string_view message);
+
+// Parses one float the way a user writes it: decimal, hex-float, nan, inf, -inf, -0.
+// Returns nullopt on anything else (empty, trailing characters, out of float range).
+std::optional<float> parse_float(std::string_view text);
+// Parses "A,B,C" into floats; throws UsageError naming `what` and the bad token.
+std::vector<float> parse_float_list(std::string_view text, std::string_view what);
+
+// Writes a file through `write(path_of_temporary)`, then renames it over `path`.
+// `write` throws on failure; the temporary is removed and the exception propagates.
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+// Shortest decimal text that parses back to the identical float (at most 9 significant digits).
+std::string float_text(float x);
+
+}  // namespace tessera::cli

@@ -1,0 +1,19 @@
+// The `tessera` subcommands. Each registers its options on a CLI11 subcommand and runs after
+// parsing; run() returns the exit code (cli_common.h) and throws UsageError/InputError for
+// one-line errors.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace tessera::cli {
+
+using Runner = std::function<int()>;
+
+// Each returns the function that runs the subcommand once CLI11 has parsed its options.
+Runner add_pattern_command(CLI::App& app);
+Runner add_oracle_command(CLI::App& app);
+Runner add_bench_command(CLI::App& app);
+
+}  // namespace tessera::cli

@@ -1,0 +1,53 @@
+// tessera: the command-line tool. Results go to stdout or files, logs to stderr.
+// Exit codes: 0 ok, 1 bad input or a failed check, 2 usage error.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+#include <map>
+
+#include "cli_common.h"
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  using namespace tessera::cli;
+  CLI::App app{"tessera: a deterministic CPU implementation of the Direct3D 11 tessellation pipeline"};
+  app.require_subcommand(1);
+  bool quiet = false, verbose = false;
+  app.add_flag("-q,--quiet", quiet, "only errors on stderr");
+  app.add_flag("-v,--verbose", verbose, "more detail on stderr");
+  app.set_version_flag("--version", "tessera 0.1.0");
+  std::map<std::string, Runner> runners;
+  runners["pattern"] = add_pattern_command(app);
+  runners["oracle-compare"] = add_oracle_command(app);
+  runners["bench"] = add_bench_command(app);
+  // Options given to the top level apply wherever they are written.
+  for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "tessera: " << e.what() << " (see tessera --help)\n";
+    return kExitUsage;
+  }
+  set_verbosity(quiet ? -1 : verbose ? 1 : 0);
+  const std::string name = app.get_subcommands().front()->get_name();
+  try {
+    return runners.at(name)();
+  } catch (const UsageError& e) {
+    std::cerr << "tessera " << name << ": " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const InputError& e) {
+    std::cerr << "tessera " << name << ": " << e.what() << "\n";
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    std::cerr << "tessera " << name << ": " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
