@@ -12,7 +12,7 @@ namespace tessera::cli {
 namespace {
 
 struct PatternOptions {
-  std::string domain = "quad", partitioning = "integer", output = "triangle_cw";
+  std::string domain = "quad", partitioning = "integer", output;  // output: by domain unless given
   std::string outer, inner;
   bool json = false;
   std::string image;
@@ -39,7 +39,8 @@ int run_pattern(const PatternOptions& o) {
   const auto partitioning = ts::parse_partitioning(o.partitioning);
   if (!partitioning)
     throw UsageError("--partitioning: unknown partitioning '" + o.partitioning + "' (integer, pow2, fractional_odd, fractional_even)");
-  const auto output = ts::parse_output_primitive(o.output);
+  const std::string output_name = !o.output.empty() ? o.output : *domain == ts::Domain::isoline ? "line" : "triangle_cw";
+  const auto output = ts::parse_output_primitive(output_name);
   if (!output) throw UsageError("--output: unknown output primitive '" + o.output + "' (point, line, triangle_cw, triangle_ccw)");
   if (*domain == ts::Domain::isoline && (*output == ts::OutputPrimitive::triangle_cw || *output == ts::OutputPrimitive::triangle_ccw))
     throw UsageError("--output: the isoline domain makes lines or points, not " + o.output);
@@ -99,7 +100,7 @@ Runner add_pattern_command(CLI::App& app) {
   cmd->add_option("--partitioning", o->partitioning, "integer | pow2 | fractional_odd | fractional_even")->capture_default_str();
   cmd->add_option("--outer", o->outer, "outer (edge) factors, comma-separated")->required();
   cmd->add_option("--inner", o->inner, "inside factors, comma-separated");
-  cmd->add_option("--output", o->output, "point | line | triangle_cw | triangle_ccw")->capture_default_str();
+  cmd->add_option("--output", o->output, "point | line | triangle_cw | triangle_ccw (default: line for isolines, else triangle_cw)");
   cmd->add_flag("--json", o->json, "print {\"culled\", \"points\", \"primitives\"} in the tessellator's order");
   cmd->add_option("--image", o->image, "draw the pattern to this PNG");
   cmd->add_option("--image-size", o->image_size, "picture size in pixels")->capture_default_str();

@@ -1,0 +1,143 @@
+// The tessera CLI end to end: exit codes, one-line errors, JSON that round-trips, images.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "tessellator.h"
+
+namespace fs = std::filesystem;
+using namespace tessera;
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string out, err;
+};
+
+fs::path temp_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("tessera-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Result run_cli(const std::string& args) {
+  const fs::path dir = temp_dir();
+  const std::string cmd = std::string(TESSERA_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
+}
+
+int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+TEST_CASE("tessera pattern --json matches the library and round-trips floats exactly", "[cli]") {
+  const auto r = run_cli("pattern --domain tri --partitioning fractional_odd --outer 3.5,2,5.25 --inner 4.75 --output triangle_ccw --json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  ts::Pattern p;
+  ts::tessellate_tri(ts::Partitioning::fractional_odd, ts::OutputPrimitive::triangle_ccw, {3.5f, 2, 5.25f, 4.75f}, p);
+  CHECK(j["culled"] == false);
+  REQUIRE(j["points"].size() == p.points.size());
+  for (std::size_t i = 0; i < p.points.size(); ++i) {
+    // Parse the printed text back as float32: identical bits.
+    CHECK(std::strtof(j["points"][i][0].dump().c_str(), nullptr) == p.points[i].u);
+    CHECK(std::strtof(j["points"][i][1].dump().c_str(), nullptr) == p.points[i].v);
+  }
+  REQUIRE(j["primitives"].size() == p.primitive_count());
+  for (std::size_t i = 0; i < p.primitive_count(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) CHECK(j["primitives"][i][k].get<std::uint32_t>() == p.indices[i * 3 + k]);
+}
+
+TEST_CASE("tessera pattern accepts nan, inf, -inf and -0", "[cli]") {
+  auto r = run_cli("pattern --domain quad --outer nan,4,4,4 --inner 4,4 --json");
+  REQUIRE(r.exit_code == 0);
+  CHECK(nlohmann::json::parse(r.out)["culled"] == true);
+  r = run_cli("pattern --domain quad --outer -0,4,4,4 --inner 4,4 --json");
+  CHECK(nlohmann::json::parse(r.out)["culled"] == true);
+  r = run_cli("pattern --domain isoline --partitioning pow2 --outer inf,-inf --output line --json");
+  CHECK(nlohmann::json::parse(r.out)["culled"] == true);
+  r = run_cli("pattern --domain quad --partitioning fractional_even --outer inf,4,4,4 --inner nan,-inf --json");
+  REQUIRE(r.exit_code == 0);
+  CHECK(nlohmann::json::parse(r.out)["culled"] == false);
+}
+
+TEST_CASE("tessera pattern: bad input is a usage error with one clear line", "[cli]") {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"pattern --domain quad --outer 1,2,3 --inner 1,1", "takes 4 outer factors, got 3"},
+      {"pattern --domain tri --outer 1,2,3 --inner 1,1", "takes 1 inside factor, got 2"},
+      {"pattern --domain isoline --outer 1,2 --inner 3", "takes no inside factors"},
+      {"pattern --domain quad --outer 1,2,x,4 --inner 1,1", "'x' is not a number"},
+      {"pattern --domain quad --outer 1,,3,4 --inner 1,1", "'' is not a number"},
+      {"pattern --domain quad --outer 1e99,2,3,4 --inner 1,1", "'1e99' is not a number"},
+      {"pattern --domain hexagon --outer 1,2 ", "unknown domain 'hexagon'"},
+      {"pattern --domain quad --partitioning odd --outer 1,2,3,4 --inner 1,1", "unknown partitioning 'odd'"},
+      {"pattern --domain quad --output triangles --outer 1,2,3,4 --inner 1,1", "unknown output primitive 'triangles'"},
+      {"pattern --domain isoline --output triangle_cw --outer 1,2", "makes lines or points"},
+      {"pattern --domain quad", "--outer is required"},
+      {"pattern --outer 1,2,3,4 --inner 1,1 --bogus", "--bogus"},
+  };
+  for (const auto& [args, message] : cases) {
+    INFO(args);
+    const auto r = run_cli(args);
+    CHECK(r.exit_code == 2);
+    CHECK(lines(r.err) == 1);
+    CHECK(r.err.find(message) != std::string::npos);
+    CHECK(r.out.empty());
+  }
+}
+
+TEST_CASE("tessera pattern --image writes a picture atomically", "[cli]") {
+  const fs::path dir = temp_dir();
+  const fs::path png = dir / "pattern.png";
+  fs::remove(png);
+  auto r = run_cli("pattern -q --domain quad --partitioning fractional_even --outer 3,6.00005,8.5,2 --inner 5,7 --image " + png.string() +
+                   " --image-size 300");
+  REQUIRE(r.exit_code == 0);
+  auto in = OIIO::ImageInput::open(png.string());
+  REQUIRE(in);
+  CHECK(in->spec().width == 300);
+  CHECK(in->spec().height == 300);
+  in->close();
+  for (const auto& entry : fs::directory_iterator(dir)) CHECK(entry.path().filename().string().rfind(".tmp-", 0) != 0);
+  // An unwritable destination is a failure with one line, and leaves nothing behind.
+  r = run_cli("pattern --domain tri --outer 2,2,2 --inner 2 --image " + (dir / "missing" / "x.png").string());
+  CHECK(r.exit_code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK_FALSE(fs::exists(dir / "missing"));
+}
+
+TEST_CASE("tessera --help lists the subcommands; every subcommand has --help", "[cli]") {
+  auto r = run_cli("--help");
+  CHECK(r.exit_code == 0);
+  for (const char* sub : {"pattern", "oracle-compare", "bench"}) CHECK(r.out.find(sub) != std::string::npos);
+  for (const char* sub : {"pattern", "oracle-compare", "bench", "bench tessellator"}) {
+    INFO(sub);
+    CHECK(run_cli(std::string(sub) + " --help").exit_code == 0);
+  }
+  CHECK(run_cli("").exit_code == 2);
+}
+
+TEST_CASE("tessera oracle-compare reports a malformed dump as bad input", "[cli]") {
+  const fs::path dump = temp_dir() / "bad.dump";
+  std::ofstream(dump) << "case quads equal_spacing ccw prims 2 2 2 2 2 2\nn 8 per 3\n0x0p+0 zz 0x0p+0\n";
+  const auto r = run_cli("oracle-compare " + dump.string());
+  CHECK(r.exit_code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("line 3") != std::string::npos);
+  CHECK(run_cli("oracle-compare " + (temp_dir() / "nope.dump").string()).exit_code == 1);
+}
