@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs every Debian (bookworm) package Tessera needs, if missing, and configures the build.
+# Idempotent: installs nothing when everything is there. Run as root (or with sudo available).
+#
+#   scripts/setup.sh [BUILD_DIR] [extra cmake args...]     (default BUILD_DIR: build)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$root/build}
+shift || true
+
+packages=(
+  build-essential cmake ninja-build pkg-config git python3 bc
+  libglm-dev libopenimageio-dev libtinygltf-dev catch2 libosd-dev libtbb-dev
+  libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev fonts-dejavu-core
+  # Mesa llvmpipe and libepoxy: the oracle and benchmark peer in ../shared/bench.
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@" >&2
+else
+  cmake -S "$root" -B "$build" "$@" >/dev/null
+fi
