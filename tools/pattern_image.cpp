@@ -151,6 +151,7 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
 
   const int per = pattern.vertices_per_primitive();
   int inverted = 0, degenerate = 0;
+  std::vector<P2> inverted_marks;
   if (per == 3) {
     for (std::size_t i = 0; i + 2 < pattern.indices.size(); i += 3) {
       const ts::DomainPoint a = pattern.points[pattern.indices[i]], b = pattern.points[pattern.indices[i + 1]],
@@ -163,7 +164,12 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
         const int e = edge_of(domain, p);
         if (e >= 0) color = kEdgeColor[e];
       }
-      if (area < 0) color = kInvertedColor, ++inverted;
+      if (area < 0) {
+        color = kInvertedColor, ++inverted;
+        // Folded slivers are too thin to see: mark them with a ring at their centroid.
+        const ts::DomainPoint centre{(a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3};
+        inverted_marks.push_back(layout.map(centre));
+      }
       if (area == 0) ++degenerate;
       canvas.triangle(layout.map(a), layout.map(b), layout.map(c), color);
     }
@@ -187,6 +193,10 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
   }
   const double radius = pattern.points.size() > 1500 ? 1.4 : pattern.points.size() > 300 ? 2.2 : 3.2;
   for (const auto& p : pattern.points) canvas.dot(layout.map(p), radius, kPointColor);
+  for (const auto& m : inverted_marks) {
+    canvas.dot(m, 9.0, kInvertedColor);
+    canvas.dot(m, 6.5, Rgb{1, 1, 1});
+  }
 
   OIIO::ImageBuf img = canvas.resolve();
   bool font_ok = true;
@@ -205,18 +215,29 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
 
   // Factors along their edges: "name = raw -> segments".
   const auto& pf = pic.processed;
-  auto label = [&](const char* name, float raw, const ts::EdgeContext* e) {
-    std::string s = std::string(name) + " = " + float_text(raw);
-    if (e && !pf.culled) s += pf.minimal ? "  (1 seg)" : "  (" + segments_text(*e) + " segs)";
+  auto label = [&](const char* name, float raw, const ts::EdgeContext* e, const char* sep = " = ", const char* sep2 = "  ") {
+    std::string s = name;
+    s += sep;
+    s += float_text(raw);
+    if (e && !pf.culled) {
+      s += sep2;
+      if (pf.minimal) {
+        s += "(1 seg)";
+      } else {
+        s += "(";
+        s += segments_text(*e);
+        s += " segs)";
+      }
+    }
     return s;
   };
   const double L = layout.left, T = layout.top, E = layout.extent;
   if (domain == ts::Domain::quad || domain == ts::Domain::isoline) {
     const bool quad = domain == ts::Domain::quad;
     if (quad) {
-      text(img, int(L - 8), int(T + E / 2), label("Ueq0", f[0], &pf.outside[0]), small, AX::Right, font_ok);
+      text(img, int(L - 8), int(T + E / 2), label("Ueq0", f[0], &pf.outside[0], "\n= ", "\n"), small, AX::Right, font_ok);
       text(img, int(L + E / 2), int(T - small), label("Veq0", f[1], &pf.outside[1]), small, AX::Center, font_ok);
-      text(img, int(L + E + 8), int(T + E / 2), label("Ueq1", f[2], &pf.outside[2]), small, AX::Left, font_ok);
+      text(img, int(L + E + 8), int(T + E / 2), label("Ueq1", f[2], &pf.outside[2], "\n= ", "\n"), small, AX::Left, font_ok);
       text(img, int(L + E / 2), int(T + E + small), label("Veq1", f[3], &pf.outside[3]), small, AX::Center, font_ok);
       text(img, pic.size / 2, int(T + E + 2.4 * small),
            "inside U = " + float_text(f[4]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")") +
