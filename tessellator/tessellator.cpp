@@ -2,6 +2,7 @@
 #include "tessellator.h"
 
 #include "domains.h"
+#include "fnv1a.h"
 #include "stitch.h"
 
 namespace tessera::ts {
@@ -92,31 +93,22 @@ int inside_factor_count(Domain d) { return d == Domain::quad ? 2 : d == Domain::
 
 namespace {
 
-// FNV-1a over the fields that determine a pattern.
-struct Hasher {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  void add(std::uint64_t x) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (x >> (8 * i)) & 0xFF;
-      h *= 0x100000001b3ull;
-    }
-  }
-  void add(const EdgeContext& c) {
-    add(c.factor);
-    add(static_cast<std::uint64_t>(c.parity));
-    add(static_cast<std::uint64_t>(c.num_points));
-  }
-};
+// The fields that determine a pattern; the rest of an EdgeContext derives from them.
+void add(Fnv1a& h, const EdgeContext& c) {
+  h.add(c.factor);
+  h.add(static_cast<std::uint64_t>(c.parity));
+  h.add(static_cast<std::uint64_t>(c.num_points));
+}
 
 }  // namespace
 
 std::uint64_t hash(const ProcessedFactors& p, OutputPrimitive output) {
-  Hasher h;
+  Fnv1a h;
   h.add(static_cast<std::uint64_t>(p.domain) | std::uint64_t(p.culled) << 8 | std::uint64_t(p.minimal) << 9 |
         static_cast<std::uint64_t>(output) << 16);
-  for (const auto& c : p.outside) h.add(c);
-  for (const auto& c : p.inside) h.add(c);
-  return h.h;
+  for (const auto& c : p.outside) add(h, c);
+  for (const auto& c : p.inside) add(h, c);
+  return h.value;
 }
 
 std::string_view to_string(Domain d) {

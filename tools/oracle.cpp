@@ -1,5 +1,7 @@
 #include "oracle.h"
 
+#include "fnv1a.h"
+
 #include <algorithm>
 #include <bit>
 #include <cinttypes>
@@ -36,22 +38,14 @@ Primitive canonical(Primitive p) {
   return p;
 }
 
-struct Fnv {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  void add(std::uint32_t x) {
-    for (int i = 0; i < 4; ++i) {
-      h ^= (x >> (8 * i)) & 0xFF;
-      h *= 0x100000001b3ull;
-    }
+// Digests hash each coordinate's 4 bytes, with a separator after each primitive.
+void add(ts::Fnv1a& h, const std::vector<Primitive>& prims) {
+  for (const auto& p : prims) {
+    for (const auto& v : p)
+      for (auto c : v) h.add(c, 4);
+    h.add(0xFFFFFFFFu, 4);
   }
-  void add(const std::vector<Primitive>& prims) {
-    for (const auto& p : prims) {
-      for (const auto& v : p)
-        for (auto c : v) add(c);
-      add(0xFFFFFFFFu);  // primitive separator
-    }
-  }
-};
+}
 
 std::string vertex_string(const Vertex& v) {
   char buf[96];
@@ -171,16 +165,16 @@ std::vector<Primitive> tessera_primitives(const Case& c) {
 Digest digest(const std::vector<Primitive>& prims) {
   Digest d;
   d.primitives = prims.size();
-  Fnv ordered;
-  ordered.add(prims);
-  d.ordered = ordered.h;
+  ts::Fnv1a ordered;
+  add(ordered, prims);
+  d.ordered = ordered.value;
   std::vector<Primitive> canon;
   canon.reserve(prims.size());
   for (const auto& p : prims) canon.push_back(canonical(p));
   std::sort(canon.begin(), canon.end());
-  Fnv set;
-  set.add(canon);
-  d.set = set.h;
+  ts::Fnv1a set;
+  add(set, canon);
+  d.set = set.value;
   return d;
 }
 
