@@ -244,7 +244,7 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
                ",  inside V = " + float_text(f[5]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[1]) + ")"),
            small, AX::Center, font_ok);
     } else {
-      text(img, int(L - 8), int(T + E / 2), label("density", f[0], nullptr) + (pf.culled ? "" : "  (" + segments_text(pf.outside[0]) + " lines)"),
+      text(img, int(L - 8), int(T + E / 2), label("density", f[0], nullptr, "\n= ") + (pf.culled ? "" : "\n(" + segments_text(pf.outside[0]) + " lines)"),
            small, AX::Right, font_ok);
       text(img, int(L + E / 2), int(T - small), label("detail", f[1], &pf.outside[1]), small, AX::Center, font_ok);
     }
