@@ -25,6 +25,18 @@ ts::FactorSet random_factors(Rng& rng, ts::Domain d, double lo = 0.6, double hi 
   return f;
 }
 
+// The i-th random tri-or-quad case: alternating domains, a random partitioning, random factors.
+struct RandomCase {
+  ts::Domain d;
+  ts::Partitioning p;
+  ts::FactorSet f;
+};
+RandomCase random_patch(Rng& rng, int i, double lo = 0.6, double hi = 20.0) {
+  const auto d = i % 2 ? ts::Domain::quad : ts::Domain::tri;
+  const auto p = kAllPartitionings[std::size_t(rng.integer(0, 3))];
+  return {d, p, random_factors(rng, d, lo, hi)};
+}
+
 // GL-style clamp-and-round of one level, written independently of the tessellator: the number
 // of segments the level gives.
 int gl_segments(ts::Partitioning p, float x) {
@@ -238,9 +250,7 @@ TEST_CASE("properties 6, 7, 8, 19: edges depend only on their factor, are symmet
 TEST_CASE("property 9: cw and ccw give the same triangles; cw has positive area", "[tessellator][properties]") {
   Rng rng(9);
   for (int i = 0; i < kCases; ++i) {
-    const auto d = i % 2 ? ts::Domain::quad : ts::Domain::tri;
-    const auto p = kAllPartitionings[std::size_t(rng.integer(0, 3))];
-    const auto f = random_factors(rng, d);
+    const auto [d, p, f] = random_patch(rng, i);
     const auto cw = run(p, ts::OutputPrimitive::triangle_cw, f), ccw = run(p, ts::OutputPrimitive::triangle_ccw, f);
     REQUIRE(cw.points == ccw.points);
     REQUIRE(cw.indices.size() == ccw.indices.size());
@@ -297,9 +307,7 @@ TEST_CASE("properties 10 and 11: interior and edge strips depend only on their o
 TEST_CASE("property 12: coverage, no T-junctions inside a patch", "[tessellator][properties]") {
   Rng rng(12);
   for (int i = 0; i < kCases; ++i) {
-    const auto d = i % 2 ? ts::Domain::quad : ts::Domain::tri;
-    const auto p = kAllPartitionings[std::size_t(rng.integer(0, 3))];
-    const auto f = random_factors(rng, d, 0.6, 30);
+    const auto [d, p, f] = random_patch(rng, i, 0.6, 30);
     const auto P = run(p, ts::OutputPrimitive::triangle_cw, f);
     std::int64_t area = 0;
     bool zero_area = false;
@@ -329,9 +337,7 @@ TEST_CASE("property 12: coverage, no T-junctions inside a patch", "[tessellator]
 TEST_CASE("property 13: point mode lists the triangle-mode points", "[tessellator][properties]") {
   Rng rng(13);
   for (int i = 0; i < kCases / 2; ++i) {
-    const auto d = i % 2 ? ts::Domain::quad : ts::Domain::tri;
-    const auto p = kAllPartitionings[std::size_t(rng.integer(0, 3))];
-    const auto f = random_factors(rng, d);
+    const auto [d, p, f] = random_patch(rng, i);
     const auto pts = run(p, ts::OutputPrimitive::point, f), tris = run(p, ts::OutputPrimitive::triangle_cw, f);
     REQUIRE(pts.points == tris.points);
     REQUIRE(pts.indices.size() == pts.points.size());
