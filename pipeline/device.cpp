@@ -1,0 +1,44 @@
+#include "device.h"
+
+#include <thread>
+
+namespace tessera {
+
+Device::Device(DeviceOptions options) : options_(options) {
+  const int hw = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads_ = options_.threads > 0 ? options_.threads : hw;
+  options_.tile_size = std::clamp(options_.tile_size & ~1, 8, 1024);
+  options_.chunk_primitives = std::max<std::size_t>(options_.chunk_primitives, 64);
+  options_.window_patches = std::max(options_.window_patches, 1);
+  options_.chunks_in_flight = std::max(options_.chunks_in_flight, 1);
+  arena_ = std::make_unique<tbb::task_arena>(threads_);
+}
+
+std::string validate_viewport(const Viewport& vp, const Framebuffer& fb) {
+  const bool finite = std::isfinite(vp.x) && std::isfinite(vp.y) && std::isfinite(vp.width) &&
+                      std::isfinite(vp.height) && std::isfinite(vp.min_depth) && std::isfinite(vp.max_depth);
+  if (!finite) return "viewport has a non-finite value";
+  if (!(vp.width > 0) || !(vp.height > 0))
+    return "viewport " + std::to_string(vp.width) + "x" + std::to_string(vp.height) + " has zero area";
+  if (vp.width > float(kMaxRenderTargetSize) || vp.height > float(kMaxRenderTargetSize))
+    return "viewport is larger than " + std::to_string(kMaxRenderTargetSize) + " pixels on a side";
+  if (vp.x < -32768.0f || vp.y < -32768.0f || vp.x + vp.width > 32767.0f || vp.y + vp.height > 32767.0f)
+    return "viewport lies outside D3D11's bounds [-32768, 32767]";
+  if (vp.min_depth < 0 || vp.min_depth > 1 || vp.max_depth < 0 || vp.max_depth > 1)
+    return "viewport depth range must lie in [0, 1]";
+  (void)fb;
+  return {};
+}
+
+std::string validate_patch_draw(std::size_t index_count, int control_points, const TessellatorState& ts) {
+  if (control_points < 1 || control_points > 32)
+    return "patch list with " + std::to_string(control_points) + " control points (D3D11 allows 1..32)";
+  if (index_count % std::size_t(control_points) != 0)
+    return "index count " + std::to_string(index_count) + " is not a multiple of " + std::to_string(control_points) +
+           " control points";
+  const bool triangles = ts.output == ts::OutputPrimitive::triangle_cw || ts.output == ts::OutputPrimitive::triangle_ccw;
+  if (ts.domain == ts::Domain::isoline && triangles) return "the isoline domain outputs lines or points, not triangles";
+  return {};
+}
+
+}  // namespace tessera

@@ -1,0 +1,476 @@
+// The draw entry points: a Device owns the worker threads; draw() runs one draw call through
+// IA -> VS -> HS -> tessellator -> DS -> clip/setup/bin -> rasterizer -> PS -> output merger.
+//
+// Contract
+// - Deterministic: the framebuffer bytes and the statistics are identical for any thread count and
+//   from run to run. Work is split into chunks of primitives in draw order; each tile rasterizes the
+//   chunks' primitives in draw order; every computation on a primitive is a pure function of it.
+// - Bounded memory: the front end handles at most `window_patches` patches at a time (VS and HS
+//   outputs), and cuts their output into chunks of about `chunk_primitives` primitives, at most
+//   `chunks_in_flight` of which exist at once before they are flushed to the rasterizer. Peak memory
+//   therefore does not grow with the tessellation factor (one patch is at most 8192 triangles).
+// - Bad data is reported, not crashed on: validate() errors are returned as one-line messages;
+//   D3D11's own rules cover the rest (out-of-range indices fetch a zero vertex, NaN/Inf positions
+//   discard the primitive, out-of-range factors are clamped or cull the patch).
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "framebuffer.h"
+#include "pattern_cache.h"
+#include "pipeline_state.h"
+#include "primitive_setup.h"
+#include "raster_tile.h"
+#include "stage_io.h"
+#include "statistics.h"
+
+namespace tessera {
+
+struct DeviceOptions {
+  int threads = 0;                      // worker threads; 0 = all hardware threads
+  int tile_size = 64;                   // screen tile edge in pixels (even, 8..1024)
+  std::size_t chunk_primitives = 16384; // a chunk is cut before its primitive count would pass this
+  int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
+  int chunks_in_flight = 8;             // chunks produced before they are flushed to the rasterizer
+};
+
+// A draw of a patch list (D3D11_PRIMITIVE_TOPOLOGY_n_CONTROL_POINT_PATCHLIST, n = control_points).
+template <class Vertex, class Vs, class Hs, class Ds, class Ps>
+struct PatchDraw {
+  std::span<const Vertex> vertices;
+  std::span<const std::uint32_t> indices;
+  int control_points = 0;  // per input patch, 1..32
+  Vs vs;
+  Hs hs;
+  Ds ds;
+  Ps ps;
+  TessellatorState tessellator;
+  RasterizerState rasterizer;
+  DepthState depth;
+  Viewport viewport;
+};
+
+// A draw of an indexed triangle list without tessellation; the vertex shader returns ClipVertex<N>.
+template <class Vertex, class Vs, class Ps>
+struct MeshDraw {
+  std::span<const Vertex> vertices;
+  std::span<const std::uint32_t> indices;
+  Vs vs;
+  Ps ps;
+  RasterizerState rasterizer;
+  DepthState depth;
+  Viewport viewport;
+};
+
+struct DrawResult {
+  std::string error;  // empty on success
+  DrawReport report;
+  bool ok() const { return error.empty(); }
+};
+
+// One-line reasons a draw's fixed-function state cannot be used, or an empty string.
+std::string validate_viewport(const Viewport& vp, const Framebuffer& fb);
+std::string validate_patch_draw(std::size_t index_count, int control_points, const TessellatorState& ts);
+
+namespace detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Maps the vertex indices of a window to unique VS invocations (vertex caching by index).
+struct VertexCache {
+  std::vector<std::uint32_t> stamp;   // per vertex: window number that last used it
+  std::vector<std::uint32_t> slot;    // per vertex: its VS output slot in that window
+  std::vector<std::uint32_t> unique;  // vertex ids run through the VS this window, in first-use order
+  std::vector<std::uint32_t> slots;   // per index of the window: its VS output slot
+  std::uint32_t window = 0;
+
+  // Out-of-range indices share one slot whose VS input is a zero vertex (D3D11: out-of-bounds fetch
+  // returns 0); `unique` holds vertex_count for it.
+  void build(std::span<const std::uint32_t> indices, std::size_t vertex_count) {
+    if (stamp.size() != vertex_count + 1) {
+      stamp.assign(vertex_count + 1, 0);
+      slot.assign(vertex_count + 1, 0);
+      window = 0;
+    }
+    ++window;
+    unique.clear();
+    slots.resize(indices.size());
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      const std::size_t v = std::min<std::size_t>(indices[i], vertex_count);
+      if (stamp[v] != window) {
+        stamp[v] = window;
+        slot[v] = static_cast<std::uint32_t>(unique.size());
+        unique.push_back(static_cast<std::uint32_t>(v));
+      }
+      slots[i] = slot[v];
+    }
+  }
+  std::size_t bytes() const {
+    return (stamp.capacity() + slot.capacity() + unique.capacity() + slots.capacity()) * sizeof(std::uint32_t);
+  }
+};
+
+template <class Vertex, class Vs, class Out>
+void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const VertexCache& cache, std::vector<Out>& out) {
+  out.resize(cache.unique.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cache.unique.size(), 256), [&](const auto& r) {
+    const Vertex zero{};
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::uint32_t id = cache.unique[i];
+      out[i] = vs(id < vertices.size() ? vertices[id] : zero, id);
+    }
+  });
+}
+
+// The back end: chunk slots, and the tile-parallel flush that rasterizes them in draw order.
+template <std::size_t N, class Ps>
+class Backend {
+ public:
+  Backend(const SetupContext& setup, const RasterContext& rc, const Ps& ps, Framebuffer& fb, int slots)
+      : setup_(setup), rc_(rc), ps_(ps), fb_(fb), slots_(std::size_t(slots)) {
+    for (auto& s : slots_) s.reset(setup_.tiles.count());
+  }
+
+  const SetupContext& setup() const { return setup_; }
+
+  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&) in parallel, `slots` at a time, and
+  // rasterizes each round before the next.
+  template <class Produce>
+  void run(std::size_t count, Produce&& produce, DrawReport& report) {
+    for (std::size_t first = 0; first < count; first += slots_.size()) {
+      const std::size_t n = std::min(slots_.size(), count - first);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s != r.end(); ++s) {
+          slots_[s].reset(setup_.tiles.count());
+          produce(first + s, slots_[s]);
+        }
+      });
+      flush(n, report);
+      for (std::size_t s = 0; s < n; ++s) {
+        report.statistics += slots_[s].statistics;
+        report.times += slots_[s].times;
+      }
+      report.memory.chunks += n;
+      std::size_t bytes = 0;
+      for (const auto& s : slots_) bytes += s.capacity_bytes();
+      chunk_bytes_peak_ = std::max(chunk_bytes_peak_, bytes);
+    }
+  }
+
+  std::size_t chunk_bytes_peak() const { return chunk_bytes_peak_; }
+
+ private:
+  void flush(std::size_t used, DrawReport& report) {
+    const TileGrid& g = setup_.tiles;
+    tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
+    tbb::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& r) {
+      auto& mine = local.local();
+      for (int t = r.begin(); t != r.end(); ++t) {
+        bool any = false;
+        for (std::size_t s = 0; s < used && !any; ++s) any = !slots_[s].bins[std::size_t(t)].empty();
+        if (!any) continue;
+        const auto start = Clock::now();
+        const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
+        const int tx1 = std::min(tx0 + g.tile_size, fb_.width()), ty1 = std::min(ty0 + g.tile_size, fb_.height());
+        std::uint64_t invocations = 0;
+        for (std::size_t s = 0; s < used; ++s) {
+          const auto& chunk = slots_[s];
+          for (std::uint32_t i : chunk.bins[std::size_t(t)])
+            invocations += rasterize<N>(chunk.primitives[i], tx0, ty0, tx1, ty1, ps_, rc_, fb_);
+        }
+        mine.first += invocations;
+        mine.second += seconds_since(start);
+      }
+    });
+    for (const auto& [invocations, seconds] : local) {
+      report.statistics.PSInvocations += invocations;
+      report.times.raster += seconds;
+    }
+  }
+
+  SetupContext setup_;
+  RasterContext rc_;
+  const Ps& ps_;
+  Framebuffer& fb_;
+  std::vector<ChunkBuffer<N>> slots_;
+  std::size_t chunk_bytes_peak_ = 0;
+};
+
+// Cuts [0, count) into ranges whose summed cost stays at or below `budget` (a range holds at least one
+// item) and at most `max_items` items.
+inline void cut_chunks(std::span<const std::uint32_t> cost, std::size_t budget, std::size_t max_items,
+                       std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+  out.clear();
+  std::uint32_t begin = 0;
+  std::size_t sum = 0;
+  for (std::uint32_t i = 0; i < cost.size(); ++i) {
+    if (i > begin && (sum + cost[i] > budget || i - begin >= max_items)) {
+      out.emplace_back(begin, i);
+      begin = i;
+      sum = 0;
+    }
+    sum += cost[i];
+  }
+  if (begin < cost.size()) out.emplace_back(begin, static_cast<std::uint32_t>(cost.size()));
+}
+
+inline ts::FactorSet factor_set(ts::Domain domain, const TessFactors& f) {
+  ts::FactorSet s;
+  s.domain = domain;
+  s.values = {f.edge[0], f.edge[1], f.edge[2], f.edge[3], f.inside[0], f.inside[1]};
+  if (domain == ts::Domain::tri) s.values[3] = f.inside[0];
+  return s;
+}
+
+template <std::size_t N>
+struct PatchScratch {
+  PatternCache patterns;
+  std::vector<ClipVertex<N>> domain_outputs;
+  std::size_t bytes() const { return patterns.bytes() + domain_outputs.capacity() * sizeof(ClipVertex<N>); }
+};
+
+}  // namespace detail
+
+class Device {
+ public:
+  explicit Device(DeviceOptions options = {});
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  int threads() const { return threads_; }
+  const DeviceOptions& options() const { return options_; }
+
+  template <class Vertex, class Vs, class Hs, class Ds, class Ps>
+  DrawResult draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb);
+
+  template <class Vertex, class Vs, class Ps>
+  DrawResult draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb);
+
+ private:
+  DeviceOptions options_;
+  int threads_ = 1;
+  std::unique_ptr<tbb::task_arena> arena_;
+};
+
+template <class Vertex, class Vs, class Hs, class Ds, class Ps>
+DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb) {
+  using VsOut = vs_output_t<Vs, Vertex>;
+  static_assert(HullShader<Hs, VsOut>, "the hull shader does not have the shape stage_io.h describes");
+  using ControlPoint = hs_control_point_t<Hs, VsOut>;
+  using PatchConstants = hs_patch_constants_t<Hs, VsOut>;
+  using DsOut = decltype(d.ds(std::declval<const PatchConstants&>(), std::span<const ControlPoint>(), DomainLocation{},
+                              std::uint32_t{0}));
+  static_assert(is_clip_vertex<DsOut>::value, "the domain shader must return ClipVertex<N>");
+  constexpr std::size_t N = is_clip_vertex<DsOut>::attribute_count;
+  constexpr int kOut = Hs::kOutputControlPoints;
+
+  DrawResult result;
+  if (auto e = validate_viewport(d.viewport, fb); !e.empty()) return {e, {}};
+  if (auto e = validate_patch_draw(d.indices.size(), d.control_points, d.tessellator); !e.empty()) return {e, {}};
+  const auto draw_start = detail::Clock::now();
+  DrawReport& report = result.report;
+  const std::size_t n_in = std::size_t(d.control_points);
+  const std::size_t patch_count = d.indices.size() / n_in;
+  const TessellatorState tstate = d.tessellator;
+
+  arena_->execute([&] {
+    const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
+    RasterContext rc{d.depth, setup.min_depth, setup.max_depth};
+    detail::Backend<N, Ps> backend(setup, rc, d.ps, fb, options_.chunks_in_flight);
+    tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
+    tbb::enumerable_thread_specific<StageTimes> front_times;
+
+    detail::VertexCache vcache;
+    std::vector<VsOut> vs_out;
+    std::vector<ControlPoint> control_points;
+    std::vector<PatchConstants> constants;
+    std::vector<ts::ProcessedFactors> processed;
+    std::vector<std::uint32_t> cost;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
+    std::size_t window_bytes_peak = 0;
+
+    const std::size_t window = std::size_t(std::max(1, options_.window_patches));
+    for (std::size_t first = 0; first < patch_count; first += window) {
+      const std::size_t n = std::min(window, patch_count - first);
+      const auto indices = d.indices.subspan(first * n_in, n * n_in);
+
+      // IA and VS: one invocation per unique vertex index of the window.
+      auto t0 = detail::Clock::now();
+      vcache.build(indices, d.vertices.size());
+      detail::run_vertex_shader(d.vs, d.vertices, vcache, vs_out);
+      report.statistics.IAVertices += indices.size();
+      report.statistics.IAPrimitives += n;
+      report.statistics.VSInvocations += vcache.unique.size();
+      report.times.ia_vs += detail::seconds_since(t0);
+
+      // HS: control-point phase, then the patch-constant phase; factors processed and patterns sized.
+      control_points.resize(n * kOut);
+      constants.resize(n);
+      processed.resize(n);
+      cost.resize(n);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
+        auto& local = scratch.local();
+        auto& times = front_times.local();
+        std::array<VsOut, 32> inputs;
+        for (std::size_t p = r.begin(); p != r.end(); ++p) {
+          const auto start = detail::Clock::now();
+          const auto patch_id = static_cast<std::uint32_t>(first + p);
+          for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
+          const std::span<const VsOut> in(inputs.data(), n_in);
+          ControlPoint* out = control_points.data() + p * kOut;
+          for (int i = 0; i < kOut; ++i) out[i] = d.hs.control_point(in, i, patch_id);
+          constants[p] = d.hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
+          processed[p] = ts::process_factors(tstate.partitioning, detail::factor_set(tstate.domain, constants[p].factors));
+          const auto hs_done = detail::Clock::now();
+          times.hs += std::chrono::duration<double>(hs_done - start).count();
+          if (processed[p].culled) {
+            cost[p] = 0;
+            continue;
+          }
+          bool hit = false;
+          const ts::Pattern& pattern = local.patterns.get(processed[p], tstate.output, hit);
+          cost[p] = static_cast<std::uint32_t>(pattern.primitive_count());
+          if (!hit) times.tessellator += detail::seconds_since(hs_done);
+        }
+      });
+      report.statistics.HSInvocations += n;
+
+      // Chunks of about chunk_primitives primitives, in draw order.
+      detail::cut_chunks(cost, options_.chunk_primitives, 256, chunks);
+      backend.run(
+          chunks.size(),
+          [&](std::size_t c, ChunkBuffer<N>& chunk) {
+            auto& local = scratch.local();
+            const auto [begin, end] = chunks[c];
+            for (std::uint32_t p = begin; p < end; ++p) {
+              if (processed[p].culled) continue;
+              const auto start = detail::Clock::now();
+              bool hit = false;
+              const ts::Pattern& pattern = local.patterns.get(processed[p], tstate.output, hit);
+              const auto tess_done = detail::Clock::now();
+              if (!hit) chunk.times.tessellator += std::chrono::duration<double>(tess_done - start).count();
+              const auto patch_id = static_cast<std::uint32_t>(first + p);
+              const std::span<const ControlPoint> cps(control_points.data() + std::size_t(p) * kOut, kOut);
+              const PatchConstants& pc = constants[p];
+              auto& outs = local.domain_outputs;
+              outs.resize(pattern.points.size());
+              const bool tri = tstate.domain == ts::Domain::tri;
+              for (std::size_t i = 0; i < pattern.points.size(); ++i) {
+                const ts::DomainPoint q = pattern.points[i];
+                outs[i] = d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id);
+              }
+              chunk.statistics.DSInvocations += pattern.points.size();
+              const auto ds_done = detail::Clock::now();
+              chunk.times.ds += std::chrono::duration<double>(ds_done - tess_done).count();
+              const auto& idx = pattern.indices;
+              switch (pattern.output) {
+                case ts::OutputPrimitive::triangle_cw:
+                case ts::OutputPrimitive::triangle_ccw:
+                  for (std::size_t i = 0; i + 2 < idx.size(); i += 3)
+                    setup_triangle<N>(backend.setup(), chunk, outs[idx[i]], outs[idx[i + 1]], outs[idx[i + 2]], patch_id);
+                  break;
+                case ts::OutputPrimitive::line:
+                  for (std::size_t i = 0; i + 1 < idx.size(); i += 2)
+                    setup_line<N>(backend.setup(), chunk, outs[idx[i]], outs[idx[i + 1]], patch_id);
+                  break;
+                case ts::OutputPrimitive::point:
+                  for (std::uint32_t i : idx) setup_point<N>(backend.setup(), chunk, outs[i], patch_id);
+                  break;
+              }
+              chunk.times.setup += detail::seconds_since(ds_done);
+            }
+          },
+          report);
+
+      std::size_t bytes = vcache.bytes() + vs_out.capacity() * sizeof(VsOut) +
+                          control_points.capacity() * sizeof(ControlPoint) +
+                          constants.capacity() * sizeof(PatchConstants) +
+                          processed.capacity() * sizeof(ts::ProcessedFactors) + cost.capacity() * sizeof(std::uint32_t);
+      for (const auto& s : scratch) bytes += s.bytes();
+      window_bytes_peak = std::max(window_bytes_peak, bytes);
+    }
+    for (const auto& t : front_times) report.times += t;
+    for (const auto& s : scratch) {
+      report.memory.pattern_cache_hits += s.patterns.hits();
+      report.memory.pattern_cache_misses += s.patterns.misses();
+      report.memory.pattern_cache_bytes += s.patterns.bytes();
+    }
+    report.memory.geometry_peak_bytes = window_bytes_peak + backend.chunk_bytes_peak();
+  });
+  report.memory.framebuffer_bytes = fb.bytes();
+  report.times.wall = detail::seconds_since(draw_start);
+  return result;
+}
+
+template <class Vertex, class Vs, class Ps>
+DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
+  using VsOut = vs_output_t<Vs, Vertex>;
+  static_assert(is_clip_vertex<VsOut>::value, "a mesh draw's vertex shader must return ClipVertex<N>");
+  constexpr std::size_t N = is_clip_vertex<VsOut>::attribute_count;
+
+  DrawResult result;
+  if (auto e = validate_viewport(d.viewport, fb); !e.empty()) return {e, {}};
+  if (d.indices.size() % 3 != 0)
+    return {"triangle list has " + std::to_string(d.indices.size()) + " indices, not a multiple of 3", {}};
+  const auto draw_start = detail::Clock::now();
+  DrawReport& report = result.report;
+  const std::size_t triangle_count = d.indices.size() / 3;
+
+  arena_->execute([&] {
+    const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
+    RasterContext rc{d.depth, setup.min_depth, setup.max_depth};
+    detail::Backend<N, Ps> backend(setup, rc, d.ps, fb, options_.chunks_in_flight);
+    detail::VertexCache vcache;
+    std::vector<VsOut> vs_out;
+    std::vector<std::uint32_t> cost;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
+    const std::size_t window = std::size_t(std::max(1, options_.window_patches)) * 16;
+    std::size_t window_bytes_peak = 0;
+    for (std::size_t first = 0; first < triangle_count; first += window) {
+      const std::size_t n = std::min(window, triangle_count - first);
+      const auto indices = d.indices.subspan(first * 3, n * 3);
+      auto t0 = detail::Clock::now();
+      vcache.build(indices, d.vertices.size());
+      detail::run_vertex_shader(d.vs, d.vertices, vcache, vs_out);
+      report.statistics.IAVertices += indices.size();
+      report.statistics.IAPrimitives += n;
+      report.statistics.VSInvocations += vcache.unique.size();
+      report.times.ia_vs += detail::seconds_since(t0);
+      cost.assign(n, 1);
+      detail::cut_chunks(cost, options_.chunk_primitives, options_.chunk_primitives, chunks);
+      backend.run(
+          chunks.size(),
+          [&](std::size_t c, ChunkBuffer<N>& chunk) {
+            const auto start = detail::Clock::now();
+            for (std::uint32_t t = chunks[c].first; t < chunks[c].second; ++t) {
+              const std::size_t i = std::size_t(t) * 3;
+              setup_triangle<N>(backend.setup(), chunk, vs_out[vcache.slots[i]], vs_out[vcache.slots[i + 1]],
+                                vs_out[vcache.slots[i + 2]], static_cast<std::uint32_t>(first + t));
+            }
+            chunk.times.setup += detail::seconds_since(start);
+          },
+          report);
+      window_bytes_peak = std::max(window_bytes_peak, vcache.bytes() + vs_out.capacity() * sizeof(VsOut) +
+                                                          cost.capacity() * sizeof(std::uint32_t));
+    }
+    report.memory.geometry_peak_bytes = window_bytes_peak + backend.chunk_bytes_peak();
+  });
+  report.memory.framebuffer_bytes = fb.bytes();
+  report.times.wall = detail::seconds_since(draw_start);
+  return result;
+}
+
+}  // namespace tessera

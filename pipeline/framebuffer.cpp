@@ -1,0 +1,115 @@
+#include "framebuffer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+namespace tessera {
+
+Framebuffer::Framebuffer(int w, int h, ColorFormat f)
+    : width_(w),
+      height_(h),
+      format_(f),
+      color_(std::size_t(w) * std::size_t(h) * (f == ColorFormat::rgba8_unorm ? 4u : 16u)),
+      depth_(std::size_t(w) * std::size_t(h), 1.0f) {}
+
+std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorFormat format, std::string* error) {
+  if (width < 1 || height < 1 || width > kMaxRenderTargetSize || height > kMaxRenderTargetSize) {
+    if (error)
+      *error = "render target " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." +
+               std::to_string(kMaxRenderTargetSize) + " per side";
+    return std::nullopt;
+  }
+  return Framebuffer(width, height, format);
+}
+
+void Framebuffer::clear(glm::vec4 c, float d) {
+  std::fill(depth_.begin(), depth_.end(), d);
+  if (format_ == ColorFormat::rgba8_unorm) {
+    const std::uint8_t px[4] = {float_to_unorm8(c.r), float_to_unorm8(c.g), float_to_unorm8(c.b), float_to_unorm8(c.a)};
+    for (std::size_t i = 0; i < color_.size(); i += 4) std::memcpy(&color_[i], px, 4);
+  } else {
+    const float px[4] = {c.r, c.g, c.b, c.a};
+    for (std::size_t i = 0; i < color_.size(); i += 16) std::memcpy(&color_[i], px, 16);
+  }
+}
+
+void Framebuffer::set_color(int x, int y, glm::vec4 c) {
+  const std::size_t i = index(x, y);
+  if (format_ == ColorFormat::rgba8_unorm) {
+    std::uint8_t* p = &color_[i * 4];
+    p[0] = float_to_unorm8(c.r);
+    p[1] = float_to_unorm8(c.g);
+    p[2] = float_to_unorm8(c.b);
+    p[3] = float_to_unorm8(c.a);
+  } else {
+    const float px[4] = {c.r, c.g, c.b, c.a};
+    std::memcpy(&color_[i * 16], px, 16);
+  }
+}
+
+glm::vec4 Framebuffer::color(int x, int y) const {
+  const std::size_t i = index(x, y);
+  if (format_ == ColorFormat::rgba8_unorm) {
+    const std::uint8_t* p = &color_[i * 4];
+    return glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
+  }
+  float px[4];
+  std::memcpy(px, &color_[i * 16], 16);
+  return {px[0], px[1], px[2], px[3]};
+}
+
+std::string Framebuffer::write_color(const std::string& path) const {
+  return write_image_atomically(path, width_, height_, 4, format_ == ColorFormat::rgba32_float, color_.data());
+}
+
+std::string Framebuffer::write_depth(const std::string& path) const {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".exr" || ext == ".EXR" || ext == ".tif" || ext == ".tiff")
+    return write_image_atomically(path, width_, height_, 1, true, depth_.data());
+  // 8-bit formats would lose almost all depth precision; write depth scaled to 0..255 only as a preview.
+  std::vector<std::uint8_t> preview(depth_.size());
+  for (std::size_t i = 0; i < depth_.size(); ++i) preview[i] = float_to_unorm8(depth_[i]);
+  return write_image_atomically(path, width_, height_, 1, false, preview.data());
+}
+
+std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
+                                   const void* pixels) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // The temporary keeps the extension: OpenImageIO picks the format from it.
+  std::string temp_name = ".";
+  temp_name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid()));
+  temp_name.append(target.extension().string());
+  const fs::path temp = dir / temp_name;
+  auto out = OIIO::ImageOutput::create(target.string());
+  if (!out) return path + ": no image writer for this extension (" + OIIO::geterror() + ")";
+  OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  if (is_float && !out->supports("channelformats") && target.extension() == ".png") spec.set_format(OIIO::TypeDesc::UINT8);
+  bool ok = out->open(temp.string(), spec);
+  if (ok) ok = out->write_image(is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, pixels);
+  if (ok) ok = out->close();
+  if (!ok) {
+    std::string err = out->geterror();
+    std::error_code ec;
+    fs::remove(temp, ec);
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    return path + ": cannot write image: " + err;
+  }
+  std::error_code ec;
+  fs::rename(temp, target, ec);
+  if (ec) {
+    fs::remove(temp, ec);
+    return path + ": cannot rename the finished image into place: " + ec.message();
+  }
+  return {};
+}
+
+}  // namespace tessera

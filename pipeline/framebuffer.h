@@ -1,0 +1,73 @@
+// Render targets: one colour buffer (RGBA8 UNORM or RGBA32F) and one D32F depth buffer, row-major with
+// row 0 at the top (D3D's y-down window coordinates).
+//
+// Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target);
+// writes to an image file go through OpenImageIO into a temporary beside the target, renamed over it
+// only when complete, so a failed write never leaves a half-written file.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tessera {
+
+enum class ColorFormat : std::uint8_t { rgba8_unorm, rgba32_float };
+
+inline constexpr int kMaxRenderTargetSize = 16384;  // D3D11_REQ_RENDER_TO_BUFFER_WINDOW_WIDTH
+
+class Framebuffer {
+ public:
+  // Returns nullopt and a one-line reason for an unsupported size.
+  static std::optional<Framebuffer> create(int width, int height, ColorFormat format, std::string* error);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  ColorFormat format() const { return format_; }
+
+  void clear(glm::vec4 color, float depth);
+
+  // Output merger writes (the caller owns the pixel; different threads write different pixels).
+  float depth(int x, int y) const { return depth_[index(x, y)]; }
+  void set_depth(int x, int y, float d) { depth_[index(x, y)] = d; }
+  void set_color(int x, int y, glm::vec4 c);
+  glm::vec4 color(int x, int y) const;
+
+  // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
+  const std::vector<std::uint8_t>& color_bytes() const { return color_; }
+  const std::vector<float>& depth_values() const { return depth_; }
+  std::size_t bytes() const { return color_.size() + depth_.size() * sizeof(float); }
+
+  // Writes the colour buffer: PNG (8-bit), EXR (half/float), or anything else OpenImageIO knows by
+  // extension. Returns an empty string on success, else a one-line error naming the file.
+  std::string write_color(const std::string& path) const;
+  // Writes the depth buffer as a one-channel float EXR (or 16-bit PNG, depth scaled to 0..65535).
+  std::string write_depth(const std::string& path) const;
+
+ private:
+  Framebuffer(int w, int h, ColorFormat f);
+  std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
+
+  int width_ = 0, height_ = 0;
+  ColorFormat format_ = ColorFormat::rgba8_unorm;
+  std::vector<std::uint8_t> color_;
+  std::vector<float> depth_;
+};
+
+// D3D11's FLOAT -> UNORM8 conversion: NaN -> 0, clamp to [0, 1], scale by 255, round to nearest.
+inline std::uint8_t float_to_unorm8(float x) {
+  if (!(x > 0.0f)) return 0;  // also catches NaN
+  if (x >= 1.0f) return 255;
+  return static_cast<std::uint8_t>(x * 255.0f + 0.5f);
+}
+
+// Writes an image through OpenImageIO atomically (temporary + rename). `pixels` are `channels`
+// interleaved values per pixel, row 0 at the top; `is_float` selects float32 data, else uint8.
+// Returns an empty string on success, else a one-line error naming the file.
+std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
+                                   const void* pixels);
+
+}  // namespace tessera

@@ -1,0 +1,37 @@
+#include "pattern_cache.h"
+
+namespace tessera {
+
+const ts::Pattern& PatternCache::get(const ts::ProcessedFactors& key, ts::OutputPrimitive output, bool& hit) {
+  const std::uint64_t h = ts::hash(key, output);
+  for (const Entry& e : entries_) {
+    if (e.hash == h && e.output == output && e.key == key) {
+      ++hits_;
+      hit = true;
+      return e.pattern;
+    }
+  }
+  ++misses_;
+  hit = false;
+  Entry* slot;
+  if (entries_.size() < kEntries) {
+    slot = &entries_.emplace_back();
+  } else {
+    slot = &entries_[next_victim_];
+    next_victim_ = (next_victim_ + 1) % kEntries;
+  }
+  slot->hash = h;
+  slot->key = key;
+  slot->output = output;
+  ts::generate(key, output, slot->pattern);
+  return slot->pattern;
+}
+
+std::size_t PatternCache::bytes() const {
+  std::size_t b = entries_.capacity() * sizeof(Entry);
+  for (const Entry& e : entries_)
+    b += e.pattern.points.capacity() * sizeof(ts::DomainPoint) + e.pattern.indices.capacity() * sizeof(std::uint32_t);
+  return b;
+}
+
+}  // namespace tessera

@@ -1,0 +1,225 @@
+// Rasterization of one screen tile: D3D11's rules for triangles, lines and points, then early depth,
+// the pixel shader in 2x2 quads, and the output merger.
+//
+// Triangles: edge functions on 16.8 fixed-point vertices evaluated exactly in 64-bit integers at pixel
+// centres (x + 0.5, y + 0.5); a centre on an edge is covered only if the edge is a top or left edge
+// (D3D11's top-left rule), so a mesh of triangles sharing edges covers every pixel exactly once.
+// Depth is interpolated linearly in screen space and clamped to the viewport's depth range;
+// attributes are interpolated perspective-correctly (linear in 1/w).
+// Lines: one pixel per step along the major axis at pixel centres, the segment half-open at its end
+// (so strips do not light shared end points twice) — D3D11's aliased line rule without the
+// diamond-exit refinements at end points. Points: the one pixel the point lies in.
+//
+// A tile is owned by one thread; it processes its primitives in draw order, so results do not depend
+// on the thread count.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "framebuffer.h"
+#include "primitive_setup.h"
+
+namespace tessera {
+
+struct RasterContext {
+  DepthState depth;
+  float min_depth = 0, max_depth = 1;
+};
+
+namespace detail {
+
+// Writes one shaded pixel after the depth test passed.
+template <std::size_t N, class Ps>
+inline void shade(const Ps& ps, const RasterContext& rc, Framebuffer& fb, int x, int y, PixelInput<N>& in) {
+  in.position.x = float(x) + 0.5f;
+  in.position.y = float(y) + 0.5f;
+  const glm::vec4 color = ps(static_cast<const PixelInput<N>&>(in));
+  fb.set_color(x, y, color);
+  if (rc.depth.test && rc.depth.write) fb.set_depth(x, y, in.position.z);
+}
+
+inline bool depth_test(const RasterContext& rc, const Framebuffer& fb, int x, int y, float z) {
+  return !rc.depth.test || depth_passes(rc.depth.func, z, fb.depth(x, y));
+}
+
+}  // namespace detail
+
+// Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
+template <std::size_t N, class Ps>
+std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                                 const RasterContext& rc, Framebuffer& fb) {
+  const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
+  const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
+  if (x_begin > x_end || y_begin > y_end) return 0;
+  const int qx0 = x_begin & ~1, qy0 = y_begin & ~1;  // 2x2 quads are aligned to even pixels
+  const std::int64_t px0 = std::int64_t(qx0) * kSubpixelOne + kSubpixelOne / 2;
+  const std::int64_t py0 = std::int64_t(qy0) * kSubpixelOne + kSubpixelOne / 2;
+
+  // Edge i runs from vertex i to vertex i+1: zero on that edge, positive towards the third vertex. The
+  // edge opposite vertex i is (i + 1) % 3, and its value over the area is vertex i's weight.
+  std::int64_t ea[3], eb[3], e0[3], bias[3];
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const std::int64_t dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
+    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+    bias[i] = top_left ? 0 : -1;
+    ea[i] = -dy;
+    eb[i] = dx;
+    e0[i] = ea[i] * (px0 - p.x[i]) + eb[i] * (py0 - p.y[i]) + bias[i];
+  }
+  const std::int64_t area = std::int64_t(p.x[1] - p.x[0]) * (p.y[2] - p.y[0]) -
+                            std::int64_t(p.x[2] - p.x[0]) * (p.y[1] - p.y[0]);
+  const float inv_area = 1.0f / float(area);
+
+  std::uint64_t invocations = 0;
+  std::array<float, N> attr[4];
+  std::array<float, N> ddx, ddy;
+  PixelInput<N> in;
+  in.front_face = p.front_face;
+  in.primitive_id = p.primitive_id;
+  in.ddx_attributes = &ddx;
+  in.ddy_attributes = &ddy;
+
+  for (int qy = qy0; qy <= y_end; qy += 2) {
+    std::int64_t row[3];
+    for (int i = 0; i < 3; ++i) row[i] = e0[i] + eb[i] * kSubpixelOne * (qy - qy0);
+    for (int qx = qx0; qx <= x_end; qx += 2) {
+      std::int64_t e[3][4];  // edge i at pixel k of the quad: k = 0 (x,y), 1 (x+1,y), 2 (x,y+1), 3 (x+1,y+1)
+      for (int i = 0; i < 3; ++i) {
+        const std::int64_t base = row[i] + ea[i] * kSubpixelOne * (qx - qx0);
+        const std::int64_t sx = ea[i] * kSubpixelOne, sy = eb[i] * kSubpixelOne;
+        e[i][0] = base;
+        e[i][1] = base + sx;
+        e[i][2] = base + sy;
+        e[i][3] = base + sx + sy;
+      }
+      unsigned covered = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int x = qx + (k & 1), y = qy + (k >> 1);
+        if (x < x_begin || x > x_end || y < y_begin || y > y_end) continue;
+        if ((e[0][k] | e[1][k] | e[2][k]) >= 0) covered |= 1u << k;
+      }
+      if (!covered) continue;
+
+      float b[4][3];
+      for (int k = 0; k < 4; ++k) {
+        // Unbiased edge values; vertex i's weight is the edge opposite it, (i + 1) % 3.
+        b[k][0] = float(e[1][k] - bias[1]) * inv_area;
+        b[k][1] = float(e[2][k] - bias[2]) * inv_area;
+        b[k][2] = float(e[0][k] - bias[0]) * inv_area;
+      }
+      float z[4] = {0, 0, 0, 0};
+      unsigned passed = 0;
+      for (int k = 0; k < 4; ++k) {
+        if (!(covered & (1u << k))) continue;
+        float zk = b[k][0] * p.z[0] + b[k][1] * p.z[1] + b[k][2] * p.z[2];
+        zk = std::min(std::max(zk, rc.min_depth), rc.max_depth);
+        z[k] = zk;
+        if (detail::depth_test(rc, fb, qx + (k & 1), qy + (k >> 1), zk)) passed |= 1u << k;
+      }
+      if (!passed) continue;
+
+      float one_over_w[4];
+      for (int k = 0; k < 4; ++k) {
+        const float f0 = b[k][0] * p.inv_w[0], f1 = b[k][1] * p.inv_w[1], f2 = b[k][2] * p.inv_w[2];
+        const float s = f0 + f1 + f2;
+        const float r = 1.0f / s;
+        one_over_w[k] = s;
+        for (std::size_t a = 0; a < N; ++a)
+          attr[k][a] = (f0 * p.attributes[0][a] + f1 * p.attributes[1][a] + f2 * p.attributes[2][a]) * r;
+      }
+      for (std::size_t a = 0; a < N; ++a) {
+        ddx[a] = attr[1][a] - attr[0][a];
+        ddy[a] = attr[2][a] - attr[0][a];
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (!(passed & (1u << k))) continue;
+        in.attributes = attr[k];
+        in.position.z = z[k];
+        in.position.w = one_over_w[k];
+        detail::shade<N>(ps, rc, fb, qx + (k & 1), qy + (k >> 1), in);
+        ++invocations;
+      }
+    }
+  }
+  return invocations;
+}
+
+template <std::size_t N, class Ps>
+std::uint64_t rasterize_line(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                             const RasterContext& rc, Framebuffer& fb) {
+  const std::int64_t dx = p.x[1] - p.x[0], dy = p.y[1] - p.y[0];
+  if (dx == 0 && dy == 0) return 0;
+  const bool x_major = (dx < 0 ? -dx : dx) >= (dy < 0 ? -dy : dy);
+  // Steps along the major axis at pixel centres in the half-open span [start, end) of the segment.
+  const std::int32_t a_lo = x_major ? std::min(p.x[0], p.x[1]) : std::min(p.y[0], p.y[1]);
+  const std::int32_t a_hi = x_major ? std::max(p.x[0], p.x[1]) : std::max(p.y[0], p.y[1]);
+  int first = detail::first_pixel_at_or_after(a_lo), last = detail::last_pixel_at_or_before(a_hi - 1);
+  const int lo_major = x_major ? std::max(tx0, p.min_x) : std::max(ty0, p.min_y);
+  const int hi_major = x_major ? std::min(tx1 - 1, p.max_x) : std::min(ty1 - 1, p.max_y);
+  first = std::max(first, lo_major);
+  last = std::min(last, hi_major);
+
+  std::uint64_t invocations = 0;
+  std::array<float, N> zero{};
+  PixelInput<N> in;
+  in.primitive_id = p.primitive_id;
+  in.ddx_attributes = &zero;
+  in.ddy_attributes = &zero;
+  const float major_start = float(x_major ? p.x[0] : p.y[0]);
+  const float major_delta = float(x_major ? dx : dy);
+  for (int m = first; m <= last; ++m) {
+    const float centre = float(m) * float(kSubpixelOne) + float(kSubpixelOne / 2);
+    const float t = (centre - major_start) / major_delta;
+    const float minor = float(x_major ? p.y[0] : p.x[0]) + t * float(x_major ? dy : dx);
+    const int n = static_cast<int>(std::floor(minor / float(kSubpixelOne)));
+    const int x = x_major ? m : n, y = x_major ? n : m;
+    if (x < std::max(tx0, p.min_x) || x > std::min(tx1 - 1, p.max_x) || y < std::max(ty0, p.min_y) ||
+        y > std::min(ty1 - 1, p.max_y))
+      continue;
+    float z = (1.0f - t) * p.z[0] + t * p.z[1];
+    z = std::min(std::max(z, rc.min_depth), rc.max_depth);
+    if (!detail::depth_test(rc, fb, x, y, z)) continue;
+    const float f0 = (1.0f - t) * p.inv_w[0], f1 = t * p.inv_w[1];
+    const float s = f0 + f1, r = 1.0f / s;
+    for (std::size_t a = 0; a < N; ++a) in.attributes[a] = (f0 * p.attributes[0][a] + f1 * p.attributes[1][a]) * r;
+    in.position.z = z;
+    in.position.w = s;
+    detail::shade<N>(ps, rc, fb, x, y, in);
+    ++invocations;
+  }
+  return invocations;
+}
+
+template <std::size_t N, class Ps>
+std::uint64_t rasterize_point(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                              const RasterContext& rc, Framebuffer& fb) {
+  const int x = p.min_x, y = p.min_y;
+  if (x < tx0 || x >= tx1 || y < ty0 || y >= ty1) return 0;
+  const float z = std::min(std::max(p.z[0], rc.min_depth), rc.max_depth);
+  if (!detail::depth_test(rc, fb, x, y, z)) return 0;
+  std::array<float, N> zero{};
+  PixelInput<N> in;
+  in.primitive_id = p.primitive_id;
+  in.ddx_attributes = &zero;
+  in.ddy_attributes = &zero;
+  in.attributes = p.attributes[0];
+  in.position.z = z;
+  in.position.w = p.inv_w[0];
+  detail::shade<N>(ps, rc, fb, x, y, in);
+  return 1;
+}
+
+template <std::size_t N, class Ps>
+std::uint64_t rasterize(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                        const RasterContext& rc, Framebuffer& fb) {
+  switch (p.kind) {
+    case PrimitiveKind::triangle: return rasterize_triangle<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case PrimitiveKind::line: return rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case PrimitiveKind::point: return rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+  }
+  return 0;
+}
+
+}  // namespace tessera

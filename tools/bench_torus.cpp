@@ -1,0 +1,219 @@
+// `tessera bench torus`: the benchmark scene of ../shared/bench/tessbench.cpp rendered through the whole
+// pipeline, timed per frame (median and minimum over --frames after one warm-up frame). With
+// --llvmpipe PATH it also runs that harness with the same arguments in the same run, and reports the
+// speed ratio and how many pixels of the two images differ by more than 2/255.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <regex>
+#include <sstream>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "device.h"
+#include "image_compare.h"
+#include "torus_scene.h"
+
+namespace tessera::cli {
+namespace {
+
+struct TorusOptions {
+  float factor = 16;
+  std::string partitioning = "integer";
+  std::string resolution = "1920x1080";
+  int frames = 5;
+  int threads = 0;
+  std::string output;
+  std::string stats;
+  std::string llvmpipe;
+  int tile_size = 64;
+  std::size_t chunk_primitives = 16384;
+  bool json = false;
+};
+
+std::pair<int, int> parse_resolution(const std::string& text) {
+  const std::regex re(R"((\d{1,6})x(\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) throw UsageError("--resolution: expected WIDTHxHEIGHT, got '" + text + "'");
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > kMaxRenderTargetSize || h > kMaxRenderTargetSize)
+    throw UsageError("--resolution: " + text + " is outside 1.." + std::to_string(kMaxRenderTargetSize) + " per side");
+  return {w, h};
+}
+
+const char* gl_spacing(ts::Partitioning p) {
+  switch (p) {
+    case ts::Partitioning::integer: return "equal_spacing";
+    case ts::Partitioning::fractional_odd: return "fractional_odd_spacing";
+    case ts::Partitioning::fractional_even: return "fractional_even_spacing";
+    case ts::Partitioning::pow2: return nullptr;
+  }
+  return nullptr;
+}
+
+struct LlvmpipeRun {
+  double median_s = 0, min_s = 0;
+  std::uint64_t triangles = 0;
+  std::string image;
+};
+
+LlvmpipeRun run_llvmpipe(const TorusOptions& o, ts::Partitioning p, int w, int h, int threads) {
+  const char* spacing = gl_spacing(p);
+  if (!spacing) throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
+  if (!std::filesystem::exists(o.llvmpipe)) throw InputError(o.llvmpipe + ": no such llvmpipe harness (build tessbench.cpp)");
+  LlvmpipeRun r;
+  r.image = (std::filesystem::temp_directory_path() / ("tessera-llvmpipe-" + std::to_string(::getpid()) + ".ppm")).string();
+  char cmd[2048];
+  std::snprintf(cmd, sizeof cmd, "LP_NUM_THREADS=%d '%s' %.9g %d %d %d %s '%s' 2>&1", threads, o.llvmpipe.c_str(),
+                double(o.factor), w, h, o.frames, spacing, r.image.c_str());
+  log_info(std::string("running llvmpipe: ") + cmd);
+  FILE* pipe = ::popen(cmd, "r");
+  if (!pipe) throw InputError(o.llvmpipe + ": cannot start");
+  std::string text;
+  std::array<char, 512> buf;
+  while (std::fgets(buf.data(), int(buf.size()), pipe)) text += buf.data();
+  const int status = ::pclose(pipe);
+  const std::regex re(R"(triangles (\d+) median_s ([0-9.eE+-]+) min_s ([0-9.eE+-]+))");
+  std::smatch m;
+  if (status != 0 || !std::regex_search(text, m, re))
+    throw InputError(o.llvmpipe + ": harness failed: " + text.substr(0, text.find('\n')));
+  r.triangles = std::stoull(m[1]);
+  r.median_s = std::stod(m[2]);
+  r.min_s = std::stod(m[3]);
+  return r;
+}
+
+int run_bench_torus(const TorusOptions& o) {
+  const auto partitioning = ts::parse_partitioning(o.partitioning);
+  if (!partitioning) throw UsageError("--partitioning: expected integer, pow2, fractional_odd or fractional_even");
+  if (!std::isfinite(o.factor)) throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
+  if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
+  if (o.threads < 0 || o.threads > 1024) throw UsageError("--threads: must be in 0..1024 (0 = all)");
+  const auto [w, h] = parse_resolution(o.resolution);
+
+  DeviceOptions dopt;
+  dopt.threads = o.threads;
+  dopt.tile_size = o.tile_size;
+  dopt.chunk_primitives = o.chunk_primitives;
+  Device device(dopt);
+  std::string error;
+  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
+  if (!fb) throw UsageError("--resolution: " + error);
+  log_info("building the torus scene");
+  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  const auto draw = scenes::make_torus_draw(scene, o.factor, *partitioning, w, h);
+
+  std::vector<double> times;
+  DrawReport report;
+  for (int frame = 0; frame <= o.frames; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    fb->clear(glm::vec4(0, 0, 0, 1), 1.0f);
+    DrawResult r = device.draw(draw, *fb);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!r.ok()) throw InputError(r.error);
+    if (frame > 0) times.push_back(s);  // frame 0 warms caches and allocations, as the harness does
+    report = r.report;
+    log_info("frame " + std::to_string(frame) + ": " + std::to_string(s) + " s");
+  }
+  std::vector<double> sorted = times;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[sorted.size() / 2], minimum = sorted.front();
+  const std::uint64_t triangles = report.statistics.CInvocations;
+  const std::uint64_t rss = peak_rss_bytes();
+
+  if (!o.output.empty()) {
+    if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
+  }
+  if (!o.stats.empty()) {
+    std::ostringstream s;
+    s << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"threads\": " << device.threads()
+      << ", \"statistics\": " << to_json(report.statistics) << ", \"times\": " << to_json(report.times)
+      << ", \"memory\": " << to_json(report.memory) << ", \"peak_rss_bytes\": " << rss << "}\n";
+    const std::string text = s.str();
+    write_file_atomically(o.stats, [&](const std::string& tmp) {
+      std::FILE* f = std::fopen(tmp.c_str(), "wb");
+      if (!f || std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
+        if (f) std::fclose(f);
+        throw InputError(o.stats + ": cannot write");
+      }
+      if (std::fclose(f) != 0) throw InputError(o.stats + ": cannot write");
+    });
+  }
+
+  std::optional<LlvmpipeRun> lp;
+  std::optional<ImageDiff> diff;
+  if (!o.llvmpipe.empty()) {
+    lp = run_llvmpipe(o, *partitioning, w, h, device.threads());
+    const std::string ours = o.output.empty()
+                                 ? (std::filesystem::temp_directory_path() / ("tessera-torus-" + std::to_string(::getpid()) + ".png")).string()
+                                 : o.output;
+    if (o.output.empty())
+      if (auto e = fb->write_color(ours); !e.empty()) throw InputError(e);
+    diff = compare_images(ours, lp->image, 2);
+    std::filesystem::remove(lp->image);
+    if (o.output.empty()) std::filesystem::remove(ours);
+  }
+
+  if (o.json) {
+    std::ostringstream j;
+    j << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"partitioning\": \"" << o.partitioning
+      << "\", \"resolution\": \"" << w << "x" << h << "\", \"threads\": " << device.threads()
+      << ", \"frames\": " << o.frames << ", \"triangles\": " << triangles << ", \"median_s\": " << median
+      << ", \"min_s\": " << minimum << ", \"triangles_per_s\": " << double(triangles) / median
+      << ", \"geometry_peak_bytes\": " << report.memory.geometry_peak_bytes
+      << ", \"framebuffer_bytes\": " << report.memory.framebuffer_bytes << ", \"peak_rss_bytes\": " << rss
+      << ", \"times\": " << to_json(report.times);
+    if (lp)
+      j << ", \"llvmpipe\": {\"median_s\": " << lp->median_s << ", \"min_s\": " << lp->min_s
+        << ", \"triangles\": " << lp->triangles << ", \"speedup\": " << lp->median_s / median
+        << ", \"pixels_over_2\": " << diff->over_threshold << ", \"share_over_2\": " << diff->share()
+        << ", \"max_difference\": " << diff->max_difference << "}";
+    j << "}\n";
+    std::cout << j.str();
+  } else {
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "torus factor %s %s %dx%d threads %d: triangles %llu median_s %.4f min_s %.4f (%.1f M triangles/s), "
+                  "geometry peak %.1f MB, framebuffer %.1f MB, peak RSS %.1f MB\n",
+                  float_text(o.factor).c_str(), o.partitioning.c_str(), w, h, device.threads(),
+                  static_cast<unsigned long long>(triangles), median, minimum, double(triangles) / median / 1e6,
+                  double(report.memory.geometry_peak_bytes) / 1e6, double(report.memory.framebuffer_bytes) / 1e6,
+                  double(rss) / 1e6);
+    std::cout << line;
+    if (lp) {
+      std::snprintf(line, sizeof line,
+                    "llvmpipe: triangles %llu median_s %.4f min_s %.4f; speedup %.2fx; pixels differing by more than "
+                    "2/255: %llu of %llu (%.4f%%), max difference %d\n",
+                    static_cast<unsigned long long>(lp->triangles), lp->median_s, lp->min_s, lp->median_s / median,
+                    static_cast<unsigned long long>(diff->over_threshold), static_cast<unsigned long long>(diff->pixels),
+                    100.0 * diff->share(), diff->max_difference);
+      std::cout << line;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Runner add_bench_torus_command(CLI::App& bench) {
+  auto o = std::make_shared<TorusOptions>();
+  CLI::App* cmd = bench.add_subcommand("torus", "The displaced B-spline torus of tessbench.cpp through the whole pipeline");
+  cmd->add_option("--factor", o->factor, "tessellation factor on every edge and inside")->capture_default_str();
+  cmd->add_option("--partitioning", o->partitioning, "integer, pow2, fractional_odd or fractional_even")->capture_default_str();
+  cmd->add_option("--resolution", o->resolution, "WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "timed frames (after one warm-up frame)")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "worker threads, 0 = all")->capture_default_str();
+  cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");
+  cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times and memory as JSON");
+  cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");
+  cmd->add_option("--tile-size", o->tile_size, "screen tile size in pixels")->capture_default_str();
+  cmd->add_option("--chunk-primitives", o->chunk_primitives, "primitives per geometry chunk")->capture_default_str();
+  cmd->add_flag("--json", o->json, "print results as JSON");
+  return [o, cmd]() -> int { return cmd->parsed() ? run_bench_torus(*o) : -1; };
+}
+
+}  // namespace tessera::cli
