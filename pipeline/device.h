@@ -238,8 +238,8 @@ inline ts::FactorSet factor_set(ts::Domain domain, const TessFactors& f) {
 template <std::size_t N>
 struct PatchScratch {
   PatternCache patterns;
-  std::vector<ClipVertex<N>> domain_outputs;
-  std::size_t bytes() const { return patterns.bytes() + domain_outputs.capacity() * sizeof(ClipVertex<N>); }
+  std::vector<SetupVertex<N>> domain_outputs;
+  std::size_t bytes() const { return patterns.bytes() + domain_outputs.capacity() * sizeof(SetupVertex<N>); }
 };
 
 }  // namespace detail
@@ -370,7 +370,8 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
               const bool tri = tstate.domain == ts::Domain::tri;
               for (std::size_t i = 0; i < pattern.points.size(); ++i) {
                 const ts::DomainPoint q = pattern.points[i];
-                outs[i] = d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id);
+                outs[i] = make_setup_vertex<N>(
+                    backend.setup(), d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
               }
               chunk.statistics.DSInvocations += pattern.points.size();
               const auto ds_done = detail::Clock::now();
@@ -435,6 +436,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
     detail::Backend<N, Ps> backend(setup, rc, d.ps, fb, options_.chunks_in_flight);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
+    std::vector<SetupVertex<N>> setup_vertices;
     std::vector<std::uint32_t> cost;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
     const std::size_t window = std::size_t(std::max(1, options_.window_patches)) * 16;
@@ -448,6 +450,10 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
       report.statistics.IAVertices += indices.size();
       report.statistics.IAPrimitives += n;
       report.statistics.VSInvocations += vcache.unique.size();
+      setup_vertices.resize(vs_out.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vs_out.size(), 1024), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) setup_vertices[i] = make_setup_vertex<N>(setup, vs_out[i]);
+      });
       report.times.ia_vs += detail::seconds_since(t0);
       cost.assign(n, 1);
       detail::cut_chunks(cost, options_.chunk_primitives, options_.chunk_primitives, chunks);
@@ -457,13 +463,15 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
             const auto start = detail::Clock::now();
             for (std::uint32_t t = chunks[c].first; t < chunks[c].second; ++t) {
               const std::size_t i = std::size_t(t) * 3;
-              setup_triangle<N>(backend.setup(), chunk, vs_out[vcache.slots[i]], vs_out[vcache.slots[i + 1]],
-                                vs_out[vcache.slots[i + 2]], static_cast<std::uint32_t>(first + t));
+              setup_triangle<N>(backend.setup(), chunk, setup_vertices[vcache.slots[i]],
+                                setup_vertices[vcache.slots[i + 1]], setup_vertices[vcache.slots[i + 2]],
+                                static_cast<std::uint32_t>(first + t));
             }
             chunk.times.setup += detail::seconds_since(start);
           },
           report);
       window_bytes_peak = std::max(window_bytes_peak, vcache.bytes() + vs_out.capacity() * sizeof(VsOut) +
+                                                          setup_vertices.capacity() * sizeof(SetupVertex<N>) +
                                                           cost.capacity() * sizeof(std::uint32_t));
     }
     report.memory.geometry_peak_bytes = window_bytes_peak + backend.chunk_bytes_peak();

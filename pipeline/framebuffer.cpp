@@ -40,20 +40,6 @@ void Framebuffer::clear(glm::vec4 c, float d) {
   }
 }
 
-void Framebuffer::set_color(int x, int y, glm::vec4 c) {
-  const std::size_t i = index(x, y);
-  if (format_ == ColorFormat::rgba8_unorm) {
-    std::uint8_t* p = &color_[i * 4];
-    p[0] = float_to_unorm8(c.r);
-    p[1] = float_to_unorm8(c.g);
-    p[2] = float_to_unorm8(c.b);
-    p[3] = float_to_unorm8(c.a);
-  } else {
-    const float px[4] = {c.r, c.g, c.b, c.a};
-    std::memcpy(&color_[i * 16], px, 16);
-  }
-}
-
 glm::vec4 Framebuffer::color(int x, int y) const {
   const std::size_t i = index(x, y);
   if (format_ == ColorFormat::rgba8_unorm) {

@@ -6,7 +6,9 @@
 // only when complete, so a failed write never leaves a half-written file.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +20,13 @@ namespace tessera {
 enum class ColorFormat : std::uint8_t { rgba8_unorm, rgba32_float };
 
 inline constexpr int kMaxRenderTargetSize = 16384;  // D3D11_REQ_RENDER_TO_BUFFER_WINDOW_WIDTH
+
+// D3D11's FLOAT -> UNORM8 conversion: NaN -> 0, clamp to [0, 1], scale by 255, round to nearest.
+// Branch-free: max(0, NaN) is 0 with this argument order.
+inline std::uint8_t float_to_unorm8(float x) {
+  const float c = std::min(std::max(0.0f, x), 1.0f);
+  return static_cast<std::uint8_t>(c * 255.0f + 0.5f);
+}
 
 class Framebuffer {
  public:
@@ -33,7 +42,19 @@ class Framebuffer {
   // Output merger writes (the caller owns the pixel; different threads write different pixels).
   float depth(int x, int y) const { return depth_[index(x, y)]; }
   void set_depth(int x, int y, float d) { depth_[index(x, y)] = d; }
-  void set_color(int x, int y, glm::vec4 c);
+  void set_color(int x, int y, glm::vec4 c) {
+    const std::size_t i = index(x, y);
+    if (format_ == ColorFormat::rgba8_unorm) {
+      std::uint8_t* p = &color_[i * 4];
+      p[0] = float_to_unorm8(c.r);
+      p[1] = float_to_unorm8(c.g);
+      p[2] = float_to_unorm8(c.b);
+      p[3] = float_to_unorm8(c.a);
+    } else {
+      const float px[4] = {c.r, c.g, c.b, c.a};
+      std::memcpy(&color_[i * 16], px, 16);
+    }
+  }
   glm::vec4 color(int x, int y) const;
 
   // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
@@ -57,12 +78,6 @@ class Framebuffer {
   std::vector<float> depth_;
 };
 
-// D3D11's FLOAT -> UNORM8 conversion: NaN -> 0, clamp to [0, 1], scale by 255, round to nearest.
-inline std::uint8_t float_to_unorm8(float x) {
-  if (!(x > 0.0f)) return 0;  // also catches NaN
-  if (x >= 1.0f) return 255;
-  return static_cast<std::uint8_t>(x * 255.0f + 0.5f);
-}
 
 // Writes an image through OpenImageIO atomically (temporary + rename). `pixels` are `channels`
 // interleaved values per pixel, row 0 at the top; `is_float` selects float32 data, else uint8.

@@ -26,12 +26,18 @@ enum class PrimitiveKind : std::uint8_t { triangle, line, point };
 
 // A primitive in window space, ready to rasterize. Triangles are stored with positive signed area
 // (vertices 1 and 2 swapped if needed), so edge functions are >= 0 inside.
+//
+// Lines and points keep per-vertex values in z, inv_w and attributes. Triangles keep plane equations
+// there instead, computed once at setup: value(x, y) = [0] + [1] * (x - origin_x) + [2] * (y - origin_y)
+// in pixels, for window depth, for 1/w, and for each attribute divided by w (perspective-correct
+// interpolation divides the attribute plane by the 1/w plane per pixel).
 template <std::size_t N>
 struct ScreenPrimitive {
   std::array<std::int32_t, 3> x{}, y{};  // 16.8 fixed-point window coordinates
-  std::array<float, 3> z{};              // window depth (viewport-mapped)
-  std::array<float, 3> inv_w{};          // 1/w, for perspective-correct attributes
-  std::array<std::array<float, N>, 3> attributes{};
+  std::array<float, 3> z{};              // window depth (viewport-mapped), or its plane
+  std::array<float, 3> inv_w{};          // 1/w, or its plane
+  std::array<std::array<float, N>, 3> attributes{};  // per vertex, or planes: attributes[j][a] = coefficient j of a
+  float origin_x = 0, origin_y = 0;      // triangles: where the planes are anchored (vertex 0), in pixels
   std::int32_t min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // covered pixel box, inclusive
   std::uint32_t primitive_id = 0;
   PrimitiveKind kind = PrimitiveKind::triangle;
@@ -102,17 +108,6 @@ inline std::int32_t last_pixel_at_or_before(std::int32_t hi) {
 }
 
 template <std::size_t N>
-void to_window(const SetupContext& c, const ClipVertex<N>& v, ScreenPrimitive<N>& out, int slot) {
-  const float inv_w = 1.0f / v.position.w;
-  const float nx = v.position.x * inv_w, ny = v.position.y * inv_w, nz = v.position.z * inv_w;
-  out.x[slot] = snap(nx * c.scale_x + c.offset_x);
-  out.y[slot] = snap(ny * c.scale_y + c.offset_y);
-  out.z[slot] = nz * c.z_scale + c.z_offset;
-  out.inv_w[slot] = inv_w;
-  out.attributes[slot] = v.attributes;
-}
-
-template <std::size_t N>
 void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>& p) {
   const auto index = static_cast<std::uint32_t>(chunk.primitives.size());
   chunk.primitives.push_back(p);
@@ -133,15 +128,59 @@ bool finish_box(const SetupContext& c, ScreenPrimitive<N>& p, std::int32_t lo_x,
   return p.min_x <= p.max_x && p.min_y <= p.max_y;
 }
 
+}  // namespace detail
+
+// A vertex as setup sees it: the clip-space vertex, its outcodes, and (when it lies inside the guard
+// band, in front of the near plane and behind the far one) its snapped window position. Computed once
+// per vertex (per domain point), then shared by every primitive that uses it.
 template <std::size_t N>
-void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const ClipVertex<N>& a, const ClipVertex<N>& b,
+struct SetupVertex {
+  ClipVertex<N> clip;
+  std::int32_t x = 0, y = 0;  // 16.8 window position (valid when clip_code == 0)
+  float z = 0, inv_w = 0;
+  unsigned view_code = 0;     // outside which view-volume planes
+  unsigned clip_code = 0;     // outside which clipping planes (near, far, guard band)
+  bool finite = true;
+};
+
+template <std::size_t N>
+SetupVertex<N> make_setup_vertex(const SetupContext& c, const ClipVertex<N>& v) {
+  SetupVertex<N> s;
+  s.clip = v;
+  s.finite = finite_position(v.position);
+  if (!s.finite) return s;
+  s.view_code = view_outcode(v.position);
+  s.clip_code = clip_outcode(v.position, c.guard);
+  if (s.clip_code == 0) {
+    const float inv_w = 1.0f / v.position.w;
+    s.x = detail::snap(v.position.x * inv_w * c.scale_x + c.offset_x);
+    s.y = detail::snap(v.position.y * inv_w * c.scale_y + c.offset_y);
+    s.z = v.position.z * inv_w * c.z_scale + c.z_offset;
+    s.inv_w = inv_w;
+  }
+  return s;
+}
+
+namespace detail {
+
+template <std::size_t N>
+void copy_vertex(const SetupVertex<N>& v, ScreenPrimitive<N>& out, int slot) {
+  out.x[slot] = v.x;
+  out.y[slot] = v.y;
+  out.z[slot] = v.z;
+  out.inv_w[slot] = v.inv_w;
+  out.attributes[slot] = v.clip.attributes;
+}
+
+template <std::size_t N>
+void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a, const SetupVertex<N>& b,
                        std::uint32_t primitive_id) {
   ScreenPrimitive<N> p;
   p.kind = PrimitiveKind::line;
   p.primitive_id = primitive_id;
-  to_window(c, a, p, 0);
-  to_window(c, b, p, 1);
-  p.x[2] = p.x[1], p.y[2] = p.y[1];
+  copy_vertex(a, p, 0);
+  copy_vertex(b, p, 1);
+  copy_vertex(b, p, 2);
   // A line may light the pixel its end point lies in; widen the box by half a pixel.
   const std::int32_t h = kSubpixelOne / 2;
   if (!finish_box(c, p, std::min(p.x[0], p.x[1]) - h, std::max(p.x[0], p.x[1]) + h, std::min(p.y[0], p.y[1]) - h,
@@ -150,81 +189,115 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const ClipV
   bin(c, chunk, p);
 }
 
+// A triangle whose three vertices are snapped: culling, bounding box, binning. `a`, `b`, `c3` are in
+// the primitive's order.
+template <std::size_t N>
+void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
+                            const SetupVertex<N>& b, const SetupVertex<N>& d, std::uint32_t primitive_id) {
+  const std::int64_t area = std::int64_t(b.x - a.x) * (d.y - a.y) - std::int64_t(d.x - a.x) * (b.y - a.y);
+  if (area == 0) return;  // degenerate after snapping: covers nothing
+  // Positive area is clockwise on screen (y down).
+  const bool front = (area > 0) != c.front_ccw;
+  if ((c.cull == CullMode::back && !front) || (c.cull == CullMode::front && front)) return;
+  ScreenPrimitive<N> p;
+  const auto [lx, hx] = std::minmax({a.x, b.x, d.x});
+  const auto [ly, hy] = std::minmax({a.y, b.y, d.y});
+  if (!finish_box(c, p, lx, hx, ly, hy)) return;  // no pixel centre inside the box: most micro-triangles
+  // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.
+  const SetupVertex<N>* v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};
+  for (int i = 0; i < 3; ++i) {
+    p.x[i] = v[i]->x;
+    p.y[i] = v[i]->y;
+  }
+  // Plane equations from the snapped positions, in pixels.
+  const float inv_sub = 1.0f / float(kSubpixelOne);
+  const float x1 = float(v[1]->x - v[0]->x) * inv_sub, y1 = float(v[1]->y - v[0]->y) * inv_sub;
+  const float x2 = float(v[2]->x - v[0]->x) * inv_sub, y2 = float(v[2]->y - v[0]->y) * inv_sub;
+  const float inv_area = 1.0f / (x1 * y2 - x2 * y1);
+  auto plane = [&](float a0, float a1, float a2) {
+    const float d1 = a1 - a0, d2 = a2 - a0;
+    return std::array<float, 3>{a0, (d1 * y2 - d2 * y1) * inv_area, (d2 * x1 - d1 * x2) * inv_area};
+  };
+  p.origin_x = float(v[0]->x) * inv_sub;
+  p.origin_y = float(v[0]->y) * inv_sub;
+  p.z = plane(v[0]->z, v[1]->z, v[2]->z);
+  p.inv_w = plane(v[0]->inv_w, v[1]->inv_w, v[2]->inv_w);
+  for (std::size_t k = 0; k < N; ++k) {
+    const auto q = plane(v[0]->clip.attributes[k] * v[0]->inv_w, v[1]->clip.attributes[k] * v[1]->inv_w,
+                         v[2]->clip.attributes[k] * v[2]->inv_w);
+    p.attributes[0][k] = q[0];
+    p.attributes[1][k] = q[1];
+    p.attributes[2][k] = q[2];
+  }
+  p.front_face = front;
+  p.primitive_id = primitive_id;
+  bin(c, chunk, p);
+}
+
 }  // namespace detail
 
 // Triangle: counts one CInvocation and a CPrimitive per emitted triangle; appends to `chunk`.
 template <std::size_t N>
-void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const ClipVertex<N>& v0, const ClipVertex<N>& v1,
-                    const ClipVertex<N>& v2, std::uint32_t primitive_id) {
+void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& v0, const SetupVertex<N>& v1,
+                    const SetupVertex<N>& v2, std::uint32_t primitive_id) {
   ++chunk.statistics.CInvocations;
   // D3D11 discards primitives with a NaN or infinite position coordinate.
-  if (!finite_position(v0.position) || !finite_position(v1.position) || !finite_position(v2.position)) return;
-  if (view_outcode(v0.position) & view_outcode(v1.position) & view_outcode(v2.position)) return;
-
+  if (!v0.finite || !v1.finite || !v2.finite) return;
+  if (v0.view_code & v1.view_code & v2.view_code) return;  // wholly outside one plane of the view volume
+  const unsigned needs = v0.clip_code | v1.clip_code | v2.clip_code;
+  if (needs == 0 && c.fill == FillMode::solid) {
+    ++chunk.statistics.CPrimitives;
+    detail::setup_snapped_triangle(c, chunk, v0, v1, v2, primitive_id);
+    return;
+  }
   ClipPolygon<N> poly;
-  const unsigned needs = clip_outcode(v0.position, c.guard) | clip_outcode(v1.position, c.guard) |
-                         clip_outcode(v2.position, c.guard);
-  poly.v[0] = v0, poly.v[1] = v1, poly.v[2] = v2;
+  poly.v[0] = v0.clip, poly.v[1] = v1.clip, poly.v[2] = v2.clip;
   poly.count = 3;
   if (needs) clip_polygon(poly, needs, c.guard);
-
+  SetupVertex<N> s[12];
+  for (int k = 0; k < poly.count; ++k) s[k] = make_setup_vertex(c, poly.v[k]);
   for (int k = 1; k + 1 < poly.count; ++k) {
     ++chunk.statistics.CPrimitives;
     if (c.fill == FillMode::wireframe) {
-      // Only the triangle's own edges: for a clipped polygon, the fan's inner diagonals are not drawn.
-      const ClipVertex<N>* t[3] = {&poly.v[0], &poly.v[k], &poly.v[k + 1]};
+      // Only the polygon's own edges: the fan's inner diagonals are not drawn.
+      const SetupVertex<N>* t[3] = {&s[0], &s[k], &s[k + 1]};
       for (int e = 0; e < 3; ++e) {
         const bool inner = (e == 0 && k > 1) || (e == 2 && k + 2 < poly.count);
         if (!inner) detail::setup_line_window(c, chunk, *t[e], *t[(e + 1) % 3], primitive_id);
       }
       continue;
     }
-    ScreenPrimitive<N> p;
-    p.primitive_id = primitive_id;
-    detail::to_window(c, poly.v[0], p, 0);
-    detail::to_window(c, poly.v[k], p, 1);
-    detail::to_window(c, poly.v[k + 1], p, 2);
-    const std::int64_t area = std::int64_t(p.x[1] - p.x[0]) * (p.y[2] - p.y[0]) -
-                              std::int64_t(p.x[2] - p.x[0]) * (p.y[1] - p.y[0]);
-    if (area == 0) continue;  // degenerate after snapping: covers nothing
-    // Positive area is clockwise on screen (y down).
-    p.front_face = (area > 0) != c.front_ccw;
-    if ((c.cull == CullMode::back && !p.front_face) || (c.cull == CullMode::front && p.front_face)) continue;
-    if (area < 0) {
-      std::swap(p.x[1], p.x[2]);
-      std::swap(p.y[1], p.y[2]);
-      std::swap(p.z[1], p.z[2]);
-      std::swap(p.inv_w[1], p.inv_w[2]);
-      std::swap(p.attributes[1], p.attributes[2]);
-    }
-    const auto [lx, hx] = std::minmax({p.x[0], p.x[1], p.x[2]});
-    const auto [ly, hy] = std::minmax({p.y[0], p.y[1], p.y[2]});
-    if (!detail::finish_box(c, p, lx, hx, ly, hy)) continue;  // no pixel centre inside the box
-    detail::bin(c, chunk, p);
+    detail::setup_snapped_triangle(c, chunk, s[0], s[k], s[k + 1], primitive_id);
   }
 }
 
 template <std::size_t N>
-void setup_line(const SetupContext& c, ChunkBuffer<N>& chunk, ClipVertex<N> a, ClipVertex<N> b,
+void setup_line(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a, const SetupVertex<N>& b,
                 std::uint32_t primitive_id) {
   ++chunk.statistics.CInvocations;
-  if (!finite_position(a.position) || !finite_position(b.position)) return;
-  if (view_outcode(a.position) & view_outcode(b.position)) return;
-  const unsigned needs = clip_outcode(a.position, c.guard) | clip_outcode(b.position, c.guard);
-  if (needs && !clip_segment(a, b, needs, c.guard)) return;
+  if (!a.finite || !b.finite) return;
+  if (a.view_code & b.view_code) return;
+  const unsigned needs = a.clip_code | b.clip_code;
+  if (needs == 0) {
+    ++chunk.statistics.CPrimitives;
+    detail::setup_line_window(c, chunk, a, b, primitive_id);
+    return;
+  }
+  ClipVertex<N> ca = a.clip, cb = b.clip;
+  if (!clip_segment(ca, cb, needs, c.guard)) return;
   ++chunk.statistics.CPrimitives;
-  detail::setup_line_window(c, chunk, a, b, primitive_id);
+  detail::setup_line_window(c, chunk, make_setup_vertex(c, ca), make_setup_vertex(c, cb), primitive_id);
 }
 
 template <std::size_t N>
-void setup_point(const SetupContext& c, ChunkBuffer<N>& chunk, const ClipVertex<N>& a, std::uint32_t primitive_id) {
+void setup_point(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a, std::uint32_t primitive_id) {
   ++chunk.statistics.CInvocations;
-  if (!finite_position(a.position) || view_outcode(a.position)) return;
+  if (!a.finite || a.view_code) return;
   ++chunk.statistics.CPrimitives;
   ScreenPrimitive<N> p;
   p.kind = PrimitiveKind::point;
   p.primitive_id = primitive_id;
-  detail::to_window(c, a, p, 0);
+  detail::copy_vertex(a, p, 0);
   // A point lights the one pixel it lies in.
   const std::int32_t px = p.x[0] >> kSubpixelBits, py = p.y[0] >> kSubpixelBits;
   p.min_x = std::max(px, c.clip_min_x), p.max_x = std::min(px, c.clip_max_x);

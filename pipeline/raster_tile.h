@@ -45,9 +45,12 @@ inline bool depth_test(const RasterContext& rc, const Framebuffer& fb, int x, in
 
 }  // namespace detail
 
+namespace detail {
+
 // Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
-template <std::size_t N, class Ps>
-std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+// The depth function is a template argument so the per-pixel test compiles to one comparison.
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
                                  const RasterContext& rc, Framebuffer& fb) {
   const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
   const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
@@ -68,10 +71,6 @@ std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, 
     eb[i] = dx;
     e0[i] = ea[i] * (px0 - p.x[i]) + eb[i] * (py0 - p.y[i]) + bias[i];
   }
-  const std::int64_t area = std::int64_t(p.x[1] - p.x[0]) * (p.y[2] - p.y[0]) -
-                            std::int64_t(p.x[2] - p.x[0]) * (p.y[1] - p.y[0]);
-  const float inv_area = 1.0f / float(area);
-
   std::uint64_t invocations = 0;
   std::array<float, N> attr[4];
   std::array<float, N> ddx, ddy;
@@ -81,53 +80,63 @@ std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, 
   in.ddx_attributes = &ddx;
   in.ddy_attributes = &ddy;
 
+  // Steps of each edge function for one pixel right (sx) and one pixel down (sy).
+  std::int64_t sx[3], sy[3], row[3];
+  for (int i = 0; i < 3; ++i) {
+    sx[i] = ea[i] * kSubpixelOne;
+    sy[i] = eb[i] * kSubpixelOne;
+    row[i] = e0[i];
+  }
+  // Pixels of the quad row outside [x_begin, x_end] or [y_begin, y_end] are masked out (bit k = pixel k).
   for (int qy = qy0; qy <= y_end; qy += 2) {
-    std::int64_t row[3];
-    for (int i = 0; i < 3; ++i) row[i] = e0[i] + eb[i] * kSubpixelOne * (qy - qy0);
-    for (int qx = qx0; qx <= x_end; qx += 2) {
-      std::int64_t e[3][4];  // edge i at pixel k of the quad: k = 0 (x,y), 1 (x+1,y), 2 (x,y+1), 3 (x+1,y+1)
+    unsigned row_mask = 0xF;
+    if (qy < y_begin) row_mask &= 0xC;
+    if (qy + 1 > y_end) row_mask &= 0x3;
+    std::int64_t e[3] = {row[0], row[1], row[2]};
+    for (int qx = qx0; qx <= x_end; qx += 2, e[0] += 2 * sx[0], e[1] += 2 * sx[1], e[2] += 2 * sx[2]) {
+      unsigned mask = row_mask;
+      if (qx < x_begin) mask &= 0xA;
+      if (qx + 1 > x_end) mask &= 0x5;
+      // Edge i at pixel k of the quad: k = 0 (x,y), 1 (x+1,y), 2 (x,y+1), 3 (x+1,y+1).
+      std::int64_t ek[3][4];
       for (int i = 0; i < 3; ++i) {
-        const std::int64_t base = row[i] + ea[i] * kSubpixelOne * (qx - qx0);
-        const std::int64_t sx = ea[i] * kSubpixelOne, sy = eb[i] * kSubpixelOne;
-        e[i][0] = base;
-        e[i][1] = base + sx;
-        e[i][2] = base + sy;
-        e[i][3] = base + sx + sy;
+        ek[i][0] = e[i];
+        ek[i][1] = e[i] + sx[i];
+        ek[i][2] = e[i] + sy[i];
+        ek[i][3] = e[i] + sx[i] + sy[i];
       }
       unsigned covered = 0;
-      for (int k = 0; k < 4; ++k) {
-        const int x = qx + (k & 1), y = qy + (k >> 1);
-        if (x < x_begin || x > x_end || y < y_begin || y > y_end) continue;
-        if ((e[0][k] | e[1][k] | e[2][k]) >= 0) covered |= 1u << k;
-      }
+      for (int k = 0; k < 4; ++k) covered |= unsigned((ek[0][k] | ek[1][k] | ek[2][k]) >= 0) << k;
+      covered &= mask;
       if (!covered) continue;
 
-      float b[4][3];
+      // Planes evaluated at the four pixel centres; written as 4-lane loops the compiler vectorizes.
+      const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
+      const float dxk[4] = {fx, fx + 1.0f, fx, fx + 1.0f}, dyk[4] = {fy, fy, fy + 1.0f, fy + 1.0f};
+      float z[4];
       for (int k = 0; k < 4; ++k) {
-        // Unbiased edge values; vertex i's weight is the edge opposite it, (i + 1) % 3.
-        b[k][0] = float(e[1][k] - bias[1]) * inv_area;
-        b[k][1] = float(e[2][k] - bias[2]) * inv_area;
-        b[k][2] = float(e[0][k] - bias[0]) * inv_area;
+        const float zk = p.z[0] + p.z[1] * dxk[k] + p.z[2] * dyk[k];
+        z[k] = std::min(std::max(zk, rc.min_depth), rc.max_depth);
       }
-      float z[4] = {0, 0, 0, 0};
-      unsigned passed = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (!(covered & (1u << k))) continue;
-        float zk = b[k][0] * p.z[0] + b[k][1] * p.z[1] + b[k][2] * p.z[2];
-        zk = std::min(std::max(zk, rc.min_depth), rc.max_depth);
-        z[k] = zk;
-        if (detail::depth_test(rc, fb, qx + (k & 1), qy + (k >> 1), zk)) passed |= 1u << k;
+      unsigned passed = covered;
+      if (rc.depth.test) {
+        for (int k = 0; k < 4; ++k)
+          if ((passed & (1u << k)) && !depth_passes(kDepthFunc, z[k], fb.depth(qx + (k & 1), qy + (k >> 1))))
+            passed &= ~(1u << k);
+        if (!passed) continue;
       }
-      if (!passed) continue;
 
-      float one_over_w[4];
+      // Perspective-correct attributes at all four pixels (helpers included, for derivatives).
+      float one_over_w[4], w[4];
       for (int k = 0; k < 4; ++k) {
-        const float f0 = b[k][0] * p.inv_w[0], f1 = b[k][1] * p.inv_w[1], f2 = b[k][2] * p.inv_w[2];
-        const float s = f0 + f1 + f2;
-        const float r = 1.0f / s;
-        one_over_w[k] = s;
-        for (std::size_t a = 0; a < N; ++a)
-          attr[k][a] = (f0 * p.attributes[0][a] + f1 * p.attributes[1][a] + f2 * p.attributes[2][a]) * r;
+        one_over_w[k] = p.inv_w[0] + p.inv_w[1] * dxk[k] + p.inv_w[2] * dyk[k];
+        w[k] = 1.0f / one_over_w[k];
+      }
+      for (std::size_t a = 0; a < N; ++a) {
+        const float a0 = p.attributes[0][a], adx = p.attributes[1][a], ady = p.attributes[2][a];
+        float v[4];
+        for (int k = 0; k < 4; ++k) v[k] = (a0 + adx * dxk[k] + ady * dyk[k]) * w[k];
+        for (int k = 0; k < 4; ++k) attr[k][a] = v[k];
       }
       for (std::size_t a = 0; a < N; ++a) {
         ddx[a] = attr[1][a] - attr[0][a];
@@ -138,12 +147,35 @@ std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, 
         in.attributes = attr[k];
         in.position.z = z[k];
         in.position.w = one_over_w[k];
-        detail::shade<N>(ps, rc, fb, qx + (k & 1), qy + (k >> 1), in);
+        shade<N>(ps, rc, fb, qx + (k & 1), qy + (k >> 1), in);
         ++invocations;
       }
     }
+    for (int i = 0; i < 3; ++i) row[i] += 2 * sy[i];
   }
   return invocations;
+}
+
+}  // namespace detail
+
+template <std::size_t N, class Ps>
+std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                                 const RasterContext& rc, Framebuffer& fb) {
+  switch (rc.depth.func) {
+    case CompareFunc::never: return detail::rasterize_triangle_with<N, Ps, CompareFunc::never>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::less: return detail::rasterize_triangle_with<N, Ps, CompareFunc::less>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::equal: return detail::rasterize_triangle_with<N, Ps, CompareFunc::equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::less_equal:
+      return detail::rasterize_triangle_with<N, Ps, CompareFunc::less_equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::greater:
+      return detail::rasterize_triangle_with<N, Ps, CompareFunc::greater>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::not_equal:
+      return detail::rasterize_triangle_with<N, Ps, CompareFunc::not_equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::greater_equal:
+      return detail::rasterize_triangle_with<N, Ps, CompareFunc::greater_equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+    case CompareFunc::always: return detail::rasterize_triangle_with<N, Ps, CompareFunc::always>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+  }
+  return 0;
 }
 
 template <std::size_t N, class Ps>

@@ -13,13 +13,12 @@ namespace {
 constexpr float kFarCoordinate = 1073741824.0f;  // 2^30
 
 // floor for |x| < 2^30 without a libm call: truncate, then step down for negative non-integers.
-int floor_to_int(float x) {
+inline int floor_to_int(float x) {
   const int t = static_cast<int>(x);
   return x < static_cast<float>(t) ? t - 1 : t;
 }
 
 int wrap_index(int i, int n) {
-  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // the common case: no division
   const int r = i % n;
   return r < 0 ? r + n : r;
 }
@@ -30,13 +29,20 @@ int mirror_index(int i, int n) {
   return m < n ? m : 2 * n - 1 - m;
 }
 
-int address(int i, int n, AddressMode mode) {
+// The addressing of an index outside [0, n). Kept out of line so that the in-range test below
+// stays small enough to inline into every tap.
+[[gnu::noinline]] int address_outside(int i, int n, AddressMode mode) {
   switch (mode) {
     case AddressMode::wrap: return wrap_index(i, n);
-    case AddressMode::clamp: return i < 0 ? 0 : (i >= n ? n - 1 : i);
+    case AddressMode::clamp: return i < 0 ? 0 : n - 1;
     case AddressMode::mirror: return mirror_index(i, n);
   }
   return 0;
+}
+
+// Every mode is the identity inside the level, which is where almost all taps land.
+inline int address(int i, int n, AddressMode mode) {
+  return static_cast<unsigned>(i) < static_cast<unsigned>(n) ? i : address_outside(i, n, mode);
 }
 
 // A texel-space coordinate that is NaN, infinite or too large for an int, brought into range
@@ -53,7 +59,7 @@ float reduce_far(float x, int n, AddressMode mode) {
   return x < 0.0f ? -1.0f : static_cast<float>(n);
 }
 
-int point_tap(float x, int n, AddressMode mode) {
+inline int point_tap(float x, int n, AddressMode mode) {
   // NaN fails the comparison, so it takes the reduction path too.
   if (!(std::fabs(x) < kFarCoordinate)) x = reduce_far(x, n, mode);
   return address(floor_to_int(x), n, mode);
@@ -65,20 +71,30 @@ struct LinearTaps {
   float frac;  // weight of i1
 };
 
-LinearTaps linear_taps(float x, int n, AddressMode mode) {
+inline LinearTaps linear_taps(float x, int n, AddressMode mode) {
   if (!(std::fabs(x) < kFarCoordinate)) x = reduce_far(x, n, mode);
   const int i = floor_to_int(x);
-  // x - i is exact: both are within a factor of two of each other or the difference is x itself.
+  // x - floor(x) is exact: it is x's fractional bits, which a float holds (0 once |x| >= 2^23).
   return {address(i, n, mode), address(i + 1, n, mode), x - static_cast<float>(i)};
 }
 
 // Missing channels read as (0, 0, 0, 1); the channel count is a template argument so the
-// one-channel path loads one float per texel.
+// one-channel path loads one float per texel. Results go through a plain array: glm's
+// operator[] is a switch with an assert, which stops the channel loop from unrolling.
 template <int C>
 glm::vec4 fetch(const float* p) {
-  glm::vec4 out(0.0f, 0.0f, 0.0f, 1.0f);
+  float out[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   for (int c = 0; c < C; ++c) out[c] = p[c];
-  return out;
+  return {out[0], out[1], out[2], out[3]};
+}
+
+glm::vec4 fetch(const float* p, int channels) {
+  switch (channels) {
+    case 1: return fetch<1>(p);
+    case 2: return fetch<2>(p);
+    case 3: return fetch<3>(p);
+    default: return fetch<4>(p);
+  }
 }
 
 template <int C>
@@ -90,13 +106,13 @@ glm::vec4 bilerp(const float* level, int width, const LinearTaps& tu, const Line
   const std::size_t x1 = static_cast<std::size_t>(tu.i1) * C;
   const float wu0 = 1.0f - tu.frac;
   const float wv0 = 1.0f - tv.frac;
-  glm::vec4 out(0.0f, 0.0f, 0.0f, 1.0f);
+  float out[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   for (int c = 0; c < C; ++c) {
     const float top = row0[x0 + c] * wu0 + row0[x1 + c] * tu.frac;
     const float bottom = row1[x0 + c] * wu0 + row1[x1 + c] * tu.frac;
     out[c] = top * wv0 + bottom * tv.frac;
   }
-  return out;
+  return {out[0], out[1], out[2], out[3]};
 }
 
 // One destination texel of a mip reduction along one axis: up to three source texels, their
@@ -263,11 +279,9 @@ glm::vec4 Texture2D::load(int level, int x, int y) const {
   const Level& l = levels_info_[static_cast<std::size_t>(level)];
   if (x < 0 || x >= l.width || y < 0 || y >= l.height) return glm::vec4(0.0f);
   const std::size_t c = static_cast<std::size_t>(channels_);
-  const float* p = texels_.data() + l.offset +
-                   (static_cast<std::size_t>(y) * static_cast<std::size_t>(l.width) + static_cast<std::size_t>(x)) * c;
-  glm::vec4 out(0.0f, 0.0f, 0.0f, 1.0f);
-  for (int k = 0; k < channels_; ++k) out[k] = p[k];
-  return out;
+  return fetch(texels_.data() + l.offset +
+                   (static_cast<std::size_t>(y) * static_cast<std::size_t>(l.width) + static_cast<std::size_t>(x)) * c,
+               channels_);
 }
 
 float Texture2D::clamp_lod(const Sampler& s, float lod) const {
@@ -284,14 +298,9 @@ glm::vec4 Texture2D::sample_point(const Sampler& s, const Level& level, glm::vec
   const int x = point_tap(uv.x * level.fwidth, level.width, s.address_u);
   const int y = point_tap(uv.y * level.fheight, level.height, s.address_v);
   const std::size_t c = static_cast<std::size_t>(channels_);
-  const float* p = texels_.data() + level.offset +
-                   (static_cast<std::size_t>(y) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(x)) * c;
-  switch (channels_) {
-    case 1: return fetch<1>(p);
-    case 2: return fetch<2>(p);
-    case 3: return fetch<3>(p);
-    default: return fetch<4>(p);
-  }
+  return fetch(texels_.data() + level.offset +
+                   (static_cast<std::size_t>(y) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(x)) * c,
+               channels_);
 }
 
 glm::vec4 Texture2D::sample_bilinear(const Sampler& s, const Level& level, glm::vec2 uv) const {
@@ -318,10 +327,9 @@ glm::vec4 Texture2D::sample_at_lod(const Sampler& s, glm::vec2 uv, float lod) co
   const glm::vec4 a = sample_bilinear(s, levels_info_[static_cast<std::size_t>(l0)], uv);
   if (f == 0.0f) return a;  // also the top level, where l0 + 1 does not exist
   const glm::vec4 b = sample_bilinear(s, levels_info_[static_cast<std::size_t>(l0 + 1)], uv);
-  const float wa = 1.0f - f;
-  glm::vec4 out = a;  // missing channels keep their defaults
-  for (int c = 0; c < channels_; ++c) out[c] = a[c] * wa + b[c] * f;
-  return out;
+  // Component-wise, as a * (1 - f) + b * f. The defaults of missing channels stay exact:
+  // (1 - f) + f == 1 for every float f in [0, 1] (checked exhaustively).
+  return a * (1.0f - f) + b * f;
 }
 
 glm::vec4 Texture2D::sample_level(const Sampler& s, glm::vec2 uv, float lod) const {

@@ -86,14 +86,16 @@ CubicBasis bspline_basis(float t) {
 ClipVertex<3> DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp,
                                              DomainLocation loc, std::uint32_t patch_id) const {
   const CubicBasis bu = bspline_basis(loc.u), bv = bspline_basis(loc.v);
+  // Tensor-product evaluation row by row: each row's curve point and u-tangent, then combined in v.
   glm::vec3 p(0.0f), pu(0.0f), pv(0.0f);
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) {
-      const glm::vec3 q = cp[std::size_t(r * 4 + c)];
-      p += bu.b[c] * bv.b[r] * q;
-      pu += bu.d[c] * bv.b[r] * q;
-      pv += bu.b[c] * bv.d[r] * q;
-    }
+  for (int r = 0; r < 4; ++r) {
+    const glm::vec3* row = &cp[std::size_t(r * 4)];
+    const glm::vec3 c = bu.b[0] * row[0] + bu.b[1] * row[1] + bu.b[2] * row[2] + bu.b[3] * row[3];
+    const glm::vec3 cu = bu.d[0] * row[0] + bu.d[1] * row[1] + bu.d[2] * row[2] + bu.d[3] * row[3];
+    p += bv.b[r] * c;
+    pu += bv.b[r] * cu;
+    pv += bv.d[r] * c;
+  }
   const glm::vec3 n = glm::normalize(glm::cross(pu, pv));
   const int i = int(patch_id) / kTorusRows, j = int(patch_id) % kTorusRows;
   const glm::vec2 st((float(i) + loc.u) / float(kTorusColumns), (float(j) + loc.v) / float(kTorusRows));

@@ -97,6 +97,7 @@ Runner add_bench_command(CLI::App& app) {
   CLI::App* tess = cmd->add_subcommand("tessellator", "Fixed-function tessellator throughput, one thread");
   tess->add_option("--seconds", o->seconds, "total measuring time")->capture_default_str();
   tess->add_flag("--json", o->json, "print results as JSON");
+  tess->fallthrough();
   Runner torus = add_bench_torus_command(*cmd);
   return [o, tess, torus]() -> int {
     if (tess->parsed()) return run_bench_tessellator(*o);

@@ -213,6 +213,7 @@ Runner add_bench_torus_command(CLI::App& bench) {
   cmd->add_option("--tile-size", o->tile_size, "screen tile size in pixels")->capture_default_str();
   cmd->add_option("--chunk-primitives", o->chunk_primitives, "primitives per geometry chunk")->capture_default_str();
   cmd->add_flag("--json", o->json, "print results as JSON");
+  cmd->fallthrough();
   return [o, cmd]() -> int { return cmd->parsed() ? run_bench_torus(*o) : -1; };
 }
 
