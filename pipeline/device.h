@@ -156,6 +156,7 @@ class Backend {
         for (std::size_t s = r.begin(); s != r.end(); ++s) {
           slots_[s].reset(setup_.tiles.count());
           produce(first + s, slots_[s]);
+          slots_[s].finish_bins();
         }
       });
       flush(n, report);
@@ -180,7 +181,7 @@ class Backend {
       auto& mine = local.local();
       for (int t = r.begin(); t != r.end(); ++t) {
         bool any = false;
-        for (std::size_t s = 0; s < used && !any; ++s) any = !slots_[s].bins[std::size_t(t)].empty();
+        for (std::size_t s = 0; s < used && !any; ++s) any = !slots_[s].bin(t).empty();
         if (!any) continue;
         const auto start = Clock::now();
         const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
@@ -188,7 +189,7 @@ class Backend {
         std::uint64_t invocations = 0;
         for (std::size_t s = 0; s < used; ++s) {
           const auto& chunk = slots_[s];
-          for (std::uint32_t i : chunk.bins[std::size_t(t)])
+          for (std::uint32_t i : chunk.bin(t))
             invocations += rasterize<N>(chunk.primitives[i], tx0, ty0, tx1, ty1, ps_, rc_, fb_);
         }
         mine.first += invocations;

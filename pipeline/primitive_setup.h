@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "clipper.h"
@@ -68,25 +69,43 @@ struct SetupContext {
 SetupContext make_setup_context(const Viewport& vp, const RasterizerState& rs, int target_width, int target_height,
                                 int tile_size);
 
-// One chunk of the draw's primitives, in draw order, with per-tile lists of indices into `primitives`.
+// One chunk of the draw's primitives, in draw order, binned to tiles. Setup appends (tile, primitive)
+// pairs; finish_bins() sorts them by tile with a stable counting sort, so each tile's list keeps draw
+// order. Storage is proportional to the chunk's primitives (not to tiles x capacity), and is reused.
 template <std::size_t N>
 struct ChunkBuffer {
   std::vector<ScreenPrimitive<N>> primitives;
-  std::vector<std::vector<std::uint32_t>> bins;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> entries;  // (tile, primitive) in draw order
+  std::vector<std::uint32_t> tile_start;                         // per tile: first entry in `binned`, plus an end
+  std::vector<std::uint32_t> binned;                             // primitive indices grouped by tile
   PipelineStatistics statistics;
   StageTimes times;
 
   void reset(int tile_count) {
     primitives.clear();
-    if (bins.size() != std::size_t(tile_count)) bins.assign(std::size_t(tile_count), {});
-    for (auto& b : bins) b.clear();
+    entries.clear();
+    binned.clear();
+    tile_start.assign(std::size_t(tile_count) + 1, 0);
     statistics = {};
     times = {};
   }
+  void finish_bins() {
+    const std::size_t tiles = tile_start.size() - 1;
+    std::fill(tile_start.begin(), tile_start.end(), 0);
+    for (const auto& e : entries) ++tile_start[e.first + 1];
+    for (std::size_t t = 0; t < tiles; ++t) tile_start[t + 1] += tile_start[t];
+    binned.resize(entries.size());
+    // Fill using a running cursor per tile; tile_start is restored afterwards.
+    for (const auto& e : entries) binned[tile_start[e.first]++] = e.second;
+    for (std::size_t t = tiles; t > 0; --t) tile_start[t] = tile_start[t - 1];
+    tile_start[0] = 0;
+  }
+  std::span<const std::uint32_t> bin(int tile) const {
+    return {binned.data() + tile_start[std::size_t(tile)], binned.data() + tile_start[std::size_t(tile) + 1]};
+  }
   std::size_t capacity_bytes() const {
-    std::size_t b = primitives.capacity() * sizeof(ScreenPrimitive<N>) + bins.capacity() * sizeof(bins[0]);
-    for (const auto& bin : bins) b += bin.capacity() * sizeof(std::uint32_t);
-    return b;
+    return primitives.capacity() * sizeof(ScreenPrimitive<N>) + entries.capacity() * sizeof(entries[0]) +
+           (tile_start.capacity() + binned.capacity()) * sizeof(std::uint32_t);
   }
 };
 
@@ -114,7 +133,7 @@ void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>&
   const int ts = c.tiles.tile_size;
   const int tx0 = p.min_x / ts, tx1 = p.max_x / ts, ty0 = p.min_y / ts, ty1 = p.max_y / ts;
   for (int ty = ty0; ty <= ty1; ++ty)
-    for (int tx = tx0; tx <= tx1; ++tx) chunk.bins[std::size_t(ty * c.tiles.columns + tx)].push_back(index);
+    for (int tx = tx0; tx <= tx1; ++tx) chunk.entries.emplace_back(std::uint32_t(ty * c.tiles.columns + tx), index);
 }
 
 // Clips the pixel box to what may be written; false if nothing is left.
