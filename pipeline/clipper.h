@@ -21,7 +21,10 @@ namespace tessera {
 // coordinates then stay below 2^23 in magnitude, so edge functions fit comfortably in 64 bits.
 inline constexpr float kGuardBandHalfExtentPixels = 8192.0f;
 
-enum ClipPlane : std::uint8_t { kNear = 0, kFar, kLeft, kRight, kBottom, kTop, kPlaneCount };
+// kW keeps w strictly positive: near and far (0 <= z <= w) already imply w >= 0, but a vertex at
+// w == 0 on both would reach the perspective division; clipping at a tiny positive w prevents that.
+enum ClipPlane : std::uint8_t { kNear = 0, kFar, kLeft, kRight, kBottom, kTop, kW, kPlaneCount };
+inline constexpr float kMinClipW = 1e-6f;
 
 // Guard-band size in clip-space units (|x| <= gx * w).
 struct GuardBand {
@@ -35,7 +38,8 @@ inline float clip_distance(int plane, const glm::vec4& p, GuardBand g) {
     case kLeft: return g.gx * p.w + p.x;
     case kRight: return g.gx * p.w - p.x;
     case kBottom: return g.gy * p.w + p.y;
-    default: return g.gy * p.w - p.y;
+    case kTop: return g.gy * p.w - p.y;
+    default: return p.w - kMinClipW;
   }
 }
 
@@ -57,6 +61,7 @@ inline unsigned view_outcode(const glm::vec4& p) {
   if (p.x > p.w) code |= 1u << kRight;
   if (p.y < -p.w) code |= 1u << kBottom;
   if (p.y > p.w) code |= 1u << kTop;
+  if (!(p.w > 0.0f)) code |= 1u << kW;
   return code;
 }
 
@@ -64,7 +69,7 @@ inline bool finite_position(const glm::vec4& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
 }
 
-// A triangle clipped by up to six planes has at most 3 + 6 vertices.
+// A triangle clipped by up to seven planes has at most 3 + 7 vertices.
 template <std::size_t N>
 struct ClipPolygon {
   std::array<ClipVertex<N>, 12> v;
@@ -82,7 +87,7 @@ ClipVertex<N> clip_intersection(const ClipVertex<N>& inside, float d_in, const C
   return r;
 }
 
-// Sutherland-Hodgman against every plane in `planes` (a bit mask). `poly` is clipped in place.
+// Sutherland-Hodgman against every plane in `planes` (a bit mask), in plane order. `poly` is clipped in place.
 template <std::size_t N>
 void clip_polygon(ClipPolygon<N>& poly, unsigned planes, GuardBand g) {
   ClipPolygon<N> out;

@@ -162,15 +162,17 @@ struct SetupVertex {
   bool finite = true;
 };
 
+// `clipped` marks a vertex the clipper made: it lies on a clipping plane, possibly an ulp outside, and
+// is projected regardless.
 template <std::size_t N>
-SetupVertex<N> make_setup_vertex(const SetupContext& c, const ClipVertex<N>& v) {
+SetupVertex<N> make_setup_vertex(const SetupContext& c, const ClipVertex<N>& v, bool clipped = false) {
   SetupVertex<N> s;
   s.clip = v;
   s.finite = finite_position(v.position);
   if (!s.finite) return s;
   s.view_code = view_outcode(v.position);
   s.clip_code = clip_outcode(v.position, c.guard);
-  if (s.clip_code == 0) {
+  if (s.clip_code == 0 || clipped) {
     const float inv_w = 1.0f / v.position.w;
     s.x = detail::snap(v.position.x * inv_w * c.scale_x + c.offset_x);
     s.y = detail::snap(v.position.y * inv_w * c.scale_y + c.offset_y);
@@ -273,8 +275,8 @@ void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVer
   poly.v[0] = v0.clip, poly.v[1] = v1.clip, poly.v[2] = v2.clip;
   poly.count = 3;
   if (needs) clip_polygon(poly, needs, c.guard);
-  SetupVertex<N> s[12];
-  for (int k = 0; k < poly.count; ++k) s[k] = make_setup_vertex(c, poly.v[k]);
+  SetupVertex<N> s[std::tuple_size_v<decltype(poly.v)>];
+  for (int k = 0; k < poly.count; ++k) s[k] = make_setup_vertex(c, poly.v[k], true);
   for (int k = 1; k + 1 < poly.count; ++k) {
     ++chunk.statistics.CPrimitives;
     if (c.fill == FillMode::wireframe) {
@@ -305,7 +307,7 @@ void setup_line(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<
   ClipVertex<N> ca = a.clip, cb = b.clip;
   if (!clip_segment(ca, cb, needs, c.guard)) return;
   ++chunk.statistics.CPrimitives;
-  detail::setup_line_window(c, chunk, make_setup_vertex(c, ca), make_setup_vertex(c, cb), primitive_id);
+  detail::setup_line_window(c, chunk, make_setup_vertex(c, ca, true), make_setup_vertex(c, cb, true), primitive_id);
 }
 
 template <std::size_t N>

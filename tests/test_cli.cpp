@@ -121,7 +121,7 @@ TEST_CASE("tessera pattern --image writes a picture atomically", "[cli]") {
   CHECK_FALSE(fs::exists(dir / "missing"));
 }
 
-TEST_CASE("tessera --help lists the subcommands; every subcommand has --help", "[cli]") {
+TEST_CASE("tessera --help lists the subcommands, every subcommand has --help", "[cli]") {
   auto r = run_cli("--help");
   CHECK(r.exit_code == 0);
   for (const char* sub : {"pattern", "oracle-compare", "bench"}) CHECK(r.out.find(sub) != std::string::npos);
@@ -140,4 +140,46 @@ TEST_CASE("tessera oracle-compare reports a malformed dump as bad input", "[cli]
   CHECK(lines(r.err) == 1);
   CHECK(r.err.find("line 3") != std::string::npos);
   CHECK(run_cli("oracle-compare " + (temp_dir() / "nope.dump").string()).exit_code == 1);
+}
+
+TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cli][pipeline]") {
+  const fs::path dir = temp_dir();
+  const fs::path image = dir / "torus.png", stats = dir / "stats.json";
+  const auto r = run_cli("bench torus --factor 3 --resolution 96x54 --frames 2 --threads 2 --json -o " + image.string() +
+                         " --stats " + stats.string());
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["scene"] == "torus");
+  CHECK(j["factor"] == 3);
+  CHECK(j["resolution"] == "96x54");
+  CHECK(j["triangles"] == 2048 * 2 * 3 * 3);
+  CHECK(j["median_s"].get<double>() >= j["min_s"].get<double>());
+  CHECK(j["min_s"].get<double>() > 0);
+  auto in = OIIO::ImageInput::open(image.string());
+  REQUIRE(in);
+  CHECK(in->spec().width == 96);
+  CHECK(in->spec().height == 54);
+  const auto s = nlohmann::json::parse(slurp(stats));
+  CHECK(s["statistics"]["IAPrimitives"] == 2048);
+  CHECK(s["statistics"]["IAVertices"] == 2048 * 16);
+  CHECK(s["statistics"]["HSInvocations"] == 2048);
+  CHECK(s["statistics"]["DSInvocations"] == 2048 * 16);
+  CHECK(s["statistics"]["CInvocations"] == 2048 * 18);
+  CHECK(s["statistics"]["PSInvocations"].get<int>() > 0);
+  CHECK(s["memory"]["geometry_peak_bytes"].get<double>() > 0);
+  CHECK(s["times"].contains("ds_s"));
+}
+
+TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli][pipeline]") {
+  for (const char* args : {"--resolution 0x10", "--resolution 100000x100000", "--resolution big", "--partitioning bogus",
+                           "--factor nan", "--frames 0", "--threads -3"}) {
+    INFO(args);
+    const auto r = run_cli(std::string("bench torus --frames 1 ") + args);
+    CHECK(r.exit_code == 2);
+    CHECK(lines(r.err) == 1);
+    CHECK(r.out.empty());
+  }
+  const auto r = run_cli("bench torus --factor 2 --resolution 32x32 --frames 1 --llvmpipe /nonexistent/tessbench");
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("/nonexistent/tessbench"));
 }

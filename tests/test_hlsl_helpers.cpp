@@ -64,7 +64,7 @@ TEST_CASE("anti-popping: odd inside factors below 3 come in from the edges", "[t
   CHECK(q.insideV == 3.0f);
 }
 
-TEST_CASE("culled inputs give zero factors; isolines round density as integer", "[tessellator][hlsl]") {
+TEST_CASE("culled inputs give zero factors, isolines round density as integer", "[tessellator][hlsl]") {
   const auto q = process_quad(Partitioning::integer, Reduction::min, QuadReductionAxis::one_axis, {0, 4, 4, 4, 1, 1});
   CHECK(q.Ueq0 == 0.0f);
   CHECK(q.insideU == 0.0f);

@@ -247,7 +247,7 @@ TEST_CASE("properties 6, 7, 8, 19: edges depend only on their factor, are symmet
   }
 }
 
-TEST_CASE("property 9: cw and ccw give the same triangles; cw has positive area", "[tessellator][properties]") {
+TEST_CASE("property 9: cw and ccw give the same triangles, cw has positive area", "[tessellator][properties]") {
   Rng rng(9);
   for (int i = 0; i < kCases; ++i) {
     const auto [d, p, f] = random_patch(rng, i);

@@ -1,0 +1,292 @@
+// The whole pipeline: D3D11 statistics for known draws, lines and points, determinism across thread
+// counts and chunking, bounded memory, and bad input handled as D3D11 specifies or reported.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "pipeline_support.h"
+#include "torus_scene.h"
+
+using namespace tessera;
+using namespace tessera::test;
+
+namespace {
+
+// Control points are NDC positions; the patch is their bilinear blend (4 control points, u across
+// cp0 -> cp1, v across cp0 -> cp2).
+struct NdcVS {
+  glm::vec4 operator()(const glm::vec4& p, std::uint32_t) const { return p; }
+};
+struct Factors {
+  TessFactors factors;
+};
+struct FactorHS {
+  static constexpr int kOutputControlPoints = 4;
+  TessFactors f;
+  glm::vec4 control_point(std::span<const glm::vec4> in, int i, std::uint32_t) const { return in[std::size_t(i)]; }
+  Factors patch_constants(std::span<const glm::vec4>, std::span<const glm::vec4>, std::uint32_t) const { return {f}; }
+};
+struct BilinearDS {
+  ClipVertex<2> operator()(const Factors&, std::span<const glm::vec4> cp, DomainLocation l, std::uint32_t) const {
+    const glm::vec4 top = cp[0] + l.u * (cp[1] - cp[0]), bottom = cp[2] + l.u * (cp[3] - cp[2]);
+    ClipVertex<2> o;
+    o.position = top + l.v * (bottom - top);
+    o.attributes = {l.u, l.v};
+    return o;
+  }
+};
+using QuadDraw = PatchDraw<glm::vec4, NdcVS, FactorHS, BilinearDS, CountingPS<2>>;
+
+TessFactors uniform(float f) { return {{f, f, f, f}, {f, f}}; }
+
+struct QuadScene {
+  std::vector<glm::vec4> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<int> counts;
+};
+
+// Two patches side by side covering the viewport, sharing their middle edge (6 vertices, 8 indices).
+QuadScene two_patches(int w, int h) {
+  QuadScene s;
+  s.vertices = {{-1, 1, 0.5f, 1}, {0, 1, 0.5f, 1}, {1, 1, 0.5f, 1}, {-1, -1, 0.5f, 1}, {0, -1, 0.5f, 1}, {1, -1, 0.5f, 1}};
+  s.indices = {0, 1, 3, 4, 1, 2, 4, 5};
+  s.counts.assign(std::size_t(w) * h, 0);
+  return s;
+}
+
+QuadDraw quad_draw(QuadScene& s, int w, int h, float factor) {
+  QuadDraw d;
+  d.vertices = s.vertices;
+  d.indices = s.indices;
+  d.control_points = 4;
+  d.hs.f = uniform(factor);
+  d.ps = {&s.counts, w};
+  d.tessellator = {ts::Domain::quad, ts::Partitioning::integer, ts::OutputPrimitive::triangle_cw};
+  d.rasterizer.cull = CullMode::none;
+  d.viewport = full_viewport(w, h);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("pipeline: D3D11 statistics of a known draw", "[pipeline][stats]") {
+  const int w = 40, h = 24;
+  for (int threads : {1, 2}) {
+    Device device(DeviceOptions{threads, 16});
+    QuadScene s = two_patches(w, h);
+    auto fb = make_target(w, h);
+    const DrawResult r = device.draw(quad_draw(s, w, h, 5.0f), fb);
+    REQUIRE(r.ok());
+    const PipelineStatistics& st = r.report.statistics;
+    CHECK(st.IAVertices == 8);
+    CHECK(st.IAPrimitives == 2);
+    CHECK(st.VSInvocations == 6);    // vertex caching: the shared edge's two vertices run once
+    CHECK(st.HSInvocations == 2);
+    CHECK(st.DSInvocations == 2 * 36);  // (5 + 1)^2 domain points per patch
+    CHECK(st.CInvocations == 2 * 50);   // 2 * 5^2 triangles per patch
+    CHECK(st.CPrimitives == 2 * 50);    // nothing clipped or culled
+    CHECK(st.PSInvocations == std::uint64_t(w * h));  // every pixel exactly once (fill rule, depth less)
+    CHECK(st.GSInvocations == 0);
+    for (int c : s.counts) CHECK(c == 1);
+  }
+}
+
+TEST_CASE("pipeline: patches with equal factors share one cached pattern per thread", "[pipeline]") {
+  Device device(DeviceOptions{1, 16});
+  QuadScene s = two_patches(16, 16);
+  auto fb = make_target(16, 16);
+  const DrawResult r = device.draw(quad_draw(s, 16, 16, 7.0f), fb);
+  REQUIRE(r.ok());
+  CHECK(r.report.memory.pattern_cache_misses == 1);
+  CHECK(r.report.memory.pattern_cache_hits >= 2);
+}
+
+TEST_CASE("pipeline: isoline domain draws lines, one pixel per column, joints lit once", "[pipeline][lines]") {
+  const int w = 32, h = 8;
+  Device device(DeviceOptions{2, 16});
+  QuadScene s;
+  // u across the width; v maps the four isolines (v = 0, 1/4, 1/2, 3/4) to pixel rows 0, 2, 4, 6.
+  auto ndc_y = [&](float row_centre) { return 1.0f - 2.0f * row_centre / float(h); };
+  s.vertices = {{-1, ndc_y(0.5f), 0.5f, 1}, {1, ndc_y(0.5f), 0.5f, 1}, {-1, ndc_y(8.5f), 0.5f, 1}, {1, ndc_y(8.5f), 0.5f, 1}};
+  s.indices = {0, 1, 2, 3};
+  s.counts.assign(std::size_t(w) * h, 0);
+  QuadDraw d = quad_draw(s, w, h, 1.0f);
+  d.hs.f = {{4.0f, 8.0f, 0, 0}, {0, 0}};  // density 4 lines, detail 8 segments
+  d.tessellator = {ts::Domain::isoline, ts::Partitioning::integer, ts::OutputPrimitive::line};
+  auto fb = make_target(w, h);
+  const DrawResult r = device.draw(d, fb);
+  REQUIRE(r.ok());
+  CHECK(r.report.statistics.CInvocations == 4 * 8);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) CHECK(s.counts[std::size_t(y * w + x)] == (y % 2 == 0 ? 1 : 0));
+  CHECK(r.report.statistics.PSInvocations == std::uint64_t(4 * w));
+}
+
+TEST_CASE("pipeline: point output lights one pixel per domain point", "[pipeline][points]") {
+  const int w = 16, h = 16;
+  Device device(DeviceOptions{1, 16});
+  QuadScene s;
+  // Domain (0..1) maps to window 1.0 .. 9.0 on both axes, so points at u = 0, 1/2, 1 land in pixels 1, 5, 9.
+  auto nx = [&](float px) { return px / float(w) * 2 - 1; };
+  auto ny = [&](float py) { return 1 - py / float(h) * 2; };
+  s.vertices = {{nx(1.25f), ny(1.25f), 0.5f, 1}, {nx(9.25f), ny(1.25f), 0.5f, 1}, {nx(1.25f), ny(9.25f), 0.5f, 1}, {nx(9.25f), ny(9.25f), 0.5f, 1}};
+  s.indices = {0, 1, 2, 3};
+  s.counts.assign(std::size_t(w) * h, 0);
+  QuadDraw d = quad_draw(s, w, h, 2.0f);
+  d.tessellator.output = ts::OutputPrimitive::point;
+  auto fb = make_target(w, h);
+  const DrawResult r = device.draw(d, fb);
+  REQUIRE(r.ok());
+  CHECK(r.report.statistics.DSInvocations == 9);
+  CHECK(r.report.statistics.PSInvocations == 9);
+  for (int y : {1, 5, 9})
+    for (int x : {1, 5, 9}) CHECK(s.counts[std::size_t(y * w + x)] == 1);
+}
+
+TEST_CASE("pipeline: wireframe fill draws edges only", "[pipeline][lines]") {
+  const int w = 48, h = 48;
+  Device device(DeviceOptions{2, 16});
+  QuadScene s = two_patches(w, h);
+  QuadDraw d = quad_draw(s, w, h, 4.0f);
+  d.rasterizer.fill = FillMode::wireframe;
+  auto fb = make_target(w, h);
+  const DrawResult r = device.draw(d, fb);
+  REQUIRE(r.ok());
+  int lit = 0;
+  for (int c : s.counts) lit += c > 0;
+  CHECK(lit > w);            // the lines are there
+  CHECK(lit < w * h / 2);    // and the interiors are not
+  CHECK(s.counts[std::size_t((h / 2 + 3) * w + w / 4 + 3)] == 0);  // inside a cell of the 4x4 grid
+}
+
+TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads and any chunking", "[pipeline][determinism]") {
+  const int w = 320, h = 180;
+  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  const auto draw = scenes::make_torus_draw(scene, 7.3f, ts::Partitioning::fractional_odd, w, h);
+  std::uint64_t reference = 0;
+  PipelineStatistics reference_stats;
+  struct Config {
+    int threads, tile;
+    std::size_t chunk;
+  } configs[] = {{1, 64, 16384}, {2, 64, 16384}, {7, 64, 16384}, {2, 16, 300}, {3, 128, 5000}};
+  for (const auto& c : configs) {
+    DeviceOptions o;
+    o.threads = c.threads;
+    o.tile_size = c.tile;
+    o.chunk_primitives = c.chunk;
+    Device device(o);
+    auto fb = make_target(w, h);
+    const DrawResult r = device.draw(draw, fb);
+    REQUIRE(r.ok());
+    const std::uint64_t hash = image_hash(fb);
+    INFO("threads " << c.threads << " tile " << c.tile << " chunk " << c.chunk);
+    if (reference == 0) {
+      reference = hash;
+      reference_stats = r.report.statistics;
+      CHECK(r.report.statistics.PSInvocations > 10000);  // the torus is really on screen
+    } else {
+      CHECK(hash == reference);
+      CHECK(r.report.statistics == reference_stats);
+    }
+  }
+}
+
+TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {
+  const int w = 256, h = 144;
+  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  Device device(DeviceOptions{2});
+  auto peak = [&](float factor) {
+    auto fb = make_target(w, h);
+    const DrawResult r = device.draw(scenes::make_torus_draw(scene, factor, ts::Partitioning::integer, w, h), fb);
+    REQUIRE(r.ok());
+    return double(r.report.memory.geometry_peak_bytes + r.report.memory.framebuffer_bytes);
+  };
+  const double at8 = peak(8.0f), at64 = peak(64.0f);
+  INFO("factor 8: " << at8 << " bytes, factor 64: " << at64 << " bytes");
+  CHECK(at64 <= 1.25 * at8);
+}
+
+TEST_CASE("pipeline: bad draws are rejected with a message", "[pipeline][bad-input]") {
+  Device device(DeviceOptions{1});
+  QuadScene s = two_patches(8, 8);
+  auto fb = make_target(8, 8);
+  QuadDraw d = quad_draw(s, 8, 8, 2.0f);
+  d.viewport.width = 0;
+  DrawResult r = device.draw(d, fb);
+  CHECK_FALSE(r.ok());
+  CHECK_THAT(r.error, Catch::Contains("zero area"));
+  d.viewport = full_viewport(8, 8);
+  d.viewport.x = std::numeric_limits<float>::quiet_NaN();
+  CHECK_THAT(device.draw(d, fb).error, Catch::Contains("non-finite"));
+  d.viewport = full_viewport(8, 8);
+  d.control_points = 33;
+  CHECK_THAT(device.draw(d, fb).error, Catch::Contains("1..32"));
+  d.control_points = 3;
+  CHECK_THAT(device.draw(d, fb).error, Catch::Contains("not a multiple"));
+  d.control_points = 4;
+  d.tessellator.domain = ts::Domain::isoline;
+  CHECK_THAT(device.draw(d, fb).error, Catch::Contains("isoline"));
+
+  std::string error;
+  CHECK_FALSE(Framebuffer::create(0, 10, ColorFormat::rgba8_unorm, &error));
+  CHECK_THAT(error, Catch::Contains("0x10"));
+  CHECK_FALSE(Framebuffer::create(100000, 100000, ColorFormat::rgba8_unorm, &error));
+  CHECK_THAT(error, Catch::Contains("16384"));
+}
+
+TEST_CASE("pipeline: out-of-range factors are culled or clamped as D3D11 does", "[pipeline][bad-input]") {
+  Device device(DeviceOptions{2});
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Case {
+    float factor;
+    std::uint64_t domain_points;
+  } cases[] = {{nan, 0}, {-1.0f, 0}, {0.0f, 0}, {1e30f, 65 * 65}, {std::numeric_limits<float>::infinity(), 65 * 65}, {0.25f, 4}};
+  for (const auto& c : cases) {
+    INFO("factor " << c.factor);
+    QuadScene s = two_patches(16, 16);
+    auto fb = make_target(16, 16);
+    const DrawResult r = device.draw(quad_draw(s, 16, 16, c.factor), fb);
+    REQUIRE(r.ok());
+    CHECK(r.report.statistics.HSInvocations == 2);
+    CHECK(r.report.statistics.DSInvocations == 2 * c.domain_points);
+  }
+}
+
+TEST_CASE("pipeline: NaN positions discard their primitives, bad indices fetch a zero vertex", "[pipeline][bad-input]") {
+  Device device(DeviceOptions{2, 16});
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<ClipVertex<1>> v = {clip_vertex<1>(-1, -1, 0.5f, 1), clip_vertex<1>(-1, 1, 0.5f, 1), clip_vertex<1>(1, -1, 0.5f, 1),
+                                  clip_vertex<1>(nan, 0, 0.5f, 1)};
+  auto draw = [&](std::vector<std::uint32_t> idx, std::vector<int>& counts) {
+    auto fb = make_target(8, 8);
+    MeshDraw<ClipVertex<1>, ClipPassVS<1>, CountingPS<1>> d;
+    d.vertices = v;
+    d.indices = idx;
+    d.ps = {&counts, 8};
+    d.rasterizer.cull = CullMode::none;
+    d.viewport = full_viewport(8, 8);
+    const DrawResult r = device.draw(d, fb);
+    REQUIRE(r.ok());
+    return r.report.statistics;
+  };
+  std::vector<int> counts(64, 0);
+  // A NaN coordinate discards the whole triangle.
+  PipelineStatistics st = draw({0, 3, 2}, counts);
+  CHECK(st.CInvocations == 1);
+  CHECK(st.CPrimitives == 0);
+  CHECK(st.PSInvocations == 0);
+  // Index 1000 is past the buffer: the VS sees a zero vertex (w = 0), which the clipper cuts away at
+  // w = kMinClipW; nothing reaches the pixels and nothing crashes.
+  st = draw({0, 1, 1000}, counts);
+  CHECK(st.CInvocations == 1);
+  CHECK(st.VSInvocations == 3);
+  CHECK(st.PSInvocations == 0);
+  // The intact triangle is the lower-left half of the target: the 28 pixel centres strictly below the
+  // diagonal. The 8 centres on the diagonal lie on a right edge, which the top-left rule excludes.
+  st = draw({0, 1, 2}, counts);
+  CHECK(st.CPrimitives == 1);
+  int lit = 0;
+  for (int c : counts) lit += c;
+  CHECK(lit == 28);
+}

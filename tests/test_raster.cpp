@@ -1,0 +1,311 @@
+// The rasterizer against D3D11's rules: fill-rule coverage, clipping, perspective-correct interpolation,
+// depth functions, lines and points.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+
+#include "pipeline_support.h"
+
+using namespace tessera;
+using namespace tessera::test;
+
+namespace {
+
+using V1 = ClipVertex<1>;
+
+// A (cols x rows) grid of quads, each split into two triangles along an alternating diagonal, with
+// inner vertices jittered by sub-pixel amounts; `z_of_x` gives clip z from NDC x (w = 1).
+struct Grid {
+  std::vector<V1> vertices;
+  std::vector<std::uint32_t> indices;
+};
+
+Grid jittered_grid(int cols, int rows, float x0, float x1, float y0, float y1, std::uint32_t seed, float (*z_of_x)(float)) {
+  Rng rng(seed);
+  Grid g;
+  for (int j = 0; j <= rows; ++j)
+    for (int i = 0; i <= cols; ++i) {
+      float x = x0 + (x1 - x0) * float(i) / float(cols), y = y0 + (y1 - y0) * float(j) / float(rows);
+      if (i > 0 && i < cols) x += float(rng.uniform(-0.3, 0.3)) * (x1 - x0) / float(cols);
+      if (j > 0 && j < rows) y += float(rng.uniform(-0.3, 0.3)) * (y1 - y0) / float(rows);
+      g.vertices.push_back(clip_vertex<1>(x, y, z_of_x(x), 1.0f));
+    }
+  const auto at = [&](int i, int j) { return std::uint32_t(j * (cols + 1) + i); };
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      const auto a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if ((i + j) % 2) {
+        g.indices.insert(g.indices.end(), {a, b, c, a, c, d});
+      } else {
+        g.indices.insert(g.indices.end(), {a, b, d, b, c, d});
+      }
+    }
+  return g;
+}
+
+std::vector<int> draw_counting(Device& device, const Grid& g, int w, int h, CullMode cull = CullMode::none) {
+  std::vector<int> counts(std::size_t(w) * std::size_t(h), 0);
+  auto fb = make_target(w, h);
+  MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
+  d.vertices = g.vertices;
+  d.indices = g.indices;
+  d.ps = {&counts, w};
+  d.rasterizer.cull = cull;
+  d.depth.test = false;
+  d.viewport = full_viewport(w, h);
+  const DrawResult r = device.draw(d, fb);
+  REQUIRE(r.ok());
+  return counts;
+}
+
+float flat_z(float) { return 0.5f; }
+// z < 0 (in front of the near plane) for NDC x < -0.2: the left part is clipped away.
+float tilted_z(float x) { return 0.5f * (x + 0.2f); }
+
+}  // namespace
+
+TEST_CASE("raster: a jittered mesh covers every pixel exactly once (top-left rule)", "[raster]") {
+  Device device(DeviceOptions{2, 16});
+  for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+    // Rows and columns of quads whose vertices fall on arbitrary sub-pixel positions, shared diagonals.
+    const Grid g = jittered_grid(13, 9, -1.0f, 1.0f, -1.0f, 1.0f, seed, flat_z);
+    const auto counts = draw_counting(device, g, 97, 61);
+    int zero = 0, multiple = 0;
+    for (int c : counts) zero += c == 0, multiple += c > 1;
+    INFO("seed " << seed << ": " << zero << " pixels missed, " << multiple << " shaded more than once");
+    CHECK(zero == 0);
+    CHECK(multiple == 0);
+  }
+}
+
+TEST_CASE("raster: exact edge and corner ties obey the top-left rule", "[raster]") {
+  // Vertices exactly on pixel centres: the centre on a shared edge belongs to one triangle only.
+  Device device(DeviceOptions{1, 16});
+  Grid g;
+  const int w = 16, h = 16;
+  auto ndc = [&](float px, float py) { return clip_vertex<1>(px / w * 2 - 1, 1 - py / h * 2, 0.5f, 1); };
+  // Pixel centres at (k + 0.5); a fan of 8 triangles around the centre (8.5, 8.5) of a square.
+  const float c = 8.5f;
+  const float ring[8][2] = {{2.5f, 2.5f}, {c, 2.5f}, {14.5f, 2.5f}, {14.5f, c}, {14.5f, 14.5f}, {c, 14.5f}, {2.5f, 14.5f}, {2.5f, c}};
+  g.vertices.push_back(ndc(c, c));
+  for (auto& p : ring) g.vertices.push_back(ndc(p[0], p[1]));
+  for (std::uint32_t k = 0; k < 8; ++k) g.indices.insert(g.indices.end(), {0, 1 + k, 1 + (k + 1) % 8});
+  const auto counts = draw_counting(device, g, w, h);
+  int covered = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int n = counts[std::size_t(y * w + x)];
+      CHECK(n <= 1);
+      covered += n;
+    }
+  // Centres in [2.5, 14.5) on both axes under the top-left rule: columns and rows 2..13 -> 12 x 12.
+  CHECK(covered == 144);
+  CHECK(counts[8 * w + 8] == 1);   // the shared centre vertex: exactly one of eight triangles
+  CHECK(counts[2 * w + 2] == 1);   // top-left corner: on a top and a left edge
+  CHECK(counts[14 * w + 14] == 0); // bottom-right corner: on a bottom and a right edge
+}
+
+TEST_CASE("raster: triangles clipped by the guard band still tile exactly once", "[raster][clip]") {
+  // Outer vertices lie far beyond the guard band (|x| up to 5000 viewport half-widths), so the
+  // border triangles are clipped in clip space; the inner seams must not open or overlap.
+  Device device(DeviceOptions{2, 16});
+  const Grid g = jittered_grid(5, 5, -5000.0f, 5000.0f, -3000.0f, 3000.0f, 11, flat_z);
+  const auto counts = draw_counting(device, g, 64, 48);
+  int zero = 0, multiple = 0;
+  for (int c : counts) zero += c == 0, multiple += c > 1;
+  CHECK(zero == 0);
+  CHECK(multiple == 0);
+}
+
+TEST_CASE("raster: near-plane clipping cuts the mesh without seams", "[raster][clip]") {
+  Device device(DeviceOptions{2, 16});
+  const int w = 80, h = 40;
+  const Grid g = jittered_grid(7, 5, -1.5f, 1.5f, -1.5f, 1.5f, 5, tilted_z);
+  const auto counts = draw_counting(device, g, w, h);
+  int wrong = 0, in_front = 0, behind = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float ndc_x = (float(x) + 0.5f) / float(w) * 2 - 1;
+      const int n = counts[std::size_t(y * w + x)];
+      if (n > 1) ++wrong;
+      const float z = tilted_z(ndc_x);
+      if (z > 0.02f) {
+        in_front += n == 1;
+        if (n != 1) ++wrong;
+      } else if (z < -0.02f) {
+        behind += n == 0;
+        if (n != 0) ++wrong;
+      }
+    }
+  CHECK(wrong == 0);
+  CHECK(in_front > 0);
+  CHECK(behind > 0);
+}
+
+TEST_CASE("raster: clipping interpolates shared edges bit-identically", "[raster][clip]") {
+  // Two triangles share the edge (a, b) and walk it in opposite directions; both clip it at the near plane.
+  const GuardBand g{4, 4};
+  ClipVertex<2> a, b, c, d;
+  a.position = {-0.3f, 0.1f, -0.7f, 1.3f};
+  a.attributes = {0.1f, 0.7f};
+  b.position = {0.4f, -0.2f, 0.9f, 1.1f};
+  b.attributes = {0.9f, 0.3f};
+  c.position = {0.5f, 0.6f, 0.4f, 1.0f};
+  d.position = {-0.6f, -0.5f, 0.6f, 1.2f};
+  ClipPolygon<2> p1, p2;
+  p1.v = {a, b, c};
+  p1.count = 3;
+  p2.v = {b, a, d};
+  p2.count = 3;
+  clip_polygon(p1, 1u << kNear, g);
+  clip_polygon(p2, 1u << kNear, g);
+  REQUIRE(p1.count == 4);
+  REQUIRE(p2.count == 4);
+  // The new vertex on edge (a, b) lies on z = 0 and is the same bits in both polygons.
+  auto on_plane = [](const ClipPolygon<2>& p) {
+    std::vector<ClipVertex<2>> r;
+    for (int i = 0; i < p.count; ++i)
+      if (p.v[i].position.z == 0.0f) r.push_back(p.v[i]);
+    return r;
+  };
+  const auto n1 = on_plane(p1), n2 = on_plane(p2);
+  REQUIRE(n1.size() == 2);
+  REQUIRE(n2.size() == 2);
+  bool shared = false;
+  for (const auto& x : n1)
+    for (const auto& y : n2)
+      shared |= std::memcmp(&x.position, &y.position, sizeof(glm::vec4)) == 0 &&
+                std::memcmp(x.attributes.data(), y.attributes.data(), 8) == 0;
+  CHECK(shared);
+  for (int i = 0; i < p1.count; ++i) CHECK(p1.v[i].position.z >= 0.0f);
+}
+
+TEST_CASE("raster: attributes are interpolated perspective-correctly", "[raster]") {
+  // A plane receding in depth: vertex s in {0, 1} at x = 2s - 1 (clip) with w = 1 + 3s. On screen,
+  // x_ndc = (2s - 1) / (1 + 3s), so the exact attribute is s = (1 + x_ndc) / (2 - 3 x_ndc).
+  Device device(DeviceOptions{2, 16});
+  const int w = 128, h = 8;
+  std::vector<V1> v;
+  for (int s = 0; s <= 1; ++s)
+    for (int t = 0; t <= 1; ++t) {
+      const float ws = 1.0f + 3.0f * float(s);
+      V1 x = clip_vertex<1>((2.0f * float(s) - 1.0f), (2.0f * float(t) - 1.0f) * ws, 0.5f, ws);
+      x.attributes[0] = float(s);
+      v.push_back(x);
+    }
+  const std::vector<std::uint32_t> idx = {0, 2, 3, 0, 3, 1};
+  std::vector<int> counts(std::size_t(w) * h, 0);
+  auto fb = make_target(w, h, ColorFormat::rgba32_float);
+  MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
+  d.vertices = v;
+  d.indices = idx;
+  d.ps = {&counts, w};
+  d.rasterizer.cull = CullMode::none;
+  d.viewport = full_viewport(w, h);
+  REQUIRE(device.draw(d, fb).ok());
+  double worst = 0, worst_linear = 0;
+  int checked = 0;
+  for (int x = 0; x < w; ++x) {
+    if (counts[std::size_t((h / 2) * w + x)] != 1) continue;  // outside the quad (it ends at x_ndc = 0.25)
+    ++checked;
+    const double ndc = (x + 0.5) / w * 2 - 1;
+    const double exact = (1 + ndc) / (2 - 3 * ndc);
+    const double got = fb.color(x, h / 2).r;
+    worst = std::max(worst, std::abs(got - exact));
+    worst_linear = std::max(worst_linear, std::abs((1 + ndc) / 2 - exact));
+  }
+  CHECK(checked > w / 2);
+  CHECK(worst < 2e-5);
+  CHECK(worst_linear > 0.1);  // screen-linear interpolation would be far off: the case is discriminating
+}
+
+TEST_CASE("raster: depth comparison functions and depth write", "[raster][depth]") {
+  // Two full-screen triangles: first at depth 0.5 (red), then at `second_z` (green).
+  Device device(DeviceOptions{1, 16});
+  auto run = [&](CompareFunc f, float second_z, bool write) {
+    auto fb = make_target(8, 8);
+    auto tri = [&](float z, float g) {
+      std::vector<ClipVertex<3>> v = {clip_vertex<3>(-1, -1, z, 1), clip_vertex<3>(-1, 3, z, 1), clip_vertex<3>(3, -1, z, 1)};
+      for (auto& x : v) x.attributes = {1.0f - g, g, 0.0f};
+      return v;
+    };
+    const std::vector<std::uint32_t> idx = {0, 1, 2};
+    std::vector<int> counts(64, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      const auto v = tri(pass == 0 ? 0.5f : second_z, pass == 0 ? 0.0f : 1.0f);
+      MeshDraw<ClipVertex<3>, ClipPassVS<3>, CountingPS<3>> d;
+      d.vertices = v;
+      d.indices = idx;
+      d.ps = {&counts, 8};
+      d.rasterizer.cull = CullMode::none;
+      d.depth = {true, pass == 0 || write, pass == 0 ? CompareFunc::always : f};
+      d.viewport = full_viewport(8, 8);
+      REQUIRE(device.draw(d, fb).ok());
+    }
+    return std::pair{fb.color(3, 3).g > 0.5f, fb.depth(3, 3)};
+  };
+  struct Case {
+    CompareFunc f;
+    float z;
+    bool green;
+  } cases[] = {{CompareFunc::never, 0.2f, false},        {CompareFunc::always, 0.8f, true},
+               {CompareFunc::less, 0.2f, true},          {CompareFunc::less, 0.5f, false},
+               {CompareFunc::less_equal, 0.5f, true},    {CompareFunc::less_equal, 0.6f, false},
+               {CompareFunc::greater, 0.8f, true},       {CompareFunc::greater, 0.5f, false},
+               {CompareFunc::greater_equal, 0.5f, true}, {CompareFunc::equal, 0.5f, true},
+               {CompareFunc::equal, 0.25f, false},       {CompareFunc::not_equal, 0.25f, true},
+               {CompareFunc::not_equal, 0.5f, false}};
+  for (const auto& c : cases) {
+    INFO(to_string(c.f) << " with " << c.z);
+    const auto [green, depth] = run(c.f, c.z, true);
+    CHECK(green == c.green);
+    CHECK(depth == (c.green ? c.z : 0.5f));
+  }
+  const auto [green, depth] = run(CompareFunc::less, 0.2f, false);
+  CHECK(green);
+  CHECK(depth == 0.5f);  // depth write off: the stored depth is unchanged
+}
+
+TEST_CASE("raster: back and front culling follow the winding on screen", "[raster]") {
+  Device device(DeviceOptions{1, 16});
+  Grid g;
+  // Clockwise on screen (y down) = front by default: (-1,1) -> (1,1) -> (-1,-1) in NDC.
+  g.vertices = {clip_vertex<1>(-1, 1, 0.5f, 1), clip_vertex<1>(1, 1, 0.5f, 1), clip_vertex<1>(-1, -1, 0.5f, 1)};
+  g.indices = {0, 1, 2};
+  auto total = [](const std::vector<int>& c) {
+    int n = 0;
+    for (int x : c) n += x;
+    return n;
+  };
+  CHECK(total(draw_counting(device, g, 16, 16, CullMode::back)) > 0);
+  CHECK(total(draw_counting(device, g, 16, 16, CullMode::front)) == 0);
+  g.indices = {0, 2, 1};
+  CHECK(total(draw_counting(device, g, 16, 16, CullMode::back)) == 0);
+  CHECK(total(draw_counting(device, g, 16, 16, CullMode::front)) > 0);
+}
+
+TEST_CASE("raster: scissor and viewport limit the written pixels", "[raster]") {
+  Device device(DeviceOptions{2, 16});
+  const Grid g = jittered_grid(2, 2, -1, 1, -1, 1, 3, flat_z);
+  std::vector<int> counts(40 * 30, 0);
+  auto fb = make_target(40, 30);
+  MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
+  d.vertices = g.vertices;
+  d.indices = g.indices;
+  d.ps = {&counts, 40};
+  d.rasterizer.cull = CullMode::none;
+  d.rasterizer.scissor = ScissorRect{5, 4, 17, 20};
+  d.viewport = {2, 3, 30, 20, 0, 1};
+  REQUIRE(device.draw(d, fb).ok());
+  int inside = 0, outside = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const int n = counts[std::size_t(y * 40 + x)];
+      const bool in = x >= 5 && x < 17 && y >= 4 && y < 20;  // the scissor lies within the viewport here
+      (in ? inside : outside) += n;
+      if (in) CHECK(n == 1);
+    }
+  CHECK(inside == 12 * 16);
+  CHECK(outside == 0);
+}
