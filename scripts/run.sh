@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job: set up, build, and run the most complete thing Tessera does today on its bundled
-# default. Until the pipeline and the displaced monster frog land, that is the fixed-function
-# tessellator: it checks itself against the D3D11 reference's golden captures, draws debug
-# pictures of tessellation patterns, and measures throughput.
+# default. Until the displaced monster frog lands (issue 5), that is the benchmark scene through the
+# whole pipeline: the displaced B-spline torus rendered at factor 16 (image, D3D11 statistics, stage
+# times and memory), plus debug pictures of tessellation patterns and the tessellator's throughput.
 #
 #   scripts/run.sh [OUT_DIR]      (default out/)
 set -euo pipefail
@@ -12,10 +12,12 @@ out=${1:-$root/out}
 cmake --build "$root/build" --parallel "$(nproc)" >&2
 bin="$root/build/bin/tessera"
 mkdir -p "$out"
+"$bin" bench torus --factor 16 --frames 5 -o "$out/torus_f16.png" --stats "$out/torus_f16_stats.json" | tee "$out/bench_torus.txt"
+"$bin" bench torus --factor 5.5 --partitioning fractional_odd --resolution 960x540 --frames 3 -o "$out/torus_f5.5_odd.png" | tee -a "$out/bench_torus.txt"
 "$bin" pattern --domain quad --partitioning fractional_odd --outer 3.5,7.25,2,5 --inner 6.5,4.75 --image "$out/quad_fractional_odd.png"
 "$bin" pattern --domain tri --partitioning fractional_even --outer 2.5,6.00005,9 --inner 5.5 --image "$out/tri_fractional_even_fold.png"
 "$bin" pattern --domain quad --partitioning integer --outer 64,64,64,64 --inner 64,64 --image "$out/quad_integer_64.png"
 "$bin" pattern --domain isoline --partitioning fractional_odd --outer 4,5.5 --image "$out/isoline.png"
 "$bin" pattern --domain tri --partitioning integer --outer 3,3,3 --inner 3 --json > "$out/tri_333.json"
 "$bin" bench tessellator --seconds 3 | tee "$out/bench_tessellator.txt"
-echo "run: pictures, JSON and benchmark results in $out" >&2
+echo "run: torus render, statistics, pictures, JSON and benchmark results in $out" >&2
