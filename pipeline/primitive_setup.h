@@ -220,10 +220,17 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   // Positive area is clockwise on screen (y down).
   const bool front = (area > 0) != c.front_ccw;
   if ((c.cull == CullMode::back && !front) || (c.cull == CullMode::front && front)) return;
-  ScreenPrimitive<N> p;
+  // The box test comes before the primitive is built: most micro-triangles stop here.
   const auto [lx, hx] = std::minmax({a.x, b.x, d.x});
   const auto [ly, hy] = std::minmax({a.y, b.y, d.y});
-  if (!finish_box(c, p, lx, hx, ly, hy)) return;  // no pixel centre inside the box: most micro-triangles
+  const std::int32_t min_x = std::max(first_pixel_at_or_after(lx), c.clip_min_x);
+  const std::int32_t max_x = std::min(last_pixel_at_or_before(hx), c.clip_max_x);
+  if (min_x > max_x) return;
+  const std::int32_t min_y = std::max(first_pixel_at_or_after(ly), c.clip_min_y);
+  const std::int32_t max_y = std::min(last_pixel_at_or_before(hy), c.clip_max_y);
+  if (min_y > max_y) return;
+  ScreenPrimitive<N> p;
+  p.min_x = min_x, p.max_x = max_x, p.min_y = min_y, p.max_y = max_y;
   // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.
   const SetupVertex<N>* v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};
   for (int i = 0; i < 3; ++i) {

@@ -73,16 +73,6 @@ TorusScene make_torus_scene(int width, int height) {
   return s;
 }
 
-CubicBasis bspline_basis(float t) {
-  const float s = 1.0f - t;
-  CubicBasis r;
-  r.b = glm::vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f,
-                  t * t * t) /
-        6.0f;
-  r.d = glm::vec4(-s * s, 3.0f * t * t - 4.0f * t, -3.0f * t * t + 2.0f * t + 1.0f, t * t) * 0.5f;
-  return r;
-}
-
 ClipVertex<3> DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp,
                                              DomainLocation loc, std::uint32_t patch_id) const {
   const CubicBasis bu = bspline_basis(loc.u), bv = bspline_basis(loc.v);

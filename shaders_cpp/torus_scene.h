@@ -37,7 +37,15 @@ TorusScene make_torus_scene(int width, int height);
 struct CubicBasis {
   glm::vec4 b, d;
 };
-CubicBasis bspline_basis(float t);
+inline CubicBasis bspline_basis(float t) {
+  const float s = 1.0f - t;
+  CubicBasis r;
+  r.b = glm::vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f,
+                  t * t * t) /
+        6.0f;
+  r.d = glm::vec4(-s * s, 3.0f * t * t - 4.0f * t, -3.0f * t * t + 2.0f * t + 1.0f, t * t) * 0.5f;
+  return r;
+}
 
 struct PassThroughVS {
   glm::vec3 operator()(const glm::vec3& p, std::uint32_t) const { return p; }
