@@ -4,8 +4,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+
+#include <OpenImageIO/imageio.h>
 
 #include "pipeline_support.h"
+#include "texture.h"
 
 using namespace tessera;
 using namespace tessera::test;
@@ -308,4 +312,64 @@ TEST_CASE("raster: scissor and viewport limit the written pixels", "[raster]") {
     }
   CHECK(inside == 12 * 16);
   CHECK(outside == 0);
+}
+
+namespace {
+
+// Samples a texture with the derivatives of attributes 0 and 1 (HLSL Sample in a pixel shader).
+struct TexturePS {
+  const Texture2D* texture = nullptr;
+  glm::vec4 operator()(const PixelInput<2>& in) const {
+    const Sampler s{Filter::trilinear, AddressMode::wrap, AddressMode::wrap};
+    return texture->sample_grad(s, {in.attributes[0], in.attributes[1]}, {in.ddx(0), in.ddx(1)}, {in.ddy(0), in.ddy(1)});
+  }
+};
+
+}  // namespace
+
+TEST_CASE("raster: pixel-shader derivatives select the mip level; float targets write EXR", "[raster][texture]") {
+  // A 64x64 one-texel checkerboard: level 0 is 0/1, every coarser level is 0.5.
+  std::vector<float> texels(64 * 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) texels[std::size_t(y * 64 + x)] = float((x + y) % 2);
+  std::string error;
+  const auto tex = Texture2D::create(64, 64, 1, texels, true, &error);
+  REQUIRE(tex);
+  Device device(DeviceOptions{2, 16});
+  for (float texels_per_pixel : {1.0f, 4.0f}) {
+    const int w = 32, h = 32;
+    // uv spans texels_per_pixel * 32 texels across the 32-pixel target: ddx(u) = texels_per_pixel / 64.
+    const float span = texels_per_pixel * 32.0f / 64.0f;
+    std::vector<ClipVertex<2>> v = {clip_vertex<2>(-1, 1, 0.5f, 1), clip_vertex<2>(3, 1, 0.5f, 1), clip_vertex<2>(-1, -3, 0.5f, 1)};
+    v[0].attributes = {0, 0};
+    v[1].attributes = {2 * span, 0};
+    v[2].attributes = {0, 2 * span};
+    const std::vector<std::uint32_t> idx = {0, 1, 2};
+    auto fb = make_target(w, h, ColorFormat::rgba32_float);
+    MeshDraw<ClipVertex<2>, ClipPassVS<2>, TexturePS> d;
+    d.vertices = v;
+    d.indices = idx;
+    d.ps = {&*tex};
+    d.rasterizer.cull = CullMode::none;
+    d.viewport = full_viewport(w, h);
+    REQUIRE(device.draw(d, fb).ok());
+    INFO("texels per pixel " << texels_per_pixel);
+    if (texels_per_pixel == 1.0f) {
+      // lod 0: each pixel centre sits on a texel centre, so the checkerboard comes through exactly.
+      CHECK(fb.color(4, 7).r == 1.0f);
+      CHECK(fb.color(5, 7).r == 0.0f);
+    } else {
+      CHECK(fb.color(4, 7).r == Approx(0.5f));  // lod 2: the averaged level
+      CHECK(fb.color(5, 7).r == Approx(0.5f));
+      const std::string path = (std::filesystem::temp_directory_path() / "tessera-test-lod.exr").string();
+      REQUIRE(fb.write_color(path).empty());
+      auto in = OIIO::ImageInput::open(path);
+      REQUIRE(in);
+      std::vector<float> px(std::size_t(w) * h * 4);
+      REQUIRE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, px.data()));
+      CHECK(px[(7 * std::size_t(w) + 4) * 4] == Approx(0.5f));
+      in->close();
+      std::filesystem::remove(path);
+    }
+  }
 }
