@@ -135,14 +135,25 @@ void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const Ver
   });
 }
 
+// IA and VS for one window of indices: vertex caching by index, then the VS once per unique vertex.
+template <class Vertex, class Vs, class Out>
+void assemble_and_shade_vertices(const Vs& vs, std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
+                                 std::size_t primitives, VertexCache& cache, std::vector<Out>& out, DrawReport& report) {
+  const auto start = Clock::now();
+  cache.build(indices, vertices.size());
+  run_vertex_shader(vs, vertices, cache, out);
+  report.statistics.IAVertices += indices.size();
+  report.statistics.IAPrimitives += primitives;
+  report.statistics.VSInvocations += cache.unique.size();
+  report.times.ia_vs += seconds_since(start);
+}
+
 // The back end: chunk slots, and the tile-parallel flush that rasterizes them in draw order.
 template <std::size_t N, class Ps>
 class Backend {
  public:
-  Backend(const SetupContext& setup, const RasterContext& rc, const Ps& ps, Framebuffer& fb, int slots)
-      : setup_(setup), rc_(rc), ps_(ps), fb_(fb), slots_(std::size_t(slots)) {
-    for (auto& s : slots_) s.reset(setup_.tiles.count());
-  }
+  Backend(const SetupContext& setup, const DepthState& depth, const Ps& ps, Framebuffer& fb, int slots)
+      : setup_(setup), rc_{depth, setup.min_depth, setup.max_depth}, ps_(ps), fb_(fb), slots_(std::size_t(slots)) {}
 
   const SetupContext& setup() const { return setup_; }
 
@@ -289,8 +300,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
 
   arena_->execute([&] {
     const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
-    RasterContext rc{d.depth, setup.min_depth, setup.max_depth};
-    detail::Backend<N, Ps> backend(setup, rc, d.ps, fb, options_.chunks_in_flight);
+    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, options_.chunks_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
     tbb::enumerable_thread_specific<StageTimes> front_times;
 
@@ -308,14 +318,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
       const std::size_t n = std::min(window, patch_count - first);
       const auto indices = d.indices.subspan(first * n_in, n * n_in);
 
-      // IA and VS: one invocation per unique vertex index of the window.
-      auto t0 = detail::Clock::now();
-      vcache.build(indices, d.vertices.size());
-      detail::run_vertex_shader(d.vs, d.vertices, vcache, vs_out);
-      report.statistics.IAVertices += indices.size();
-      report.statistics.IAPrimitives += n;
-      report.statistics.VSInvocations += vcache.unique.size();
-      report.times.ia_vs += detail::seconds_since(t0);
+      detail::assemble_and_shade_vertices(d.vs, d.vertices, indices, n, vcache, vs_out, report);
 
       // HS: control-point phase, then the patch-constant phase; factors processed and patterns sized.
       control_points.resize(n * kOut);
@@ -433,8 +436,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
 
   arena_->execute([&] {
     const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
-    RasterContext rc{d.depth, setup.min_depth, setup.max_depth};
-    detail::Backend<N, Ps> backend(setup, rc, d.ps, fb, options_.chunks_in_flight);
+    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, options_.chunks_in_flight);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
     std::vector<SetupVertex<N>> setup_vertices;
@@ -445,17 +447,13 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
     for (std::size_t first = 0; first < triangle_count; first += window) {
       const std::size_t n = std::min(window, triangle_count - first);
       const auto indices = d.indices.subspan(first * 3, n * 3);
-      auto t0 = detail::Clock::now();
-      vcache.build(indices, d.vertices.size());
-      detail::run_vertex_shader(d.vs, d.vertices, vcache, vs_out);
-      report.statistics.IAVertices += indices.size();
-      report.statistics.IAPrimitives += n;
-      report.statistics.VSInvocations += vcache.unique.size();
+      detail::assemble_and_shade_vertices(d.vs, d.vertices, indices, n, vcache, vs_out, report);
+      const auto t0 = detail::Clock::now();
       setup_vertices.resize(vs_out.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vs_out.size(), 1024), [&](const auto& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) setup_vertices[i] = make_setup_vertex<N>(setup, vs_out[i]);
       });
-      report.times.ia_vs += detail::seconds_since(t0);
+      report.times.setup += detail::seconds_since(t0);
       cost.assign(n, 1);
       detail::cut_chunks(cost, options_.chunk_primitives, options_.chunk_primitives, chunks);
       backend.run(

@@ -201,7 +201,6 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
   p.primitive_id = primitive_id;
   copy_vertex(a, p, 0);
   copy_vertex(b, p, 1);
-  copy_vertex(b, p, 2);
   // A line may light the pixel its end point lies in; widen the box by half a pixel.
   const std::int32_t h = kSubpixelOne / 2;
   if (!finish_box(c, p, std::min(p.x[0], p.x[1]) - h, std::max(p.x[0], p.x[1]) + h, std::min(p.y[0], p.y[1]) - h,

@@ -133,15 +133,7 @@ int run_bench_torus(const TorusOptions& o) {
     s << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"threads\": " << device.threads()
       << ", \"statistics\": " << to_json(report.statistics) << ", \"times\": " << to_json(report.times)
       << ", \"memory\": " << to_json(report.memory) << ", \"peak_rss_bytes\": " << rss << "}\n";
-    const std::string text = s.str();
-    write_file_atomically(o.stats, [&](const std::string& tmp) {
-      std::FILE* f = std::fopen(tmp.c_str(), "wb");
-      if (!f || std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
-        if (f) std::fclose(f);
-        throw InputError(o.stats + ": cannot write");
-      }
-      if (std::fclose(f) != 0) throw InputError(o.stats + ": cannot write");
-    });
+    write_text_atomically(o.stats, s.str());
   }
 
   std::optional<LlvmpipeRun> lp;

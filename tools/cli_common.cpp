@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <unistd.h>
 
@@ -66,6 +67,15 @@ void write_file_atomically(const std::string& path, const std::function<void(con
     fs::remove(temp, ignored);
     throw;
   }
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](const std::string& temp) {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw InputError(path + ": write failed");
+  });
 }
 
 std::string float_text(float x) {

@@ -42,6 +42,9 @@ std::vector<float> parse_float_list(std::string_view text, std::string_view what
 // `write` throws on failure; the temporary is removed and the exception propagates.
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// write_file_atomically for a text that is already complete in memory.
+void write_text_atomically(const std::string& path, const std::string& text);
+
 // Shortest decimal text that parses back to the identical float (at most 9 significant digits).
 std::string float_text(float x);
 

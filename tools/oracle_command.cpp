@@ -39,13 +39,11 @@ int run_oracle(const OracleOptions& o) {
       golden.push_back(oracle::golden_line(cap.c, oracle::digest(cap.primitives)));
   }
   if (!o.write_golden.empty()) {
-    write_file_atomically(o.write_golden, [&](const std::string& temp) {
-      std::ofstream out(temp);
-      out << "# Digests of the D3D11 reference tessellator's output, captured from Mesa llvmpipe by tools/oracle/run_oracle.sh.\n"
-             "# Regenerate only with tools/regen_golden.sh. Format: <tessref case line> => <primitives> <ordered fnv64> <set fnv64>\n";
-      for (const auto& line : golden) out << line << "\n";
-      if (!out) throw InputError(o.write_golden + ": write failed");
-    });
+    std::string text =
+        "# Digests of the D3D11 reference tessellator's output, captured from Mesa llvmpipe by tools/oracle/run_oracle.sh.\n"
+        "# Regenerate only with tools/regen_golden.sh. Format: <tessref case line> => <primitives> <ordered fnv64> <set fnv64>\n";
+    for (const auto& line : golden) text += line + "\n";
+    write_text_atomically(o.write_golden, text);
     log_info("wrote " + std::to_string(golden.size()) + " golden digests to " + o.write_golden);
   }
   if (o.json)
