@@ -75,6 +75,7 @@ std::string write_image_atomically(const std::string& path, int width, int heigh
   temp_name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid()));
   temp_name.append(target.extension().string());
   const fs::path temp = dir / temp_name;
+  if (!fs::is_directory(dir)) return path + ": directory '" + dir.string() + "' does not exist";
   auto out = OIIO::ImageOutput::create(target.string());
   if (!out) return path + ": no image writer for this extension (" + OIIO::geterror() + ")";
   OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);

@@ -61,10 +61,14 @@ struct LlvmpipeRun {
   std::string image;
 };
 
+// Checked before rendering, so a bad --llvmpipe fails at once.
+void check_llvmpipe(const TorusOptions& o, ts::Partitioning p) {
+  if (!gl_spacing(p)) throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
+  if (!std::filesystem::exists(o.llvmpipe)) throw InputError(o.llvmpipe + ": no such llvmpipe harness (build tessbench.cpp)");
+}
+
 LlvmpipeRun run_llvmpipe(const TorusOptions& o, ts::Partitioning p, int w, int h, int threads) {
   const char* spacing = gl_spacing(p);
-  if (!spacing) throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
-  if (!std::filesystem::exists(o.llvmpipe)) throw InputError(o.llvmpipe + ": no such llvmpipe harness (build tessbench.cpp)");
   LlvmpipeRun r;
   r.image = (std::filesystem::temp_directory_path() / ("tessera-llvmpipe-" + std::to_string(::getpid()) + ".ppm")).string();
   char cmd[2048];
@@ -94,6 +98,7 @@ int run_bench_torus(const TorusOptions& o) {
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
   if (o.threads < 0 || o.threads > 1024) throw UsageError("--threads: must be in 0..1024 (0 = all)");
   const auto [w, h] = parse_resolution(o.resolution);
+  if (!o.llvmpipe.empty()) check_llvmpipe(o, *partitioning);
 
   DeviceOptions dopt;
   dopt.threads = o.threads;
