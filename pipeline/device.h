@@ -264,6 +264,8 @@ class Device {
 
   int threads() const { return threads_; }
   const DeviceOptions& options() const { return options_; }
+  // The arena the device's work runs in (stream_output.h runs there too).
+  tbb::task_arena& arena() const { return *arena_; }
 
   template <class Vertex, class Vs, class Hs, class Ds, class Ps>
   DrawResult draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb);
