@@ -1,0 +1,191 @@
+// The subdivision schemes as shader functors (pipeline/stage_io.h shapes):
+// - SubdVS: animation at control-point rate (an affine transform of the cage; identity by default).
+// - SubdHS: control-point phase = the patch's stencil table applied to its 1-ring, summed in vertex
+//   index order; patch-constant phase = tessellation factors per cage edge (SubdFactors).
+// - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample.
+// - ProjectDS wraps a DS that returns SurfaceSample into one that returns ClipVertex for rendering.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <unordered_map>
+
+#include <glm/glm.hpp>
+
+#include "limit_surface.h"
+#include "patch_eval.h"
+#include "stage_io.h"
+#include "subd_patches.h"
+
+namespace tessera {
+
+struct SubdVertex {
+  glm::vec3 position{0.0f};
+};
+
+struct SubdVS {
+  glm::mat4 transform{1.0f};
+  bool identity = true;
+  SubdVertex operator()(const glm::vec3& p, std::uint32_t) const {
+    if (identity) return {p};
+    return {glm::vec3(transform * glm::vec4(p, 1.0f))};
+  }
+};
+
+// Hull-shader output control point: a position, and for acc the matching tangent-patch points.
+struct SubdControlPoint {
+  glm::vec3 p{0.0f}, du{0.0f}, dv{0.0f};
+};
+
+// Tessellation factors as a pure function of a cage edge key (subd_patches.h), so the two patches on
+// an edge always agree. `vary` > 0 spreads factors over [factor, factor * (1 + vary)] by a hash of the
+// key (to test edges whose factors differ); inside factors average the edges of each direction.
+struct SubdFactors {
+  float factor = 8.0f;
+  float vary = 0.0f;
+  std::shared_ptr<const std::unordered_map<std::int64_t, float>> per_edge;  // by cage_edge_key
+  float edge(std::int64_t key) const {
+    if (key >= 0 && per_edge) {
+      const auto it = per_edge->find(full_edge_key(key));
+      if (it != per_edge->end()) return it->second;
+    }
+    if (vary <= 0.0f || key < 0) return factor;
+    key = full_edge_key(key);
+    std::uint64_t x = std::uint64_t(key) * 0x9E3779B97F4A7C15ull;
+    x ^= x >> 29;
+    x *= 0xBF58476D1CE4E5B9ull;
+    x ^= x >> 32;
+    const float r = float(x % 1000u) / 999.0f;
+    return factor * (1.0f + vary * r);
+  }
+};
+
+struct SubdPatchConstants {
+  TessFactors factors;
+};
+
+struct SubdHS {
+  static constexpr int kOutputControlPoints = 20;
+  std::span<const SubdPatch> patches;
+  std::span<const StencilTable> tables;
+  SubdFactors factors;
+
+  SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
+    const SubdPatch& patch = patches[patch_id];
+    SubdControlPoint cp;
+    if (patch.table < 0) return cp;
+    const StencilTable& t = tables[std::size_t(patch.table)];
+    auto row = [&](int r) {
+      glm::dvec3 sum(0.0);
+      const float* w = t.weights.data() + std::size_t(r) * std::size_t(t.ring);
+      for (int k = 0; k < patch.ring_size; ++k) {
+        const int j = patch.order[std::size_t(k)];
+        if (w[j] != 0.0f) sum += double(w[j]) * glm::dvec3(in[std::size_t(j)].position);
+      }
+      return glm::vec3(sum);
+    };
+    if (i < t.rows) cp.p = row(i);
+    if (patch.kind == PatchKind::acc && i < 12) {
+      cp.du = row(16 + i);
+      cp.dv = row(28 + i);
+    }
+    return cp;
+  }
+
+  SubdPatchConstants patch_constants(std::span<const SubdVertex>, std::span<const SubdControlPoint>,
+                                     std::uint32_t patch_id) const {
+    const SubdPatch& patch = patches[patch_id];
+    SubdPatchConstants pc;
+    auto& f = pc.factors;
+    for (int k = 0; k < 4; ++k) f.edge[std::size_t(k)] = factors.edge(patch.edge_keys[std::size_t(k)]);
+    // Quad: inside U spans edges Veq0/Veq1 (1, 3), inside V spans Ueq0/Ueq1 (0, 2). Tri: all three.
+    f.inside[0] = (f.edge[1] + f.edge[3]) * 0.5f;
+    f.inside[1] = (f.edge[0] + f.edge[2]) * 0.5f;
+    return pc;
+  }
+};
+
+// A tri-domain variant: inside factor = mean of the three edges.
+struct SubdTriHS : SubdHS {
+  SubdPatchConstants patch_constants(std::span<const SubdVertex> in, std::span<const SubdControlPoint> cps,
+                                     std::uint32_t patch_id) const {
+    SubdPatchConstants pc = SubdHS::patch_constants(in, cps, patch_id);
+    pc.factors.inside[0] = (pc.factors.edge[0] + pc.factors.edge[1] + pc.factors.edge[2]) / 3.0f;
+    pc.factors.inside[1] = 0.0f;
+    return pc;
+  }
+};
+
+// What the domain shader produces for one domain point: the surface point, its unit normal, and where
+// it came from (base face, and the location in that face's domain).
+struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with derivatives)
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};
+  std::uint32_t face = 0;
+  float u = 0, v = 0;
+};
+
+struct SubdDS {
+  std::span<const SubdPatch> patches;
+  const LimitSurface* limit = nullptr;
+  bool flip_normals = false;  // left-handed cages (the limit surface flips its own)
+  bool triangles = false;     // the tri domain
+
+  SurfaceSample operator()(const SubdPatchConstants&, std::span<const SubdControlPoint> cp, DomainLocation loc,
+                           std::uint32_t patch_id) const {
+    const SubdPatch& patch = patches[patch_id];
+    SurfaceSample s;
+    s.face = std::uint32_t(patch.face);
+    s.u = loc.u;
+    s.v = loc.v;
+    PatchPoint p;
+    switch (patch.kind) {
+      case PatchKind::bilinear:
+        p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v);
+        break;
+      case PatchKind::linear: {
+        // Corner 0 at w = 1, corner 1 at u = 1, corner 2 at v = 1.
+        if (loc.v == 0.0f) p.position = loc.w * cp[0].p + loc.u * cp[1].p;
+        else if (loc.w == 0.0f) p.position = loc.u * cp[1].p + loc.v * cp[2].p;
+        else if (loc.u == 0.0f) p.position = loc.v * cp[2].p + loc.w * cp[0].p;
+        else p.position = (loc.w * cp[0].p + loc.u * cp[1].p) + loc.v * cp[2].p;
+        p.du = cp[1].p - cp[0].p;
+        p.dv = cp[2].p - cp[0].p;
+        break;
+      }
+      case PatchKind::acc: {
+        std::array<glm::vec3, 16> b;
+        std::array<glm::vec3, 12> du, dv;
+        for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+        for (int i = 0; i < 12; ++i) du[std::size_t(i)] = cp[std::size_t(i)].du, dv[std::size_t(i)] = cp[std::size_t(i)].dv;
+        p = bezier_patch(b, loc.u, loc.v);
+        acc_tangents(du, dv, loc.u, loc.v, p.du, p.dv);
+        break;
+      }
+      case PatchKind::gregory: {
+        std::array<glm::vec3, 20> g;
+        for (int i = 0; i < 20; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+        const auto b = gregory_to_bezier(g, loc.u, loc.v);
+        p = bezier_patch(b, loc.u, loc.v);
+        break;
+      }
+      case PatchKind::exact: {
+        const SurfacePoint l = triangles ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
+                                         : limit->evaluate(patch.face, patch.sub, loc.u, loc.v);
+        s.position = l.position;
+        s.normal = l.normal;
+        return s;
+      }
+    }
+    s.position = p.position;
+    const glm::vec3 n = glm::cross(p.du, p.dv);
+    const float len = glm::length(n);
+    s.normal = len > 0.0f ? n / len : glm::vec3(0.0f);
+    if (flip_normals) s.normal = -s.normal;
+    return s;
+  }
+};
+
+}  // namespace tessera

@@ -1,0 +1,66 @@
+#include "tessellate_options.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+#include "cli_common.h"
+
+namespace tessera::cli {
+
+void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float& vary, std::string& factors_file,
+                        std::string& partitioning, int& threads) {
+  cmd.add_option("--scheme", scheme, "flat, bspline, acc, gregory or exact")->capture_default_str();
+  cmd.add_option("--factor", factor, "tessellation factor on every edge")->capture_default_str();
+  cmd.add_option("--vary-factors", vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
+  cmd.add_option("--factors-per-edge", factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
+  cmd.add_option("--partitioning", partitioning, "integer, pow2, fractional_odd or fractional_even")->capture_default_str();
+  cmd.add_option("--threads", threads, "worker threads (0: all)");
+}
+
+Scheme scheme_option(const std::string& name) {
+  const auto s = parse_scheme(name);
+  if (!s) throw UsageError("--scheme: '" + name + "' is not one of flat, bspline, acc, gregory, exact");
+  return *s;
+}
+
+ts::Partitioning partitioning_option(const std::string& name) {
+  for (ts::Partitioning p : {ts::Partitioning::integer, ts::Partitioning::pow2, ts::Partitioning::fractional_odd,
+                             ts::Partitioning::fractional_even})
+    if (name == ts::to_string(p)) return p;
+  throw UsageError("--partitioning: '" + name + "' is not one of integer, pow2, fractional_odd, fractional_even");
+}
+
+SubdFactors factors_option(float factor, float vary, const std::string& file) {
+  if (!std::isfinite(factor) || factor <= 0.0f || factor > 64.0f)
+    throw UsageError("--factor: " + float_text(factor) + " is not in (0, 64]");
+  if (!std::isfinite(vary) || vary < 0.0f || vary > 63.0f) throw UsageError("--vary-factors: must be in [0, 63]");
+  SubdFactors f;
+  f.factor = factor;
+  f.vary = vary;
+  if (!file.empty()) {
+    std::ifstream in(file);
+    if (!in) throw InputError(file + ": cannot open");
+    auto map = std::make_shared<std::unordered_map<std::int64_t, float>>();
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream s(line);
+      long long a = -1, b = -1;
+      std::string value;
+      if (!(s >> a >> b >> value) || a < 0 || b < 0 || a > 0x7fffffff || b > 0x7fffffff)
+        throw InputError(file + ":" + std::to_string(number) + ": expected 'v0 v1 factor'");
+      const auto x = parse_float(value);
+      if (!x) throw InputError(file + ":" + std::to_string(number) + ": '" + value + "' is not a number");
+      // D3D11 rules apply to the value (NaN or <= 0 culls the patch, > 64 clamps): passed through as is.
+      (*map)[cage_edge_key(int(a), int(b))] = *x;
+    }
+    f.per_edge = map;
+  }
+  return f;
+}
+
+}  // namespace tessera::cli
