@@ -189,3 +189,44 @@ struct SubdDS {
 };
 
 }  // namespace tessera
+
+namespace tessera {
+
+// Wraps a DS returning SurfaceSample for rendering: clip-space position, and the normal (3 attributes).
+// `z_bias` pulls points toward the camera by a fraction of w (for wireframe drawn over shading).
+template <class Inner>
+struct ProjectDS {
+  Inner inner;
+  glm::mat4 view_projection{1.0f};
+  float z_bias = 0.0f;
+  template <class PC, class CP>
+  ClipVertex<3> operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc, std::uint32_t patch_id) const {
+    const SurfaceSample s = inner(pc, cps, loc, patch_id);
+    ClipVertex<3> out;
+    out.position = view_projection * glm::vec4(s.position, 1.0f);
+    out.position.z -= z_bias * out.position.w;
+    out.attributes = {s.normal.x, s.normal.y, s.normal.z};
+    return out;
+  }
+};
+
+// Clay shading with a headlight: the light comes from the camera direction.
+struct ClayPS {
+  glm::vec3 light{0.0f, 0.0f, 1.0f};  // toward the light, world space
+  glm::vec3 color{0.78f, 0.74f, 0.68f};
+  glm::vec4 operator()(const PixelInput<3>& in) const {
+    glm::vec3 n(in.attributes[0], in.attributes[1], in.attributes[2]);
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : n;
+    const float diffuse = std::max(0.0f, glm::dot(n, light));
+    const glm::vec3 c = color * (0.18f + 0.82f * diffuse);
+    return {c, 1.0f};
+  }
+};
+
+struct ConstantPS {
+  glm::vec4 color{0.05f, 0.05f, 0.05f, 1.0f};
+  glm::vec4 operator()(const PixelInput<3>&) const { return color; }
+};
+
+}  // namespace tessera
