@@ -28,13 +28,14 @@ int run_accuracy(const AccuracyOptions& o) {
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   SubdModel model;
-  LimitSurface reference;
+  std::unique_ptr<LimitSurface> own_reference;
   try {
     model = load_subd_model(o.cage, scheme);
-    reference = LimitSurface::create(model.cage);
+    if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(model.cage));
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
+  const LimitSurface& reference = model.limit ? *model.limit : *own_reference;
   const double diagonal = reference.bounding_box_diagonal();
   DeviceOptions dopt;
   dopt.threads = o.threads;
