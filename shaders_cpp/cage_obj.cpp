@@ -5,8 +5,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -193,7 +193,7 @@ class ObjParser {
     if (ni < 0 || nf < 0 || ns < 0) fail(st.line, "tag '" + name + "' has negative counts");
     const std::size_t want = 3 + std::size_t(ni) + std::size_t(nf) + std::size_t(ns);
     if (st.tokens.size() != want)
-      fail(st.line, "tag '" + name + "' declares " + std::to_string(ni + nf + ns) + " arguments but has " + std::to_string(st.tokens.size() - 3));
+      fail(st.line, "tag '" + name + "' declares " + std::to_string(static_cast<long long>(ni) + nf + ns) + " arguments but has " + std::to_string(st.tokens.size() - 3));
     std::vector<int> ints;
     std::vector<float> floats;
     for (int i = 0; i < ni; ++i) ints.push_back(integer(st.tokens[3 + std::size_t(i)], st.line, "tag"));
@@ -300,11 +300,14 @@ class ObjParser {
 Cage parse_obj_cage(std::string_view text, std::string name) { return ObjParser(text, std::move(name)).run(); }
 
 Cage load_obj_cage(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw CageError(path + ": is a directory, not a cage file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CageError(path + ": cannot open the file");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ostringstream text;
+  text << in.rdbuf();
   if (in.bad()) throw CageError(path + ": cannot read the file");
-  return parse_obj_cage(text, path);
+  return parse_obj_cage(text.str(), path);
 }
 
 }  // namespace tessera
