@@ -48,6 +48,7 @@ struct CageTags {
   bool smooth_triangles = false;      // Sdc TRI_SUB_SMOOTH
   bool left_handed = false;           // faces wound clockwise
   int fvar_boundary = 1;              // `t facevaryinginterpolateboundary`: 0..5 as OpenSubdiv
+  bool fvar_propagate_corners = false;  // `t facevaryingpropagatecorners 1 0 0 N`: N != 0
 };
 
 struct Cage {
@@ -62,6 +63,9 @@ struct Cage {
   std::vector<glm::vec2> uvs;
   std::vector<int> face_uvs;
   CageTags tags;
+  // What the loader read but did not use (unsupported tags such as OpenSubdiv's hierarchical edits,
+  // unknown OBJ statements), one line each naming the file and line. Not errors: the cage is usable.
+  std::vector<std::string> warnings;
 
   int vertex_count() const { return static_cast<int>(positions.size()); }
   int face_count() const { return static_cast<int>(face_sizes.size()); }

@@ -183,3 +183,50 @@ TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli]
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("/nonexistent/tessbench"));
 }
+
+TEST_CASE("tessera analyze --json describes the monster frog", "[cli][cage]") {
+  const auto r = run_cli(std::string("analyze ") + TESSERA_TEST_DATA_DIR + "/sdk-cages/monsterfrog_mapped_00.obj --json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"vertices", "edges", "faces", "patches", "triangles", "quads", "polygons", "regular_patches", "boundary_patches",
+                          "regular_boundary_patches", "combinations", "combination_histogram", "valence_histogram", "max_valence", "holes",
+                          "creases", "corners", "uv_seam_edges", "warnings"})
+    CHECK(j.contains(key));
+  CHECK(j["vertices"] == 1308);
+  CHECK(j["faces"] == 1292);
+  CHECK(j["patches"] == 1292);
+  CHECK(j["quads"] == 1292);
+  CHECK(j["regular_patches"] == 528);
+  CHECK(j["max_valence"] == 7);
+  CHECK(j["has_uvs"] == true);
+  CHECK(j["uv_seam_edges"].get<int>() > 0);
+  REQUIRE(j["combination_histogram"].size() == j["combinations"].get<std::size_t>());
+  int total = 0, previous = 1 << 30;
+  for (const auto& c : j["combination_histogram"]) {
+    total += c["count"].get<int>();
+    CHECK(c["count"].get<int>() <= previous);  // most frequent first
+    previous = c["count"].get<int>();
+    CHECK(c["faces_sample"].size() == std::min<std::size_t>(8, c["count"].get<std::size_t>()));
+  }
+  CHECK(total == 1292);
+  CHECK(j["combination_histogram"][0]["key"] == "4 4 4 4");
+  CHECK(j["combination_histogram"][0]["count"] == 528);
+
+  const auto text = run_cli(std::string("analyze ") + TESSERA_TEST_DATA_DIR + "/sdk-cages/monsterfrog_mapped_00.obj");
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("patch count = 1292\n") != std::string::npos);
+  CHECK(text.out.find("Interior Patches:\n- 4 4 4 4 : 528\n") != std::string::npos);
+  CHECK(text.out.find("Boundary Patches:\n") != std::string::npos);
+}
+
+TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[cli][cage]") {
+  auto r = run_cli("analyze /nonexistent/frog.obj");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "tessera analyze: /nonexistent/frog.obj: cannot open the file\n");
+  r = run_cli(std::string("analyze ") + TESSERA_TEST_DATA_DIR + "/osd-shapes/catmark_fan.obj --json");
+  CHECK(r.exit_code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("catmark_fan.obj: non-manifold edge between vertices 8 and 9") != std::string::npos);
+  r = run_cli("analyze");
+  CHECK(r.exit_code == 2);
+}

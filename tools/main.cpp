@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   runners["pattern"] = add_pattern_command(app);
   runners["oracle-compare"] = add_oracle_command(app);
   runners["bench"] = add_bench_command(app);
+  runners["analyze"] = add_analyze_command(app);
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 

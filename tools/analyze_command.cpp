@@ -1,0 +1,169 @@
+// `tessera analyze CAGE.obj [--json]`: what a control cage is made of, after the talk's nvAnalyze:
+// counts, valences, tags, UV seams, and the histogram of topology combinations (topology_combinations.h)
+// that says how many distinct 1-ring structures, hence stencil tables, the cage needs.
+//
+// The output is built as a list of sections, each writing its lines and its JSON keys into one Report;
+// a new analysis (the displacement map, memory) is one more section function.
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "cage_obj.h"
+#include "cli_common.h"
+#include "commands.h"
+#include "topology.h"
+#include "topology_combinations.h"
+
+namespace tessera::cli {
+namespace {
+
+struct AnalyzeOptions {
+  std::string cage;
+  bool json = false;
+};
+
+// Text for people and a JSON object for scripts, written side by side so they cannot disagree.
+class Report {
+ public:
+  void line(const std::string& text) { text_ += text + "\n"; }
+  void count(const char* key, const std::string& label, long long value) {
+    line(label + " = " + std::to_string(value));
+    json_[key] = value;
+  }
+  nlohmann::ordered_json& json() { return json_; }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+  nlohmann::ordered_json json_;
+};
+
+// Everything the sections read.
+struct CageAnalysis {
+  Cage cage;
+  Topology topology;
+  TopologyCombinations combinations;
+};
+
+void cage_section(Report& r, const CageAnalysis& a) {
+  const Cage& c = a.cage;
+  const Topology& t = a.topology;
+  r.json()["file"] = c.name;
+  r.line("Cage: " + c.name);
+  r.count("vertices", "vertex count", t.vertex_count());
+  r.count("edges", "edge count", t.edge_count());
+  r.count("faces", "face count", t.face_count());
+  int holes = 0;
+  for (int f = 0; f < t.face_count(); ++f) holes += t.is_hole(f);
+  r.count("holes", "hole count", holes);
+  int creased = 0;
+  for (int e = 0; e < t.edge_count(); ++e) creased += t.edge_sharpness(e) > 0;
+  int cornered = 0;
+  for (int v = 0; v < t.vertex_count(); ++v) cornered += t.corner_sharpness(v) > 0;
+  r.count("creases", "creased edge count", creased);
+  r.count("corners", "corner vertex count", cornered);
+  r.json()["has_uvs"] = c.has_uvs();
+  const auto seams = uv_seam_edges(c, t);
+  r.line(std::string("uvs = ") + (c.has_uvs() ? std::to_string(c.uvs.size()) + " coordinates" : "none"));
+  r.count("uv_seam_edges", "uv seam edge count", std::count(seams.begin(), seams.end(), true));
+  r.count("isolated_vertices", "isolated vertex count", static_cast<long long>(t.isolated_vertices().size()));
+
+  std::map<int, int> valences;
+  int max_valence = 0, boundary_vertices = 0;
+  for (int v = 0; v < t.vertex_count(); ++v) {
+    if (t.is_isolated(v)) continue;
+    ++valences[t.valence(v)];
+    max_valence = std::max(max_valence, t.valence(v));
+    boundary_vertices += t.is_boundary_vertex(v);
+  }
+  r.count("boundary_vertices", "boundary vertex count", boundary_vertices);
+  r.count("max_valence", "max valence", max_valence);
+  r.line("Valences (vertices used by faces):");
+  auto& hist = r.json()["valence_histogram"] = nlohmann::ordered_json::array();
+  for (const auto& [valence, n] : valences) {
+    r.line("- " + std::to_string(valence) + " : " + std::to_string(n));
+    hist.push_back({{"valence", valence}, {"count", n}});
+  }
+}
+
+void patch_section(Report& r, const CageAnalysis& a) {
+  const CombinationStats& s = a.combinations.stats;
+  r.line("");
+  r.line("Patch Configuration Info:");
+  r.count("patches", "patch count", s.patches);
+  r.count("triangles", "triangle count", s.triangles);
+  r.count("quads", "quad count", s.quads);
+  r.count("polygons", "polygon count", s.polygons);
+  r.count("regular_patches", "regular patch count", s.regular);
+  r.count("boundary_patches", "boundary patch count", s.boundary);
+  r.count("regular_boundary_patches", "regular boundary patch count", s.regular_boundary);
+  r.count("combinations", "patch configuration count", static_cast<long long>(a.combinations.combinations.size()));
+
+  // Most frequent first; ties in order of first appearance, so the output is deterministic.
+  std::vector<const Combination*> sorted;
+  for (const Combination& c : a.combinations.combinations) sorted.push_back(&c);
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Combination* x, const Combination* y) { return x->count > y->count; });
+  auto& hist = r.json()["combination_histogram"] = nlohmann::ordered_json::array();
+  for (const bool boundary : {false, true}) {
+    r.line("");
+    r.line(boundary ? "Boundary Patches:" : "Interior Patches:");
+    for (const Combination* c : sorted)
+      if (c->boundary == boundary) r.line("- " + c->text + " : " + std::to_string(c->count));
+  }
+  static constexpr const char* kClass[] = {"hole", "regular", "regular_boundary", "boundary", "irregular"};
+  for (const Combination* c : sorted) {
+    const std::vector<int> sample(c->faces.begin(), c->faces.begin() + std::min<std::ptrdiff_t>(8, std::ssize(c->faces)));
+    hist.push_back({{"key", c->text},
+                    {"count", c->count},
+                    {"face_size", c->face_size},
+                    {"boundary", c->boundary},
+                    {"class", kClass[static_cast<int>(c->patch_class)]},
+                    {"faces_sample", sample}});
+  }
+}
+
+void warnings_section(Report& r, const CageAnalysis& a) {
+  std::vector<std::string> all = a.cage.warnings;
+  all.insert(all.end(), a.topology.warnings().begin(), a.topology.warnings().end());
+  r.json()["warnings"] = all;
+  r.line("");
+  r.line("Warnings: " + std::string(all.empty() ? "none" : ""));
+  for (const std::string& w : all) r.line("- " + w);
+}
+
+using Section = void (*)(Report&, const CageAnalysis&);
+constexpr Section kSections[] = {cage_section, patch_section, warnings_section};
+
+int run_analyze(const AnalyzeOptions& o) {
+  std::optional<CageAnalysis> a;
+  try {
+    Cage cage = load_obj_cage(o.cage);
+    Topology topology(cage);
+    TopologyCombinations combinations = analyze_combinations(topology);
+    a.emplace(CageAnalysis{std::move(cage), std::move(topology), std::move(combinations)});
+  } catch (const CageError& e) {
+    throw InputError(e.what());
+  }
+  log_info("analyze: " + o.cage + ": " + std::to_string(a->topology.face_count()) + " faces");
+  Report report;
+  for (Section s : kSections) s(report, *a);
+  if (o.json) std::cout << report.json().dump(2) << "\n";
+  else std::cout << report.text();
+  return kExitOk;
+}
+
+}  // namespace
+
+Runner add_analyze_command(CLI::App& app) {
+  auto o = std::make_shared<AnalyzeOptions>();
+  CLI::App* cmd = app.add_subcommand("analyze", "Describe a control cage (OBJ): topology, tags, UVs, patch combinations");
+  cmd->add_option("cage", o->cage, "the cage, a Wavefront OBJ file (OpenSubdiv tags accepted)")->required();
+  cmd->add_flag("--json", o->json, "print one JSON object instead of text");
+  return [o]() { return run_analyze(*o); };
+}
+
+}  // namespace tessera::cli
