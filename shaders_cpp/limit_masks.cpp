@@ -51,7 +51,7 @@ Stencil limit_position(const CornerRing& r) {
     return s.scale(1.0 / (double(n) * (n + 5)));
   }
   // One Catmull-Clark step turns the ring into quads around the vertex point V; then the quad mask.
-  std::vector<Stencil> face_points(std::size_t(n)), edge_points(std::size_t(n));
+  std::vector<Stencil> face_points(static_cast<std::size_t>(n)), edge_points(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) face_points[std::size_t(i)] = centroid(r, i);
   Stencil favg, ravg;
   for (int i = 0; i < n; ++i) {

@@ -7,6 +7,7 @@
 
 #include "corner_ring.h"
 #include "patch_stencils.h"
+#include "topology_combinations.h"
 
 namespace tessera {
 
@@ -49,7 +50,7 @@ class Builder {
 
   // Adds a patch whose control points are `stencils` over the gathered ring.
   void add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
-           const std::vector<Stencil>& stencils, const std::array<std::int64_t, 4>& edges) {
+           const std::vector<Stencil>& stencils, const std::array<std::int64_t, 4>& edges, int rotation = 0) {
     if (ring.size() > std::size_t(kMaxPatchControlPoints))
       throw CageError(where(cage_, face) + ": its 1-ring has " + std::to_string(ring.size()) +
                       " vertices, more than the 32 control points of a patch (use --scheme exact)");
@@ -78,6 +79,7 @@ class Builder {
     std::sort(order.begin(), order.end(), [&](int a, int b) { return ring[std::size_t(a)] < ring[std::size_t(b)]; });
     for (std::size_t i = 0; i < order.size(); ++i) p.order[i] = std::uint8_t(order[i]);
     p.edge_keys = edges;
+    p.rotation = std::uint8_t(rotation);
     group.patches.push_back(p);
     rings_.push_back(ring);
     groups_.push_back(&group);
@@ -115,16 +117,17 @@ class Builder {
   std::vector<PatchGroup*> groups_;
 };
 
-// The face's corners from `rotation` on, then each corner's ring vertices not yet listed.
-std::vector<int> gather_ring(const Cage& cage, int face, int rotation, const std::vector<CornerRing>& rings) {
-  const int n = cage.face_sizes[std::size_t(face)];
+// The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
+// neighbours and far vertices, counter-clockwise from the face).
+std::vector<int> gather_ring(const std::vector<CornerRing>& rings) {
+  const int n = int(rings.size());
   std::vector<int> ring;
   auto push = [&](int v) {
     if (std::find(ring.begin(), ring.end(), v) == ring.end()) ring.push_back(v);
   };
-  for (int i = 0; i < n; ++i) push(cage.face_vertex(face, (i + rotation) % n));
+  for (const CornerRing& r : rings) push(r.center);
   for (int i = 0; i < n; ++i) {
-    const CornerRing& r = rings[std::size_t((i + rotation) % n)];
+    const CornerRing& r = rings[std::size_t(i)];
     for (int j = 0; j < r.valence(); ++j) {
       push(r.edges[std::size_t(j)]);
       if (j < r.face_count())
@@ -142,6 +145,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   out.quads.domain = ts::Domain::quad;
   out.tris.domain = ts::Domain::tri;
   Builder builder(cage, t, out);
+  const TopologyCombinations combinations = analyze_combinations(t);
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
@@ -199,21 +203,26 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     if (n != 4)
       throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
                       " handles quads only (use --scheme exact or flat)");
+    // The patch starts at the face's canonical corner, so faces of one topology combination share
+    // one stencil table (the talk's reordering of faces).
+    const int rot = combinations.face_rotation[std::size_t(f)];
+    std::array<std::int64_t, 4> rotated{};
+    for (int k = 0; k < 4; ++k) rotated[std::size_t((k + 1) % 4)] = edge_key(corner(k + rot), corner(k + rot + 1));
     std::vector<CornerRing> rings;
     for (int k = 0; k < 4; ++k) {
-      rings.push_back(gather_corner_ring(cage, t, f, k));
+      rings.push_back(gather_corner_ring(cage, t, f, (k + rot) % 4));
       if (!rings.back().all_quads())
         throw CageError(where(cage, f) + ": vertex " + std::to_string(rings.back().center) +
                         " touches a face that is not a quad; --scheme " + to_string(scheme) +
                         " needs quads around every corner (use --scheme exact or flat)");
     }
     const std::array<CornerRing, 4> corners{rings[0], rings[1], rings[2], rings[3]};
-    const std::vector<int> ring = gather_ring(cage, f, 0, rings);
+    const std::vector<int> ring = gather_ring(rings);
     if (scheme == Scheme::acc) {
-      builder.add(out.quads, f, 0, PatchKind::acc, ring, acc_quad_stencils(corners), edges);
+      builder.add(out.quads, f, 0, PatchKind::acc, ring, acc_quad_stencils(corners), rotated, rot);
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
-      builder.add(out.quads, f, 0, PatchKind::gregory, ring, gregory_quad_stencils(corners), edges);
+      builder.add(out.quads, f, 0, PatchKind::gregory, ring, gregory_quad_stencils(corners), rotated, rot);
     }
   }
   builder.finish();

@@ -69,6 +69,7 @@ struct SubdPatch {
   int table = -1;              // into SubdPatches::tables, -1 for exact
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
+  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % 4
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0): a key
   // naming the cage edge (or half of it, for n-gon sub-patches) so both sides pick the same factor; -1

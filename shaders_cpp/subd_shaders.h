@@ -138,8 +138,13 @@ struct SubdDS {
     const SubdPatch& patch = patches[patch_id];
     SurfaceSample s;
     s.face = std::uint32_t(patch.face);
-    s.u = loc.u;
-    s.v = loc.v;
+    // Report the location in the face's own frame (corner 0 at (0,0)): undo the patch's rotation.
+    switch (patch.rotation) {
+      case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
+      case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
+      case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
+      default: s.u = loc.u, s.v = loc.v; break;
+    }
     PatchPoint p;
     switch (patch.kind) {
       case PatchKind::bilinear:
