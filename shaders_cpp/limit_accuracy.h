@@ -9,7 +9,10 @@
 //   not on multiples of 1/8, where a Bfr approximation is exact by construction and hides its error.
 //   Vertices of faces without a surface are skipped.
 // - compare_limit_surfaces: max distance between two LimitSurfaces of the same cage (e.g. level L
-//   against level 10) on a rate x rate grid of every sub-patch, at parameters i/rate.
+//   against level 10) on a rate x rate grid of every sub-patch, at parameters i/rate, plus points
+//   zooming into each sub-patch corner (distances 2^-1 .. 2^-12), where approximations differ.
+// Caveat: a Bfr surface at level L is exact (to round-off) at multiples of 2^-L, so the uniform
+// refinement reference only sees errors of levels below refine_level.
 // Distances are absolute and also relative to the limit surface's bounding-box diagonal.
 #pragma once
 

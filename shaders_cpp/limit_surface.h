@@ -55,11 +55,13 @@ struct ReferenceSample {
 
 class LimitSurface {
  public:
-  // Bfr approximates the limit near extraordinary vertices and semi-sharp features by refining to
-  // this level and closing with Gregory patches; 10 (OpenSubdiv's maximum) puts the error at float
-  // round-off (~1e-7 of the model size, see ARCHITECTURE.md "Exact limit surface").
+  // Bfr represents the surface exactly (B-spline patches) except within 2^-level (in face
+  // parameter) of extraordinary vertices and semi-sharp features, where it closes with Gregory
+  // patches. At 10, OpenSubdiv's maximum, every point farther than 1/1024 from such a vertex is
+  // exact to double round-off; closer points carry a small error (measured in ARCHITECTURE.md,
+  // "Exact limit surface").
   static constexpr int kDefaultApproxLevel = 10;
-  static constexpr int kMaxApproxLevel = 10;
+  static constexpr int kMaxApproxLevel = 10;  // OpenSubdiv 3.5 crashes above 10
 
   // Throws CageError (one line) for cages OpenSubdiv cannot take; std::invalid_argument for a level
   // outside 1..kMaxApproxLevel.
