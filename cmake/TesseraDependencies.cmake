@@ -2,7 +2,8 @@
 #
 # OpenImageIO 2.4 (libopenimageio-dev): its exported target lists /usr/include/opencv4 as an
 # include directory, which does not exist unless libopencv-dev is installed; import it by hand.
-# OpenSubdiv (libosd-dev): its config is broken too; link osdCPU with find_library (issue 4).
+# OpenSubdiv (libosd-dev): its CMake config is broken too (it references files the package does not
+# ship); import osdCPU (Far, Bfr, Sdc, Vtr) with find_library as tessera::osd.
 if(NOT TARGET tessera::oiio)
   find_path(TESSERA_OIIO_INCLUDE_DIR OpenImageIO/imagebuf.h REQUIRED)
   find_library(TESSERA_OIIO_LIBRARY OpenImageIO REQUIRED)
@@ -10,4 +11,12 @@ if(NOT TARGET tessera::oiio)
   add_library(tessera::oiio INTERFACE IMPORTED)
   target_include_directories(tessera::oiio INTERFACE ${TESSERA_OIIO_INCLUDE_DIR})
   target_link_libraries(tessera::oiio INTERFACE ${TESSERA_OIIO_LIBRARY} ${TESSERA_OIIO_UTIL_LIBRARY})
+endif()
+
+if(NOT TARGET tessera::osd)
+  find_path(TESSERA_OSD_INCLUDE_DIR opensubdiv/bfr/surface.h REQUIRED)
+  find_library(TESSERA_OSD_CPU_LIBRARY osdCPU REQUIRED)
+  add_library(tessera::osd INTERFACE IMPORTED)
+  target_include_directories(tessera::osd SYSTEM INTERFACE ${TESSERA_OSD_INCLUDE_DIR})
+  target_link_libraries(tessera::osd INTERFACE ${TESSERA_OSD_CPU_LIBRARY})
 endif()

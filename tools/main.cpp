@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
   runners["oracle-compare"] = add_oracle_command(app);
   runners["bench"] = add_bench_command(app);
   runners["analyze"] = add_analyze_command(app);
+  runners["tessellate"] = add_tessellate_command(app);
+  runners["render"] = add_render_command(app);
+  runners["accuracy"] = add_accuracy_command(app);
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 

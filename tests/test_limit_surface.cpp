@@ -1,0 +1,496 @@
+// The exact limit surface (shaders_cpp/limit_surface.h): agreement with closed-form B-splines and
+// OpenSubdiv's exact vertex limits, bitwise watertightness through ownership, normals, domains,
+// and errors.
+#include <catch2/catch.hpp>
+
+#include <malloc.h>
+
+#include <opensubdiv/far/primvarRefiner.h>
+
+#include <glm/geometric.hpp>
+
+#include <array>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "limit_accuracy.h"
+#include "limit_surface.h"
+#include "limit_test_cages.h"
+#include "osd_refiner.h"
+
+using namespace tessera;
+using tessera::test::osd_shape;
+using tessera::test::read_test_cage;
+using tessera::test::sdk_cage;
+
+namespace {
+
+// Tessellator-like parameter: k/n rounded to a multiple of 2^-16 (so 1 - t is exact).
+float tess_param(int k, int n) { return float(std::nearbyint(double(k) / n * 65536.0) / 65536.0); }
+
+bool same_bits(const glm::vec3& a, const glm::vec3& b) {
+  return std::bit_cast<std::uint32_t>(a.x) == std::bit_cast<std::uint32_t>(b.x) &&
+         std::bit_cast<std::uint32_t>(a.y) == std::bit_cast<std::uint32_t>(b.y) &&
+         std::bit_cast<std::uint32_t>(a.z) == std::bit_cast<std::uint32_t>(b.z);
+}
+
+// A regular torus cage: n x m grid of quads, vertex (i,j) = i*m + j, face (i,j) has corners
+// (i,j),(i+1,j),(i+1,j+1),(i,j+1) -> its (u,v) runs along i and j.
+Cage grid_torus(int n, int m) {
+  Cage c;
+  c.name = "grid_torus";
+  const double R = 3.0, r = 1.0, pi = 3.14159265358979323846;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double a = 2 * pi * i / n, b = 2 * pi * j / m;
+      c.positions.push_back(glm::vec3(float((R + r * std::cos(b)) * std::cos(a)), float((R + r * std::cos(b)) * std::sin(a)),
+                                      float(r * std::sin(b) + 0.1 * std::sin(3 * a))));
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      c.face_offsets.push_back(int(c.face_vertices.size()));
+      c.face_sizes.push_back(4);
+      for (auto [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) c.face_vertices.push_back(((i + di) % n) * m + (j + dj) % m);
+    }
+  return c;
+}
+
+void bspline(double t, double b[4], double d[4]) {
+  const double s = 1 - t;
+  b[0] = s * s * s / 6;
+  b[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
+  b[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6;
+  b[3] = t * t * t / 6;
+  d[0] = -s * s / 2;
+  d[1] = (9 * t * t - 12 * t) / 6;
+  d[2] = (-9 * t * t + 6 * t + 3) / 6;
+  d[3] = t * t / 2;
+}
+
+// All the ways a tessellated face can ask for the point at parameter t of its edge e (the same
+// geometric point): the quad domain, both sub-patches at an n-gon edge's midpoint, and a
+// triangle's barycentric domain.
+template <class Eval>
+void edge_queries(const LimitSurface& s, int f, int e, float t, Eval&& eval) {
+  const int n = s.face_size(f);
+  if (n == 4) {
+    const float one = 1.0f;
+    switch (e) {
+      case 0: eval(f, 0, t, 0.0f, -1.0f); break;
+      case 1: eval(f, 0, one, t, -1.0f); break;
+      case 2: eval(f, 0, one - t, one, -1.0f); break;
+      default: eval(f, 0, 0.0f, one - t, -1.0f); break;
+    }
+    return;
+  }
+  if (t <= 0.5f) eval(f, e, 2.0f * t, 0.0f, -1.0f);
+  if (t >= 0.5f) eval(f, (e + 1) % n, 0.0f, 2.0f * (1.0f - t), -1.0f);
+  if (n == 3) {  // barycentric (u, v, w): corner 0 w=1, corner 1 u=1, corner 2 v=1
+    const float r = 1.0f - t;
+    if (e == 0) eval(f, -1, t, 0.0f, r);
+    if (e == 1) eval(f, -1, r, t, 0.0f);
+    if (e == 2) eval(f, -1, 0.0f, r, t);
+  }
+}
+
+struct WatertightResult {
+  long points = 0, mismatches = 0;
+  double max_distance = 0;  // between the representations of one point, relative to the diagonal
+};
+
+// Every point of every edge (k/37 and its mirror from the other side), every vertex and every
+// n-gon's internal sub-patch edges, evaluated through every face/sub-patch/domain that contains it.
+WatertightResult check_watertight(const LimitSurface& s, const Cage& cage, bool owned) {
+  WatertightResult res;
+  const double diag = s.bounding_box_diagonal();
+  std::vector<SurfacePoint> got;
+  const auto eval = [&](int f, int sub, float u, float v, float w) {
+    if (sub < 0) {
+      got.push_back(s.evaluate_triangle(f, u, v, w));
+      return;
+    }
+    got.push_back(owned ? s.evaluate(f, sub, u, v) : s.evaluate_unowned(f, sub, u, v));
+  };
+  const auto settle = [&] {
+    for (std::size_t i = 1; i < got.size(); ++i) {
+      ++res.points;
+      if (!same_bits(got[i].position, got[0].position) || !same_bits(got[i].normal, got[0].normal)) ++res.mismatches;
+      res.max_distance = std::max(res.max_distance, double(glm::length(got[i].position - got[0].position)) / diag);
+    }
+    got.clear();
+  };
+  // Edges: collect, per undirected edge, the faces using it and their direction.
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> uses;  // (lo,hi) -> (face, edge)
+  for (int f = 0; f < cage.face_count(); ++f) {
+    if (!s.has_surface(f)) continue;
+    const int n = cage.face_sizes[std::size_t(f)];
+    for (int e = 0; e < n; ++e) {
+      const int a = cage.face_vertex(f, e), b = cage.face_vertex(f, (e + 1) % n);
+      uses[{std::min(a, b), std::max(a, b)}].push_back({f, e});
+    }
+  }
+  for (const auto& [key, fs] : uses) {
+    for (int k = 0; k <= 37; ++k) {
+      const float t = tess_param(k, 37);  // parameter from key.first to key.second
+      for (auto [f, e] : fs) {
+        const bool forward = cage.face_vertex(f, e) == key.first;
+        // Triangles through the barycentric path too (only with ownership: the plain path has no
+        // barycentric variant, and it is compared through the sub-patches instead).
+        edge_queries(s, f, e, forward ? t : 1.0f - t, [&](int ff, int sub, float u, float v, float w) {
+          if (sub < 0 && !owned) return;
+          eval(ff, sub, u, v, w);
+        });
+      }
+      settle();
+    }
+  }
+  // Internal sub-patch edges and centres of n-gons.
+  for (int f = 0; f < cage.face_count(); ++f) {
+    const int n = s.sub_patch_count(f);
+    if (n < 3) continue;
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i <= 37; ++i) {
+        const float t = tess_param(i, 37);
+        eval(f, k, 1.0f, t, -1.0f);
+        eval(f, (k + 1) % n, t, 1.0f, -1.0f);
+        settle();
+      }
+  }
+  return res;
+}
+
+const std::vector<std::string> kClosedShapes = {
+    "catmark_cube",          "catmark_torus",         "catmark_gregory_test0", "catmark_gregory_test1",
+    "catmark_gregory_test2", "catmark_gregory_test3", "catmark_gregory_test4", "catmark_gregory_test5",
+    "catmark_gregory_test7", "catmark_gregory_test8", "catmark_nonquads",      "catmark_pyramid",
+    "catmark_cube_creases1", "catmark_hole_test1",    "catmark_smoothtris0",   "catmark_fan"};
+
+}  // namespace
+
+TEST_CASE("limit surface regular torus equals its bicubic B-spline patches", "[limit]") {
+  const Cage cage = grid_torus(9, 7);
+  const LimitSurface s = LimitSurface::create(cage);
+  const double diag = s.bounding_box_diagonal();
+  const int n = 9, m = 7;
+  double worst = 0, worst_d = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int f = i * m + j;
+      for (int a = 0; a <= 11; ++a)
+        for (int b = 0; b <= 11; ++b) {
+          const double u = a / 11.0, v = b / 11.0;
+          double bu[4], du[4], bv[4], dv[4];
+          bspline(u, bu, du);
+          bspline(v, bv, dv);
+          glm::dvec3 p(0.0), pu(0.0), pv(0.0);
+          for (int x = 0; x < 4; ++x)
+            for (int y = 0; y < 4; ++y) {
+              const glm::dvec3 c(cage.positions[std::size_t(((i - 1 + x + n) % n) * m + (j - 1 + y + m) % m)]);
+              p += bu[x] * bv[y] * c;
+              pu += du[x] * bv[y] * c;
+              pv += bu[x] * dv[y] * c;
+            }
+          const SurfacePoint q = s.evaluate(f, 0, float(u), float(v));
+          worst = std::max(worst, glm::length(glm::dvec3(q.position) - p) / diag);
+          worst_d = std::max(worst_d, std::max(glm::length(glm::dvec3(q.du) - pu), glm::length(glm::dvec3(q.dv) - pv)) / diag);
+        }
+    }
+  CHECK(worst < 1e-6);
+  CHECK(worst_d < 1e-6);
+}
+
+TEST_CASE("limit surface corners equal PrimvarRefiner Limit", "[limit]") {
+  namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+  for (const std::string name : {"catmark_cube", "catmark_xord_interior", "catmark_nonquads", "catmark_pyramid", "catmark_gregory_test2"}) {
+    INFO(name);
+    const Cage cage = read_test_cage(osd_shape(name));
+    const LimitSurface s = LimitSurface::create(cage);
+    auto refiner = osd_detail::build_osd_refiner(cage);
+    osd::Far::TopologyRefiner::UniformOptions uniform(1);
+    uniform.fullTopologyInLastLevel = true;
+    refiner->RefineUniform(uniform);
+    struct P {
+      glm::dvec3 p{0.0};
+      void Clear() { p = glm::dvec3(0.0); }
+      void AddWithWeight(const P& o, double w) { p += w * o.p; }
+    };
+    std::vector<P> pts(static_cast<std::size_t>(refiner->GetNumVerticesTotal())), limit(static_cast<std::size_t>(refiner->GetLevel(1).GetNumVertices()));
+    for (int v = 0; v < cage.vertex_count(); ++v) pts[std::size_t(v)].p = glm::dvec3(cage.positions[std::size_t(v)]);
+    osd::Far::PrimvarRefinerReal<double> pr(*refiner);
+    P* coarse = pts.data();
+    P* refined = pts.data() + cage.vertex_count();
+    pr.Interpolate(1, coarse, refined);
+    pr.Limit(refined, limit);
+    double worst = 0;
+    for (int f = 0; f < cage.face_count(); ++f) {
+      const int n = cage.face_sizes[std::size_t(f)];
+      for (int k = 0; k < n; ++k) {
+        const int v = cage.face_vertex(f, k);
+        const glm::dvec3 exact = limit[std::size_t(refiner->GetLevel(0).GetVertexChildVertex(v))].p;
+        static constexpr float qu[4] = {0, 1, 1, 0}, qv[4] = {0, 0, 1, 1};
+        const SurfacePoint q = n == 4 ? s.evaluate(f, 0, qu[k], qv[k]) : s.evaluate(f, k, 0.0f, 0.0f);
+        worst = std::max(worst, glm::length(glm::dvec3(q.position) - exact) / s.bounding_box_diagonal());
+      }
+    }
+    CHECK(worst < 1e-6);
+    // And off the 1/8 grid: dyadic points of a level-5 uniform refinement (multiples of 1/32).
+    const LimitAccuracy acc = measure_limit_accuracy(cage, s, 5);
+    CHECK(acc.samples > 1000);
+    CHECK(acc.max_relative() < 1e-6);
+  }
+}
+
+TEST_CASE("limit surface low approximation levels are measurably inexact", "[limit]") {
+  // The measurement must be able to fail: Bfr's default level 2 is far from the limit near
+  // extraordinary vertices (subdiv.md §3.3: ~1e-4 of the diagonal).
+  const Cage cage = read_test_cage(osd_shape("catmark_xord_interior"));
+  const LimitSurface coarse = LimitSurface::create(cage, 2), fine = LimitSurface::create(cage);
+  CHECK(measure_limit_accuracy(cage, coarse, 5).max_relative() > 1e-5);
+  CHECK(compare_limit_surfaces(coarse, fine, 37).max_relative() > 1e-5);
+  CHECK(measure_limit_accuracy(cage, fine, 5).max_relative() < 1e-6);
+}
+
+TEST_CASE("limit surface shared edges and vertices are bitwise watertight", "[limit]") {
+  std::vector<std::string> paths;
+  for (const auto& n : kClosedShapes) paths.push_back(osd_shape(n));
+  paths.push_back(sdk_cage("monsterfrog_mapped_00"));
+  long unowned_mismatches = 0;
+  for (const auto& path : paths) {
+    INFO(path);
+    const Cage cage = read_test_cage(path);
+    const LimitSurface s = LimitSurface::create(cage);
+    const WatertightResult owned = check_watertight(s, cage, true);
+    CHECK(owned.points > 0);
+    CHECK(owned.mismatches == 0);
+    const WatertightResult plain = check_watertight(s, cage, false);
+    // Without ownership the two sides agree only to round-off (this also checks that the sub-patch
+    // and barycentric parameterizations line up with the neighbours).
+    CHECK(plain.max_distance < 1e-5);
+    unowned_mismatches += plain.mismatches;
+  }
+  // ...and they do differ in the last bits, so the ownership check above can fail.
+  CHECK(unowned_mismatches > 100);
+}
+
+TEST_CASE("limit surface normals are unit length and outward", "[limit]") {
+  Cage cube = read_test_cage(osd_shape("catmark_cube"));
+  Cage flipped = cube;  // the same cube wound clockwise and tagged so
+  for (int f = 0; f < flipped.face_count(); ++f)
+    std::reverse(flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)],
+                 flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)] + flipped.face_sizes[std::size_t(f)]);
+  flipped.tags.left_handed = true;
+  for (const Cage* c : {&cube, &flipped}) {
+    const LimitSurface s = LimitSurface::create(*c);
+    const glm::dvec3 centre = (s.bounds_min() + s.bounds_max()) * 0.5;
+    int bad = 0;
+    for (int f = 0; f < s.face_count(); ++f)
+      for (int i = 0; i <= 13; ++i)
+        for (int j = 0; j <= 13; ++j) {
+          const SurfacePoint p = s.evaluate(f, 0, tess_param(i, 13), tess_param(j, 13));
+          if (std::abs(glm::length(p.normal) - 1.0f) > 1e-6f) ++bad;
+          if (glm::dot(glm::dvec3(p.normal), glm::dvec3(p.position) - centre) <= 0) ++bad;
+        }
+    CHECK(bad == 0);
+  }
+  // Every normal on the frog is finite and unit, including at extraordinary vertices.
+  const Cage frog = read_test_cage(sdk_cage("monsterfrog_mapped_00"));
+  const LimitSurface s = LimitSurface::create(frog);
+  int bad = 0;
+  for (int f = 0; f < s.face_count(); ++f)
+    for (int k = 0; k < s.sub_patch_count(f); ++k)
+      for (int i = 0; i <= 4; ++i)
+        for (int j = 0; j <= 4; ++j)
+          if (!(std::abs(glm::length(s.evaluate(f, k, tess_param(i, 4), tess_param(j, 4)).normal) - 1.0f) < 1e-6f)) ++bad;
+  CHECK(bad == 0);
+}
+
+TEST_CASE("limit surface derivatives match finite differences in every domain", "[limit]") {
+  const Cage cage = read_test_cage(osd_shape("catmark_pyramid"));  // triangles and a quad
+  const Cage nonquads = read_test_cage(osd_shape("catmark_nonquads"));
+  const double h = 1e-4;
+  for (const Cage* c : {&cage, &nonquads}) {
+    const LimitSurface s = LimitSurface::create(*c);
+    const double diag = s.bounding_box_diagonal();
+    for (int f = 0; f < s.face_count(); ++f) {
+      for (int k = 0; k < s.sub_patch_count(f); ++k)
+        for (auto [u, v] : {std::pair{0.3, 0.6}, {0.71, 0.2}}) {
+          const SurfacePoint p = s.evaluate(f, k, float(u), float(v));
+          const glm::dvec3 fu = (s.sample_reference(f, k, u + h, v).position - s.sample_reference(f, k, u - h, v).position) / (2 * h);
+          const glm::dvec3 fv = (s.sample_reference(f, k, u, v + h).position - s.sample_reference(f, k, u, v - h).position) / (2 * h);
+          CHECK(glm::length(glm::dvec3(p.du) - fu) / diag < 1e-4);
+          CHECK(glm::length(glm::dvec3(p.dv) - fv) / diag < 1e-4);
+        }
+      if (s.face_size(f) != 3) continue;
+      // Points off the lines between sub-patches: there the derivatives of the barycentric map jump
+      // (it is only C0); the surface and its normal do not (checked below).
+      for (auto [u, v] : {std::pair{0.2, 0.3}, {0.5, 0.25}, {0.1, 0.8}, {0.3, 0.38}}) {
+        const auto at = [&](double a, double b) { return glm::dvec3(s.evaluate_triangle(f, float(a), float(b), float(1 - a - b)).position); };
+        const SurfacePoint p = s.evaluate_triangle(f, float(u), float(v), float(1 - u - v));
+        const double hh = 1.0 / 1024;  // exact in float
+        const glm::dvec3 fu = (at(u + hh, v) - at(u - hh, v)) / (2 * hh), fv = (at(u, v + hh) - at(u, v - hh)) / (2 * hh);
+        CHECK(glm::length(glm::dvec3(p.du) - fu) / diag < 1e-3);
+        CHECK(glm::length(glm::dvec3(p.dv) - fv) / diag < 1e-3);
+        CHECK(glm::dot(glm::cross(p.du, p.dv), p.normal) > 0);
+      }
+      {
+        const float a = 0.3f, b = 0.35f, e = 1.0f / 4096;  // b0 = b2: the line between sub-patches 0 and 2
+        const glm::vec3 n0 = s.evaluate_triangle(f, a, b - e, 1.0f - a - (b - e)).normal;
+        const glm::vec3 n1 = s.evaluate_triangle(f, a, b + e, 1.0f - a - (b + e)).normal;
+        CHECK(glm::length(n0 - n1) < 1e-2);
+      }
+      // Corners and the centroid of the barycentric domain land where the sub-patches put them.
+      const auto same = [&](const SurfacePoint& a, const SurfacePoint& b) { return glm::length(a.position - b.position) / diag < 1e-6; };
+      CHECK(same(s.evaluate_triangle(f, 0, 0, 1), s.evaluate(f, 0, 0, 0)));
+      CHECK(same(s.evaluate_triangle(f, 1, 0, 0), s.evaluate(f, 1, 0, 0)));
+      CHECK(same(s.evaluate_triangle(f, 0, 1, 0), s.evaluate(f, 2, 0, 0)));
+      const float third = 1.0f / 3.0f;
+      CHECK(same(s.evaluate_triangle(f, third, third, 1.0f - 2 * third), s.evaluate(f, 0, 1, 1)));
+      CHECK(same(s.evaluate_triangle(f, 0.5f, 0, 0.5f), s.evaluate(f, 0, 1, 0)));
+    }
+  }
+}
+
+TEST_CASE("limit surface holes and out-of-range queries are reported", "[limit]") {
+  const Cage cage = read_test_cage(osd_shape("catmark_hole_test1"));
+  const LimitSurface s = LimitSurface::create(cage);
+  REQUIRE(!cage.tags.holes.empty());
+  for (int h : cage.tags.holes) {
+    CHECK_FALSE(s.has_surface(h));
+    CHECK(s.sub_patch_count(h) == 0);
+    CHECK_THROWS_AS(s.evaluate(h, 0, 0.5f, 0.5f), std::out_of_range);
+  }
+  int good = 0;
+  while (!s.has_surface(good)) ++good;
+  CHECK_NOTHROW(s.evaluate(good, 0, 0.5f, 0.5f));
+  CHECK_THROWS_AS(s.evaluate(-1, 0, 0.5f, 0.5f), std::out_of_range);
+  CHECK_THROWS_AS(s.evaluate(s.face_count(), 0, 0.5f, 0.5f), std::out_of_range);
+  CHECK_THROWS_AS(s.evaluate(good, 1, 0.5f, 0.5f), std::out_of_range);
+  CHECK_THROWS_AS(s.evaluate(good, 0, 1.5f, 0.5f), std::out_of_range);
+  CHECK_THROWS_AS(s.evaluate(good, 0, 0.5f, std::nanf("")), std::out_of_range);
+  CHECK_THROWS_AS(s.evaluate_triangle(good, 0.2f, 0.2f, 0.6f), std::out_of_range);  // a quad
+  CHECK_THROWS_AS(LimitSurface::create(cage, 0), std::invalid_argument);
+  CHECK_THROWS_AS(LimitSurface::create(cage, 11), std::invalid_argument);
+}
+
+TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
+  const Cage cube = read_test_cage(osd_shape("catmark_cube"));
+  const auto message = [](const Cage& c) -> std::string {
+    try {
+      LimitSurface::create(c);
+    } catch (const CageError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  Cage bad = cube;
+  bad.face_vertices[5] = 99;
+  CHECK(message(bad).find("face 1 has vertex 99 out of range") != std::string::npos);
+  bad = cube;
+  bad.face_sizes[2] = 2;
+  CHECK(message(bad).find("face 2 has 2 vertices") != std::string::npos);
+  bad = cube;
+  bad.tags.creases.push_back({0, 7, 2.0f});  // a diagonal, not an edge
+  CHECK(message(bad).find("crease 0 (vertices 0-7) is not an edge") != std::string::npos);
+  bad = cube;
+  bad.tags.holes.push_back(6);
+  CHECK(message(bad).find("hole 0 names face 6") != std::string::npos);
+  bad = cube;
+  bad.positions[3].x = std::nanf("");
+  CHECK(message(bad).find("vertex 3 is not finite") != std::string::npos);
+  for (const Cage& c : {bad}) CHECK(message(c).find('\n') == std::string::npos);
+  // Non-manifold topology is OpenSubdiv's to judge: it either builds (and evaluates) or is a CageError.
+  for (const std::string name : {"catmark_nonman_edges", "catmark_nonman_verts", "catmark_nonman_bareverts", "catmark_val2_nonman"}) {
+    INFO(name);
+    const Cage c = read_test_cage(osd_shape(name));
+    try {
+      const LimitSurface s = LimitSurface::create(c);
+      for (int f = 0; f < s.face_count(); ++f)
+        for (int k = 0; k < s.sub_patch_count(f); ++k) CHECK(std::isfinite(s.evaluate(f, k, 0.3f, 0.6f).position.x));
+    } catch (const CageError& e) {
+      CHECK(std::string(e.what()).find('\n') == std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("limit surface evaluation is thread-safe and deterministic", "[limit]") {
+  const Cage frog = read_test_cage(sdk_cage("monsterfrog_mapped_00"));
+  const LimitSurface s = LimitSurface::create(frog);
+  const auto digest = [&](int stride, int offset) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int f = offset; f < s.face_count(); f += stride)
+      for (int k = 0; k < s.sub_patch_count(f); ++k)
+        for (int i = 0; i <= 6; ++i)
+          for (int j = 0; j <= 6; ++j) {
+            const SurfacePoint p = s.evaluate(f, k, tess_param(i, 6), tess_param(j, 6));
+            for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
+              h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
+          }
+    return h;
+  };
+  std::array<std::uint64_t, 4> single{}, threaded{};
+  for (int t = 0; t < 4; ++t) single[std::size_t(t)] = digest(4, t);
+  std::vector<std::thread> pool;
+  for (int t = 0; t < 4; ++t) pool.emplace_back([&, t] { threaded[std::size_t(t)] = digest(4, t); });
+  for (auto& th : pool) th.join();
+  CHECK(single == threaded);
+}
+
+// Measurements for the report: accuracy per level, creation time and memory, evaluation cost.
+TEST_CASE("limit surface measurements", "[.][limit-bench]") {
+  for (const std::string name : {"catmark_cube", "catmark_xord_interior"}) {
+    const Cage cage = read_test_cage(osd_shape(name));
+    const LimitSurface ref = LimitSurface::create(cage, 10);
+    for (int level : {2, 4, 6, 8, 10}) {
+      const LimitSurface s = LimitSurface::create(cage, level);
+      const LimitAccuracy a = measure_limit_accuracy(cage, s, 6);
+      const LimitAccuracy b = compare_limit_surfaces(s, ref, 37);
+      const LimitAccuracy c = measure_limit_accuracy(cage, s, 8);
+      std::printf("%-22s level %2d: vs PrimvarRefiner::Limit 1/64 grid max %.3g rms %.3g, 1/256 grid max %.3g | vs level 10 (k/37 + corner zoom) max %.3g (relative to diagonal)\n",
+                  name.c_str(), level, a.max_relative(), a.rms_distance / a.diagonal, c.max_relative(), b.max_relative());
+    }
+  }
+  const Cage frog = read_test_cage(sdk_cage("monsterfrog_mapped_00"));
+  const auto rss_kb = [] { return long(mallinfo2().uordblks / 1024); };  // heap bytes in use
+  for (int level : {10, 2, 6, 8}) {
+    const long before = rss_kb();
+    const auto t0 = std::chrono::steady_clock::now();
+    const LimitSurface s = LimitSurface::create(frog, level);
+    const auto t1 = std::chrono::steady_clock::now();
+    const long after = rss_kb();
+    std::size_t subs = 0;
+    for (int f = 0; f < s.face_count(); ++f) subs += std::size_t(s.sub_patch_count(f));
+    const int R = 64;
+    double sink = 0;
+    const auto t2 = std::chrono::steady_clock::now();
+    for (int f = 0; f < s.face_count(); ++f)
+      for (int k = 0; k < s.sub_patch_count(f); ++k)
+        for (int i = 1; i < R; ++i)
+          for (int j = 1; j < R; ++j) sink += s.evaluate(f, k, float(i) / R, float(j) / R).position.x;
+    const auto t3 = std::chrono::steady_clock::now();
+    const double n_eval = double(subs) * (R - 1) * (R - 1);
+    double edge_ns = 0;
+    {
+      const auto t4 = std::chrono::steady_clock::now();
+      long cnt = 0;
+      for (int f = 0; f < s.face_count(); ++f)
+        for (int k = 0; k < s.sub_patch_count(f); ++k)
+          for (int i = 1; i < R; ++i) {
+            sink += s.evaluate(f, k, float(i) / R, 0.0f).position.x;
+            ++cnt;
+          }
+      edge_ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t4).count() / double(cnt);
+    }
+    std::printf("frog (%d faces, %zu sub-patches) level %2d: create %.1f ms, heap +%.1f MB, per-face data %.2f MB; evaluate %.0f ns/interior point, %.0f ns/edge point (%g)\n",
+                s.face_count(), subs, level, std::chrono::duration<double, std::milli>(t1 - t0).count(), double(after - before) / 1024.0,
+                double(s.memory_bytes()) / 1048576.0, std::chrono::duration<double, std::nano>(t3 - t2).count() / n_eval, edge_ns, sink);
+  }
+}
