@@ -1,5 +1,6 @@
 #include "patch_stencils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -156,6 +157,15 @@ Stencil cross_ring_vector(const CornerRing& r, int j, int dir) {
 
 }  // namespace
 
+// Castano's per-valence tangent lengths for Gregory edge points (valence 3..13; larger valences keep
+// the last value): they bring E = P + T/3 closer to the limit surface than the bare ACC tangent.
+double tangent_scale(const CornerRing& r) {
+  static constexpr double kScale[] = {0.667791, 1.0, 1.11268, 1.1284, 1.10289, 1.06062, 1.01262, 0.963949, 0.916926,
+                                      0.872541, 0.831134};
+  if (r.boundary || r.sharp_corner || r.valence() < 3) return 1.0;
+  return kScale[std::min(r.valence(), 13) - 3];
+}
+
 std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& c) {
   std::vector<Stencil> out(kGregoryQuadStencils);
   std::array<Stencil, 4> P, Ep, Em;
@@ -167,9 +177,10 @@ std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& c) {
       Em[std::size_t(k)] = Stencil{}.add_vertex(r.center, 2.0 / 3.0).add_vertex(r.e(prev_edge(r)), 1.0 / 3.0);
     } else {
       Ep[std::size_t(k)] = P[std::size_t(k)];
-      Ep[std::size_t(k)].add(limit_tangent(r, next_edge(r)), 1.0 / 3.0);
+      const double scale = tangent_scale(r) / 3.0;
+      Ep[std::size_t(k)].add(limit_tangent(r, next_edge(r)), scale);
       Em[std::size_t(k)] = P[std::size_t(k)];
-      Em[std::size_t(k)].add(limit_tangent(r, prev_edge(r)), 1.0 / 3.0);
+      Em[std::size_t(k)].add(limit_tangent(r, prev_edge(r)), scale);
     }
   }
   for (int k = 0; k < 4; ++k) {

@@ -52,7 +52,7 @@ int run_accuracy(const AccuracyOptions& o) {
         const SurfacePoint e = reference.evaluate_triangle(patch.face, q.u, q.v, (1.0f - q.u) - q.v);
         pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
       } else {
-        const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, q.u, q.v);
+        const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
         pos = e.position, nrm = e.normal;
       }
       const double d = glm::length(glm::dvec3(s.position) - pos);
