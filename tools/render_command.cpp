@@ -57,7 +57,7 @@ int run_render(const RenderOptions& o) {
   const float fov = glm::radians(o.fov);
   const float fit = std::min(fov, 2.0f * std::atan(std::tan(0.5f * fov) * aspect));
   const glm::vec3 target = o.target.empty() ? centre : parse_vec3(o.target, "--camera-target");
-  const glm::vec3 eye = o.eye.empty() ? centre + glm::normalize(glm::vec3(0.35f, 0.25f, 1.0f)) * (radius / std::sin(0.5f * fit) * 1.05f)
+  const glm::vec3 eye = o.eye.empty() ? centre + glm::normalize(glm::vec3(0.35f, 0.25f, 1.0f)) * (radius / std::tan(0.5f * fit) * 0.8f)
                                       : parse_vec3(o.eye, "--camera-position");
   if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
   const float distance = glm::length(eye - target);
@@ -85,6 +85,9 @@ int run_render(const RenderOptions& o) {
       ds.triangles = g->domain == ts::Domain::tri;
       RasterizerState rs;
       rs.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
+      // Patches emit triangle_cw, which is counter-clockwise seen from outside a counter-clockwise cage;
+      // after the viewport's y flip, D3D calls that winding counter-clockwise on screen.
+      rs.front_counter_clockwise = true;
       if (wire) rs.fill = FillMode::wireframe;
       DepthState depth;
       depth.func = CompareFunc::less_equal;
@@ -102,7 +105,7 @@ int run_render(const RenderOptions& o) {
       };
       const glm::vec3 light = glm::normalize(eye - target);
       auto with_ps = [&](const auto& hs) {
-        if (wire) go(hs, ConstantPS{});
+        if (wire) go(hs, ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)});
         else go(hs, ClayPS{light});
       };
       if (g->domain == ts::Domain::tri) with_ps(SubdTriHS{{g->patches, model.patches.tables, factors}});
