@@ -230,3 +230,59 @@ TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[
   r = run_cli("analyze");
   CHECK(r.exit_code == 2);
 }
+
+TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and checks watertightness", "[cli]") {
+  const fs::path ply = temp_dir() / "cube.ply";
+  const std::string cage = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
+  const Result r = run_cli("tessellate " + cage + " --scheme gregory --factor 3 --partitioning fractional_odd --vary-factors 1 --check-watertight --json -o " + ply.string());
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["watertight"]["closed_manifold"] == true);
+  CHECK(j["patches"] == 6);
+  const std::string text = slurp(ply);
+  const std::string header = text.substr(0, text.find("end_header\n") + 11);
+  CHECK(header.find("format binary_little_endian 1.0") != std::string::npos);
+  CHECK(header.find("element vertex " + std::to_string(j["vertices"].get<long>()) + "\n") != std::string::npos);
+  CHECK(header.find("element face " + std::to_string(j["triangles"].get<long>()) + "\n") != std::string::npos);
+  CHECK(header.find("property int face\nproperty float u\nproperty float v\n") != std::string::npos);
+  // 9 floats/ints per vertex, 1 + 3 * 4 bytes per triangle.
+  CHECK(text.size() == header.size() + j["vertices"].get<std::size_t>() * 36 + j["triangles"].get<std::size_t>() * 13);
+}
+
+TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a non-zero exit", "[cli]") {
+  const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
+  const std::string pyramid = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_pyramid.obj";
+  struct Case {
+    std::string args, expect;
+    int code;
+  };
+  for (const Case& c : {Case{"tessellate /nonexistent.obj --check-watertight", "/nonexistent.obj", 1},
+                        Case{"tessellate " + cube + " --scheme loop --check-watertight", "--scheme", 2},
+                        Case{"tessellate " + cube + " --factor nan --check-watertight", "--factor", 2},
+                        Case{"tessellate " + pyramid + " --scheme acc --check-watertight", "face 0 has 3 sides", 1},
+                        Case{"render " + cube + " --resolution 0x10 -o x.png", "--resolution", 2},
+                        Case{"render " + cube + " --view sketch -o x.png", "--view", 2},
+                        Case{"accuracy " + pyramid + " --scheme gregory", "quads only", 1}}) {
+    INFO(c.args);
+    const Result r = run_cli(c.args);
+    CHECK(r.exit_code == c.code);
+    CHECK(r.err.find(c.expect) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("tessera render writes the image and tessera accuracy reports against the exact limit", "[cli]") {
+  const fs::path png = temp_dir() / "frog.png";
+  const std::string frog = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog_mapped_00.obj";
+  const Result r = run_cli("render " + frog + " --scheme acc --factor 3 --resolution 320x240 --view wire-on-shaded -o " + png.string());
+  REQUIRE(r.exit_code == 0);
+  auto in = OIIO::ImageInput::open(png.string());
+  REQUIRE(in);
+  CHECK(in->spec().width == 320);
+  CHECK(in->spec().height == 240);
+  const Result a = run_cli("accuracy " + std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_torus.obj --scheme bspline --json");
+  REQUIRE(a.exit_code == 0);
+  const auto j = nlohmann::json::parse(a.out);
+  CHECK(j["max_relative"].get<double>() < 1e-6);
+  CHECK(j["samples"].get<long>() > 0);
+}
