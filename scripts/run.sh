@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job: set up, build, and run the most complete thing Tessera does today on its bundled
-# default. Until the displaced monster frog lands (issue 5), that is the benchmark scene through the
-# whole pipeline: the displaced B-spline torus rendered at factor 16 (image, D3D11 statistics, stage
-# times and memory), plus debug pictures of tessellation patterns and the tessellator's throughput.
+# default. Until the displaced monster frog lands (issue 5), that is the (undisplaced) monster frog cage
+# as a Gregory ACC surface and as the exact limit, rendered, tessellated with a crack check, and
+# measured against the limit; then the benchmark torus through the whole pipeline (image, D3D11
+# statistics, stage times, memory), debug pictures of tessellation patterns and the tessellator's speed.
 #
 #   scripts/run.sh [OUT_DIR]      (default out/)
 set -euo pipefail
@@ -12,6 +13,12 @@ out=${1:-$root/out}
 cmake --build "$root/build" --parallel "$(nproc)" >&2
 bin="$root/build/bin/tessera"
 mkdir -p "$out"
+frog="$root/tests/data/sdk-cages/monsterfrog_mapped_00.obj"
+"$bin" render "$frog" --scheme gregory --factor 16 -o "$out/frog_gregory.png" --stats "$out/frog_gregory_stats.json"
+"$bin" render "$frog" --scheme exact --factor 8 --view wire-on-shaded --resolution 1280x960 -o "$out/frog_exact_wire.png"
+"$bin" tessellate "$frog" --scheme gregory --factor 5.5 --partitioning fractional_odd --vary-factors 1.5 --check-watertight -o "$out/frog_gregory.ply"
+"$bin" analyze "$frog" > "$out/frog_analyze.txt"
+for scheme in acc gregory; do "$bin" accuracy "$frog" --scheme "$scheme"; done | tee "$out/frog_accuracy.txt"
 "$bin" bench torus --factor 16 --frames 5 -o "$out/torus_f16.png" --stats "$out/torus_f16_stats.json" | tee "$out/bench_torus.txt"
 "$bin" bench torus --factor 5.5 --partitioning fractional_odd --resolution 960x540 --frames 3 -o "$out/torus_f5.5_odd.png" | tee -a "$out/bench_torus.txt"
 "$bin" pattern --domain quad --partitioning fractional_odd --outer 3.5,7.25,2,5 --inner 6.5,4.75 --image "$out/quad_fractional_odd.png"
