@@ -286,3 +286,36 @@ TEST_CASE("tessera render writes the image and tessera accuracy reports against 
   CHECK(j["max_relative"].get<double>() < 1e-6);
   CHECK(j["samples"].get<long>() > 0);
 }
+
+TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates", "[cli]") {
+  const Result r = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["scene"] == "subd");
+  CHECK(j["triangles"].get<long>() > 0);
+  for (const char* key : {"median_s", "min_s", "hs_patches_per_thread_s", "ds_points_per_thread_s"}) CHECK(j.contains(key));
+}
+
+TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on both of its faces", "[cli]") {
+  const fs::path factors = temp_dir() / "factors.txt";
+  {
+    std::ofstream f(factors);
+    f << "# v0 v1 factor\n0 1 7.5\n1 3 2\n";
+  }
+  const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
+  const Result plain = run_cli("tessellate " + cube + " --factor 3 --check-watertight --json");
+  const Result edges = run_cli("tessellate " + cube + " --factor 3 --partitioning fractional_even --factors-per-edge " +
+                               factors.string() + " --check-watertight --json");
+  REQUIRE(plain.exit_code == 0);
+  REQUIRE(edges.exit_code == 0);
+  const auto a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(edges.out);
+  CHECK(a["triangles"] != b["triangles"]);
+  CHECK(b["watertight"]["closed_manifold"] == true);
+  {
+    std::ofstream f(factors);
+    f << "0 1 seven\n";
+  }
+  const Result bad = run_cli("tessellate " + cube + " --factors-per-edge " + factors.string() + " --check-watertight");
+  CHECK(bad.exit_code == 1);
+  CHECK(bad.err.find("factors.txt:1:") != std::string::npos);
+}

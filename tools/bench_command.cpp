@@ -99,10 +99,12 @@ Runner add_bench_command(CLI::App& app) {
   tess->add_flag("--json", o->json, "print results as JSON");
   tess->fallthrough();
   Runner torus = add_bench_torus_command(*cmd);
-  return [o, tess, torus]() -> int {
+  Runner frog = add_bench_subd_command(*cmd);
+  return [o, tess, torus, frog]() -> int {
     if (tess->parsed()) return run_bench_tessellator(*o);
     if (const int rc = torus(); rc >= 0) return rc;
-    throw UsageError("bench: choose a benchmark (tessellator, torus)");
+    if (const int rc = frog(); rc >= 0) return rc;
+    throw UsageError("bench: choose a benchmark (tessellator, torus, frog)");
   };
 }
 

@@ -4,11 +4,10 @@
 #include <iostream>
 #include <sstream>
 
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "cli_common.h"
 #include "commands.h"
-#include "subd_model.h"
+#include "subd_render.h"
 #include "tessellate_options.h"
 
 namespace tessera::cli {
@@ -48,23 +47,11 @@ int run_render(const RenderOptions& o) {
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
-  // Frame the cage's bounding sphere (the limit surface lies inside the cage's hull).
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const auto& p : model.cage.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const glm::vec3 centre = 0.5f * (lo + hi);
-  const float radius = std::max(1e-6f, 0.5f * glm::length(hi - lo));
-  const float aspect = float(w) / float(h);
-  const float fov = glm::radians(o.fov);
-  const float fit = std::min(fov, 2.0f * std::atan(std::tan(0.5f * fov) * aspect));
-  const glm::vec3 target = o.target.empty() ? centre : parse_vec3(o.target, "--camera-target");
-  const glm::vec3 eye = o.eye.empty() ? centre + glm::normalize(glm::vec3(0.35f, 0.25f, 1.0f)) * (radius / std::tan(0.5f * fit) * 0.8f)
-                                      : parse_vec3(o.eye, "--camera-position");
-  if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
-  const float distance = glm::length(eye - target);
-  const glm::mat4 view = glm::lookAtRH(eye, target, glm::vec3(0, 1, 0));
-  const glm::mat4 proj = glm::perspectiveRH_ZO(fov, aspect, std::max(1e-4f, distance - 2.0f * radius) * 0.5f,
-                                               distance + 2.0f * radius);
-  const glm::mat4 vp = proj * view;
+  std::optional<glm::vec3> eye, target;
+  if (!o.eye.empty()) eye = parse_vec3(o.eye, "--camera-position");
+  if (!o.target.empty()) target = parse_vec3(o.target, "--camera-target");
+  if (eye && target && glm::length(*eye - *target) <= 0.0f) throw UsageError("camera position and target coincide");
+  const SubdCamera camera = frame_cage(model.cage, w, h, o.fov, eye, target);
 
   DeviceOptions dopt;
   dopt.threads = o.threads;
@@ -73,47 +60,10 @@ int run_render(const RenderOptions& o) {
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);
   fb->clear(glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
-
-  DrawReport total;
-  const std::span<const glm::vec3> vertices(model.cage.positions);
-  SubdDS ds{{}, model.limit.get(), model.cage.tags.left_handed};
-  auto draw_pass = [&](bool wire) {
-    for (const PatchGroup* g : {&model.patches.quads, &model.patches.tris}) {
-      if (g->patches.empty()) continue;
-      TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
-      ds.patches = g->patches;
-      ds.triangles = g->domain == ts::Domain::tri;
-      RasterizerState rs;
-      rs.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
-      // Patches emit triangle_cw, which is counter-clockwise seen from outside a counter-clockwise cage;
-      // after the viewport's y flip, D3D calls that winding counter-clockwise on screen.
-      rs.front_counter_clockwise = true;
-      if (wire) rs.fill = FillMode::wireframe;
-      DepthState depth;
-      depth.func = CompareFunc::less_equal;
-      const Viewport viewport{0, 0, float(w), float(h), 0, 1};
-      auto go = [&](const auto& hs, const auto& ps) {
-        using Hs = std::decay_t<decltype(hs)>;
-        using Ps = std::decay_t<decltype(ps)>;
-        PatchDraw<glm::vec3, SubdVS, Hs, ProjectDS<SubdDS>, Ps> d{vertices, g->indices, g->control_points, SubdVS{}, hs,
-                                                                    ProjectDS<SubdDS>{ds, vp, wire ? 2e-4f : 0.0f}, ps, ts,
-                                                                    rs, depth, viewport};
-        const DrawResult r = device.draw(d, *fb);
-        if (!r.ok()) throw InputError(o.cage + ": " + r.error);
-        total.statistics += r.report.statistics;
-        total.times += r.report.times;
-      };
-      const glm::vec3 light = glm::normalize(eye - target);
-      auto with_ps = [&](const auto& hs) {
-        if (wire) go(hs, ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)});
-        else go(hs, ClayPS{light});
-      };
-      if (g->domain == ts::Domain::tri) with_ps(SubdTriHS{{g->patches, model.patches.tables, factors}});
-      else with_ps(SubdHS{g->patches, model.patches.tables, factors});
-    }
-  };
-  if (o.view != "wireframe") draw_pass(false);
-  if (o.view != "shaded") draw_pass(true);
+  const SubdView view = o.view == "shaded" ? SubdView::shaded : o.view == "wireframe" ? SubdView::wireframe : SubdView::wire_on_shaded;
+  const DrawResult result = render_subd(device, model, factors, partitioning, view, camera, *fb);
+  if (!result.ok()) throw InputError(o.cage + ": " + result.error);
+  const DrawReport& total = result.report;
   if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   if (!o.stats.empty()) {
     std::ostringstream s;

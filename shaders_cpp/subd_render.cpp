@@ -1,0 +1,82 @@
+#include "subd_render.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace tessera {
+
+SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees, std::optional<glm::vec3> eye,
+                      std::optional<glm::vec3> target) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const auto& p : cage.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const float radius = std::max(1e-6f, 0.5f * glm::length(hi - lo));
+  const float aspect = float(width) / float(height);
+  const float fov = glm::radians(fov_degrees);
+  const float fit = std::min(fov, 2.0f * std::atan(std::tan(0.5f * fov) * aspect));
+  SubdCamera c;
+  c.target = target.value_or(centre);
+  // The limit surface lies well inside the cage's bounding sphere: frame 80 % of it.
+  c.eye = eye.value_or(centre + glm::normalize(glm::vec3(0.35f, 0.25f, 1.0f)) * (radius / std::tan(0.5f * fit) * 0.8f));
+  const float distance = glm::length(c.eye - c.target);
+  const float reach = distance + glm::length(centre - c.target) + radius;
+  const glm::mat4 view = glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0));
+  const glm::mat4 proj = glm::perspectiveRH_ZO(fov, aspect, std::max(reach * 1e-4f, distance - reach) , reach * 1.01f);
+  c.view_projection = proj * view;
+  return c;
+}
+
+DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
+                       SubdView view, const SubdCamera& camera, Framebuffer& fb) {
+  DrawResult total;
+  const std::span<const glm::vec3> vertices(model.cage.positions);
+  SubdDS ds{{}, model.limit.get(), model.cage.tags.left_handed};
+  const glm::vec3 light = glm::normalize(camera.eye - camera.target);
+  auto pass = [&](bool wire) {
+    for (const PatchGroup* g : {&model.patches.quads, &model.patches.tris}) {
+      if (g->patches.empty()) continue;
+      const TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
+      ds.patches = g->patches;
+      ds.triangles = g->domain == ts::Domain::tri;
+      RasterizerState rs;
+      rs.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
+      // Patches emit triangle_cw: counter-clockwise seen from outside a counter-clockwise cage, which
+      // after the viewport's y flip is counter-clockwise on screen.
+      rs.front_counter_clockwise = true;
+      if (wire) rs.fill = FillMode::wireframe;
+      DepthState depth;
+      depth.func = CompareFunc::less_equal;
+      const Viewport viewport{0, 0, float(fb.width()), float(fb.height()), 0, 1};
+      auto go = [&](const auto& hs, const auto& ps) {
+        using Hs = std::decay_t<decltype(hs)>;
+        using Ps = std::decay_t<decltype(ps)>;
+        const PatchDraw<glm::vec3, SubdVS, Hs, ProjectDS<SubdDS>, Ps> d{
+            vertices, g->indices, g->control_points, SubdVS{}, hs,
+            ProjectDS<SubdDS>{ds, camera.view_projection, wire ? 2e-4f : 0.0f}, ps, ts, rs, depth, viewport};
+        DrawResult r = device.draw(d, fb);
+        if (!r.ok()) return r;
+        total.report.statistics += r.report.statistics;
+        total.report.times += r.report.times;
+        total.report.memory.geometry_peak_bytes =
+            std::max(total.report.memory.geometry_peak_bytes, r.report.memory.geometry_peak_bytes);
+        return r;
+      };
+      auto with_ps = [&](const auto& hs) {
+        return wire ? go(hs, ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(hs, ClayPS{light});
+      };
+      const DrawResult r = g->domain == ts::Domain::tri ? with_ps(SubdTriHS{{g->patches, model.patches.tables, factors}})
+                                                         : with_ps(SubdHS{g->patches, model.patches.tables, factors});
+      if (!r.ok()) return r;
+    }
+    return DrawResult{};
+  };
+  if (view != SubdView::wireframe)
+    if (DrawResult r = pass(false); !r.ok()) return r;
+  if (view != SubdView::shaded)
+    if (DrawResult r = pass(true); !r.ok()) return r;
+  total.report.memory.framebuffer_bytes = fb.bytes();
+  return total;
+}
+
+}  // namespace tessera

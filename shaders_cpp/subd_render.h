@@ -1,0 +1,28 @@
+// Rendering a SubdModel: a camera that frames the cage, and the draws of the shaded, wireframe and
+// wire-on-shaded views (the wireframe pulled toward the camera by a small depth bias).
+#pragma once
+
+#include <optional>
+
+#include "framebuffer.h"
+#include "subd_model.h"
+
+namespace tessera {
+
+enum class SubdView { shaded, wireframe, wire_on_shaded };
+
+struct SubdCamera {
+  glm::vec3 eye{0.0f}, target{0.0f};
+  glm::mat4 view_projection{1.0f};
+};
+
+// Looks at the cage's bounding-box centre (or `target`) from `eye`, or from a default direction at a
+// distance that frames the bounding sphere; near and far planes enclose it. fov_degrees is vertical.
+SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees, std::optional<glm::vec3> eye,
+                      std::optional<glm::vec3> target);
+
+// Draws the model into fb (not cleared here); returns the first draw error, statistics summed.
+DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
+                       SubdView view, const SubdCamera& camera, Framebuffer& fb);
+
+}  // namespace tessera

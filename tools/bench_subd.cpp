@@ -1,0 +1,105 @@
+// `tessera bench frog`: the second benchmark scene, a Catmull-Clark cage (the monster frog by default)
+// through the whole pipeline with one scheme, plus the stream-output throughput of the hull shader's
+// control-point evaluation and of the domain shader.
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <sstream>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "subd_render.h"
+#include "tessellate_options.h"
+
+namespace tessera::cli {
+namespace {
+
+struct BenchSubdOptions {
+  std::string cage = std::string(TESSERA_SOURCE_DIR) + "/tests/data/sdk-cages/monsterfrog_mapped_00.obj";
+  std::string scheme = "gregory", partitioning = "integer", factors_file, resolution = "1920x1080", output;
+  float factor = 16.0f, vary = 0.0f;
+  int threads = 0, frames = 5;
+  bool json = false;
+};
+
+int run_bench_subd(const BenchSubdOptions& o) {
+  const Scheme scheme = scheme_option(o.scheme);
+  const ts::Partitioning partitioning = partitioning_option(o.partitioning);
+  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
+  int w = 0, h = 0;
+  if (std::sscanf(o.resolution.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw UsageError("--resolution: '" + o.resolution + "' is not WxH with 1..16384 each");
+  if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
+  SubdModel model;
+  try {
+    model = load_subd_model(o.cage, scheme);
+  } catch (const CageError& e) {
+    throw InputError(e.what());
+  }
+  DeviceOptions dopt;
+  dopt.threads = o.threads;
+  Device device(dopt);
+  std::string error;
+  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
+  if (!fb) throw UsageError(error);
+  const SubdCamera camera = frame_cage(model.cage, w, h, 35.0f, std::nullopt, std::nullopt);
+
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> frame_s;
+  DrawReport last;
+  for (int f = 0; f < o.frames + 1; ++f) {  // one warm-up frame
+    const auto start = Clock::now();
+    fb->clear(glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
+    const DrawResult r = render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
+    if (!r.ok()) throw InputError(o.cage + ": " + r.error);
+    if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    last = r.report;
+  }
+  if (!o.output.empty())
+    if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
+  // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
+  const auto start = Clock::now();
+  const DrawResult s = stream_subd(device, model, factors, partitioning, [](const PatchOutput<SurfaceSample>&, const PatchGroup&) {});
+  const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
+  std::sort(frame_s.begin(), frame_s.end());
+  const double median = frame_s[frame_s.size() / 2];
+  const auto& st = last.statistics;
+  const double hs_rate = double(s.report.statistics.HSInvocations) / std::max(1e-9, s.report.times.hs);
+  const double ds_rate = double(s.report.statistics.DSInvocations) / std::max(1e-9, s.report.times.ds);
+  if (o.json) {
+    std::cout << "{\"scene\": \"subd\", \"cage\": \"" << o.cage << "\", \"scheme\": \"" << to_string(scheme)
+              << "\", \"factor\": " << o.factor << ", \"resolution\": \"" << w << "x" << h << "\", \"threads\": "
+              << device.threads() << ", \"frames\": " << o.frames << ", \"triangles\": " << st.CInvocations
+              << ", \"median_s\": " << median << ", \"min_s\": " << frame_s.front()
+              << ", \"triangles_per_s\": " << double(st.CInvocations) / median << ", \"stream_s\": " << stream_s
+              << ", \"hs_patches_per_thread_s\": " << hs_rate << ", \"ds_points_per_thread_s\": " << ds_rate
+              << ", \"times\": " << to_json(last.times) << "}\n";
+  } else {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "%s, %s, factor %g, %dx%d, %d threads: median %.4f s (min %.4f), %llu triangles, %.1f M triangles/s\n"
+                  "front end alone (stream output): %.4f s; HS %.2f M patches/thread-s, DS %.1f M points/thread-s\n",
+                  o.cage.c_str(), to_string(scheme), double(o.factor), w, h, device.threads(), median, frame_s.front(),
+                  (unsigned long long)st.CInvocations, double(st.CInvocations) / median / 1e6, stream_s, hs_rate / 1e6,
+                  ds_rate / 1e6);
+    std::cout << line;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Runner add_bench_subd_command(CLI::App& bench) {
+  auto o = std::make_shared<BenchSubdOptions>();
+  CLI::App* cmd = bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
+  cmd->add_option("--cage", o->cage, "the cage")->capture_default_str();
+  add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
+  cmd->add_option("-o,--output", o->output, "write the last frame");
+  cmd->add_flag("--json", o->json, "print results as JSON");
+  cmd->fallthrough();
+  return [o, cmd]() -> int { return cmd->parsed() ? run_bench_subd(*o) : -1; };
+}
+
+}  // namespace tessera::cli
