@@ -251,7 +251,12 @@ template <std::size_t N>
 struct PatchScratch {
   PatternCache patterns;
   std::vector<SetupVertex<N>> domain_outputs;
-  std::size_t bytes() const { return patterns.bytes() + domain_outputs.capacity() * sizeof(SetupVertex<N>); }
+  std::vector<DomainLocation> locations;     // for a batch domain shader
+  std::vector<ClipVertex<N>> clip_outputs;   // its results, before setup
+  std::size_t bytes() const {
+    return patterns.bytes() + domain_outputs.capacity() * sizeof(SetupVertex<N>) +
+           locations.capacity() * sizeof(DomainLocation) + clip_outputs.capacity() * sizeof(ClipVertex<N>);
+  }
 };
 
 }  // namespace detail
@@ -372,10 +377,23 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
               auto& outs = local.domain_outputs;
               outs.resize(pattern.points.size());
               const bool tri = tstate.domain == ts::Domain::tri;
-              for (std::size_t i = 0; i < pattern.points.size(); ++i) {
-                const ts::DomainPoint q = pattern.points[i];
-                outs[i] = make_setup_vertex<N>(
-                    backend.setup(), d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
+              if constexpr (BatchDomainShader<Ds, PatchConstants, ControlPoint, N>) {
+                auto& locations = local.locations;
+                auto& clips = local.clip_outputs;
+                locations.resize(pattern.points.size());
+                clips.resize(pattern.points.size());
+                for (std::size_t i = 0; i < pattern.points.size(); ++i) {
+                  const ts::DomainPoint q = pattern.points[i];
+                  locations[i] = DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f};
+                }
+                d.ds(pc, cps, std::span<const DomainLocation>(locations), patch_id, std::span<ClipVertex<N>>(clips));
+                for (std::size_t i = 0; i < clips.size(); ++i) outs[i] = make_setup_vertex<N>(backend.setup(), clips[i]);
+              } else {
+                for (std::size_t i = 0; i < pattern.points.size(); ++i) {
+                  const ts::DomainPoint q = pattern.points[i];
+                  outs[i] = make_setup_vertex<N>(
+                      backend.setup(), d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
+                }
               }
               chunk.statistics.DSInvocations += pattern.points.size();
               const auto ds_done = detail::Clock::now();

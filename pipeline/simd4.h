@@ -14,6 +14,7 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#include <xmmintrin.h>
 #else
 #include <cmath>
 #endif
@@ -32,6 +33,7 @@ struct F4 {
   friend F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
   friend F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
   friend F4 operator/(F4 a, F4 b) { return {_mm_div_ps(a.v, b.v)}; }
+  friend F4 operator-(F4 a) { return {_mm_xor_ps(a.v, _mm_set1_ps(-0.0f))}; }  // flips the sign bit, as -x
 };
 inline F4 sqrt(F4 a) { return {_mm_sqrt_ps(a.v)}; }
 // std::max(a, b) is (a < b) ? b : a; maxps(b, a) is (b > a) ? b : a: the same for every input.
@@ -57,6 +59,10 @@ struct F4 {
   friend F4 operator-(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x - y; }); }
   friend F4 operator*(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x * y; }); }
   friend F4 operator/(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x / y; }); }
+  friend F4 operator-(F4 a) {
+    for (auto& x : a.v) x = -x;
+    return a;
+  }
 };
 inline F4 sqrt(F4 a) {
   for (auto& x : a.v) x = std::sqrt(x);

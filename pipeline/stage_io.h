@@ -11,6 +11,10 @@
 //                   PatchConstants has a member `TessFactors factors` (SV_TessFactor, SV_InsideTessFactor).
 //   domain shader   ClipVertex<N> operator()(const PatchConstants&, std::span<const ControlPoint>,
 //                                            DomainLocation, std::uint32_t patch_id) const
+//                   optionally also a batch form (BatchDomainShader below):
+//                   void operator()(const PatchConstants&, std::span<const ControlPoint>,
+//                                   std::span<const DomainLocation>, std::uint32_t patch_id,
+//                                   std::span<ClipVertex<N>> out) const
 //   pixel shader    glm::vec4 operator()(const PixelInput<N>&) const
 //                   optionally also void shade_quad(const QuadInput<N>&, QuadColor&) const (below)
 //
@@ -88,6 +92,16 @@ struct QuadColor {
 
 template <class Ps, std::size_t N>
 concept QuadPixelShader = requires(const Ps& ps, const QuadInput<N>& q, QuadColor& out) { ps.shade_quad(q, out); };
+
+// The optional batch form of a domain shader: all of a patch's domain points in one call, so a shader
+// can evaluate several points at once (in SIMD lanes) or share work between points with equal u or v.
+// out[i] must be exactly the bits the per-point form returns for locations[i]; the pipeline calls the
+// batch form when present.
+template <class Ds, class PatchConstants, class ControlPoint, std::size_t N>
+concept BatchDomainShader = requires(const Ds& ds, const PatchConstants& pc, std::span<const ControlPoint> cps,
+                                     std::span<const DomainLocation> locations, std::span<ClipVertex<N>> out) {
+  ds(pc, cps, locations, std::uint32_t{0}, out);
+};
 
 template <class T>
 struct is_clip_vertex : std::false_type {};
