@@ -29,6 +29,7 @@
 #include <tbb/task_arena.h>
 
 #include "framebuffer.h"
+#include "parallel.h"
 #include "pattern_cache.h"
 #include "pipeline_state.h"
 #include "primitive_setup.h"
@@ -126,7 +127,7 @@ struct VertexCache {
 template <class Vertex, class Vs, class Out>
 void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const VertexCache& cache, std::vector<Out>& out) {
   out.resize(cache.unique.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cache.unique.size(), 256), [&](const auto& r) {
+  detail::parallel_for(tbb::blocked_range<std::size_t>(0, cache.unique.size(), 256), [&](const auto& r) {
     const Vertex zero{};
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const std::uint32_t id = cache.unique[i];
@@ -163,7 +164,7 @@ class Backend {
   void run(std::size_t count, Produce&& produce, DrawReport& report) {
     for (std::size_t first = 0; first < count; first += slots_.size()) {
       const std::size_t n = std::min(slots_.size(), count - first);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const auto& r) {
+      detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const auto& r) {
         for (std::size_t s = r.begin(); s != r.end(); ++s) {
           slots_[s].reset(setup_.tiles.count());
           produce(first + s, slots_[s]);
@@ -188,7 +189,7 @@ class Backend {
   void flush(std::size_t used, DrawReport& report) {
     const TileGrid& g = setup_.tiles;
     tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
-    tbb::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& r) {
+    detail::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& r) {
       auto& mine = local.local();
       for (int t = r.begin(); t != r.end(); ++t) {
         bool any = false;
@@ -251,7 +252,12 @@ template <std::size_t N>
 struct PatchScratch {
   PatternCache patterns;
   std::vector<SetupVertex<N>> domain_outputs;
-  std::size_t bytes() const { return patterns.bytes() + domain_outputs.capacity() * sizeof(SetupVertex<N>); }
+  std::vector<DomainLocation> locations;     // for a batch domain shader
+  std::vector<ClipVertex<N>> clip_outputs;   // its results, before setup
+  std::size_t bytes() const {
+    return patterns.bytes() + domain_outputs.capacity() * sizeof(SetupVertex<N>) +
+           locations.capacity() * sizeof(DomainLocation) + clip_outputs.capacity() * sizeof(ClipVertex<N>);
+  }
 };
 
 }  // namespace detail
@@ -300,7 +306,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
   const std::size_t patch_count = d.indices.size() / n_in;
   const TessellatorState tstate = d.tessellator;
 
-  arena_->execute([&] {
+  detail::arena_execute(*arena_, [&] {
     const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, options_.chunks_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
@@ -327,7 +333,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
       constants.resize(n);
       processed.resize(n);
       cost.resize(n);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
+      detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
         auto& local = scratch.local();
         auto& times = front_times.local();
         std::array<VsOut, 32> inputs;
@@ -374,10 +380,23 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
               auto& outs = local.domain_outputs;
               outs.resize(pattern.points.size());
               const bool tri = tstate.domain == ts::Domain::tri;
-              for (std::size_t i = 0; i < pattern.points.size(); ++i) {
-                const ts::DomainPoint q = pattern.points[i];
-                outs[i] = make_setup_vertex<N>(
-                    backend.setup(), d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
+              if constexpr (BatchDomainShader<Ds, PatchConstants, ControlPoint, N>) {
+                auto& locations = local.locations;
+                auto& clips = local.clip_outputs;
+                locations.resize(pattern.points.size());
+                clips.resize(pattern.points.size());
+                for (std::size_t i = 0; i < pattern.points.size(); ++i) {
+                  const ts::DomainPoint q = pattern.points[i];
+                  locations[i] = DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f};
+                }
+                d.ds(pc, cps, std::span<const DomainLocation>(locations), patch_id, std::span<ClipVertex<N>>(clips));
+                for (std::size_t i = 0; i < clips.size(); ++i) outs[i] = make_setup_vertex<N>(backend.setup(), clips[i]);
+              } else {
+                for (std::size_t i = 0; i < pattern.points.size(); ++i) {
+                  const ts::DomainPoint q = pattern.points[i];
+                  outs[i] = make_setup_vertex<N>(
+                      backend.setup(), d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
+                }
               }
               chunk.statistics.DSInvocations += pattern.points.size();
               const auto ds_done = detail::Clock::now();
@@ -436,7 +455,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
   DrawReport& report = result.report;
   const std::size_t triangle_count = d.indices.size() / 3;
 
-  arena_->execute([&] {
+  detail::arena_execute(*arena_, [&] {
     const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, options_.chunks_in_flight);
     detail::VertexCache vcache;
@@ -452,7 +471,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
       detail::assemble_and_shade_vertices(d.vs, d.vertices, indices, n, vcache, vs_out, report);
       const auto t0 = detail::Clock::now();
       setup_vertices.resize(vs_out.size());
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vs_out.size(), 1024), [&](const auto& r) {
+      detail::parallel_for(tbb::blocked_range<std::size_t>(0, vs_out.size(), 1024), [&](const auto& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) setup_vertices[i] = make_setup_vertex<N>(setup, vs_out[i]);
       });
       report.times.setup += detail::seconds_since(t0);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -14,6 +15,10 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace tessera {
 
@@ -56,6 +61,40 @@ class Framebuffer {
     }
   }
   glm::vec4 color(int x, int y) const;
+
+  // The output merger for one 2x2 quad whose top-left pixel is (x, y): pixel (x + (k & 1), y + (k >> 1))
+  // gets colour c[.][k] where bit k of `mask` is set (only those pixels need to exist). The format is
+  // checked once per quad and the 16 conversions are one loop, which vectorizes.
+  void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
+    if (format_ == ColorFormat::rgba8_unorm) {
+      std::uint8_t bytes[4][4];  // [lane][channel]
+#if defined(__SSE2__)
+      // float_to_unorm8 on 16 values: max(x, 0) and min(., 1) with std::max/std::min's NaN behaviour
+      // (maxps returns its second operand for NaN), then truncation, as the scalar cast does.
+      const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
+      __m128i ints[4];
+      for (std::size_t ch = 0; ch < 4; ++ch) {
+        const __m128 v = _mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero));
+        ints[ch] = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, scale), half));
+      }
+      alignas(16) std::int32_t lanes[4][4];
+      for (std::size_t ch = 0; ch < 4; ++ch) _mm_store_si128(reinterpret_cast<__m128i*>(lanes[ch]), ints[ch]);
+      for (int ch = 0; ch < 4; ++ch)
+        for (int k = 0; k < 4; ++k) bytes[k][ch] = static_cast<std::uint8_t>(lanes[ch][k]);
+#else
+      for (int ch = 0; ch < 4; ++ch)
+        for (int k = 0; k < 4; ++k) bytes[k][ch] = float_to_unorm8(c[std::size_t(ch)][std::size_t(k)]);
+#endif
+      for (int k = 0; k < 4; ++k)
+        if (mask & (1u << k)) std::memcpy(&color_[index(x + (k & 1), y + (k >> 1)) * 4], bytes[k], 4);
+    } else {
+      for (int k = 0; k < 4; ++k)
+        if (mask & (1u << k)) {
+          const float px[4] = {c[0][std::size_t(k)], c[1][std::size_t(k)], c[2][std::size_t(k)], c[3][std::size_t(k)]};
+          std::memcpy(&color_[index(x + (k & 1), y + (k >> 1)) * 16], px, 16);
+        }
+    }
+  }
 
   // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
   const std::vector<std::uint8_t>& color_bytes() const { return color_; }

@@ -126,6 +126,22 @@ inline std::int32_t last_pixel_at_or_before(std::int32_t hi) {
   return (hi - kSubpixelOne / 2) >> kSubpixelBits;  // arithmetic shift = floor
 }
 
+// Edge i of a triangle with positive area runs from vertex i to vertex i + 1; it is >= 0 on the inside
+// and biased by -1 unless it is a top or left edge (D3D11's top-left rule). raster_tile.h evaluates
+// exactly these functions incrementally; this is the one-centre form (pixel centre px + 0.5, py + 0.5).
+inline bool covers_centre(const std::int32_t (&x)[3], const std::int32_t (&y)[3], std::int32_t px, std::int32_t py) {
+  const std::int64_t cx = std::int64_t(px) * kSubpixelOne + kSubpixelOne / 2;
+  const std::int64_t cy = std::int64_t(py) * kSubpixelOne + kSubpixelOne / 2;
+  std::int64_t all = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = i == 2 ? 0 : i + 1;
+    const std::int64_t dx = x[j] - x[i], dy = y[j] - y[i];
+    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+    all |= -dy * (cx - x[i]) + dx * (cy - y[i]) + (top_left ? 0 : -1);
+  }
+  return all >= 0;
+}
+
 template <std::size_t N>
 void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>& p) {
   const auto index = static_cast<std::uint32_t>(chunk.primitives.size());
@@ -228,10 +244,20 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   const std::int32_t min_y = std::max(first_pixel_at_or_after(ly), c.clip_min_y);
   const std::int32_t max_y = std::min(last_pixel_at_or_before(hy), c.clip_max_y);
   if (min_y > max_y) return;
-  ScreenPrimitive<N> p;
-  p.min_x = min_x, p.max_x = max_x, p.min_y = min_y, p.max_y = max_y;
   // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.
   const SetupVertex<N>* v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};
+  // A box of at most 2x2 pixel centres (nearly every triangle at high factors): test those centres
+  // exactly, as the rasterizer will, and drop a triangle that covers none before its planes are built
+  // and it is binned. The image and the PS invocations cannot change; only the work does.
+  if (max_x - min_x <= 1 && max_y - min_y <= 1) {
+    const std::int32_t vx[3] = {v[0]->x, v[1]->x, v[2]->x}, vy[3] = {v[0]->y, v[1]->y, v[2]->y};
+    bool any = false;
+    for (std::int32_t py = min_y; py <= max_y && !any; ++py)
+      for (std::int32_t px = min_x; px <= max_x && !any; ++px) any = covers_centre(vx, vy, px, py);
+    if (!any) return;
+  }
+  ScreenPrimitive<N> p;
+  p.min_x = min_x, p.max_x = max_x, p.min_y = min_y, p.max_y = max_y;
   for (int i = 0; i < 3; ++i) {
     p.x[i] = v[i]->x;
     p.y[i] = v[i]->y;

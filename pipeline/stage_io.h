@@ -11,7 +11,12 @@
 //                   PatchConstants has a member `TessFactors factors` (SV_TessFactor, SV_InsideTessFactor).
 //   domain shader   ClipVertex<N> operator()(const PatchConstants&, std::span<const ControlPoint>,
 //                                            DomainLocation, std::uint32_t patch_id) const
+//                   optionally also a batch form (BatchDomainShader below):
+//                   void operator()(const PatchConstants&, std::span<const ControlPoint>,
+//                                   std::span<const DomainLocation>, std::uint32_t patch_id,
+//                                   std::span<ClipVertex<N>> out) const
 //   pixel shader    glm::vec4 operator()(const PixelInput<N>&) const
+//                   optionally also void shade_quad(const QuadInput<N>&, QuadColor&) const (below)
 //
 // The last stage before the rasterizer returns ClipVertex<N>: SV_Position in clip space plus N float
 // attributes, interpolated perspective-correctly for the pixel shader.
@@ -62,6 +67,40 @@ struct PixelInput {
 
   float ddx(std::size_t i) const { return (*ddx_attributes)[i]; }
   float ddy(std::size_t i) const { return (*ddy_attributes)[i]; }
+};
+
+// The optional quad form of a pixel shader: the four pixels of a 2x2 quad at once, in lanes
+// (k = 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right), so one call does the work of four and
+// the lane loops vectorize. Lane k must produce exactly the bits operator() gives for that pixel: the
+// pipeline uses whichever form exists, and tests compare the two. Lanes outside `mask` are helpers or
+// failed the depth test; their results are discarded.
+template <std::size_t N>
+struct QuadInput {
+  std::array<float, 4> x{}, y{}, z{}, inv_w{};  // SV_Position per lane
+  std::array<std::array<float, 4>, N> attributes{};  // attributes[a][k]: attribute a at lane k
+  const std::array<float, N>* ddx_attributes = nullptr;
+  const std::array<float, N>* ddy_attributes = nullptr;
+  bool front_face = true;
+  std::uint32_t primitive_id = 0;
+  unsigned mask = 0;  // bit k: lane k is written
+};
+
+// A quad's colours: c[channel][lane].
+struct QuadColor {
+  std::array<std::array<float, 4>, 4> c{};
+};
+
+template <class Ps, std::size_t N>
+concept QuadPixelShader = requires(const Ps& ps, const QuadInput<N>& q, QuadColor& out) { ps.shade_quad(q, out); };
+
+// The optional batch form of a domain shader: all of a patch's domain points in one call, so a shader
+// can evaluate several points at once (in SIMD lanes) or share work between points with equal u or v.
+// out[i] must be exactly the bits the per-point form returns for locations[i]; the pipeline calls the
+// batch form when present.
+template <class Ds, class PatchConstants, class ControlPoint, std::size_t N>
+concept BatchDomainShader = requires(const Ds& ds, const PatchConstants& pc, std::span<const ControlPoint> cps,
+                                     std::span<const DomainLocation> locations, std::span<ClipVertex<N>> out) {
+  ds(pc, cps, locations, std::uint32_t{0}, out);
 };
 
 template <class T>

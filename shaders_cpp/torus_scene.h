@@ -8,6 +8,7 @@
 // it from the first control point only to dodge an llvmpipe bug).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -15,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "device.h"
+#include "simd4.h"
 #include "texture.h"
 
 namespace tessera::scenes {
@@ -77,13 +79,37 @@ struct DisplacedBsplineDS {
 
   ClipVertex<3> operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp, DomainLocation loc,
                            std::uint32_t patch_id) const;
+  // The batch form: four points at a time in SIMD lanes, each lane the same operations in the same
+  // order as the per-point form (so the same bits); the texture is sampled per lane.
+  void operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp, std::span<const DomainLocation> locations,
+                  std::uint32_t patch_id, std::span<ClipVertex<3>> out) const;
 };
 
-// Colour = 0.5 + 0.5 * normalize(N).
+// Colour = 0.5 + 0.5 * normalize(N). normalize is spelled out in glm's order (n * (1 / sqrt(dot(n, n))),
+// the dot summed x, y, z) so that the per-pixel and the quad form share one definition and give the
+// same bits; the quad form's lane loops vectorize (sqrt and division are exact IEEE operations in
+// either form).
 struct NormalColorPS {
+  static void shade_lane(float x, float y, float z, float& r, float& g, float& b) {
+    const float inv_len = 1.0f / std::sqrt((x * x + y * y) + z * z);
+    r = 0.5f + 0.5f * (x * inv_len);
+    g = 0.5f + 0.5f * (y * inv_len);
+    b = 0.5f + 0.5f * (z * inv_len);
+  }
   glm::vec4 operator()(const PixelInput<3>& in) const {
-    const glm::vec3 n = glm::normalize(glm::vec3(in.attributes[0], in.attributes[1], in.attributes[2]));
-    return {0.5f + 0.5f * n.x, 0.5f + 0.5f * n.y, 0.5f + 0.5f * n.z, 1.0f};
+    glm::vec4 c(0.0f, 0.0f, 0.0f, 1.0f);
+    shade_lane(in.attributes[0], in.attributes[1], in.attributes[2], c.r, c.g, c.b);
+    return c;
+  }
+  void shade_quad(const QuadInput<3>& in, QuadColor& out) const {
+    using simd::F4;
+    const F4 x = F4::load(in.attributes[0]), y = F4::load(in.attributes[1]), z = F4::load(in.attributes[2]);
+    const F4 inv_len = F4::splat(1.0f) / simd::sqrt((x * x + y * y) + z * z);
+    const F4 half = F4::splat(0.5f);
+    (half + half * (x * inv_len)).store(out.c[0]);
+    (half + half * (y * inv_len)).store(out.c[1]);
+    (half + half * (z * inv_len)).store(out.c[2]);
+    out.c[3] = {1.0f, 1.0f, 1.0f, 1.0f};
   }
 };
 

@@ -192,6 +192,49 @@ TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads an
   }
 }
 
+// The torus's shaders have SIMD forms (a quad pixel shader and a batch domain shader) that must give
+// the bits of their per-pixel and per-point forms; hiding the SIMD forms behind wrappers makes the
+// pipeline use the scalar ones.
+struct PerPixelPS {
+  scenes::NormalColorPS ps;
+  glm::vec4 operator()(const PixelInput<3>& in) const { return ps(in); }
+};
+struct PerPointDS {
+  scenes::DisplacedBsplineDS ds;
+  ClipVertex<3> operator()(const scenes::UniformFactorPatch& pc, std::span<const glm::vec3> cp, DomainLocation l,
+                           std::uint32_t id) const {
+    return ds(pc, cp, l, id);
+  }
+};
+
+TEST_CASE("pipeline: SIMD quad pixel shader and batch domain shader match their scalar forms", "[pipeline][simd]") {
+  const int w = 320, h = 180;
+  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  for (const auto& [factor, partitioning] : {std::pair{7.3f, ts::Partitioning::fractional_odd},
+                                             std::pair{5.0f, ts::Partitioning::integer}}) {
+    const auto draw = scenes::make_torus_draw(scene, factor, partitioning, w, h);
+    PatchDraw<glm::vec3, scenes::PassThroughVS, scenes::UniformFactorHS, PerPointDS, PerPixelPS> scalar;
+    scalar.vertices = draw.vertices;
+    scalar.indices = draw.indices;
+    scalar.control_points = draw.control_points;
+    scalar.hs = draw.hs;
+    scalar.ds.ds = draw.ds;
+    scalar.tessellator = draw.tessellator;
+    scalar.rasterizer = draw.rasterizer;
+    scalar.depth = draw.depth;
+    scalar.viewport = draw.viewport;
+    static_assert(QuadPixelShader<scenes::NormalColorPS, 3> && !QuadPixelShader<PerPixelPS, 3>);
+    static_assert(BatchDomainShader<scenes::DisplacedBsplineDS, scenes::UniformFactorPatch, glm::vec3, 3> &&
+                  !BatchDomainShader<PerPointDS, scenes::UniformFactorPatch, glm::vec3, 3>);
+    Device device(DeviceOptions{2});
+    auto a = make_target(w, h), b = make_target(w, h);
+    REQUIRE(device.draw(draw, a).ok());
+    REQUIRE(device.draw(scalar, b).ok());
+    CHECK(a.color_bytes() == b.color_bytes());
+    CHECK(a.depth_values() == b.depth_values());
+  }
+}
+
 TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {
   const int w = 256, h = 144;
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
