@@ -89,7 +89,7 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
   const TessellatorState tstate = d.tessellator;
   const DeviceOptions& options = device.options();
 
-  device.arena().execute([&] {
+  detail::arena_execute(device.arena(), [&] {
     tbb::enumerable_thread_specific<PatternCache> patterns;
     tbb::enumerable_thread_specific<StageTimes> front_times;
     std::vector<detail::StreamChunk<DsOut>> slots(std::size_t(std::max(1, options.chunks_in_flight)));
@@ -112,7 +112,7 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
       constants.resize(n);
       processed.resize(n);
       cost.resize(n);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
+      detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
         auto& times = front_times.local();
         auto& cache = patterns.local();
         std::array<VsOut, 32> inputs;
@@ -140,7 +140,7 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
       detail::cut_chunks(cost, options.chunk_primitives, 256, chunks);
       for (std::size_t c0 = 0; c0 < chunks.size(); c0 += slots.size()) {
         const std::size_t used = std::min(slots.size(), chunks.size() - c0);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, used, 1), [&](const auto& r) {
+        detail::parallel_for(tbb::blocked_range<std::size_t>(0, used, 1), [&](const auto& r) {
           for (std::size_t s = r.begin(); s != r.end(); ++s) {
             auto& chunk = slots[s];
             chunk.reset();
