@@ -27,4 +27,4 @@ for scheme in acc gregory; do "$bin" accuracy "$frog" --scheme "$scheme"; done |
 "$bin" pattern --domain isoline --partitioning fractional_odd --outer 4,5.5 --image "$out/isoline.png"
 "$bin" pattern --domain tri --partitioning integer --outer 3,3,3 --inner 3 --json > "$out/tri_333.json"
 "$bin" bench tessellator --seconds 3 | tee "$out/bench_tessellator.txt"
-echo "run: torus render, statistics, pictures, JSON and benchmark results in $out" >&2
+echo "run: frog renders, PLY, accuracy; torus render and statistics; pattern pictures; benchmarks in $out" >&2
