@@ -248,6 +248,61 @@ inline ts::FactorSet factor_set(ts::Domain domain, const TessFactors& f) {
   return s;
 }
 
+// The hull-shader phase of one window of patches, shared by Device::draw and stream_out: for each
+// patch the control-point phase, the patch-constant phase, factor processing, and the pattern's
+// primitive count (the cost that chunks are cut by). Parallel over patches; the results are stored
+// by patch, so they do not depend on the thread count.
+template <class VsOut, class ControlPoint, class PatchConstants>
+struct HullPhase {
+  std::vector<ControlPoint> control_points;  // kOut per patch
+  std::vector<PatchConstants> constants;
+  std::vector<ts::ProcessedFactors> processed;
+  std::vector<std::uint32_t> cost;           // primitives; 0 when culled
+
+  // cache_of() and times_of() return the calling thread's PatternCache and StageTimes.
+  template <class Hs, class CacheOf, class TimesOf>
+  void run(const Hs& hs, const std::vector<VsOut>& vs_out, const VertexCache& vcache, std::size_t n, std::size_t n_in,
+           std::size_t first, const TessellatorState& tstate, CacheOf&& cache_of, TimesOf&& times_of) {
+    constexpr int kOut = Hs::kOutputControlPoints;
+    control_points.resize(n * kOut);
+    constants.resize(n);
+    processed.resize(n);
+    cost.resize(n);
+    detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
+      PatternCache& cache = cache_of();
+      StageTimes& times = times_of();
+      std::array<VsOut, 32> inputs;
+      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+        const auto start = Clock::now();
+        const auto patch_id = static_cast<std::uint32_t>(first + p);
+        for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
+        const std::span<const VsOut> in(inputs.data(), n_in);
+        ControlPoint* out = control_points.data() + p * kOut;
+        for (int i = 0; i < kOut; ++i) out[i] = hs.control_point(in, i, patch_id);
+        constants[p] = hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
+        processed[p] = ts::process_factors(tstate.partitioning, factor_set(tstate.domain, constants[p].factors));
+        const auto hs_done = Clock::now();
+        times.hs += std::chrono::duration<double>(hs_done - start).count();
+        if (processed[p].culled) {
+          cost[p] = 0;
+          continue;
+        }
+        bool hit = false;
+        cost[p] = static_cast<std::uint32_t>(cache.get(processed[p], tstate.output, hit).primitive_count());
+        if (!hit) times.tessellator += seconds_since(hs_done);
+      }
+    });
+  }
+
+  std::span<const ControlPoint> patch_control_points(std::size_t p, int k_out) const {
+    return {control_points.data() + p * std::size_t(k_out), std::size_t(k_out)};
+  }
+  std::size_t bytes() const {
+    return control_points.capacity() * sizeof(ControlPoint) + constants.capacity() * sizeof(PatchConstants) +
+           processed.capacity() * sizeof(ts::ProcessedFactors) + cost.capacity() * sizeof(std::uint32_t);
+  }
+};
+
 template <std::size_t N>
 struct PatchScratch {
   PatternCache patterns;
@@ -314,10 +369,9 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
 
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
-    std::vector<ControlPoint> control_points;
-    std::vector<PatchConstants> constants;
-    std::vector<ts::ProcessedFactors> processed;
-    std::vector<std::uint32_t> cost;
+    detail::HullPhase<VsOut, ControlPoint, PatchConstants> hull;
+    const auto& processed = hull.processed;
+    const auto& constants = hull.constants;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
     std::size_t window_bytes_peak = 0;
 
@@ -327,41 +381,12 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
       const auto indices = d.indices.subspan(first * n_in, n * n_in);
 
       detail::assemble_and_shade_vertices(d.vs, d.vertices, indices, n, vcache, vs_out, report);
-
-      // HS: control-point phase, then the patch-constant phase; factors processed and patterns sized.
-      control_points.resize(n * kOut);
-      constants.resize(n);
-      processed.resize(n);
-      cost.resize(n);
-      detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
-        auto& local = scratch.local();
-        auto& times = front_times.local();
-        std::array<VsOut, 32> inputs;
-        for (std::size_t p = r.begin(); p != r.end(); ++p) {
-          const auto start = detail::Clock::now();
-          const auto patch_id = static_cast<std::uint32_t>(first + p);
-          for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
-          const std::span<const VsOut> in(inputs.data(), n_in);
-          ControlPoint* out = control_points.data() + p * kOut;
-          for (int i = 0; i < kOut; ++i) out[i] = d.hs.control_point(in, i, patch_id);
-          constants[p] = d.hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
-          processed[p] = ts::process_factors(tstate.partitioning, detail::factor_set(tstate.domain, constants[p].factors));
-          const auto hs_done = detail::Clock::now();
-          times.hs += std::chrono::duration<double>(hs_done - start).count();
-          if (processed[p].culled) {
-            cost[p] = 0;
-            continue;
-          }
-          bool hit = false;
-          const ts::Pattern& pattern = local.patterns.get(processed[p], tstate.output, hit);
-          cost[p] = static_cast<std::uint32_t>(pattern.primitive_count());
-          if (!hit) times.tessellator += detail::seconds_since(hs_done);
-        }
-      });
+      hull.run(d.hs, vs_out, vcache, n, n_in, first, tstate, [&]() -> PatternCache& { return scratch.local().patterns; },
+               [&]() -> StageTimes& { return front_times.local(); });
       report.statistics.HSInvocations += n;
 
       // Chunks of about chunk_primitives primitives, in draw order.
-      detail::cut_chunks(cost, options_.chunk_primitives, 256, chunks);
+      detail::cut_chunks(hull.cost, options_.chunk_primitives, 256, chunks);
       backend.run(
           chunks.size(),
           [&](std::size_t c, ChunkBuffer<N>& chunk) {
@@ -375,7 +400,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
               const auto tess_done = detail::Clock::now();
               if (!hit) chunk.times.tessellator += std::chrono::duration<double>(tess_done - start).count();
               const auto patch_id = static_cast<std::uint32_t>(first + p);
-              const std::span<const ControlPoint> cps(control_points.data() + std::size_t(p) * kOut, kOut);
+              const std::span<const ControlPoint> cps = hull.patch_control_points(p, kOut);
               const PatchConstants& pc = constants[p];
               auto& outs = local.domain_outputs;
               outs.resize(pattern.points.size());
@@ -421,10 +446,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
           },
           report);
 
-      std::size_t bytes = vcache.bytes() + vs_out.capacity() * sizeof(VsOut) +
-                          control_points.capacity() * sizeof(ControlPoint) +
-                          constants.capacity() * sizeof(PatchConstants) +
-                          processed.capacity() * sizeof(ts::ProcessedFactors) + cost.capacity() * sizeof(std::uint32_t);
+      std::size_t bytes = vcache.bytes() + vs_out.capacity() * sizeof(VsOut) + hull.bytes();
       for (const auto& s : scratch) bytes += s.bytes();
       window_bytes_peak = std::max(window_bytes_peak, bytes);
     }

@@ -95,10 +95,8 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
     std::vector<detail::StreamChunk<DsOut>> slots(std::size_t(std::max(1, options.chunks_in_flight)));
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
-    std::vector<ControlPoint> control_points;
-    std::vector<PatchConstants> constants;
-    std::vector<ts::ProcessedFactors> processed;
-    std::vector<std::uint32_t> cost;
+    detail::HullPhase<VsOut, ControlPoint, PatchConstants> hull;
+    const auto& processed = hull.processed;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
     std::size_t bytes_peak = 0;
 
@@ -107,37 +105,12 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
       const std::size_t n = std::min(window, patch_count - first);
       const auto indices = d.indices.subspan(first * n_in, n * n_in);
       detail::assemble_and_shade_vertices(d.vs, d.vertices, indices, n, vcache, vs_out, report);
-
-      control_points.resize(n * kOut);
-      constants.resize(n);
-      processed.resize(n);
-      cost.resize(n);
-      detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
-        auto& times = front_times.local();
-        auto& cache = patterns.local();
-        std::array<VsOut, 32> inputs;
-        for (std::size_t p = r.begin(); p != r.end(); ++p) {
-          const auto start = detail::Clock::now();
-          const auto patch_id = static_cast<std::uint32_t>(first + p);
-          for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
-          const std::span<const VsOut> in(inputs.data(), n_in);
-          ControlPoint* out = control_points.data() + p * kOut;
-          for (int i = 0; i < kOut; ++i) out[i] = d.hs.control_point(in, i, patch_id);
-          constants[p] = d.hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
-          processed[p] = ts::process_factors(tstate.partitioning, detail::factor_set(tstate.domain, constants[p].factors));
-          times.hs += detail::seconds_since(start);
-          if (processed[p].culled) {
-            cost[p] = 0;
-            continue;
-          }
-          bool hit = false;
-          cost[p] = static_cast<std::uint32_t>(cache.get(processed[p], tstate.output, hit).points.size());
-        }
-      });
+      hull.run(d.hs, vs_out, vcache, n, n_in, first, tstate, [&]() -> PatternCache& { return patterns.local(); },
+               [&]() -> StageTimes& { return front_times.local(); });
       report.statistics.HSInvocations += n;
 
-      // Chunks cut by domain-point count, produced in parallel, handed to the sink in order.
-      detail::cut_chunks(cost, options.chunk_primitives, 256, chunks);
+      // Chunks cut by primitive count, produced in parallel, handed to the sink in order.
+      detail::cut_chunks(hull.cost, options.chunk_primitives, 256, chunks);
       for (std::size_t c0 = 0; c0 < chunks.size(); c0 += slots.size()) {
         const std::size_t used = std::min(slots.size(), chunks.size() - c0);
         detail::parallel_for(tbb::blocked_range<std::size_t>(0, used, 1), [&](const auto& r) {
@@ -154,14 +127,14 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
               const auto tess_done = detail::Clock::now();
               if (!hit) chunk.tessellator_seconds += std::chrono::duration<double>(tess_done - start).count();
               const auto patch_id = static_cast<std::uint32_t>(first + p);
-              const std::span<const ControlPoint> cps(control_points.data() + std::size_t(p) * kOut, kOut);
+              const std::span<const ControlPoint> cps = hull.patch_control_points(p, kOut);
               const bool tri = tstate.domain == ts::Domain::tri;
               chunk.patches.push_back({patch_id, pattern.output, chunk.points.size(), pattern.points.size(),
                                        chunk.indices.size(), pattern.indices.size()});
               for (const ts::DomainPoint q : pattern.points) {
                 chunk.domain.push_back(q);
                 chunk.points.push_back(
-                    d.ds(constants[p], cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
+                    d.ds(hull.constants[p], cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
               }
               chunk.indices.insert(chunk.indices.end(), pattern.indices.begin(), pattern.indices.end());
               chunk.ds_invocations += pattern.points.size();
@@ -189,11 +162,7 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
         }
         report.memory.chunks += used;
       }
-      const std::size_t window_bytes = vcache.bytes() + vs_out.capacity() * sizeof(VsOut) +
-                                       control_points.capacity() * sizeof(ControlPoint) +
-                                       constants.capacity() * sizeof(PatchConstants) +
-                                       processed.capacity() * sizeof(ts::ProcessedFactors) +
-                                       cost.capacity() * sizeof(std::uint32_t);
+      const std::size_t window_bytes = vcache.bytes() + vs_out.capacity() * sizeof(VsOut) + hull.bytes();
       report.memory.geometry_peak_bytes = std::max<std::uint64_t>(report.memory.geometry_peak_bytes, window_bytes + bytes_peak);
     }
     for (const auto& t : front_times) report.times += t;
