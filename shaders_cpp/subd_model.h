@@ -28,35 +28,42 @@ struct SubdModel {
 SubdModel load_subd_model(const std::string& path, Scheme scheme);
 SubdModel make_subd_model(Cage cage, Scheme scheme);
 
-// Runs IA..DS over both patch groups and hands each patch's SurfaceSamples to sink(PatchOutput, domain).
+// Adds one draw's report to a total: statistics and stage times summed, geometry peak the largest.
+inline void add_draw_report(DrawReport& total, const DrawReport& part) {
+  total.statistics += part.statistics;
+  total.times += part.times;
+  total.memory.geometry_peak_bytes = std::max(total.memory.geometry_peak_bytes, part.memory.geometry_peak_bytes);
+}
+
+// The shaders and state of each non-empty patch group (quad domain first, then tri), handed to
+// draw(group, tessellator_state, hs, ds) -> DrawResult; stops at the first error. Returns the
+// statistics and stage times summed, and the largest geometry peak.
+template <class Draw>
+DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, ts::Partitioning partitioning,
+                                Draw&& draw) {
+  DrawResult total;
+  for (const PatchGroup* g : {&m.patches.quads, &m.patches.tris}) {
+    if (g->patches.empty()) continue;
+    const bool tri = g->domain == ts::Domain::tri;
+    const TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
+    const SubdHS hs{g->patches, m.patches.tables, factors, tri};
+    const SubdDS ds{g->patches, m.limit.get(), m.cage.tags.left_handed, tri};
+    DrawResult r = draw(*g, ts, hs, ds);
+    if (!r.ok()) return r;
+    add_draw_report(total.report, r.report);
+  }
+  return total;
+}
+
+// Runs IA..DS over both patch groups and hands each patch's SurfaceSamples to sink(PatchOutput, group).
 template <class Sink>
 DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& factors, ts::Partitioning partitioning,
                        Sink&& sink) {
-  DrawResult total;
-  const std::span<const glm::vec3> vertices(m.cage.positions);
-  SubdDS ds{{}, m.limit.get(), m.cage.tags.left_handed};
-  for (const PatchGroup* g : {&m.patches.quads, &m.patches.tris}) {
-    if (g->patches.empty()) continue;
-    TessellatorState ts;
-    ts.domain = g->domain;
-    ts.partitioning = partitioning;
-    ts.output = ts::OutputPrimitive::triangle_cw;
-    ds.patches = g->patches;
-    ds.triangles = g->domain == ts::Domain::tri;
-    auto run = [&](const auto& hs) {
-      StreamDraw<glm::vec3, SubdVS, std::decay_t<decltype(hs)>, SubdDS> d{
-          vertices, g->indices, g->control_points, SubdVS{}, hs, ds, ts};
-      return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, *g); });
-    };
-    DrawResult r = g->domain == ts::Domain::tri ? run(SubdTriHS{{g->patches, m.patches.tables, factors}})
-                                                : run(SubdHS{g->patches, m.patches.tables, factors});
-    if (!r.ok()) return r;
-    total.report.statistics += r.report.statistics;
-    total.report.times += r.report.times;
-    total.report.memory.geometry_peak_bytes =
-        std::max(total.report.memory.geometry_peak_bytes, r.report.memory.geometry_peak_bytes);
-  }
-  return total;
+  return for_each_patch_group(m, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
+                                                            const SubdHS& hs, const SubdDS& ds) {
+    const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{m.cage.positions, g.indices, g.control_points, SubdVS{}, hs, ds, ts};
+    return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, g); });
+  });
 }
 
 }  // namespace tessera

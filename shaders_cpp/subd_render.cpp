@@ -29,16 +29,10 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
 
 DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
                        SubdView view, const SubdCamera& camera, Framebuffer& fb) {
-  DrawResult total;
-  const std::span<const glm::vec3> vertices(model.cage.positions);
-  SubdDS ds{{}, model.limit.get(), model.cage.tags.left_handed};
   const glm::vec3 light = glm::normalize(camera.eye - camera.target);
   auto pass = [&](bool wire) {
-    for (const PatchGroup* g : {&model.patches.quads, &model.patches.tris}) {
-      if (g->patches.empty()) continue;
-      const TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
-      ds.patches = g->patches;
-      ds.triangles = g->domain == ts::Domain::tri;
+    return for_each_patch_group(model, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
+                                                                  const SubdHS& hs, const SubdDS& ds) {
       RasterizerState rs;
       rs.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
       // Patches emit triangle_cw: counter-clockwise seen from outside a counter-clockwise cage, which
@@ -48,33 +42,23 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
       DepthState depth;
       depth.func = CompareFunc::less_equal;
       const Viewport viewport{0, 0, float(fb.width()), float(fb.height()), 0, 1};
-      auto go = [&](const auto& hs, const auto& ps) {
-        using Hs = std::decay_t<decltype(hs)>;
+      const ProjectDS<SubdDS> project{ds, camera.view_projection, wire ? 2e-4f : 0.0f};
+      auto go = [&](const auto& ps) {
         using Ps = std::decay_t<decltype(ps)>;
-        const PatchDraw<glm::vec3, SubdVS, Hs, ProjectDS<SubdDS>, Ps> d{
-            vertices, g->indices, g->control_points, SubdVS{}, hs,
-            ProjectDS<SubdDS>{ds, camera.view_projection, wire ? 2e-4f : 0.0f}, ps, ts, rs, depth, viewport};
-        DrawResult r = device.draw(d, fb);
-        if (!r.ok()) return r;
-        total.report.statistics += r.report.statistics;
-        total.report.times += r.report.times;
-        total.report.memory.geometry_peak_bytes =
-            std::max(total.report.memory.geometry_peak_bytes, r.report.memory.geometry_peak_bytes);
-        return r;
+        const PatchDraw<glm::vec3, SubdVS, SubdHS, ProjectDS<SubdDS>, Ps> d{
+            model.cage.positions, g.indices, g.control_points, SubdVS{}, hs, project, ps, ts, rs, depth, viewport};
+        return device.draw(d, fb);
       };
-      auto with_ps = [&](const auto& hs) {
-        return wire ? go(hs, ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(hs, ClayPS{light});
-      };
-      const DrawResult r = g->domain == ts::Domain::tri ? with_ps(SubdTriHS{{g->patches, model.patches.tables, factors}})
-                                                         : with_ps(SubdHS{g->patches, model.patches.tables, factors});
-      if (!r.ok()) return r;
-    }
-    return DrawResult{};
+      return wire ? go(ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(ClayPS{light});
+    });
   };
-  if (view != SubdView::wireframe)
-    if (DrawResult r = pass(false); !r.ok()) return r;
-  if (view != SubdView::shaded)
-    if (DrawResult r = pass(true); !r.ok()) return r;
+  DrawResult total;
+  for (const bool wire : {false, true}) {
+    if (wire ? view == SubdView::shaded : view == SubdView::wireframe) continue;
+    const DrawResult r = pass(wire);
+    if (!r.ok()) return r;
+    add_draw_report(total.report, r.report);
+  }
   total.report.memory.framebuffer_bytes = fb.bytes();
   return total;
 }

@@ -71,6 +71,7 @@ struct SubdHS {
   std::span<const SubdPatch> patches;
   std::span<const StencilTable> tables;
   SubdFactors factors;
+  bool triangles = false;  // the tri domain: three edge factors, one inside factor
 
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
     const SubdPatch& patch = patches[patch_id];
@@ -100,23 +101,17 @@ struct SubdHS {
     SubdPatchConstants pc;
     auto& f = pc.factors;
     for (int k = 0; k < 4; ++k) f.edge[std::size_t(k)] = factors.edge(patch.edge_keys[std::size_t(k)]);
-    // Quad: inside U spans edges Veq0/Veq1 (1, 3), inside V spans Ueq0/Ueq1 (0, 2). Tri: all three.
-    f.inside[0] = (f.edge[1] + f.edge[3]) * 0.5f;
-    f.inside[1] = (f.edge[0] + f.edge[2]) * 0.5f;
+    if (triangles) {
+      f.inside[0] = (f.edge[0] + f.edge[1] + f.edge[2]) / 3.0f;
+    } else {
+      // Inside U spans edges Veq0/Veq1 (1, 3), inside V spans Ueq0/Ueq1 (0, 2).
+      f.inside[0] = (f.edge[1] + f.edge[3]) * 0.5f;
+      f.inside[1] = (f.edge[0] + f.edge[2]) * 0.5f;
+    }
     return pc;
   }
 };
 
-// A tri-domain variant: inside factor = mean of the three edges.
-struct SubdTriHS : SubdHS {
-  SubdPatchConstants patch_constants(std::span<const SubdVertex> in, std::span<const SubdControlPoint> cps,
-                                     std::uint32_t patch_id) const {
-    SubdPatchConstants pc = SubdHS::patch_constants(in, cps, patch_id);
-    pc.factors.inside[0] = (pc.factors.edge[0] + pc.factors.edge[1] + pc.factors.edge[2]) / 3.0f;
-    pc.factors.inside[1] = 0.0f;
-    return pc;
-  }
-};
 
 // What the domain shader produces for one domain point: the surface point, its unit normal, and where
 // it came from (base face, and the location in that face's domain).

@@ -27,10 +27,9 @@ int run_accuracy(const AccuracyOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  SubdModel model;
+  const SubdModel model = load_model(o.cage, scheme);
   std::unique_ptr<LimitSurface> own_reference;
   try {
-    model = load_subd_model(o.cage, scheme);
     if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(model.cage));
   } catch (const CageError& e) {
     throw InputError(e.what());

@@ -26,16 +26,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  int w = 0, h = 0;
-  if (std::sscanf(o.resolution.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw UsageError("--resolution: '" + o.resolution + "' is not WxH with 1..16384 each");
+  const auto [w, h] = parse_resolution(o.resolution);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
-  SubdModel model;
-  try {
-    model = load_subd_model(o.cage, scheme);
-  } catch (const CageError& e) {
-    throw InputError(e.what());
-  }
+  const SubdModel model = load_model(o.cage, scheme);
   DeviceOptions dopt;
   dopt.threads = o.threads;
   Device device(dopt);

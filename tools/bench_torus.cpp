@@ -35,16 +35,6 @@ struct TorusOptions {
   bool json = false;
 };
 
-std::pair<int, int> parse_resolution(const std::string& text) {
-  const std::regex re(R"((\d{1,6})x(\d{1,6}))");
-  std::smatch m;
-  if (!std::regex_match(text, m, re)) throw UsageError("--resolution: expected WIDTHxHEIGHT, got '" + text + "'");
-  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
-  if (w < 1 || h < 1 || w > kMaxRenderTargetSize || h > kMaxRenderTargetSize)
-    throw UsageError("--resolution: " + text + " is outside 1.." + std::to_string(kMaxRenderTargetSize) + " per side");
-  return {w, h};
-}
-
 const char* gl_spacing(ts::Partitioning p) {
   switch (p) {
     case ts::Partitioning::integer: return "equal_spacing";

@@ -1,7 +1,10 @@
 #include "cli_common.h"
 
+#include "framebuffer.h"
+
 #include <cerrno>
 #include <cmath>
+#include <regex>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -76,6 +79,16 @@ void write_text_atomically(const std::string& path, const std::string& text) {
     out.close();
     if (!out) throw InputError(path + ": write failed");
   });
+}
+
+std::pair<int, int> parse_resolution(const std::string& text) {
+  const std::regex re(R"((\d{1,6})x(\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) throw UsageError("--resolution: expected WIDTHxHEIGHT, got '" + text + "'");
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > kMaxRenderTargetSize || h > kMaxRenderTargetSize)
+    throw UsageError("--resolution: " + text + " is outside 1.." + std::to_string(kMaxRenderTargetSize) + " per side");
+  return {w, h};
 }
 
 std::string float_text(float x) {

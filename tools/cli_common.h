@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace tessera::cli {
@@ -44,6 +45,10 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 
 // write_file_atomically for a text that is already complete in memory.
 void write_text_atomically(const std::string& path, const std::string& text);
+
+// "WIDTHxHEIGHT" for --resolution, each side 1..kMaxRenderTargetSize (framebuffer.h); throws
+// UsageError naming the flag.
+std::pair<int, int> parse_resolution(const std::string& text);
 
 // Shortest decimal text that parses back to the identical float (at most 9 significant digits).
 std::string float_text(float x);

@@ -33,20 +33,13 @@ int run_render(const RenderOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  int w = 0, h = 0;
-  if (std::sscanf(o.resolution.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw UsageError("--resolution: '" + o.resolution + "' is not WxH with 1..16384 each");
+  const auto [w, h] = parse_resolution(o.resolution);
   if (!(o.fov > 1.0f && o.fov < 179.0f)) throw UsageError("--fov: must be in (1, 179) degrees");
   if (o.view != "shaded" && o.view != "wireframe" && o.view != "wire-on-shaded")
     throw UsageError("--view: '" + o.view + "' is not shaded, wireframe or wire-on-shaded");
   if (o.output.empty()) throw UsageError("-o out.png is required");
 
-  SubdModel model;
-  try {
-    model = load_subd_model(o.cage, scheme);
-  } catch (const CageError& e) {
-    throw InputError(e.what());
-  }
+  const SubdModel model = load_model(o.cage, scheme);
   std::optional<glm::vec3> eye, target;
   if (!o.eye.empty()) eye = parse_vec3(o.eye, "--camera-position");
   if (!o.target.empty()) target = parse_vec3(o.target, "--camera-target");

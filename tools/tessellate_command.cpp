@@ -36,12 +36,7 @@ int run_tessellate(const TessellateOptions& o) {
   SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   if (o.output.empty() && !o.check) throw UsageError("nothing to do: give -o out.ply and/or --check-watertight");
 
-  SubdModel model;
-  try {
-    model = load_subd_model(o.cage, scheme);
-  } catch (const CageError& e) {
-    throw InputError(e.what());
-  }
+  const SubdModel model = load_model(o.cage, scheme);
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +
              " faces are not regular and are drawn as Gregory patches");

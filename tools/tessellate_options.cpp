@@ -63,4 +63,12 @@ SubdFactors factors_option(float factor, float vary, const std::string& file) {
   return f;
 }
 
+SubdModel load_model(const std::string& path, Scheme scheme) {
+  try {
+    return load_subd_model(path, scheme);
+  } catch (const CageError& e) {
+    throw InputError(e.what());
+  }
+}
+
 }  // namespace tessera::cli
