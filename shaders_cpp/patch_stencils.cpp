@@ -105,29 +105,21 @@ std::vector<Stencil> acc_quad_stencils(const std::array<CornerRing, 4>& c) {
   auto interior_edge = [&](int k) { return !boundary_edge(c[std::size_t(k)], next_edge(c[std::size_t(k)])); };
   // Edge 3 -> 0 is u = 0 (inward = +u): along v from corner 0 to 3.
   if (interior_edge(3)) cross(c0, c3, t0p, dv(0, 1), -1.0 * t3n, du(0, 1), du(0, 2));
-  // Edge 1 -> 2 is u = 1 (inward = -u): along v from corner 1 to 2; du there points outward.
-  if (interior_edge(1)) {
-    Stencil w1 = -1.0 * du(2, 1), w2 = -1.0 * du(2, 2);
-    cross(c1, c2, t1n, dv(3, 1), -1.0 * t2p, w1, w2);
-    du(2, 1) = -1.0 * w1;
-    du(2, 2) = -1.0 * w2;
-  }
+  // Edge 1 -> 2 is u = 1: along v from corner 1 to 2. du there points outward, the negated inward
+  // derivative, so it takes the negated correction (negating every weight is exact).
+  if (interior_edge(1)) cross(-c1, -c2, t1n, dv(3, 1), -1.0 * t2p, du(2, 1), du(2, 2));
   // Edge 0 -> 1 is v = 0 (inward = +v): along u from corner 0 to 1.
   if (interior_edge(0)) cross(c0, c1, t0n, du(1, 0), -1.0 * t1p, dv(1, 0), dv(2, 0));
-  // Edge 2 -> 3 is v = 1 (inward = -v): along u from corner 3 to 2.
-  if (interior_edge(2)) {
-    Stencil w1 = -1.0 * dv(1, 2), w2 = -1.0 * dv(2, 2);
-    cross(c3, c2, t3p, du(1, 3), -1.0 * t2n, w1, w2);
-    dv(1, 2) = -1.0 * w1;
-    dv(2, 2) = -1.0 * w2;
-  }
+  // Edge 2 -> 3 is v = 1: along u from corner 3 to 2; dv there points outward, as above.
+  if (interior_edge(2)) cross(-c3, -c2, t3p, du(1, 3), -1.0 * t2n, dv(1, 2), dv(2, 2));
   return out;
 }
 
 namespace {
 
-// Gregory face point F+ of corner ring r (edge j_edge toward the next corner, whose ring is `far`).
-// r_dir: +1 for F+ (edge slot, face on its counter-clockwise side), -1 for F- (edge slot + 1).
+// The twist term r of a Gregory face point, over corner ring r around its edge j, pointing into the
+// patch face: dir +1 for F+ (edge j = slot), -1 for F- (edge j = slot + 1). Ring points a boundary
+// ring lacks are reflected phantoms (2 p - e, 2 e - d), as for a B-spline boundary.
 Stencil cross_ring_vector(const CornerRing& r, int j, int dir) {
   const int n = r.valence();
   const int p = r.center;
@@ -198,21 +190,18 @@ std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& c) {
       out[5 * K + 4] = f;
       continue;
     }
+    // F = (c_far P + (3 - 2 c_near - c_far) E + 2 c_near E_far + r) / 3, with E this corner's edge
+    // point on the face point's edge and E_far the far corner's edge point on the same edge.
     const double c_near = cos_valence(r);
-    {
-      const double c_far = cos_valence(c[next]);
+    auto face_point = [&](std::size_t far, const Stencil& e, const Stencil& e_far, int edge, int dir) {
+      const double c_far = cos_valence(c[far]);
       Stencil f = c_far * P[K];
-      f.add(Ep[K], 3.0 - 2.0 * c_near - c_far).add(Em[next], 2.0 * c_near);
-      f.add(cross_ring_vector(r, next_edge(r), +1), 1.0);
-      out[5 * K + 3] = f.scale(1.0 / 3.0);
-    }
-    {
-      const double c_far = cos_valence(c[prev]);
-      Stencil f = c_far * P[K];
-      f.add(Em[K], 3.0 - 2.0 * c_near - c_far).add(Ep[prev], 2.0 * c_near);
-      f.add(cross_ring_vector(r, prev_edge(r), -1), 1.0);
-      out[5 * K + 4] = f.scale(1.0 / 3.0);
-    }
+      f.add(e, 3.0 - 2.0 * c_near - c_far).add(e_far, 2.0 * c_near);
+      f.add(cross_ring_vector(r, edge, dir), 1.0);
+      return f.scale(1.0 / 3.0);
+    };
+    out[5 * K + 3] = face_point(next, Ep[K], Em[next], next_edge(r), +1);
+    out[5 * K + 4] = face_point(prev, Em[K], Ep[prev], prev_edge(r), -1);
   }
   return out;
 }
