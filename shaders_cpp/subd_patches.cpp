@@ -35,8 +35,6 @@ namespace {
 
 std::string where(const Cage& cage, int face) { return cage.name + ": face " + std::to_string(face); }
 
-std::int64_t edge_key(int a, int b, bool half = false) { return half ? half_edge_key(a, b) : cage_edge_key(a, b); }
-
 bool is_regular_face(const Topology& t, const std::array<CornerRing, 4>& rings) {
   for (const auto& r : rings)
     if (r.boundary || r.sharp_corner || r.valence() != 4 || !r.all_quads() || t.has_sharpness_at(r.center))
@@ -46,7 +44,7 @@ bool is_regular_face(const Topology& t, const std::array<CornerRing, 4>& rings) 
 
 class Builder {
  public:
-  Builder(const Cage& cage, const Topology& t, SubdPatches& out) : cage_(cage), t_(t), out_(out) {}
+  Builder(const Cage& cage, SubdPatches& out) : cage_(cage), out_(out) {}
 
   // Adds a patch whose control points are `stencils` over the gathered ring.
   void add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
@@ -73,7 +71,8 @@ class Builder {
     p.sub = sub;
     p.kind = kind;
     p.ring_size = int(ring.size());
-    p.table = intern(std::move(table));
+    // Patches evaluated without control points (exact) need no table.
+    p.table = stencils.empty() ? -1 : intern(std::move(table));
     std::vector<int> order(ring.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int a, int b) { return ring[std::size_t(a)] < ring[std::size_t(b)]; });
@@ -110,7 +109,6 @@ class Builder {
   }
 
   const Cage& cage_;
-  const Topology& t_;
   SubdPatches& out_;
   std::map<std::string, int> interned_;
   std::vector<std::vector<int>> rings_;
@@ -119,15 +117,13 @@ class Builder {
 
 // The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
 // neighbours and far vertices, counter-clockwise from the face).
-std::vector<int> gather_ring(const std::vector<CornerRing>& rings) {
-  const int n = int(rings.size());
+std::vector<int> gather_ring(const std::array<CornerRing, 4>& rings) {
   std::vector<int> ring;
   auto push = [&](int v) {
     if (std::find(ring.begin(), ring.end(), v) == ring.end()) ring.push_back(v);
   };
   for (const CornerRing& r : rings) push(r.center);
-  for (int i = 0; i < n; ++i) {
-    const CornerRing& r = rings[std::size_t(i)];
+  for (const CornerRing& r : rings) {
     for (int j = 0; j < r.valence(); ++j) {
       push(r.edges[std::size_t(j)]);
       if (j < r.face_count())
@@ -144,58 +140,50 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   out.scheme = scheme;
   out.quads.domain = ts::Domain::quad;
   out.tris.domain = ts::Domain::tri;
-  Builder builder(cage, t, out);
-  const TopologyCombinations combinations = analyze_combinations(t);
+  Builder builder(cage, out);
+  const bool stencil_scheme = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
+  // Stencil schemes start each patch at its face's canonical corner, so faces of one topology
+  // combination share one stencil table (the talk's reordering of faces).
+  const std::vector<int> rotation =
+      stencil_scheme ? analyze_combinations(t).face_rotation : std::vector<int>(std::size_t(t.face_count()), 0);
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
       continue;
     }
     const int n = t.face_size(f);
-    auto corner = [&](int k) { return cage.face_vertex(f, ((k % n) + n) % n); };
-    // Edge keys in SV_TessFactor order: face edge k (corner k -> k+1) is factor (k + 1) % n.
+    const int rot = rotation[std::size_t(f)];
+    // Patch corner k is face corner k + rot.
+    auto corner = [&](int k) { return cage.face_vertex(f, (((k + rot) % n) + n) % n); };
+    // Edge keys in SV_TessFactor order: patch edge k (corner k -> k+1) is factor (k + 1) % n.
     std::array<std::int64_t, 4> edges{-1, -1, -1, -1};
     if (n <= 4)
-      for (int k = 0; k < n; ++k) edges[std::size_t((k + 1) % n)] = edge_key(corner(k), corner(k + 1));
+      for (int k = 0; k < n; ++k) edges[std::size_t((k + 1) % n)] = cage_edge_key(corner(k), corner(k + 1));
 
-    if (scheme == Scheme::exact) {
-      // The limit surface is evaluated in the domain shader; the IA patch is just the face.
+    if (!stencil_scheme) {
+      // flat and exact: the IA patch is the face itself. Faces of more than four sides become n quad
+      // sub-patches k: corner k, the middle of edge k -> k+1, the centre, the middle of edge k-1 -> k.
       std::vector<int> ring;
       for (int k = 0; k < n; ++k) ring.push_back(corner(k));
       if (n == 3 || n == 4) {
-        builder.add(n == 3 ? out.tris : out.quads, f, 0, PatchKind::exact, ring, {}, edges);
-      } else {
-        for (int k = 0; k < n; ++k) {
-          // Sub-patch k: corner k, the middle of edge k -> k+1, the centre, the middle of edge k-1 -> k.
-          const std::array<std::int64_t, 4> sub_edges{edge_key(corner(k), corner(k - 1), true),
-                                                      edge_key(corner(k), corner(k + 1), true), -1, -1};
-          builder.add(out.quads, f, k, PatchKind::exact, ring, {}, sub_edges);
-        }
+        std::vector<Stencil> corners;
+        if (scheme == Scheme::flat)
+          for (int k = 0; k < n; ++k) corners.push_back(Stencil::vertex(corner(k)));
+        const PatchKind kind = scheme == Scheme::exact ? PatchKind::exact : n == 3 ? PatchKind::linear : PatchKind::bilinear;
+        builder.add(n == 3 ? out.tris : out.quads, f, 0, kind, ring, corners, edges);
+        continue;
       }
-      continue;
-    }
-    if (scheme == Scheme::flat) {
-      std::vector<int> ring;
-      for (int k = 0; k < n; ++k) ring.push_back(corner(k));
-      if (n == 3) {
-        builder.add(out.tris, f, 0, PatchKind::linear, ring,
-                    {Stencil::vertex(corner(0)), Stencil::vertex(corner(1)), Stencil::vertex(corner(2))}, edges);
-      } else if (n == 4) {
-        builder.add(out.quads, f, 0, PatchKind::bilinear, ring,
-                    {Stencil::vertex(corner(0)), Stencil::vertex(corner(1)), Stencil::vertex(corner(2)),
-                     Stencil::vertex(corner(3))},
-                    edges);
-      } else {
-        Stencil centre;
-        for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
-        for (int k = 0; k < n; ++k) {
-          const Stencil next_mid = Stencil{}.add_vertex(corner(k), 0.5).add_vertex(corner(k + 1), 0.5);
-          const Stencil prev_mid = Stencil{}.add_vertex(corner(k), 0.5).add_vertex(corner(k - 1), 0.5);
-          const std::array<std::int64_t, 4> sub_edges{edge_key(corner(k), corner(k - 1), true),
-                                                      edge_key(corner(k), corner(k + 1), true), -1, -1};
-          builder.add(out.quads, f, k, PatchKind::bilinear, ring, {Stencil::vertex(corner(k)), next_mid, centre, prev_mid},
-                      sub_edges);
-        }
+      Stencil centre;
+      for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
+      for (int k = 0; k < n; ++k) {
+        const std::array<std::int64_t, 4> sub_edges{half_edge_key(corner(k), corner(k - 1)),
+                                                    half_edge_key(corner(k), corner(k + 1)), -1, -1};
+        std::vector<Stencil> points;
+        if (scheme == Scheme::flat)
+          points = {Stencil::vertex(corner(k)), Stencil{}.add_vertex(corner(k), 0.5).add_vertex(corner(k + 1), 0.5),
+                    centre, Stencil{}.add_vertex(corner(k), 0.5).add_vertex(corner(k - 1), 0.5)};
+        builder.add(out.quads, f, k, scheme == Scheme::exact ? PatchKind::exact : PatchKind::bilinear, ring, points,
+                    sub_edges);
       }
       continue;
     }
@@ -203,26 +191,20 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     if (n != 4)
       throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
                       " handles quads only (use --scheme exact or flat)");
-    // The patch starts at the face's canonical corner, so faces of one topology combination share
-    // one stencil table (the talk's reordering of faces).
-    const int rot = combinations.face_rotation[std::size_t(f)];
-    std::array<std::int64_t, 4> rotated{};
-    for (int k = 0; k < 4; ++k) rotated[std::size_t((k + 1) % 4)] = edge_key(corner(k + rot), corner(k + rot + 1));
-    std::vector<CornerRing> rings;
+    std::array<CornerRing, 4> corners;
     for (int k = 0; k < 4; ++k) {
-      rings.push_back(gather_corner_ring(cage, t, f, (k + rot) % 4));
-      if (!rings.back().all_quads())
-        throw CageError(where(cage, f) + ": vertex " + std::to_string(rings.back().center) +
+      corners[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rot) % 4);
+      if (!corners[std::size_t(k)].all_quads())
+        throw CageError(where(cage, f) + ": vertex " + std::to_string(corners[std::size_t(k)].center) +
                         " touches a face that is not a quad; --scheme " + to_string(scheme) +
                         " needs quads around every corner (use --scheme exact or flat)");
     }
-    const std::array<CornerRing, 4> corners{rings[0], rings[1], rings[2], rings[3]};
-    const std::vector<int> ring = gather_ring(rings);
+    const std::vector<int> ring = gather_ring(corners);
     if (scheme == Scheme::acc) {
-      builder.add(out.quads, f, 0, PatchKind::acc, ring, acc_quad_stencils(corners), rotated, rot);
+      builder.add(out.quads, f, 0, PatchKind::acc, ring, acc_quad_stencils(corners), edges, rot);
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
-      builder.add(out.quads, f, 0, PatchKind::gregory, ring, gregory_quad_stencils(corners), rotated, rot);
+      builder.add(out.quads, f, 0, PatchKind::gregory, ring, gregory_quad_stencils(corners), edges, rot);
     }
   }
   builder.finish();
