@@ -156,4 +156,19 @@ inline PatchPoint bilinear_patch(const glm::vec3& p0, const glm::vec3& p1, const
   return p;
 }
 
+// Linear triangle of three corners (the `flat` baseline on the tri domain): corner 0 at w = 1, corner 1
+// at u = 1, corner 2 at v = 1. On an edge only that edge's two corners are summed, so the point does
+// not depend on which neighbour computes it.
+inline PatchPoint linear_triangle(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, float u, float v,
+                                  float w) {
+  PatchPoint p;
+  if (v == 0.0f) p.position = w * p0 + u * p1;
+  else if (w == 0.0f) p.position = u * p1 + v * p2;
+  else if (u == 0.0f) p.position = v * p2 + w * p0;
+  else p.position = (w * p0 + u * p1) + v * p2;
+  p.du = p1 - p0;
+  p.dv = p2 - p0;
+  return p;
+}
+
 }  // namespace tessera

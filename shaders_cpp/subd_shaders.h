@@ -146,13 +146,7 @@ struct SubdDS {
         p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v);
         break;
       case PatchKind::linear: {
-        // Corner 0 at w = 1, corner 1 at u = 1, corner 2 at v = 1.
-        if (loc.v == 0.0f) p.position = loc.w * cp[0].p + loc.u * cp[1].p;
-        else if (loc.w == 0.0f) p.position = loc.u * cp[1].p + loc.v * cp[2].p;
-        else if (loc.u == 0.0f) p.position = loc.v * cp[2].p + loc.w * cp[0].p;
-        else p.position = (loc.w * cp[0].p + loc.u * cp[1].p) + loc.v * cp[2].p;
-        p.du = cp[1].p - cp[0].p;
-        p.dv = cp[2].p - cp[0].p;
+        p = linear_triangle(cp[0].p, cp[1].p, cp[2].p, loc.u, loc.v, loc.w);
         break;
       }
       case PatchKind::acc: {
@@ -187,10 +181,6 @@ struct SubdDS {
     return s;
   }
 };
-
-}  // namespace tessera
-
-namespace tessera {
 
 // Wraps a DS returning SurfaceSample for rendering: clip-space position, and the normal (3 attributes).
 // `z_bias` pulls points toward the camera by a fraction of w (for wireframe drawn over shading).
