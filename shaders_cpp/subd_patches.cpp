@@ -11,15 +11,6 @@
 
 namespace tessera {
 
-std::optional<Scheme> parse_scheme(std::string_view name) {
-  if (name == "flat") return Scheme::flat;
-  if (name == "bspline") return Scheme::bspline;
-  if (name == "acc") return Scheme::acc;
-  if (name == "gregory") return Scheme::gregory;
-  if (name == "exact") return Scheme::exact;
-  return std::nullopt;
-}
-
 const char* to_string(Scheme s) {
   switch (s) {
     case Scheme::flat: return "flat";
@@ -29,6 +20,12 @@ const char* to_string(Scheme s) {
     case Scheme::exact: return "exact";
   }
   return "?";
+}
+
+std::optional<Scheme> parse_scheme(std::string_view name) {
+  for (Scheme s : {Scheme::flat, Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact})
+    if (name == to_string(s)) return s;
+  return std::nullopt;
 }
 
 namespace {

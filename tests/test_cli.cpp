@@ -262,6 +262,7 @@ TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a 
                         Case{"tessellate " + pyramid + " --scheme acc --check-watertight", "face 0 has 3 sides", 1},
                         Case{"render " + cube + " --resolution 0x10 -o x.png", "--resolution", 2},
                         Case{"render " + cube + " --view sketch -o x.png", "--view", 2},
+                        Case{"tessellate " + cube + " --threads -3 --check-watertight", "--threads", 2},
                         Case{"accuracy " + pyramid + " --scheme gregory", "quads only", 1}}) {
     INFO(c.args);
     const Result r = run_cli(c.args);

@@ -36,9 +36,7 @@ int run_accuracy(const AccuracyOptions& o) {
   }
   const LimitSurface& reference = model.limit ? *model.limit : *own_reference;
   const double diagonal = reference.bounding_box_diagonal();
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
-  Device device(dopt);
+  Device device(device_options(o.threads));
   double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0;
   std::uint64_t samples = 0;
   const DrawResult r = stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup& g) {

@@ -29,9 +29,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const auto [w, h] = parse_resolution(o.resolution);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const SubdModel model = load_model(o.cage, scheme);
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
-  Device device(dopt);
+  Device device(device_options(o.threads));
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);

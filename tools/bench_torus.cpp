@@ -86,12 +86,10 @@ int run_bench_torus(const TorusOptions& o) {
   if (!partitioning) throw UsageError("--partitioning: expected integer, pow2, fractional_odd or fractional_even");
   if (!std::isfinite(o.factor)) throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
-  if (o.threads < 0 || o.threads > 1024) throw UsageError("--threads: must be in 0..1024 (0 = all)");
   const auto [w, h] = parse_resolution(o.resolution);
   if (!o.llvmpipe.empty()) check_llvmpipe(o, *partitioning);
 
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
+  DeviceOptions dopt = device_options(o.threads);
   dopt.tile_size = o.tile_size;
   dopt.chunk_primitives = o.chunk_primitives;
   Device device(dopt);

@@ -91,6 +91,13 @@ std::pair<int, int> parse_resolution(const std::string& text) {
   return {w, h};
 }
 
+DeviceOptions device_options(int threads) {
+  if (threads < 0 || threads > 1024) throw UsageError("--threads: must be in 0..1024 (0 = all)");
+  DeviceOptions o;
+  o.threads = threads;
+  return o;
+}
+
 std::string float_text(float x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";

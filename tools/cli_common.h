@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "device.h"
+
 namespace tessera::cli {
 
 // Exit codes: 0 ok, 1 bad input or failed check, 2 usage error.
@@ -49,6 +51,9 @@ void write_text_atomically(const std::string& path, const std::string& text);
 // "WIDTHxHEIGHT" for --resolution, each side 1..kMaxRenderTargetSize (framebuffer.h); throws
 // UsageError naming the flag.
 std::pair<int, int> parse_resolution(const std::string& text);
+
+// Device options for --threads N (0 = all hardware threads; 0..1024, else UsageError).
+DeviceOptions device_options(int threads);
 
 // Shortest decimal text that parses back to the identical float (at most 9 significant digits).
 std::string float_text(float x);

@@ -46,9 +46,7 @@ int run_render(const RenderOptions& o) {
   if (eye && target && glm::length(*eye - *target) <= 0.0f) throw UsageError("camera position and target coincide");
   const SubdCamera camera = frame_cage(model.cage, w, h, o.fov, eye, target);
 
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
-  Device device(dopt);
+  Device device(device_options(o.threads));
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);

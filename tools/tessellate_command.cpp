@@ -43,9 +43,7 @@ int run_tessellate(const TessellateOptions& o) {
   log_debug(std::to_string(model.patches.quads.size() + model.patches.tris.size()) + " patches, " +
             std::to_string(model.patches.tables.size()) + " stencil tables");
 
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
-  Device device(dopt);
+  Device device(device_options(o.threads));
   WeldChecker weld;
   std::uint64_t vertices = 0, triangles = 0;
   DrawResult result;

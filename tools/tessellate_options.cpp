@@ -26,9 +26,7 @@ Scheme scheme_option(const std::string& name) {
 }
 
 ts::Partitioning partitioning_option(const std::string& name) {
-  for (ts::Partitioning p : {ts::Partitioning::integer, ts::Partitioning::pow2, ts::Partitioning::fractional_odd,
-                             ts::Partitioning::fractional_even})
-    if (name == ts::to_string(p)) return p;
+  if (const auto p = ts::parse_partitioning(name)) return *p;
   throw UsageError("--partitioning: '" + name + "' is not one of integer, pow2, fractional_odd, fractional_even");
 }
 
