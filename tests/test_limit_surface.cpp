@@ -24,15 +24,14 @@
 
 #include "limit_accuracy.h"
 #include "limit_surface.h"
-#include "limit_test_cages.h"
+#include "cage_obj.h"
 #include "osd_refiner.h"
 
 using namespace tessera;
-using tessera::test::osd_shape;
-using tessera::test::read_test_cage;
-using tessera::test::sdk_cage;
-
 namespace {
+
+std::string osd_shape(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/" + name + ".obj"; }
+std::string sdk_cage(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/" + name + ".obj"; }
 
 // Tessellator-like parameter: k/n rounded to a multiple of 2^-16 (so 1 - t is exact).
 float tess_param(int k, int n) { return float(std::nearbyint(double(k) / n * 65536.0) / 65536.0); }
@@ -212,7 +211,7 @@ TEST_CASE("limit surface corners equal PrimvarRefiner Limit", "[limit]") {
   namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
   for (const std::string name : {"catmark_cube", "catmark_xord_interior", "catmark_nonquads", "catmark_pyramid", "catmark_gregory_test2"}) {
     INFO(name);
-    const Cage cage = read_test_cage(osd_shape(name));
+    const Cage cage = load_obj_cage(osd_shape(name));
     const LimitSurface s = LimitSurface::create(cage);
     auto refiner = osd_detail::build_osd_refiner(cage);
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
@@ -252,7 +251,7 @@ TEST_CASE("limit surface corners equal PrimvarRefiner Limit", "[limit]") {
 TEST_CASE("limit surface low approximation levels are measurably inexact", "[limit]") {
   // The measurement must be able to fail: Bfr's default level 2 is far from the limit near
   // extraordinary vertices (subdiv.md §3.3: ~1e-4 of the diagonal).
-  const Cage cage = read_test_cage(osd_shape("catmark_xord_interior"));
+  const Cage cage = load_obj_cage(osd_shape("catmark_xord_interior"));
   const LimitSurface coarse = LimitSurface::create(cage, 2), fine = LimitSurface::create(cage);
   CHECK(measure_limit_accuracy(cage, coarse, 5).max_relative() > 1e-5);
   CHECK(compare_limit_surfaces(coarse, fine, 37).max_relative() > 1e-5);
@@ -266,7 +265,7 @@ TEST_CASE("limit surface shared edges and vertices are bitwise watertight", "[li
   long unowned_mismatches = 0;
   for (const auto& path : paths) {
     INFO(path);
-    const Cage cage = read_test_cage(path);
+    const Cage cage = load_obj_cage(path);
     const LimitSurface s = LimitSurface::create(cage);
     const WatertightResult owned = check_watertight(s, cage, true);
     CHECK(owned.points > 0);
@@ -282,7 +281,7 @@ TEST_CASE("limit surface shared edges and vertices are bitwise watertight", "[li
 }
 
 TEST_CASE("limit surface normals are unit length and outward", "[limit]") {
-  Cage cube = read_test_cage(osd_shape("catmark_cube"));
+  Cage cube = load_obj_cage(osd_shape("catmark_cube"));
   Cage flipped = cube;  // the same cube wound clockwise and tagged so
   for (int f = 0; f < flipped.face_count(); ++f)
     std::reverse(flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)],
@@ -302,7 +301,7 @@ TEST_CASE("limit surface normals are unit length and outward", "[limit]") {
     CHECK(bad == 0);
   }
   // Every normal on the frog is finite and unit, including at extraordinary vertices.
-  const Cage frog = read_test_cage(sdk_cage("monsterfrog_mapped_00"));
+  const Cage frog = load_obj_cage(sdk_cage("monsterfrog_mapped_00"));
   const LimitSurface s = LimitSurface::create(frog);
   int bad = 0;
   for (int f = 0; f < s.face_count(); ++f)
@@ -314,8 +313,8 @@ TEST_CASE("limit surface normals are unit length and outward", "[limit]") {
 }
 
 TEST_CASE("limit surface derivatives match finite differences in every domain", "[limit]") {
-  const Cage cage = read_test_cage(osd_shape("catmark_pyramid"));  // triangles and a quad
-  const Cage nonquads = read_test_cage(osd_shape("catmark_nonquads"));
+  const Cage cage = load_obj_cage(osd_shape("catmark_pyramid"));  // triangles and a quad
+  const Cage nonquads = load_obj_cage(osd_shape("catmark_nonquads"));
   const double h = 1e-4;
   for (const Cage* c : {&cage, &nonquads}) {
     const LimitSurface s = LimitSurface::create(*c);
@@ -360,7 +359,7 @@ TEST_CASE("limit surface derivatives match finite differences in every domain", 
 }
 
 TEST_CASE("limit surface holes and out-of-range queries are reported", "[limit]") {
-  const Cage cage = read_test_cage(osd_shape("catmark_hole_test1"));
+  const Cage cage = load_obj_cage(osd_shape("catmark_hole_test1"));
   const LimitSurface s = LimitSurface::create(cage);
   REQUIRE(!cage.tags.holes.empty());
   for (int h : cage.tags.holes) {
@@ -382,7 +381,7 @@ TEST_CASE("limit surface holes and out-of-range queries are reported", "[limit]"
 }
 
 TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
-  const Cage cube = read_test_cage(osd_shape("catmark_cube"));
+  const Cage cube = load_obj_cage(osd_shape("catmark_cube"));
   const auto message = [](const Cage& c) -> std::string {
     try {
       LimitSurface::create(c);
@@ -410,7 +409,7 @@ TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
   // Non-manifold topology is OpenSubdiv's to judge: it either builds (and evaluates) or is a CageError.
   for (const std::string name : {"catmark_nonman_edges", "catmark_nonman_verts", "catmark_nonman_bareverts", "catmark_val2_nonman"}) {
     INFO(name);
-    const Cage c = read_test_cage(osd_shape(name));
+    const Cage c = load_obj_cage(osd_shape(name));
     try {
       const LimitSurface s = LimitSurface::create(c);
       for (int f = 0; f < s.face_count(); ++f)
@@ -422,7 +421,7 @@ TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
 }
 
 TEST_CASE("limit surface evaluation is thread-safe and deterministic", "[limit]") {
-  const Cage frog = read_test_cage(sdk_cage("monsterfrog_mapped_00"));
+  const Cage frog = load_obj_cage(sdk_cage("monsterfrog_mapped_00"));
   const LimitSurface s = LimitSurface::create(frog);
   const auto digest = [&](int stride, int offset) {
     std::uint64_t h = 1469598103934665603ull;
@@ -447,7 +446,7 @@ TEST_CASE("limit surface evaluation is thread-safe and deterministic", "[limit]"
 // Measurements for the report: accuracy per level, creation time and memory, evaluation cost.
 TEST_CASE("limit surface measurements", "[.][limit-bench]") {
   for (const std::string name : {"catmark_cube", "catmark_xord_interior"}) {
-    const Cage cage = read_test_cage(osd_shape(name));
+    const Cage cage = load_obj_cage(osd_shape(name));
     const LimitSurface ref = LimitSurface::create(cage, 10);
     for (int level : {2, 4, 6, 8, 10}) {
       const LimitSurface s = LimitSurface::create(cage, level);
@@ -458,7 +457,7 @@ TEST_CASE("limit surface measurements", "[.][limit-bench]") {
                   name.c_str(), level, a.max_relative(), a.rms_distance / a.diagonal, c.max_relative(), b.max_relative());
     }
   }
-  const Cage frog = read_test_cage(sdk_cage("monsterfrog_mapped_00"));
+  const Cage frog = load_obj_cage(sdk_cage("monsterfrog_mapped_00"));
   const auto rss_kb = [] { return long(mallinfo2().uordblks / 1024); };  // heap bytes in use
   for (int level : {10, 2, 6, 8}) {
     const long before = rss_kb();
