@@ -310,4 +310,52 @@ Cage load_obj_cage(const std::string& path) {
   return parse_obj_cage(text.str(), path);
 }
 
+namespace {
+
+void append_float(std::string& out, float x) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);  // shortest text that reads back exactly
+  out.append(buffer, r.ptr);
+}
+
+}  // namespace
+
+std::string format_obj_cage(const Cage& cage) {
+  std::string out = "# written by tessera\n";
+  for (const glm::vec3& p : cage.positions) {
+    out += "v";
+    for (int k = 0; k < 3; ++k) out += ' ', append_float(out, p[k]);
+    out += '\n';
+  }
+  for (const glm::vec2& t : cage.uvs) {
+    out += "vt";
+    for (int k = 0; k < 2; ++k) out += ' ', append_float(out, t[k]);
+    out += '\n';
+  }
+  for (int f = 0; f < cage.face_count(); ++f) {
+    out += 'f';
+    for (int k = 0; k < cage.face_sizes[f]; ++k) {
+      const int i = cage.face_offsets[f] + k;
+      out += ' ' + std::to_string(cage.face_vertices[i] + 1);
+      if (cage.has_uvs()) out += '/' + std::to_string(cage.face_uvs[i] + 1);
+    }
+    out += '\n';
+  }
+  const CageTags& t = cage.tags;
+  for (const Crease& c : t.creases) {
+    out += "t crease 2/1/0 " + std::to_string(c.v0) + ' ' + std::to_string(c.v1) + ' ';
+    append_float(out, c.sharpness);
+    out += '\n';
+  }
+  for (const Corner& c : t.corners) {
+    out += "t corner 1/1/0 " + std::to_string(c.vertex) + ' ';
+    append_float(out, c.sharpness);
+    out += '\n';
+  }
+  for (int h : t.holes) out += "t hole 1/0/0 " + std::to_string(h) + '\n';
+  if (t.boundary != BoundaryInterpolation::edge_only)
+    out += std::string("t interpolateboundary 1/0/0 ") + (t.boundary == BoundaryInterpolation::none ? "0" : "1") + '\n';
+  return out;
+}
+
 }  // namespace tessera

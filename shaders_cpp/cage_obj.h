@@ -43,4 +43,9 @@ Cage load_obj_cage(const std::string& path);
 // Parses OBJ text; `name` names the source in messages and becomes Cage::name.
 Cage parse_obj_cage(std::string_view text, std::string name);
 
+// The OBJ text of a cage that parse_obj_cage reads back to the same positions (bit for bit: shortest
+// round-trip decimals), UVs, faces and tags (creases, corners, holes, boundary interpolation);
+// warnings and the name are not written.
+std::string format_obj_cage(const Cage& cage);
+
 }  // namespace tessera

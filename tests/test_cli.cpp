@@ -320,3 +320,41 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
   CHECK(bad.exit_code == 1);
   CHECK(bad.err.find("factors.txt:1:") != std::string::npos);
 }
+
+TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured renders, one-line errors", "[cli][memory]") {
+  const fs::path dir = temp_dir();
+  const std::string cage = (dir / "torus.obj").string();
+  auto r = run_cli("make-cage torus --grid 16x8 -o " + cage);
+  REQUIRE(r.exit_code == 0);
+  r = run_cli("analyze " + cage + " --memory --levels 2,4 --measure --resolution 64x48 --threads 2 --json");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& levels = j["memory"]["levels"];
+  REQUIRE(levels.size() == 2);
+  for (const auto& l : levels) {
+    const std::uint64_t L = l["level"].get<std::uint64_t>();
+    CHECK(l["mesh_vertices"].get<std::uint64_t>() == (16 * L + 1) * (8 * L + 1));
+    CHECK(l["render_peak_rss_bytes"].get<std::uint64_t>() > 0);
+    CHECK(l["render_geometry_peak_bytes"].get<std::uint64_t>() > 0);
+    CHECK(l["render_framebuffer_bytes"].get<std::uint64_t>() == 64u * 48u * 8u);
+  }
+  const std::string frog = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog_mapped_00.obj";
+  const std::string map = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog.dds";
+  r = run_cli("analyze " + frog + " --memory --displacement " + map + " --displacement-channel A");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("monsterfrog.dds 512x512 (channel A)") != std::string::npos);
+  // Bad input: a missing map, a channel the map does not have, a level the tessellator cannot make.
+  r = run_cli("analyze " + frog + " --memory --displacement " + (dir / "missing.dds").string());
+  CHECK(r.exit_code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("missing.dds") != std::string::npos);
+  r = run_cli("analyze " + frog + " --memory --displacement " + map + " --displacement-channel Z");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("no channel 'Z'") != std::string::npos);
+  r = run_cli("analyze " + frog + " --memory --levels 8,65");
+  CHECK(r.exit_code == 2);
+  CHECK(lines(r.err) == 1);
+  r = run_cli("make-cage torus --grid 2x8 -o " + cage);
+  CHECK(r.exit_code == 2);
+}

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 
+#include "analyze_memory.h"
 #include "cage_obj.h"
 #include "cli_common.h"
 #include "commands.h"
@@ -24,6 +25,7 @@ namespace {
 struct AnalyzeOptions {
   std::string cage;
   bool json = false;
+  MemoryOptions memory;
 };
 
 // Text for people and a JSON object for scripts, written side by side so they cannot disagree.
@@ -47,6 +49,7 @@ struct CageAnalysis {
   Cage cage;
   Topology topology;
   TopologyCombinations combinations;
+  std::optional<MemoryAnalysis> memory;  // with --memory
 };
 
 void cage_section(Report& r, const CageAnalysis& a) {
@@ -135,8 +138,15 @@ void warnings_section(Report& r, const CageAnalysis& a) {
   for (const std::string& w : all) r.line("- " + w);
 }
 
+void memory_section(Report& r, const CageAnalysis& a) {
+  if (!a.memory) return;
+  r.line("");
+  r.line(memory_text(*a.memory));
+  r.json()["memory"] = memory_json(*a.memory);
+}
+
 using Section = void (*)(Report&, const CageAnalysis&);
-constexpr Section kSections[] = {cage_section, patch_section, warnings_section};
+constexpr Section kSections[] = {cage_section, patch_section, memory_section, warnings_section};
 
 int run_analyze(const AnalyzeOptions& o) {
   std::optional<CageAnalysis> a;
@@ -144,10 +154,11 @@ int run_analyze(const AnalyzeOptions& o) {
     Cage cage = load_obj_cage(o.cage);
     Topology topology(cage);
     TopologyCombinations combinations = analyze_combinations(topology);
-    a.emplace(CageAnalysis{std::move(cage), std::move(topology), std::move(combinations)});
+    a.emplace(CageAnalysis{std::move(cage), std::move(topology), std::move(combinations), std::nullopt});
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
+  if (o.memory.enabled) a->memory = analyze_memory(o.cage, a->cage, a->topology, o.memory);
   log_info("analyze: " + o.cage + ": " + std::to_string(a->topology.face_count()) + " faces");
   Report report;
   for (Section s : kSections) s(report, *a);
@@ -163,6 +174,7 @@ Runner add_analyze_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("analyze", "Describe a control cage (OBJ): topology, tags, UVs, patch combinations");
   cmd->add_option("cage", o->cage, "the cage, a Wavefront OBJ file (OpenSubdiv tags accepted)")->required();
   cmd->add_flag("--json", o->json, "print one JSON object instead of text");
+  add_memory_options(*cmd, o->memory);
   return [o]() { return run_analyze(*o); };
 }
 

@@ -19,6 +19,7 @@ Runner add_analyze_command(CLI::App& app);
 Runner add_tessellate_command(CLI::App& app);
 Runner add_render_command(CLI::App& app);
 Runner add_accuracy_command(CLI::App& app);
+Runner add_make_cage_command(CLI::App& app);
 // Registered under `bench`; its runner returns -1 when `bench torus` was not the chosen subcommand.
 Runner add_bench_torus_command(CLI::App& bench);
 Runner add_bench_subd_command(CLI::App& bench);

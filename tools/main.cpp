@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   runners["tessellate"] = add_tessellate_command(app);
   runners["render"] = add_render_command(app);
   runners["accuracy"] = add_accuracy_command(app);
+  runners["make-cage"] = add_make_cage_command(app);
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 

@@ -58,7 +58,8 @@ int run_render(const RenderOptions& o) {
   if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   if (!o.stats.empty()) {
     std::ostringstream s;
-    s << "{\"statistics\": " << to_json(total.statistics) << ", \"times\": " << to_json(total.times) << "}\n";
+    s << "{\"statistics\": " << to_json(total.statistics) << ", \"times\": " << to_json(total.times)
+      << ", \"memory\": " << to_json(total.memory) << ", \"peak_rss_bytes\": " << peak_rss_bytes() << "}\n";
     write_text_atomically(o.stats, s.str());
   }
   std::cout << o.output << ": " << w << "x" << h << ", scheme " << to_string(scheme) << ", "
@@ -79,7 +80,7 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--camera-target", o->target, "x,y,z (default: the model's centre)");
   cmd->add_option("--fov", o->fov, "vertical field of view, degrees")->capture_default_str();
   cmd->add_option("--view", o->view, "shaded, wireframe or wire-on-shaded")->capture_default_str();
-  cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics and stage times as JSON");
+  cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times, memory and peak RSS as JSON");
   return [o] { return run_render(*o); };
 }
 

@@ -1,0 +1,234 @@
+#include "analyze_memory.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cli_common.h"
+#include "subd_patches.h"
+#include "tessellate_options.h"
+
+extern char** environ;
+
+namespace tessera::cli {
+namespace {
+
+std::vector<int> parse_levels(const std::string& text) {
+  std::vector<int> levels;
+  for (float x : parse_float_list(text, "--levels")) {
+    if (!(x >= 1.0f && x <= 64.0f) || x != float(int(x)))
+      throw UsageError("--levels: " + float_text(x) + " is not an integer in 1..64");
+    levels.push_back(int(x));
+  }
+  if (levels.empty()) throw UsageError("--levels: empty");
+  return levels;
+}
+
+// The map's size and a description, checking that the file opens and has the channel.
+MapSize read_map_size(const std::string& path, const std::string& channel, std::string& description) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    std::string why = OIIO::geterror();
+    if (why.empty()) why = "cannot open the image";
+    throw InputError(path + ": " + why.substr(0, why.find('\n')));
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0) throw InputError(path + ": the image is empty");
+  std::string names;
+  int found = channel.empty() ? 0 : -1;
+  for (int c = 0; c < spec.nchannels; ++c) {
+    const std::string& name = spec.channelnames[std::size_t(c)];
+    names += (c ? "," : "") + name;
+    if (!channel.empty() && (OIIO::Strutil::iequals(name, channel) || channel == std::to_string(c))) found = c;
+  }
+  if (found < 0) throw InputError(path + ": no channel '" + channel + "' (the image has " + names + ")");
+  description = std::filesystem::path(path).filename().string() + " " + std::to_string(spec.width) + "x" +
+                std::to_string(spec.height) + " (channel " + spec.channelnames[std::size_t(found)] + ")";
+  return {spec.width, spec.height};
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `tessera render` for one level in a child process and reads the memory it reports.
+MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions& o, int level) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path();
+  const std::string stem = "tessera-memory-" + std::to_string(::getpid()) + "-" + std::to_string(level);
+  const std::string image = (dir / (stem + ".png")).string(), stats = (dir / (stem + ".json")).string();
+  std::vector<std::string> args = {"tessera",   "-q",        "render",   cage_path, "--scheme", o.scheme,
+                                   "--factor",  std::to_string(level), "--resolution", o.resolution,
+                                   "--threads", std::to_string(o.threads), "-o", image, "--stats", stats};
+  if (!o.displacement.empty()) {
+    args.insert(args.end(), {"--displacement", o.displacement});
+    if (!o.channel.empty()) args.insert(args.end(), {"--displacement-channel", o.channel});
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  const auto start = std::chrono::steady_clock::now();
+  // The child's stdout (its one-line summary) would mix into ours, which may be JSON; its stderr
+  // (errors) passes through.
+  posix_spawn_file_actions_t actions;
+  ::posix_spawn_file_actions_init(&actions);
+  ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int spawned = ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  ::posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw InputError(std::string("--measure: cannot start tessera render: ") + std::strerror(spawned));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::error_code ec;
+  fs::remove(image, ec);
+  const std::string text = read_text(stats);
+  fs::remove(stats, ec);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw InputError("--measure: tessera render at level " + std::to_string(level) + " failed (its error is above)");
+  const auto j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.contains("memory") || !j.contains("peak_rss_bytes"))
+    throw InputError("--measure: tessera render at level " + std::to_string(level) + " wrote no memory statistics");
+  MeasuredMemory m;
+  m.peak_rss_bytes = j["peak_rss_bytes"].get<std::uint64_t>();
+  m.geometry_peak_bytes = j["memory"].value("geometry_peak_bytes", std::uint64_t(0));
+  m.framebuffer_bytes = j["memory"].value("framebuffer_bytes", std::uint64_t(0));
+  m.seconds = seconds;
+  return m;
+}
+
+std::string megabytes(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", double(bytes) / (1024.0 * 1024.0));
+  return text;
+}
+
+}  // namespace
+
+void add_memory_options(CLI::App& cmd, MemoryOptions& o) {
+  cmd.add_flag("--memory", o.enabled,
+               "print the talk's memory table: a pre-tessellated mesh against the cage, patches and displacement map");
+  cmd.add_option("--displacement", o.displacement, "--memory: the displacement map (its size sets the map rows)");
+  cmd.add_option("--displacement-channel", o.channel, "--memory: the map's height channel, by name (A) or index");
+  cmd.add_option("--levels", o.levels, "--memory: tessellation levels (integer factors 1..64)")->capture_default_str();
+  cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")->capture_default_str();
+  cmd.add_option("--texel-bytes", o.texel_bytes, "--memory: bytes per map texel as kept")->capture_default_str();
+  cmd.add_option("--mesh-vertex-bytes", o.mesh_vertex_bytes, "--memory: bytes per vertex of the pre-tessellated mesh")
+      ->capture_default_str();
+  cmd.add_flag("--measure", o.measure, "--memory: also render each level (tessera render) and report its peak memory");
+  cmd.add_option("--resolution", o.resolution, "--measure: render resolution WxH")->capture_default_str();
+  cmd.add_option("--threads", o.threads, "--measure: render threads (0: all)");
+}
+
+MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, const Topology& topology,
+                              const MemoryOptions& o) {
+  MemoryAnalysis a;
+  a.options = o;
+  MemoryModelOptions model;
+  model.levels = parse_levels(o.levels);
+  if (o.texel_bytes < 1 || o.texel_bytes > 64) throw UsageError("--texel-bytes: must be in 1..64");
+  if (o.mesh_vertex_bytes < 1 || o.mesh_vertex_bytes > 1024) throw UsageError("--mesh-vertex-bytes: must be in 1..1024");
+  model.texel_bytes = o.texel_bytes;
+  model.mesh_vertex_bytes = o.mesh_vertex_bytes;
+  const Scheme scheme = scheme_option(o.scheme);
+  if (o.measure) {
+    parse_resolution(o.resolution);
+    device_options(o.threads);
+  }
+  if (!o.displacement.empty()) model.map = read_map_size(o.displacement, o.channel, a.map_description);
+  else a.map_description = "none given: a square map of exactly the side each level needs";
+  try {
+    a.table = memory_table(cage, topology, build_patches(cage, topology, scheme), model);
+  } catch (const CageError& e) {
+    throw InputError(e.what());
+  }
+  if (o.measure)
+    for (int level : model.levels) {
+      log_info("analyze --measure: rendering level " + std::to_string(level));
+      a.measured.push_back(measure_render(cage_path, o, level));
+    }
+  return a;
+}
+
+std::string memory_text(const MemoryAnalysis& a) {
+  const MemoryTable& t = a.table;
+  std::ostringstream s;
+  s << "Memory (level L: integer factor L on every edge; the model is in shaders_cpp/memory_model.h):\n";
+  s << "- pre-tessellated mesh: " << a.options.mesh_vertex_bytes
+    << " B per vertex (position, normal, UV; split on UV seams), 32-bit indices\n";
+  s << "- Tessera: cage " << megabytes(t.cage_bytes) << " MB + patch data (" << a.options.scheme << ") "
+    << megabytes(t.patch_bytes) << " MB + map at one texel per generated vertex, " << a.options.texel_bytes
+    << " B per texel, with its mip chain\n";
+  s << "- map: " << a.map_description << "; UV area " << t.uv_area << " over " << t.faces << " faces\n";
+  s << "level | mesh vertices | mesh triangles | mesh MB (vertices + indices) | map side needed | map kept | Tessera MB | ratio";
+  if (!a.measured.empty()) s << " | render peak RSS MB | geometry peak MB";
+  s << "\n";
+  for (std::size_t i = 0; i < t.levels.size(); ++i) {
+    const MemoryLevel& m = t.levels[i];
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.1f", m.ratio());
+    s << m.level << " | " << m.mesh_vertices << " | " << m.mesh_triangles << " | " << megabytes(m.mesh_bytes()) << " ("
+      << megabytes(m.mesh_vertex_bytes) << " + " << megabytes(m.mesh_index_bytes) << ") | "
+      << m.needed_map_side << " | " << m.map_width << "x" << m.map_height << " | " << megabytes(m.tessera_bytes) << " | "
+      << ratio;
+    if (!a.measured.empty())
+      s << " | " << megabytes(a.measured[i].peak_rss_bytes) << " | " << megabytes(a.measured[i].geometry_peak_bytes);
+    s << "\n";
+  }
+  return s.str();
+}
+
+nlohmann::ordered_json memory_json(const MemoryAnalysis& a) {
+  const MemoryTable& t = a.table;
+  nlohmann::ordered_json j;
+  j["model"] = {{"mesh_vertex_bytes", a.options.mesh_vertex_bytes},
+                {"index_bytes", 4},
+                {"texel_bytes", a.options.texel_bytes},
+                {"scheme", a.options.scheme},
+                {"map", a.map_description},
+                {"uv_area", t.uv_area},
+                {"faces", t.faces}};
+  j["cage_bytes"] = t.cage_bytes;
+  j["patch_bytes"] = t.patch_bytes;
+  auto& levels = j["levels"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < t.levels.size(); ++i) {
+    const MemoryLevel& m = t.levels[i];
+    nlohmann::ordered_json l = {{"level", m.level},
+                                {"mesh_vertices", m.mesh_vertices},
+                                {"mesh_triangles", m.mesh_triangles},
+                                {"mesh_vertex_bytes", m.mesh_vertex_bytes},
+                                {"mesh_index_bytes", m.mesh_index_bytes},
+                                {"mesh_bytes", m.mesh_bytes()},
+                                {"needed_map_side", m.needed_map_side},
+                                {"map_width", m.map_width},
+                                {"map_height", m.map_height},
+                                {"map_bytes", m.map_bytes},
+                                {"tessera_bytes", m.tessera_bytes},
+                                {"ratio", m.ratio()}};
+    if (!a.measured.empty()) {
+      const MeasuredMemory& r = a.measured[i];
+      l["render_peak_rss_bytes"] = r.peak_rss_bytes;
+      l["render_geometry_peak_bytes"] = r.geometry_peak_bytes;
+      l["render_framebuffer_bytes"] = r.framebuffer_bytes;
+      l["render_seconds"] = r.seconds;
+    }
+    levels.push_back(l);
+  }
+  return j;
+}
+
+}  // namespace tessera::cli
