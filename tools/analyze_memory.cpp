@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,6 +64,28 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
+// Runs this executable with `args` (argv[0] included), its stdout to /dev/null (its one-line summary
+// would mix into ours, which may be JSON; its stderr, errors, passes through). Returns the exit status
+// and sets the child's peak RSS from wait4.
+int run_child(std::vector<std::string> args, std::uint64_t& peak_rss_bytes) {
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  ::posix_spawn_file_actions_init(&actions);
+  ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int spawned = ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  ::posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw InputError(std::string("--measure: cannot start tessera: ") + std::strerror(spawned));
+  int status = 0;
+  struct rusage usage {};
+  while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
+  peak_rss_bytes = std::uint64_t(usage.ru_maxrss) * 1024;  // kilobytes on Linux
+  return status;
+}
+
 // Runs `tessera render` for one level in a child process and reads the memory it reports.
 MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions& o, int level) {
   namespace fs = std::filesystem;
@@ -76,23 +99,9 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
     args.insert(args.end(), {"--displacement", o.displacement});
     if (!o.channel.empty()) args.insert(args.end(), {"--displacement-channel", o.channel});
   }
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
   const auto start = std::chrono::steady_clock::now();
-  // The child's stdout (its one-line summary) would mix into ours, which may be JSON; its stderr
-  // (errors) passes through.
-  posix_spawn_file_actions_t actions;
-  ::posix_spawn_file_actions_init(&actions);
-  ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-  ::posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw InputError(std::string("--measure: cannot start tessera render: ") + std::strerror(spawned));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  std::uint64_t child_rss = 0;
+  const int status = run_child(args, child_rss);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::error_code ec;
   fs::remove(image, ec);
@@ -156,6 +165,11 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
+  if (o.measure) {
+    // What the process holds before it draws anything (shared libraries, allocator, thread pool):
+    // `tessera --version` loads the same libraries and exits.
+    run_child({"tessera", "--version"}, a.base_rss_bytes);
+  }
   if (o.measure)
     for (int level : model.levels) {
       log_info("analyze --measure: rendering level " + std::to_string(level));
@@ -175,7 +189,7 @@ std::string memory_text(const MemoryAnalysis& a) {
     << " B per texel, with its mip chain\n";
   s << "- map: " << a.map_description << "; UV area " << t.uv_area << " over " << t.faces << " faces\n";
   s << "level | mesh vertices | mesh triangles | mesh MB (vertices + indices) | map side needed | map kept | Tessera MB | ratio";
-  if (!a.measured.empty()) s << " | render peak RSS MB | geometry peak MB";
+  if (!a.measured.empty()) s << " | render peak RSS MB (process base " << megabytes(a.base_rss_bytes) << ") | geometry peak MB";
   s << "\n";
   for (std::size_t i = 0; i < t.levels.size(); ++i) {
     const MemoryLevel& m = t.levels[i];
@@ -203,6 +217,7 @@ nlohmann::ordered_json memory_json(const MemoryAnalysis& a) {
                 {"uv_area", t.uv_area},
                 {"faces", t.faces}};
   j["cage_bytes"] = t.cage_bytes;
+  if (!a.measured.empty()) j["process_base_rss_bytes"] = a.base_rss_bytes;
   j["patch_bytes"] = t.patch_bytes;
   auto& levels = j["levels"] = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < t.levels.size(); ++i) {

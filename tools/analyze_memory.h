@@ -40,6 +40,7 @@ struct MemoryAnalysis {
   std::string map_description;  // "monsterfrog.dds 512x512 (channel A)" or the assumption made without one
   MemoryTable table;
   std::vector<MeasuredMemory> measured;  // per level, with --measure
+  std::uint64_t base_rss_bytes = 0;      // with --measure: peak RSS of a tessera that draws nothing
 };
 
 // Throws UsageError for bad options and InputError for an unreadable map or a failed child render.
