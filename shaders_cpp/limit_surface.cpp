@@ -213,8 +213,11 @@ struct LimitSurface::Impl {
             k10 * m[0][1] + k11 * m[1][1]};
   }
 
-  SurfacePoint to_point(int f, int k, double s, double t, const Raw& r) const {
-    return {glm::vec3(r.p), glm::vec3(r.ds), glm::vec3(r.dt), glm::vec3(normal_at(f, k, s, t, r))};
+  SurfacePoint to_point(int f, int k, double s, double t, const Raw& r) const { return to_point(f, k, s, t, r, r); }
+  // `out` gives the position and the reported derivatives; the normal comes from sub-patch k's own
+  // derivatives in `sub`, so it depends on (k, s, t) only.
+  SurfacePoint to_point(int f, int k, double s, double t, const Raw& out, const Raw& sub) const {
+    return {glm::vec3(out.p), glm::vec3(out.ds), glm::vec3(out.dt), glm::vec3(normal_at(f, k, s, t, sub))};
   }
 };
 
@@ -240,7 +243,7 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   auto m = std::make_unique<Impl>();
   m->level = approx_level;
   m->left_handed = cage.tags.left_handed;
-  m->refiner = osd_detail::build_osd_refiner(cage);  // validates
+  m->refiner = osd_detail::build_osd_refiner(cage);  // validate_cage, then OpenSubdiv's limits
   osd::Bfr::SurfaceFactory::Options options;
   options.SetApproxLevelSmooth(approx_level).SetApproxLevelSharp(approx_level);
   m->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*m->refiner, options);
@@ -270,10 +273,12 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
     const std::size_t first = m->patch_points.size();
     m->patch_points.resize(first + std::size_t(s.GetNumPatchPoints()) * 3);
     s.PreparePatchPoints(mesh.data(), desc, m->patch_points.data() + first, desc);
+    for (std::size_t i = first; i < m->patch_points.size(); ++i)
+      if (!std::isfinite(m->patch_points[i]))
+        throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
+                        " has no finite limit surface (vertex positions that are not finite or overflow)");
   }
   m->pp_offset[std::size_t(nf)] = m->patch_points.size();
-  for (double x : m->patch_points)
-    if (!std::isfinite(x)) throw CageError(osd_detail::cage_label(cage) + ": limit surface is not finite (degenerate cage)");
 
   // Owners: lowest-index face with a surface, first occurrence within it.
   struct FirstUse {
@@ -383,6 +388,45 @@ SurfacePoint LimitSurface::evaluate_triangle(int face, float u, float v, float w
   glm::dvec3 n = m.normal_of(pu, pv);
   if (n == glm::dvec3(0.0)) n = m.normal_at(face, tm.k, tm.s, tm.t, r);
   return {glm::vec3(r.p), glm::vec3(pu), glm::vec3(pv), glm::vec3(n)};
+}
+
+LimitSurface::SubPatchLocation LimitSurface::fan_location(int n, int k, double u, double v) {
+  // In the plane where vertex k = (0,0), vertex k+1 = (2,0) and the centre = (1,1), the triangle's point
+  // is (x, y) = (2u + v, v). Sub-patch k is the unit square on vertex k, the midpoint (1,0) and the
+  // centre; sub-patch k+1 meets it along x = 1 and is turned a quarter: its (s, t) = (y, 2 - x).
+  const double x = 2.0 * u + v;
+  if (x <= 1.0) return {k, x, v};
+  return {(k + 1) % n, v, 2.0 - x};
+}
+
+SurfacePoint LimitSurface::evaluate_fan(int face, int triangle, float u, float v, float w) const {
+  if (face < 0 || face >= face_count()) bad_query("face " + std::to_string(face) + " is out of range");
+  if (!has_surface(face)) bad_query("face " + std::to_string(face) + " has no surface (hole)");
+  const int n = impl_->sizes[std::size_t(face)];
+  if (n == 4) bad_query("face " + std::to_string(face) + " is a quad (it has no fan)");
+  if (triangle < 0 || triangle >= n)
+    bad_query("face " + std::to_string(face) + " has no fan triangle " + std::to_string(triangle));
+  check_coord(u, "u");
+  check_coord(v, "v");
+  check_coord(w, "w");
+  const Impl& m = *impl_;
+  const double du = u, dv = v;
+  const SubPatchLocation l = fan_location(n, triangle, du, dv);
+  const Raw r = m.raw(face, l.sub, l.s, l.t);
+  // Chain rule through the affine map: (s,t) = (2u + v, v) or (v, 2 - 2u - v).
+  const bool left = l.sub == triangle;
+  const glm::dvec3 pu = left ? 2.0 * r.ds : -2.0 * r.dt, pv = left ? r.ds + r.dt : r.ds - r.dt;
+  SharedPoint sh;
+  if (dv == 0.0) {  // the cage edge
+    if (du == 0.0) sh = m.corner(face, triangle);
+    else if (du == 1.0) sh = m.corner(face, (triangle + 1) % n);
+    else sh = m.cage_edge(face, triangle, du);
+  } else if (dv == 1.0) {
+    sh = m.shared(face, 0, 1.0, 1.0);  // the centre, as evaluate() gives it
+  } else {
+    return m.to_point(face, l.sub, l.s, l.t, Raw{r.p, pu, pv}, r);
+  }
+  return {sh.position, glm::vec3(pu), glm::vec3(pv), sh.normal};
 }
 
 ReferenceSample LimitSurface::sample_reference(int face, int sub_patch, double u, double v) const {

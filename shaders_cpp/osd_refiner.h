@@ -2,9 +2,10 @@
 // Only .cpp files of tessera_shaders include this header, so no OpenSubdiv type leaks out of the
 // library and osdCPU stays a PRIVATE dependency.
 //
-// Contract: `build_osd_refiner` validates everything OpenSubdiv would crash or abort on (face sizes,
-// vertex indices, tag indices, creases that are not edges, non-finite data) and throws a one-line
-// tessera::CageError naming the element; it returns a refiner with only the base level (no refinement).
+// Contract: `build_osd_refiner` validates the cage as `validate_cage` (topology.h) does, then checks
+// OpenSubdiv's own limits (face size, valence), and throws a one-line tessera::CageError naming the
+// element; it returns a refiner with only the base level (no refinement). Creases and corners reach
+// OpenSubdiv as the topology resolved them (creases on vertex pairs that are no edge are ignored).
 #pragma once
 
 #include <opensubdiv/far/topologyRefiner.h>
@@ -23,9 +24,6 @@ namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 // parameterization aligned with the cage's corner order (our domain convention); normals are
 // flipped by the caller instead.
 osd::Sdc::Options sdc_options(const CageTags& tags);
-
-// Throws CageError for data OpenSubdiv cannot take (see the contract above).
-void validate_for_osd(const Cage& cage);
 
 std::unique_ptr<osd::Far::TopologyRefiner> build_osd_refiner(const Cage& cage);
 

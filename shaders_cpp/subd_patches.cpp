@@ -45,7 +45,7 @@ class Builder {
 
   // Adds a patch whose control points are `stencils` over the gathered ring.
   void add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
-           const std::vector<Stencil>& stencils, const std::array<std::int64_t, 4>& edges, int rotation = 0) {
+           const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0) {
     if (ring.size() > std::size_t(kMaxPatchControlPoints))
       throw CageError(where(cage_, face) + ": its 1-ring has " + std::to_string(ring.size()) +
                       " vertices, more than the 32 control points of a patch (use --scheme exact)");
@@ -153,34 +153,42 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     // Patch corner k is face corner k + rot.
     auto corner = [&](int k) { return cage.face_vertex(f, (((k + rot) % n) + n) % n); };
     // Edge keys in SV_TessFactor order: patch edge k (corner k -> k+1) is factor (k + 1) % n.
-    std::array<std::int64_t, 4> edges{-1, -1, -1, -1};
+    std::array<EdgeFactorKey, 4> edges{};
     if (n <= 4)
-      for (int k = 0; k < n; ++k) edges[std::size_t((k + 1) % n)] = cage_edge_key(corner(k), corner(k + 1));
+      for (int k = 0; k < n; ++k) edges[std::size_t((k + 1) % n)] = {cage_edge_key(corner(k), corner(k + 1)), -1};
 
     if (!stencil_scheme) {
-      // flat and exact: the IA patch is the face itself. Faces of more than four sides become n quad
-      // sub-patches k: corner k, the middle of edge k -> k+1, the centre, the middle of edge k-1 -> k.
-      std::vector<int> ring;
-      for (int k = 0; k < n; ++k) ring.push_back(corner(k));
+      // flat and exact: the IA patch is the face itself.
+      if (n > kMaxPatchControlPoints)
+        throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
+                        " draws faces of up to " + std::to_string(kMaxPatchControlPoints) +
+                        " (the face is the patch's control points)");
+      const PatchKind tri_kind = scheme == Scheme::exact ? PatchKind::exact : PatchKind::linear;
       if (n == 3 || n == 4) {
+        std::vector<int> ring;
         std::vector<Stencil> corners;
+        for (int k = 0; k < n; ++k) ring.push_back(corner(k));
         if (scheme == Scheme::flat)
           for (int k = 0; k < n; ++k) corners.push_back(Stencil::vertex(corner(k)));
-        const PatchKind kind = scheme == Scheme::exact ? PatchKind::exact : n == 3 ? PatchKind::linear : PatchKind::bilinear;
+        const PatchKind kind = n == 3 ? tri_kind : scheme == Scheme::exact ? PatchKind::exact : PatchKind::bilinear;
         builder.add(n == 3 ? out.tris : out.quads, f, 0, kind, ring, corners, edges);
         continue;
       }
+      // Larger faces: the fan of n triangles k = (corner k, corner k+1, centre). The ring starts at corner
+      // k, so every fan triangle of every n-gon shares one flat table; the centre is summed in vertex
+      // order (SubdPatch::order), so the n triangles compute the same bits for it.
       Stencil centre;
       for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
       for (int k = 0; k < n; ++k) {
-        const std::array<std::int64_t, 4> sub_edges{half_edge_key(corner(k), corner(k - 1)),
-                                                    half_edge_key(corner(k), corner(k + 1)), -1, -1};
+        std::vector<int> ring;
+        for (int j = 0; j < n; ++j) ring.push_back(corner(k + j));
+        const std::int64_t before = cage_edge_key(corner(k - 1), corner(k)), outer = cage_edge_key(corner(k), corner(k + 1)),
+                           after = cage_edge_key(corner(k + 1), corner(k + 2));
+        const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
+                                                     EdgeFactorKey{outer, after}, EdgeFactorKey{}};
         std::vector<Stencil> points;
-        if (scheme == Scheme::flat)
-          points = {Stencil::vertex(corner(k)), Stencil{}.add_vertex(corner(k), 0.5).add_vertex(corner(k + 1), 0.5),
-                    centre, Stencil{}.add_vertex(corner(k), 0.5).add_vertex(corner(k - 1), 0.5)};
-        builder.add(out.quads, f, k, scheme == Scheme::exact ? PatchKind::exact : PatchKind::bilinear, ring, points,
-                    sub_edges);
+        if (scheme == Scheme::flat) points = {Stencil::vertex(corner(k)), Stencil::vertex(corner(k + 1)), centre};
+        builder.add(out.tris, f, k, tri_kind, ring, points, fan_edges);
       }
       continue;
     }

@@ -3,8 +3,11 @@
 // shader (subd_shaders.h) applies to that 1-ring.
 //
 // Contract
-// - Every non-hole face becomes one patch (quads and, for `flat` and `exact`, triangles and the n
-//   quad sub-patches of an n-gon); patches are in face order within each domain.
+// - Every non-hole face becomes patches in face order within each domain: a quad one quad-domain patch,
+//   and, for `flat` and `exact`, a triangle one tri-domain patch and a face of n > 4 sides n tri-domain
+//   patches, its fan: triangle k = (vertex k, vertex k+1, centre) with u = 1 at vertex k+1 and v = 1 at
+//   the centre (limit_surface.h states how `exact` maps it onto the face's surface). The fan's outer edge
+//   is the whole cage edge, so every cage edge is tessellated as one edge on both of its sides.
 // - Tables are deduplicated by content: faces whose 1-rings have the same structure share one table
 //   (the talk's topology combinations); `tables.size()` is how many distinct ones the cage needs.
 // - A patch's `order` lists its ring positions sorted by cage vertex index: the hull shader sums in
@@ -35,8 +38,8 @@ const char* to_string(Scheme s);
 
 // How the domain shader evaluates a patch.
 enum class PatchKind : std::uint8_t {
-  bilinear,  // 4 corners (flat quads and n-gon sub-quads)
-  linear,    // 3 corners (flat triangles)
+  bilinear,  // 4 corners (flat quads)
+  linear,    // 3 corners (flat triangles and the fan triangles of n-gons)
   acc,       // 16 Bezier points + tangent patches (control points carry du/dv)
   gregory,   // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
   exact,     // the limit surface (limit_surface.h), evaluated per domain point
@@ -49,14 +52,15 @@ inline std::int64_t cage_edge_key(int a, int b) {
   const std::int64_t lo = a < b ? a : b, hi = a < b ? b : a;
   return (lo << 31 | hi) << 1;
 }
-// Key of the half of edge (a, b) at a (n-gon sub-patches): odd, and different from (b, a)'s half.
-inline std::int64_t half_edge_key(int a, int b) { return (std::int64_t(a) << 31 | b) << 1 | 1; }
-// The full edge a half-edge key lies on.
-inline std::int64_t full_edge_key(std::int64_t key) {
-  if (key < 0 || (key & 1) == 0) return key;
-  const std::int64_t x = key >> 1;
-  return cage_edge_key(int(x >> 31), int(x & 0x7fffffff));
-}
+
+// Where a domain edge's tessellation factor comes from, named by cage edge keys so that the two patches
+// on an edge compute the same factor: a cage edge names itself (`b` = -1); a spoke of an n-gon's fan
+// (centre to vertex v) names the face's two cage edges at v, previous edge first, and takes the mean of
+// their factors (the same sum on both fan triangles that share the spoke). `a` = -1: the base factor.
+struct EdgeFactorKey {
+  std::int64_t a = -1, b = -1;
+  friend bool operator==(const EdgeFactorKey&, const EdgeFactorKey&) = default;
+};
 
 struct StencilTable {
   int rows = 0, ring = 0;
@@ -65,16 +69,15 @@ struct StencilTable {
 
 struct SubdPatch {
   int face = 0;
-  int sub = 0;                 // n-gon sub-patch (0 otherwise)
+  int sub = 0;                 // fan triangle k of a face of more than four sides (0 otherwise)
   int table = -1;              // into SubdPatches::tables, -1 for exact
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
   std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % 4
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
-  // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0): a key
-  // naming the cage edge (or half of it, for n-gon sub-patches) so both sides pick the same factor; -1
-  // for edges inside an n-gon.
-  std::array<std::int64_t, 4> edge_keys{-1, -1, -1, -1};
+  // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan
+  // triangle's Veq0 is its cage edge, Ueq0 the spoke to vertex k, Weq0 the spoke to vertex k+1.
+  std::array<EdgeFactorKey, 4> edge_keys{};
 };
 
 struct PatchGroup {

@@ -39,26 +39,31 @@ struct SubdControlPoint {
   glm::vec3 p{0.0f}, du{0.0f}, dv{0.0f};
 };
 
-// Tessellation factors as a pure function of a cage edge key (subd_patches.h), so the two patches on
+// Tessellation factors as a pure function of cage edge keys (subd_patches.h), so the two patches on
 // an edge always agree. `vary` > 0 spreads factors over [factor, factor * (1 + vary)] by a hash of the
 // key (to test edges whose factors differ); inside factors average the edges of each direction.
 struct SubdFactors {
   float factor = 8.0f;
   float vary = 0.0f;
   std::shared_ptr<const std::unordered_map<std::int64_t, float>> per_edge;  // by cage_edge_key
+  // The factor of one cage edge (the base factor for key -1).
   float edge(std::int64_t key) const {
     if (key >= 0 && per_edge) {
-      const auto it = per_edge->find(full_edge_key(key));
+      const auto it = per_edge->find(key);
       if (it != per_edge->end()) return it->second;
     }
     if (vary <= 0.0f || key < 0) return factor;
-    key = full_edge_key(key);
     std::uint64_t x = std::uint64_t(key) * 0x9E3779B97F4A7C15ull;
     x ^= x >> 29;
     x *= 0xBF58476D1CE4E5B9ull;
     x ^= x >> 32;
     const float r = float(x % 1000u) / 999.0f;
     return factor * (1.0f + vary * r);
+  }
+  // A domain edge's factor: its cage edge's, or for a spoke the mean of the two cage edges beside it.
+  float edge(const EdgeFactorKey& key) const {
+    if (key.b < 0) return edge(key.a);
+    return 0.5f * (edge(key.a) + edge(key.b));
   }
 };
 
@@ -114,7 +119,9 @@ struct SubdHS {
 
 
 // What the domain shader produces for one domain point: the surface point, its unit normal, and where
-// it came from (base face, and the location in that face's domain).
+// it came from: the base face and the domain location in the face's own frame (a quad's (u,v) from its
+// corner 0; a triangle's barycentric (u,v); for a face of more than four sides, (u,v) in its fan
+// triangle SubdPatch::sub).
 struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with derivatives)
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f};
@@ -166,8 +173,9 @@ struct SubdDS {
         break;
       }
       case PatchKind::exact: {
-        const SurfacePoint l = triangles ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
-                                         : limit->evaluate(patch.face, patch.sub, loc.u, loc.v);
+        const SurfacePoint l = !triangles                  ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
+                               : limit->face_size(patch.face) == 3 ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
+                                                                  : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
         s.position = l.position;
         s.normal = l.normal;
         return s;

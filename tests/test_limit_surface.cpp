@@ -26,6 +26,7 @@
 #include "limit_surface.h"
 #include "cage_obj.h"
 #include "osd_refiner.h"
+#include "topology.h"
 
 using namespace tessera;
 namespace {
@@ -75,9 +76,13 @@ void bspline(double t, double b[4], double d[4]) {
   d[3] = t * t / 2;
 }
 
+// eval(face, sub, u, v, w): sub >= 0 a quad (sub-)patch, kBarycentric a triangle's barycentric domain,
+// kFan - k fan triangle k.
+constexpr int kBarycentric = -1, kFan = -2;
+
 // All the ways a tessellated face can ask for the point at parameter t of its edge e (the same
-// geometric point): the quad domain, both sub-patches at an n-gon edge's midpoint, and a
-// triangle's barycentric domain.
+// geometric point): the quad domain, both sub-patches at an n-gon edge's midpoint, a triangle's
+// barycentric domain, and the fan triangle on the edge.
 template <class Eval>
 void edge_queries(const LimitSurface& s, int f, int e, float t, Eval&& eval) {
   const int n = s.face_size(f);
@@ -93,12 +98,13 @@ void edge_queries(const LimitSurface& s, int f, int e, float t, Eval&& eval) {
   }
   if (t <= 0.5f) eval(f, e, 2.0f * t, 0.0f, -1.0f);
   if (t >= 0.5f) eval(f, (e + 1) % n, 0.0f, 2.0f * (1.0f - t), -1.0f);
+  const float r = 1.0f - t;
   if (n == 3) {  // barycentric (u, v, w): corner 0 w=1, corner 1 u=1, corner 2 v=1
-    const float r = 1.0f - t;
-    if (e == 0) eval(f, -1, t, 0.0f, r);
-    if (e == 1) eval(f, -1, r, t, 0.0f);
-    if (e == 2) eval(f, -1, 0.0f, r, t);
+    if (e == 0) eval(f, kBarycentric, t, 0.0f, r);
+    if (e == 1) eval(f, kBarycentric, r, t, 0.0f);
+    if (e == 2) eval(f, kBarycentric, 0.0f, r, t);
   }
+  eval(f, kFan - e, t, 0.0f, r);  // fan triangle e: its v = 0 edge is the cage edge
 }
 
 struct WatertightResult {
@@ -113,8 +119,12 @@ WatertightResult check_watertight(const LimitSurface& s, const Cage& cage, bool 
   const double diag = s.bounding_box_diagonal();
   std::vector<SurfacePoint> got;
   const auto eval = [&](int f, int sub, float u, float v, float w) {
-    if (sub < 0) {
+    if (sub == kBarycentric) {
       got.push_back(s.evaluate_triangle(f, u, v, w));
+      return;
+    }
+    if (sub <= kFan) {
+      got.push_back(s.evaluate_fan(f, kFan - sub, u, v, w));
       return;
     }
     got.push_back(owned ? s.evaluate(f, sub, u, v) : s.evaluate_unowned(f, sub, u, v));
@@ -142,8 +152,8 @@ WatertightResult check_watertight(const LimitSurface& s, const Cage& cage, bool 
       const float t = tess_param(k, 37);  // parameter from key.first to key.second
       for (auto [f, e] : fs) {
         const bool forward = cage.face_vertex(f, e) == key.first;
-        // Triangles through the barycentric path too (only with ownership: the plain path has no
-        // barycentric variant, and it is compared through the sub-patches instead).
+        // Triangles and fans through their own paths too (only with ownership: the plain path has no
+        // barycentric or fan variant, and it is compared through the sub-patches instead).
         edge_queries(s, f, e, forward ? t : 1.0f - t, [&](int ff, int sub, float u, float v, float w) {
           if (sub < 0 && !owned) return;
           eval(ff, sub, u, v, w);
@@ -162,16 +172,24 @@ WatertightResult check_watertight(const LimitSurface& s, const Cage& cage, bool 
         eval(f, k, 1.0f, t, -1.0f);
         eval(f, (k + 1) % n, t, 1.0f, -1.0f);
         settle();
+        if (!owned) continue;
+        // The fan's spoke from vertex k to the centre, from both fan triangles on it (v = 1: the centre).
+        eval(f, kFan - k, 0.0f, t, 1.0f - t);
+        eval(f, kFan - (k + n - 1) % n, 1.0f - t, t, 0.0f);
+        eval(f, k, t, t, -1.0f);  // the diagonal of sub-patch k
+        if (i == 37) eval(f, 0, 1.0f, 1.0f, -1.0f);
+        settle();
       }
   }
   return res;
 }
 
+// (catmark_gregory_test4 and catmark_fan are non-manifold: validation rejects them.)
 const std::vector<std::string> kClosedShapes = {
     "catmark_cube",          "catmark_torus",         "catmark_gregory_test0", "catmark_gregory_test1",
-    "catmark_gregory_test2", "catmark_gregory_test3", "catmark_gregory_test4", "catmark_gregory_test5",
-    "catmark_gregory_test7", "catmark_gregory_test8", "catmark_nonquads",      "catmark_pyramid",
-    "catmark_cube_creases1", "catmark_hole_test1",    "catmark_smoothtris0",   "catmark_fan"};
+    "catmark_gregory_test2", "catmark_gregory_test3", "catmark_gregory_test5", "catmark_gregory_test7",
+    "catmark_gregory_test8", "catmark_nonquads",      "catmark_pyramid",       "catmark_cube_creases1",
+    "catmark_hole_test1",    "catmark_smoothtris0",   "catmark_val2_foldover", "catmark_val2_back2back"};
 
 }  // namespace
 
@@ -358,6 +376,71 @@ TEST_CASE("limit surface derivatives match finite differences in every domain", 
   }
 }
 
+TEST_CASE("limit surface fan triangles are the sub-patches mapped piecewise affinely", "[limit]") {
+  using L = LimitSurface;
+  // The map itself: corners, the edge midpoint, the centre, and both spokes land exactly where the
+  // contract puts them (the spoke points as the same (s, t) from both triangles).
+  const auto is = [](const L::SubPatchLocation& l, int sub, double s, double t) { return l.sub == sub && l.s == s && l.t == t; };
+  CHECK(is(L::fan_location(5, 2, 0.0, 0.0), 2, 0.0, 0.0));
+  CHECK(is(L::fan_location(5, 2, 1.0, 0.0), 3, 0.0, 0.0));
+  CHECK(is(L::fan_location(5, 4, 1.0, 0.0), 0, 0.0, 0.0));
+  CHECK(is(L::fan_location(5, 2, 0.5, 0.0), 2, 1.0, 0.0));
+  CHECK(is(L::fan_location(5, 2, 0.0, 1.0), 2, 1.0, 1.0));
+  CHECK(is(L::fan_location(5, 2, 0.25, 0.0), 2, 0.5, 0.0));
+  CHECK(is(L::fan_location(5, 2, 0.75, 0.0), 3, 0.0, 0.5));
+  for (int i = 1; i < 37; ++i) {
+    const double t = tess_param(i, 37), r = double(1.0f - float(t));
+    CHECK(is(L::fan_location(6, 3, 0.0, t), 3, t, t));
+    CHECK(is(L::fan_location(6, 2, r, t), 3, t, t));
+  }
+  for (const std::string name : {"catmark_nonquads", "catmark_gregory_test8", "catmark_pyramid"}) {
+    INFO(name);
+    const Cage cage = load_obj_cage(osd_shape(name));
+    const LimitSurface s = LimitSurface::create(cage);
+    const double diag = s.bounding_box_diagonal();
+    int fans = 0;
+    for (int f = 0; f < s.face_count(); ++f) {
+      const int n = s.face_size(f);
+      if (n == 4 || !s.has_surface(f)) continue;
+      for (int k = 0; k < n; ++k, ++fans) {
+        const auto ref = [&](double u, double v) {
+          const L::SubPatchLocation l = L::fan_location(n, k, u, v);
+          return s.sample_reference(f, l.sub, l.s, l.t);
+        };
+        // Points on both halves: the position is the sub-patch's, the derivatives those of the map.
+        for (auto [u, v] : {std::pair{0.2, 0.3}, {0.1, 0.5}, {0.55, 0.2}, {0.3, 0.65}, {0.7, 0.1}}) {
+          const SurfacePoint p = s.evaluate_fan(f, k, float(u), float(v), float(1 - u - v));
+          CHECK(glm::length(glm::dvec3(p.position) - ref(u, v).position) / diag < 1e-6);
+          const double h = 1.0 / 4096;  // both samples on the point's own half
+          const glm::dvec3 fu = (ref(u + h, v).position - ref(u - h, v).position) / (2 * h);
+          const glm::dvec3 fv = (ref(u, v + h).position - ref(u, v - h).position) / (2 * h);
+          CHECK(glm::length(glm::dvec3(p.du) - fu) / diag < 1e-3);
+          CHECK(glm::length(glm::dvec3(p.dv) - fv) / diag < 1e-3);
+          CHECK(glm::dot(glm::cross(p.du, p.dv), p.normal) > 0);
+          CHECK(std::abs(glm::length(p.normal) - 1.0f) < 1e-6f);
+        }
+        // Across the line x = 2u + v = 1, where the triangle passes from sub-patch k to k+1, the
+        // position and the normal are continuous.
+        const float v = 0.375f, e = 1.0f / 8192;
+        const SurfacePoint a = s.evaluate_fan(f, k, (1.0f - v) / 2 - e, v, 1.0f - ((1.0f - v) / 2 - e) - v);
+        const SurfacePoint b = s.evaluate_fan(f, k, (1.0f - v) / 2 + e, v, 1.0f - ((1.0f - v) / 2 + e) - v);
+        CHECK(glm::length(a.position - b.position) / diag < 1e-3);
+        CHECK(glm::length(a.normal - b.normal) < 1e-2);
+      }
+    }
+    CHECK(fans > 0);
+  }
+  // A quad has no fan; triangles past n - 1 do not exist.
+  const Cage nonquads = load_obj_cage(osd_shape("catmark_nonquads"));
+  const LimitSurface s = LimitSurface::create(nonquads);
+  int quad = 0, hexagon = 0;
+  while (s.face_size(quad) != 4) ++quad;
+  while (s.face_size(hexagon) != 6) ++hexagon;
+  CHECK_THROWS_AS(s.evaluate_fan(quad, 0, 0.2f, 0.2f, 0.6f), std::out_of_range);
+  CHECK_THROWS_AS(s.evaluate_fan(hexagon, 6, 0.2f, 0.2f, 0.6f), std::out_of_range);
+  CHECK_NOTHROW(s.evaluate_fan(hexagon, 5, 0.2f, 0.2f, 0.6f));
+}
+
 TEST_CASE("limit surface holes and out-of-range queries are reported", "[limit]") {
   const Cage cage = load_obj_cage(osd_shape("catmark_hole_test1"));
   const LimitSurface s = LimitSurface::create(cage);
@@ -390,34 +473,86 @@ TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
     }
     return "";
   };
+  // The cage's own validation (validate_cage, topology.h) speaks first.
   Cage bad = cube;
   bad.face_vertices[5] = 99;
-  CHECK(message(bad).find("face 1 has vertex 99 out of range") != std::string::npos);
+  CHECK(message(bad).find("face 1 has vertex 99 (0-based), but the cage has 8 vertices") != std::string::npos);
   bad = cube;
   bad.face_sizes[2] = 2;
-  CHECK(message(bad).find("face 2 has 2 vertices") != std::string::npos);
-  bad = cube;
-  bad.tags.creases.push_back({0, 7, 2.0f});  // a diagonal, not an edge
-  CHECK(message(bad).find("crease 0 (vertices 0-7) is not an edge") != std::string::npos);
+  CHECK(message(bad).find("face 2 has 2 vertices; a face needs at least 3") != std::string::npos);
   bad = cube;
   bad.tags.holes.push_back(6);
-  CHECK(message(bad).find("hole 0 names face 6") != std::string::npos);
+  CHECK(message(bad).find("hole names face 6, but the cage has 6 faces") != std::string::npos);
+  bad = cube;
+  bad.tags.corners.push_back({3, -1.0f});
+  CHECK(message(bad).find("corner at vertex 3 has sharpness") != std::string::npos);
   bad = cube;
   bad.positions[3].x = std::nanf("");
-  CHECK(message(bad).find("vertex 3 is not finite") != std::string::npos);
-  for (const Cage& c : {bad}) CHECK(message(c).find('\n') == std::string::npos);
-  // Non-manifold topology is OpenSubdiv's to judge: it either builds (and evaluates) or is a CageError.
-  for (const std::string name : {"catmark_nonman_edges", "catmark_nonman_verts", "catmark_nonman_bareverts", "catmark_val2_nonman"}) {
+  const std::string nan_message = message(bad);
+  CHECK(nan_message.find(": face ") != std::string::npos);
+  CHECK(nan_message.find("has no finite limit surface") != std::string::npos);
+  CHECK(nan_message.find('\n') == std::string::npos);
+  // Non-manifold topology is rejected by that validation, before OpenSubdiv sees it; a bare vertex is
+  // a warning there, and the surface evaluates.
+  for (const std::string name : {"catmark_nonman_edges", "catmark_nonman_verts", "catmark_val2_nonman", "catmark_fan",
+                                 "catmark_gregory_test4"}) {
     INFO(name);
     const Cage c = load_obj_cage(osd_shape(name));
+    std::string topology_message;
     try {
-      const LimitSurface s = LimitSurface::create(c);
-      for (int f = 0; f < s.face_count(); ++f)
-        for (int k = 0; k < s.sub_patch_count(f); ++k) CHECK(std::isfinite(s.evaluate(f, k, 0.3f, 0.6f).position.x));
+      validate_cage(c);
     } catch (const CageError& e) {
-      CHECK(std::string(e.what()).find('\n') == std::string::npos);
+      topology_message = e.what();
     }
+    CHECK_FALSE(topology_message.empty());
+    CHECK(message(c) == topology_message);
   }
+  {
+    const LimitSurface s = LimitSurface::create(load_obj_cage(osd_shape("catmark_nonman_bareverts")));
+    for (int f = 0; f < s.face_count(); ++f)
+      for (int k = 0; k < s.sub_patch_count(f); ++k) CHECK(std::isfinite(s.evaluate(f, k, 0.3f, 0.6f).position.x));
+  }
+  // A crease on two vertices that share no edge is ignored, as the topology documents (a warning there).
+  bad = cube;
+  bad.tags.creases.push_back({0, 7, 2.0f});  // a diagonal, not an edge
+  {
+    const LimitSurface plain = LimitSurface::create(cube), diagonal = LimitSurface::create(bad);
+    for (int f = 0; f < cube.face_count(); ++f)
+      CHECK(same_bits(plain.evaluate(f, 0, 0.3f, 0.6f).position, diagonal.evaluate(f, 0, 0.3f, 0.6f).position));
+  }
+}
+
+TEST_CASE("limit surface rejects faces and valences beyond OpenSubdiv's limits", "[limit]") {
+  const int limit = 65535;  // Bfr::Limits::MaxFaceSize() and MaxValence()
+  const auto message = [](const Cage& c) -> std::string {
+    try {
+      LimitSurface::create(c);
+    } catch (const CageError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  Cage big;  // one face of 65536 corners, valid for the topology
+  big.name = "big";
+  big.face_sizes = {limit + 1};
+  big.face_offsets = {0};
+  for (int i = 0; i <= limit; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / (limit + 1);
+    big.positions.push_back(glm::vec3(float(std::cos(a)), float(std::sin(a)), 0.0f));
+    big.face_vertices.push_back(i);
+  }
+  CHECK(message(big) == "big: face 0 has 65536 vertices; OpenSubdiv takes at most 65535");
+  Cage pole;  // a disc of 65536 triangles around vertex 0: valence 65537 there
+  pole.name = "pole";
+  pole.positions.push_back(glm::vec3(0.0f));
+  for (int i = 0; i <= limit; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / (limit + 1);
+    pole.positions.push_back(glm::vec3(float(std::cos(a)), float(std::sin(a)), 0.0f));
+    pole.face_sizes.push_back(3);
+    pole.face_offsets.push_back(3 * i);
+    for (int v : {0, 1 + i, 1 + (i + 1) % (limit + 1)}) pole.face_vertices.push_back(v);
+  }
+  CHECK(message(pole) == "pole: vertex 0 has valence 65536; OpenSubdiv takes at most 65535");
 }
 
 TEST_CASE("limit surface evaluation is thread-safe and deterministic", "[limit]") {

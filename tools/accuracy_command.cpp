@@ -45,9 +45,14 @@ int run_accuracy(const AccuracyOptions& o) {
       const SurfaceSample& s = p.points[i];
       const ts::DomainPoint q = p.domain[i];
       glm::dvec3 pos, nrm;
-      if (g.domain == ts::Domain::tri) {
+      const int n = reference.face_size(patch.face);
+      if (g.domain == ts::Domain::tri && n == 3) {
         const SurfacePoint e = reference.evaluate_triangle(patch.face, q.u, q.v, (1.0f - q.u) - q.v);
         pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
+      } else if (g.domain == ts::Domain::tri) {  // a fan triangle of a larger face
+        const LimitSurface::SubPatchLocation l = LimitSurface::fan_location(n, patch.sub, q.u, q.v);
+        const ReferenceSample e = reference.sample_reference(patch.face, l.sub, l.s, l.t);
+        pos = e.position, nrm = e.normal;
       } else {
         const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
         pos = e.position, nrm = e.normal;
