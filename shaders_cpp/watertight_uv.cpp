@@ -1,0 +1,57 @@
+#include "watertight_uv.h"
+
+#include <string>
+
+namespace tessera {
+
+int edge_owner(const Topology& t, int h) {
+  const int twin = t.twin(h);
+  if (twin < 0 || t.is_hole(t.face(twin))) return h;
+  if (t.is_hole(t.face(h))) return twin;
+  return h < twin ? h : twin;
+}
+
+int vertex_owner(const Topology& t, int v) {
+  int owner = -1;
+  for (int h : t.ring(v))
+    if (!t.is_hole(t.face(h)) && (owner < 0 || h < owner)) owner = h;
+  return owner;
+}
+
+std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topology& t, const PatchGroup& group,
+                                                  UvOwnership ownership) {
+  if (!cage.has_uvs())
+    throw CageError(cage.name + ": has no texture coordinates (vt); a displacement map needs them");
+  for (int f = 0; f < t.face_count(); ++f)
+    if (!t.is_hole(f) && t.face_size(f) != 4)
+      throw CageError(cage.name + ": face " + std::to_string(f) + " has " + std::to_string(t.face_size(f)) +
+                      " sides; displacement handles quad faces only");
+  // UV of corner k (mod 4) of face f.
+  auto uv = [&](int f, int k) { return cage.uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])]; };
+  std::vector<PatchTexcoords> out;
+  out.reserve(group.size());
+  for (const SubdPatch& p : group.patches) {
+    PatchTexcoords tc;
+    const int f = p.face;
+    for (int k = 0; k < 4; ++k) {
+      const int fk = k + p.rotation;  // face corner of patch corner k
+      tc.interior[std::size_t(k)] = uv(f, fk);
+      const int h = t.face_offset(f) + fk % 4;
+      // Edge k: from patch corner k to k + 1, the face's half-edge h.
+      const int ho = ownership == UvOwnership::owned ? edge_owner(t, h) : h;
+      const int fo = t.face(ho), co = t.corner(ho);
+      tc.edge[std::size_t(k)] = {uv(fo, co), uv(fo, co + 1), uv(fo, co + 2), uv(fo, co + 3)};
+      tc.reversed[std::size_t(k)] = ho != h;
+      // Corner k: the vertex at h's origin.
+      const int hv = ownership == UvOwnership::owned ? vertex_owner(t, t.origin(h)) : h;
+      const int fv = t.face(hv), cv = t.corner(hv);
+      tc.corner[std::size_t(k)] = uv(fv, cv);
+      tc.corner_span[std::size_t(k)] = {uv(fv, cv + 1) - uv(fv, cv), uv(fv, cv + 3) - uv(fv, cv)};
+      tc.corner_key[std::size_t(k)] = cage_edge_key(t.origin(hv), t.destination(hv));
+    }
+    out.push_back(tc);
+  }
+  return out;
+}
+
+}  // namespace tessera
