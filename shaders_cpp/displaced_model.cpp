@@ -54,7 +54,7 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
   }
 
-  d.texcoords = build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership);
+  d.texcoords = build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v);
   d.frames = build_patch_frames(cage, *model.topology, model.patches.quads, model.patches.scheme);
   return d;
 }

@@ -32,6 +32,7 @@ struct DisplacementOptions {
   float scale = 1.0f, bias = 0.0f;
   DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only
   std::string normal_map = "auto";
+  bool flip_v = true;  // the cage's UVs have v up (OBJ); watertight_uv.h
   // Test knobs (the negative tests): per-face UVs, and each patch's own normals.
   UvOwnership ownership = UvOwnership::owned;
   bool shared_normals = true;

@@ -174,7 +174,8 @@ struct DisplacedDS {
       lod = pc.lod_corner[std::size_t(k)];
       pa = t[0], pb = t[1];
       ja = tc.corner_span[std::size_t(k)][0], jb = tc.corner_span[std::size_t(k)][1];
-      if (!exact && params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
+      if (exact) owner_derivatives(tc.vertex_face[std::size_t(k)], tc.vertex_corner[std::size_t(k)], 0.0f, pa, pb);
+      else if (params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
     } else if (on_u || on_v) {
       int k;
       float t;
@@ -189,12 +190,16 @@ struct DisplacedDS {
       const float so = 1.0f - to;
       uv = e[0] * so + e[1] * to;
       lod = pc.lod_edge[std::size_t(k)];
-      const Cubic b = cubic_bernstein(to);
-      pa = cubic_sum(b, f[0], f[1], f[2], f[3]);
-      pb = cubic_sum(b, f[4], f[5], f[6], f[7]);
       ja = e[1] - e[0];
       jb = so * (e[3] - e[0]) + to * (e[2] - e[1]);
-      if (!exact && params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
+      if (exact) {
+        owner_derivatives(tc.edge_face[std::size_t(k)], tc.edge_corner[std::size_t(k)], to, pa, pb);
+      } else {
+        const Cubic b = cubic_bernstein(to);
+        pa = cubic_sum(b, f[0], f[1], f[2], f[3]);
+        pb = cubic_sum(b, f[4], f[5], f[6], f[7]);
+        if (params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
+      }
     } else {
       uv = bilerp_uv(tc.interior, u, v);
       const auto& c = tc.interior;
@@ -228,6 +233,20 @@ struct DisplacedDS {
 
  private:
   glm::vec3 oriented(const glm::vec3& n) const { return base.flip_normals ? -n : n; }
+  // The limit surface's derivatives of face f along its edge from corner c (parameter t) and across it
+  // (into the face), at that edge point (exact scheme, quads: corner c at (0,0),(1,0),(1,1),(0,1)).
+  void owner_derivatives(int f, int c, float t, glm::vec3& along, glm::vec3& across) const {
+    const float r = 1.0f - t;
+    const float u = c == 0 ? t : c == 1 ? 1.0f : c == 2 ? r : 0.0f;
+    const float v = c == 0 ? 0.0f : c == 1 ? t : c == 2 ? 1.0f : r;
+    const SurfacePoint l = base.limit->evaluate(f, 0, u, v);
+    switch (c) {
+      case 0: along = l.du, across = l.dv; break;
+      case 1: along = l.dv, across = -l.du; break;
+      case 2: along = -l.du, across = -l.dv; break;
+      default: along = -l.dv, across = l.du; break;
+    }
+  }
 };
 
 // For rendering: clip-space position and 11 attributes: the base normal (0..2), dP/dU (3..5), dP/dV

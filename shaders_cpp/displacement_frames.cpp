@@ -27,13 +27,11 @@ Frame8 edge_frame(Scheme scheme, const std::array<CornerRing, 4>& c) {
   auto put = [&](const std::array<Stencil, 4>& along, const std::array<Stencil, 4>& cross) {
     for (int i = 0; i < 4; ++i) f[std::size_t(i)] = along[std::size_t(i)], f[std::size_t(4 + i)] = cross[std::size_t(i)];
   };
-  bool quads = true;
-  for (const auto& r : c) quads = quads && r.all_quads();
   if (scheme == Scheme::acc) {
     const auto s = acc_quad_stencils(c);
     // du[i + 3 j] at 16, dv[i + 4 j] at 28; v = 0 is j = 0.
     put(elevate(s[16], s[17], s[18]), {s[28], s[29], s[30], s[31]});
-  } else if (scheme == Scheme::gregory || scheme == Scheme::bspline || (scheme == Scheme::exact && quads)) {
+  } else if (scheme == Scheme::gregory || scheme == Scheme::bspline) {
     const auto g = gregory_quad_stencils(c);
     // Bezier row 0 and row 1 at v = 0 (patch_eval.h gregory_to_bezier): b0..b3 = P0, E+0, E-1, P1;
     // b4..b7 = E-0, F+0, F-1, E+1.
@@ -83,6 +81,10 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
   out.offsets.push_back(0);
   for (std::size_t p = 0; p < group.size(); ++p) {
     const SubdPatch& patch = group.patches[p];
+    if (scheme == Scheme::exact) {
+      out.offsets.insert(out.offsets.end(), kFrameStencils, out.offsets.back());
+      continue;
+    }
     std::map<int, std::uint32_t> position;  // cage vertex -> ring position
     for (int i = 0; i < patch.ring_size; ++i)
       position.emplace(int(group.indices[p * std::size_t(group.control_points) + std::size_t(i)]), std::uint32_t(i));

@@ -8,9 +8,9 @@
 //   cubic in the owner's edge parameter with four control vectors (8 stencils: along A0..A3, cross
 //   C0..C3). acc: the tangent patches' edge rows (along degree-elevated from quadratic); gregory and
 //   bspline: the derivatives of the Bezier boundary (degree-elevated) and 3 (row 1 − row 0); flat: the
-//   bilinear patch's; exact: Gregory's where the owner's corner rings are all quads, else flat's (exact
-//   takes only the tangent direction from it: its normals come owned from the limit surface).
-//   The normal there is normalize(along x cross).
+//   bilinear patch's. The normal there is normalize(along x cross).
+//   `exact` has no stencils (its IA patch is the face alone): its normals are owned by the limit
+//   surface already, and its DS reads the owner's derivatives from the limit surface directly.
 // - a cage vertex: two limit tangents (limit_masks.h) along the vertex owner face's next and previous
 //   edges (flat: those edges themselves); the normal is normalize(T0 x T1).
 // Each stencil only reaches the 1-rings of the element's vertices, which every patch containing the
@@ -18,7 +18,7 @@
 // sorted by global vertex index, the weights rounded once from double. The hull shader sums them in
 // that order in double and rounds once (as SubdHS does), so both sides get identical bits.
 //
-// Contract: quad patches (as watertight_uv.h). Per patch 40 stencils: edge k (patch edge k, corner k ->
+// Contract: quad patches (as watertight_uv.h). Per patch 40 stencils (empty for exact): edge k (patch edge k, corner k ->
 // k+1) at 8k .. 8k+7 (along 0..3, cross 0..3, in the OWNER's direction and parameter), corner k's two
 // tangents at 32 + 2k, 33 + 2k. Throws CageError if a stencil reaches a vertex outside the patch's
 // ring (an internal error: it cannot happen for the schemes' all-quad neighbourhoods).

@@ -19,7 +19,7 @@ int vertex_owner(const Topology& t, int v) {
 }
 
 std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topology& t, const PatchGroup& group,
-                                                  UvOwnership ownership) {
+                                                  UvOwnership ownership, bool flip_v) {
   if (!cage.has_uvs())
     throw CageError(cage.name + ": has no texture coordinates (vt); a displacement map needs them");
   for (int f = 0; f < t.face_count(); ++f)
@@ -27,7 +27,10 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
       throw CageError(cage.name + ": face " + std::to_string(f) + " has " + std::to_string(t.face_size(f)) +
                       " sides; displacement handles quad faces only");
   // UV of corner k (mod 4) of face f.
-  auto uv = [&](int f, int k) { return cage.uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])]; };
+  std::vector<glm::vec2> uvs = cage.uvs;
+  if (flip_v)
+    for (auto& x : uvs) x.y = 1.0f - x.y;
+  auto uv = [&](int f, int k) { return uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])]; };
   std::vector<PatchTexcoords> out;
   out.reserve(group.size());
   for (const SubdPatch& p : group.patches) {
@@ -42,10 +45,12 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
       const int fo = t.face(ho), co = t.corner(ho);
       tc.edge[std::size_t(k)] = {uv(fo, co), uv(fo, co + 1), uv(fo, co + 2), uv(fo, co + 3)};
       tc.reversed[std::size_t(k)] = ho != h;
+      tc.edge_face[std::size_t(k)] = fo, tc.edge_corner[std::size_t(k)] = std::uint8_t(co);
       // Corner k: the vertex at h's origin.
       const int hv = ownership == UvOwnership::owned ? vertex_owner(t, t.origin(h)) : h;
       const int fv = t.face(hv), cv = t.corner(hv);
       tc.corner[std::size_t(k)] = uv(fv, cv);
+      tc.vertex_face[std::size_t(k)] = fv, tc.vertex_corner[std::size_t(k)] = std::uint8_t(cv);
       tc.corner_span[std::size_t(k)] = {uv(fv, cv + 1) - uv(fv, cv), uv(fv, cv + 3) - uv(fv, cv)};
       tc.corner_key[std::size_t(k)] = cage_edge_key(t.origin(hv), t.destination(hv));
     }

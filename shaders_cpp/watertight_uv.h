@@ -47,6 +47,8 @@ struct PatchTexcoords {
   std::array<glm::vec2, 4> corner{};
   std::array<std::array<glm::vec2, 2>, 4> corner_span{};
   std::array<std::int64_t, 4> corner_key{};
+  std::array<std::int32_t, 4> edge_face{}, vertex_face{};
+  std::array<std::uint8_t, 4> edge_corner{}, vertex_corner{};
 };
 
 enum class UvOwnership : std::uint8_t { owned, per_face };
@@ -56,8 +58,10 @@ int edge_owner(const Topology& t, int h);
 int vertex_owner(const Topology& t, int v);
 
 // One entry per patch of the group, in patch order.
+// `flip_v` stores (u, 1 − v): OBJ texture coordinates have v = 0 at the bottom of the image, textures
+// (texture.h, D3D) have row 0 at v = 0. Each cage UV is flipped once, so shared slots stay identical.
 std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topology& topology, const PatchGroup& group,
-                                                  UvOwnership ownership = UvOwnership::owned);
+                                                  UvOwnership ownership = UvOwnership::owned, bool flip_v = true);
 
 // Bilinear interpolation of four corner values at (u, v), corner k at (0,0),(1,0),(1,1),(0,1).
 inline glm::vec2 bilerp_uv(const std::array<glm::vec2, 4>& c, float u, float v) {
