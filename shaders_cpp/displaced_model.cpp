@@ -34,6 +34,7 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
                    : o.space == DisplacementSpace::object ? DisplacementKind::vector_object : DisplacementKind::vector_tangent;
   d.scale = o.scale, d.bias = o.bias;
   d.shared_normals = o.shared_normals;
+  d.flip_v = o.flip_v;
 
   const Cage& cage = model.cage;
   if (!cage.has_uvs())

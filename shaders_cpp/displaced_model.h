@@ -44,6 +44,9 @@ struct Displacement {
   DisplacementKind kind = DisplacementKind::scalar;
   float scale = 1.0f, bias = 0.0f;
   bool shared_normals = true;
+  // The UVs were flipped (v up, OBJ). Texture V then runs down the image, and a normal map's green,
+  // which follows the cage's v, points along −V: the pixel shader flips it.
+  bool flip_v = true;
   std::vector<PatchTexcoords> texcoords;  // per quad patch
   PatchFrames frames;                     // per quad patch
   std::size_t bytes() const;              // maps (all levels) + per-patch data

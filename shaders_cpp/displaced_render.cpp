@@ -37,6 +37,7 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
       ps.light = light;
       if (displacement.normal_map) {
         ps.normal_map = &displacement.normal_map->texture();
+        ps.flip_green = displacement.flip_v;
       } else if (displacement.kind == DisplacementKind::scalar) {
         ps.height = &displacement.map->texture();
         ps.height_scale = displacement.scale;

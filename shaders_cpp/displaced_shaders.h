@@ -273,7 +273,7 @@ struct DisplacedProjectDS {
 
 // Clay with a headlight, on the displaced surface's shading normal: from a tangent-space normal map
 // (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized;
-// `flip_green` for maps whose y points along −V), or derived from the height map (the normal of
+// `flip_green` for maps whose y points along −V: OBJ cages, whose v points up the image), or derived from the height map (the normal of
 // P + h N with h's texture gradient by central differences one level-0 texel apart, sampled with the
 // pixel's UV derivatives), or the base normal when neither is given.
 struct DisplacedPS {

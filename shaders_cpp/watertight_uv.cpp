@@ -41,15 +41,20 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
       tc.interior[std::size_t(k)] = uv(f, fk);
       const int h = t.face_offset(f) + fk % 4;
       // Edge k: from patch corner k to k + 1, the face's half-edge h.
-      const int ho = ownership == UvOwnership::owned ? edge_owner(t, h) : h;
+      const int ho = edge_owner(t, h);
       const int fo = t.face(ho), co = t.corner(ho);
       tc.edge[std::size_t(k)] = {uv(fo, co), uv(fo, co + 1), uv(fo, co + 2), uv(fo, co + 3)};
       tc.reversed[std::size_t(k)] = ho != h;
+      if (ownership == UvOwnership::per_face) {
+        // The naive way: this face's own UVs (still in the owner's direction, which the frames use).
+        const glm::vec2 a = uv(f, fk), b = uv(f, fk + 1), c = uv(f, fk + 2), d = uv(f, fk + 3);
+        tc.edge[std::size_t(k)] = ho == h ? std::array<glm::vec2, 4>{a, b, c, d} : std::array<glm::vec2, 4>{b, a, d, c};
+      }
       tc.edge_face[std::size_t(k)] = fo, tc.edge_corner[std::size_t(k)] = std::uint8_t(co);
       // Corner k: the vertex at h's origin.
-      const int hv = ownership == UvOwnership::owned ? vertex_owner(t, t.origin(h)) : h;
+      const int hv = vertex_owner(t, t.origin(h));
       const int fv = t.face(hv), cv = t.corner(hv);
-      tc.corner[std::size_t(k)] = uv(fv, cv);
+      tc.corner[std::size_t(k)] = ownership == UvOwnership::owned ? uv(fv, cv) : uv(f, fk);
       tc.vertex_face[std::size_t(k)] = fv, tc.vertex_corner[std::size_t(k)] = std::uint8_t(cv);
       tc.corner_span[std::size_t(k)] = {uv(fv, cv + 1) - uv(fv, cv), uv(fv, cv + 3) - uv(fv, cv)};
       tc.corner_key[std::size_t(k)] = cage_edge_key(t.origin(hv), t.destination(hv));

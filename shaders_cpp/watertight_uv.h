@@ -20,8 +20,8 @@
 //   next and previous corners (the UV derivatives at the corner, for tangent frames); corner_key[k]:
 //   the cage edge key of the owner's outgoing edge (the corner's LOD uses that edge's factor).
 //
-// Per-face (naive) texcoords put the face's own UVs in every slot: what the negative tests use to show
-// that a UV seam then cracks.
+// Per-face (naive) texcoords put the face's own UVs in the edge and corner UV slots (the owners, spans
+// and LOD keys stay): what the negative tests use to show that a UV seam then cracks.
 //
 // Contract: quad patches only (displaced cages must be quads; build throws CageError naming the face
 // otherwise); the cage must have UVs (CageError naming the cage). Slots are copies of the cage's
