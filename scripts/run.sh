@@ -19,7 +19,7 @@ frog="$root/tests/data/sdk-cages/monsterfrog_mapped_00.obj"
 disp=(--displacement "$root/tests/data/sdk-cages/monsterfrog.dds" --displacement-channel A --displacement-scale 1.2 --displacement-bias -0.6)
 camera=(--camera-position 48,15,66 --camera-target -3,-2.5,2)
 "$bin" render "$frog" --scheme gregory --factor 16 "${disp[@]}" "${camera[@]}" -o "$out/frog_displaced.png" --stats "$out/frog_displaced_stats.json"
-"$bin" render "$frog" --scheme gregory --factor 8 "${disp[@]}" "${camera[@]}" --view wire-on-shaded --resolution 1280x720 -o "$out/frog_displaced_wire.png"
+"$bin" render "$frog" --scheme gregory --factor 3 "${disp[@]}" "${camera[@]}" --view wire-on-shaded -o "$out/frog_displaced_wire.png"
 for scheme in acc gregory exact; do
   "$bin" tessellate "$frog" --scheme "$scheme" --factor 5.5 --partitioning fractional_odd --vary-factors 1.5 "${disp[@]}" --check-watertight
 done | tee "$out/frog_displaced_watertight.txt"

@@ -219,10 +219,10 @@ TEST_CASE("Displacement maps load from EXR, TIFF, PNG 8 and 16 bit with channel 
   }
 }
 
-TEST_CASE("The displaced monster frog is watertight on exact bits: acc, gregory, exact, integer and fractional factors "
-          "varying per edge",
+TEST_CASE("The displaced monster frog is watertight on exact bits: acc, gregory, exact, bspline, integer and fractional "
+          "factors varying per edge",
           "[disp]") {
-  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact}) {
+  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::bspline}) {
     const SubdModel m = load_subd_model(kFrog, s);
     const Displacement d = make_displacement(m, frog_options());
     const Displacement noise = make_displacement(m, noise_options());
