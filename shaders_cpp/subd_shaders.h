@@ -121,12 +121,15 @@ struct SubdHS {
 // What the domain shader produces for one domain point: the surface point, its unit normal, and where
 // it came from: the base face and the domain location in the face's own frame (a quad's (u,v) from its
 // corner 0; a triangle's barycentric (u,v); for a face of more than four sides, (u,v) in its fan
-// triangle SubdPatch::sub).
+// triangle SubdPatch::sub). du, dv are the partial derivatives with respect to the patch's domain
+// location (DomainLocation u, v: the patch's frame, which may be rotated from the face's, see
+// SubdPatch::rotation), for tangent frames.
 struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with derivatives)
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f};
   std::uint32_t face = 0;
   float u = 0, v = 0;
+  glm::vec3 du{0.0f}, dv{0.0f};
 };
 
 struct SubdDS {
@@ -178,10 +181,12 @@ struct SubdDS {
                                                                   : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
         s.position = l.position;
         s.normal = l.normal;
+        s.du = l.du, s.dv = l.dv;
         return s;
       }
     }
     s.position = p.position;
+    s.du = p.du, s.dv = p.dv;
     const glm::vec3 n = glm::cross(p.du, p.dv);
     const float len = glm::length(n);
     s.normal = len > 0.0f ? n / len : glm::vec3(0.0f);

@@ -7,6 +7,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "displaced_render.h"
 #include "subd_render.h"
 #include "tessellate_options.h"
 
@@ -19,6 +20,7 @@ struct RenderOptions {
   float factor = 8.0f, vary = 0.0f, fov = 35.0f;
   int threads = 0;
   std::string stats;
+  DisplacementCli displacement;
 };
 
 glm::vec3 parse_vec3(const std::string& text, const char* what) {
@@ -40,6 +42,7 @@ int run_render(const RenderOptions& o) {
   if (o.output.empty()) throw UsageError("-o out.png is required");
 
   const SubdModel model = load_model(o.cage, scheme);
+  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   std::optional<glm::vec3> eye, target;
   if (!o.eye.empty()) eye = parse_vec3(o.eye, "--camera-position");
   if (!o.target.empty()) target = parse_vec3(o.target, "--camera-target");
@@ -52,7 +55,9 @@ int run_render(const RenderOptions& o) {
   if (!fb) throw UsageError(error);
   fb->clear(glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
   const SubdView view = o.view == "shaded" ? SubdView::shaded : o.view == "wireframe" ? SubdView::wireframe : SubdView::wire_on_shaded;
-  const DrawResult result = render_subd(device, model, factors, partitioning, view, camera, *fb);
+  const DrawResult result = displacement
+                                ? render_displaced(device, model, *displacement, factors, partitioning, view, camera, *fb)
+                                : render_subd(device, model, factors, partitioning, view, camera, *fb);
   if (!result.ok()) throw InputError(o.cage + ": " + result.error);
   const DrawReport& total = result.report;
   if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
@@ -80,6 +85,7 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--camera-target", o->target, "x,y,z (default: the model's centre)");
   cmd->add_option("--fov", o->fov, "vertical field of view, degrees")->capture_default_str();
   cmd->add_option("--view", o->view, "shaded, wireframe or wire-on-shaded")->capture_default_str();
+  add_displacement_options(*cmd, o->displacement);
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times, memory and peak RSS as JSON");
   return [o] { return run_render(*o); };
 }

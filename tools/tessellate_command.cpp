@@ -23,6 +23,7 @@ struct TessellateOptions {
   float factor = 8.0f, vary = 0.0f;
   int threads = 0;
   bool check = false, json = false;
+  DisplacementCli displacement;
 };
 
 template <class T>
@@ -37,6 +38,7 @@ int run_tessellate(const TessellateOptions& o) {
   if (o.output.empty() && !o.check) throw UsageError("nothing to do: give -o out.ply and/or --check-watertight");
 
   const SubdModel model = load_model(o.cage, scheme);
+  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +
              " faces are not regular and are drawn as Gregory patches");
@@ -48,10 +50,10 @@ int run_tessellate(const TessellateOptions& o) {
   std::uint64_t vertices = 0, triangles = 0;
   DrawResult result;
   auto tessellate = [&](std::ofstream* vout, std::ofstream* fout) {
-    result = stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup&) {
+    auto sink = [&](const auto& p, const PatchGroup&) {
       const std::uint64_t base = vertices;
       if (vout)
-        for (const SurfaceSample& s : p.points) {
+        for (const auto& s : p.points) {
           put(*vout, s.position.x), put(*vout, s.position.y), put(*vout, s.position.z);
           put(*vout, s.normal.x), put(*vout, s.normal.y), put(*vout, s.normal.z);
           put(*vout, std::int32_t(s.face));
@@ -68,7 +70,9 @@ int run_tessellate(const TessellateOptions& o) {
         ++triangles;
       }
       vertices += p.points.size();
-    });
+    };
+    result = displacement ? stream_displaced(device, model, *displacement, factors, partitioning, sink)
+                          : stream_subd(device, model, factors, partitioning, sink);
     if (!result.ok()) throw InputError(o.cage + ": " + result.error);
   };
 
@@ -92,7 +96,9 @@ int run_tessellate(const TessellateOptions& o) {
       }
       std::ofstream out(temp, std::ios::binary);
       out << "ply\nformat binary_little_endian 1.0\ncomment tessera tessellate " << std::filesystem::path(o.cage).filename().string()
-          << " scheme " << to_string(scheme) << " factor " << float_text(o.factor) << " partitioning " << o.partitioning
+           << " scheme " << to_string(scheme)
+          << (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string() : std::string())
+          << " factor " << float_text(o.factor) << " partitioning " << o.partitioning
           << "\ncomment each patch writes its own vertices; face = base face, u v = domain location\nelement vertex "
           << vertices
           << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
@@ -139,6 +145,7 @@ Runner add_tessellate_command(CLI::App& app) {
   cmd->add_option("cage", o->cage, "the cage (OBJ, OpenSubdiv tags allowed)")->required();
   cmd->add_option("-o,--output", o->output, "output PLY (binary; each patch its own vertices)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_displacement_options(*cmd, o->displacement);
   cmd->add_flag("--check-watertight", o->check, "weld on exact bits and check for a closed 2-manifold (exit 1 if not)");
   cmd->add_flag("--json", o->json, "print the summary as JSON");
   return [o] { return run_tessellate(*o); };

@@ -69,4 +69,42 @@ SubdModel load_model(const std::string& path, Scheme scheme) {
   }
 }
 
+void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
+  cmd.add_option("--displacement", d.map, "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs");
+  cmd.add_option("--displacement-channel", d.channel,
+                 "channel(s) of the map: a name or letter (A, height) for a scalar, three (RGB, 'X,Y,Z') for a vector");
+  cmd.add_option("--displacement-scale", d.scale, "displacement = scale * texel + bias (object units)")->capture_default_str();
+  cmd.add_option("--displacement-bias", d.bias, "added after scaling")->capture_default_str();
+  cmd.add_option("--displacement-space", d.space, "vector maps: tangent or object")->capture_default_str();
+  cmd.add_option("--normal-map", d.normal_map,
+                 "shading normals: auto (the displacement file's RGB when the height is another channel, else derived), "
+                 "derived (from the height), or a tangent-space normal map file")
+      ->capture_default_str();
+}
+
+std::optional<Displacement> displacement_option(const DisplacementCli& d, const SubdModel& model) {
+  if (d.map.empty()) {
+    if (!d.channel.empty() || d.scale != 1.0f || d.bias != 0.0f || d.space != "tangent" || d.normal_map != "auto")
+      throw UsageError("--displacement-* and --normal-map need --displacement MAP");
+    return std::nullopt;
+  }
+  if (d.space != "tangent" && d.space != "object")
+    throw UsageError("--displacement-space: '" + d.space + "' is not tangent or object");
+  if (!std::isfinite(d.scale) || !std::isfinite(d.bias)) throw UsageError("--displacement-scale/-bias: not finite");
+  DisplacementOptions o;
+  o.map = d.map;
+  o.channel = d.channel;
+  o.scale = d.scale;
+  o.bias = d.bias;
+  o.space = d.space == "object" ? DisplacementSpace::object : DisplacementSpace::tangent;
+  o.normal_map = d.normal_map;
+  try {
+    return make_displacement(model, o);
+  } catch (const DisplacementMapError& e) {
+    throw InputError(e.what());
+  } catch (const CageError& e) {
+    throw InputError(e.what());
+  }
+}
+
 }  // namespace tessera::cli

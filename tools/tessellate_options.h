@@ -3,8 +3,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 
+#include "displaced_model.h"
 #include "subd_model.h"
 #include "subd_patches.h"
 #include "subd_shaders.h"
@@ -21,5 +23,15 @@ ts::Partitioning partitioning_option(const std::string& name);
 SubdFactors factors_option(float factor, float vary, const std::string& file);
 // load_subd_model with its CageError turned into the CLI's InputError (one line, exit 1).
 SubdModel load_model(const std::string& path, Scheme scheme);
+
+// --displacement MAP and its companions (render and tessellate).
+struct DisplacementCli {
+  std::string map, channel, space = "tangent", normal_map = "auto";
+  float scale = 1.0f, bias = 0.0f;
+};
+void add_displacement_options(CLI::App& cmd, DisplacementCli& d);
+// Nothing without --displacement; otherwise the loaded displacement, its errors turned into InputError
+// (one line naming the file) and bad option values into UsageError.
+std::optional<Displacement> displacement_option(const DisplacementCli& d, const SubdModel& model);
 
 }  // namespace tessera::cli

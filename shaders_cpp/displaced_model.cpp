@@ -1,0 +1,63 @@
+#include "displaced_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace tessera {
+namespace {
+
+std::string float_text(float x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+bool is_rgb_name(const std::string& n) {
+  return n == "R" || n == "G" || n == "B" || n == "r" || n == "g" || n == "b";
+}
+
+}  // namespace
+
+std::size_t Displacement::bytes() const {
+  return (map ? map->bytes() : 0) + (normal_map ? normal_map->bytes() : 0) + texcoords.size() * sizeof(PatchTexcoords) +
+         frames.bytes();
+}
+
+Displacement make_displacement(const SubdModel& model, const DisplacementOptions& o) {
+  if (!std::isfinite(o.scale) || !std::isfinite(o.bias))
+    throw DisplacementMapError(o.map + ": displacement scale and bias must be finite");
+  Displacement d;
+  d.map = DisplacementMap::load(o.map, o.channel, 0);
+  const bool vector = d.map->channels() == 3;
+  d.kind = !vector ? DisplacementKind::scalar
+                   : o.space == DisplacementSpace::object ? DisplacementKind::vector_object : DisplacementKind::vector_tangent;
+  d.scale = o.scale, d.bias = o.bias;
+  d.shared_normals = o.shared_normals;
+  d.flip_v = o.flip_v;
+
+  const Cage& cage = model.cage;
+  if (!cage.has_uvs())
+    throw CageError(cage.name + ": has no texture coordinates (vt); the displacement map " + o.map + " needs them");
+  for (std::size_t i = 0; i < cage.uvs.size(); ++i) {
+    const glm::vec2 uv = cage.uvs[i];
+    if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
+      throw DisplacementMapError(o.map + ": the cage " + cage.name + " has vt " + std::to_string(i + 1) + " (" +
+                                 float_text(uv.x) + ", " + float_text(uv.y) +
+                                 ") outside the map's [0, 1] square: this map does not fit the cage's UVs");
+  }
+
+  if (o.normal_map == "auto") {
+    const auto names = DisplacementMap::channel_names(o.map);
+    const bool has_rgb = names.size() >= 4 && std::none_of(d.map->selected().begin(), d.map->selected().end(), is_rgb_name);
+    if (!vector && has_rgb) d.normal_map = DisplacementMap::load(o.map, "R,G,B", 3);
+  } else if (o.normal_map != "derived") {
+    d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
+  }
+
+  d.texcoords = build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v);
+  d.frames = build_patch_frames(cage, *model.topology, model.patches.quads, model.patches.scheme);
+  return d;
+}
+
+}  // namespace tessera

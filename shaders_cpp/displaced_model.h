@@ -1,0 +1,85 @@
+// A displacement bound to a SubdModel: the map (and the normal map used for shading), the per-patch
+// watertight texture coordinates and owner frames, computed once; and the draws that run the
+// displaced shaders (displaced_shaders.h) as stream output.
+//
+// Contract: make_displacement throws DisplacementMapError (one line starting with the map's path) for a
+// missing or unreadable map, a channel the map does not have, a wrong channel count, a cage whose UVs
+// leave the map's [0, 1] square; CageError (naming the cage) for a cage without UVs or with faces that
+// are not quads. Everything it builds is immutable; draws may run on any number of threads.
+//
+// Normal maps (for shading): `normal_map` = "auto" takes the RGB of the displacement file when the
+// displacement is a scalar read from a file that has RGB besides it (the monster frog: height in A,
+// tangent-space normal in RGB), and derives normals from the height otherwise; "derived" always
+// derives them (scalar maps; vector maps shade with the base normal); any other value is a path
+// whose R, G, B (channels 0..2) are the normal map.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "displaced_shaders.h"
+#include "displacement_map.h"
+#include "subd_model.h"
+
+namespace tessera {
+
+enum class DisplacementSpace : std::uint8_t { tangent, object };
+
+struct DisplacementOptions {
+  std::string map;                 // path
+  std::string channel;             // displacement_map.h's selection; 1 channel = scalar, 3 = vector
+  float scale = 1.0f, bias = 0.0f;
+  DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only
+  std::string normal_map = "auto";
+  bool flip_v = true;  // the cage's UVs have v up (OBJ); watertight_uv.h
+  // Test knobs (the negative tests): per-face UVs, and each patch's own normals.
+  UvOwnership ownership = UvOwnership::owned;
+  bool shared_normals = true;
+};
+
+struct Displacement {
+  std::optional<DisplacementMap> map;
+  std::optional<DisplacementMap> normal_map;  // empty: derived (scalar) or base normals
+  DisplacementKind kind = DisplacementKind::scalar;
+  float scale = 1.0f, bias = 0.0f;
+  bool shared_normals = true;
+  // The UVs were flipped (v up, OBJ). Texture V then runs down the image, and a normal map's green,
+  // which follows the cage's v, points along −V: the pixel shader flips it.
+  bool flip_v = true;
+  std::vector<PatchTexcoords> texcoords;  // per quad patch
+  PatchFrames frames;                     // per quad patch
+  std::size_t bytes() const;              // maps (all levels) + per-patch data
+
+  DisplacementParams params() const { return {&map->texture(), kind, scale, bias, shared_normals}; }
+};
+
+Displacement make_displacement(const SubdModel& model, const DisplacementOptions& options);
+
+// The displaced hull and domain shaders of the model's (quad) patch group, handed to
+// draw(group, tessellator_state, hs, ds) -> DrawResult.
+template <class Draw>
+DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const SubdFactors& factors,
+                                ts::Partitioning partitioning, Draw&& draw) {
+  const PatchGroup& g = m.patches.quads;
+  if (g.patches.empty()) return {};
+  const TessellatorState ts{g.domain, partitioning, ts::OutputPrimitive::triangle_cw};
+  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false}, d.texcoords, &d.frames,
+                       glm::vec2(float(d.map->width()), float(d.map->height()))};
+  const DisplacedDS ds{SubdDS{g.patches, m.limit.get(), m.cage.tags.left_handed, false}, d.texcoords, d.params()};
+  return draw(g, ts, hs, ds);
+}
+
+// IA..DS with displacement; each patch's DisplacedPoints go to sink(PatchOutput<DisplacedPoint>, group).
+template <class Sink>
+DrawResult stream_displaced(Device& device, const SubdModel& m, const Displacement& d, const SubdFactors& factors,
+                            ts::Partitioning partitioning, Sink&& sink) {
+  return with_displaced_group(m, d, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
+                                                               const DisplacedHS& hs, const DisplacedDS& ds) {
+    const StreamDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedDS> draw{m.cage.positions, g.indices, g.control_points,
+                                                                       SubdVS{}, hs, ds, ts};
+    return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) { sink(p, g); });
+  });
+}
+
+}  // namespace tessera

@@ -1,0 +1,14 @@
+// Rendering a displaced SubdModel: the shaded (normal-mapped or derived-normal), wireframe and
+// wire-on-shaded views of subd_render.h, through the displaced shaders.
+#pragma once
+
+#include "displaced_model.h"
+#include "subd_render.h"
+
+namespace tessera {
+
+DrawResult render_displaced(Device& device, const SubdModel& model, const Displacement& displacement,
+                            const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
+                            const SubdCamera& camera, Framebuffer& fb);
+
+}  // namespace tessera

@@ -1,0 +1,318 @@
+// Displacement mapping on the subdivision schemes, as shader functors wrapping the scheme's own
+// (subd_shaders.h):
+// - DisplacedHS: SubdHS's control points; its patch constants add the owners' edge and corner frames
+//   (displacement_frames.h: shared stencils summed in global vertex order) and the sampling LODs.
+// - DisplacedDS: SubdDS's surface point, moved by the map sampled at the watertight UV
+//   (watertight_uv.h) with an explicit LOD, bilinear within the level (clamp addressing):
+//   scalar: along the unit normal; vector, tangent space: x T + y B + z N (T along the texture's U
+//   direction in the tangent plane, B = ±N x T following the UV orientation); vector, object space: as
+//   is. value = scale * texel + bias (per component for vectors).
+// - DisplacedProjectDS and DisplacedPS: rendering, shaded with a tangent-space normal map or with
+//   normals derived from the height map.
+//
+// Watertight, bitwise, for points on a cage edge or vertex (u or v exactly 0 or 1):
+// - the UV is the owner's (edge: a (1 − t) + b t at the owner's parameter; vertex: the owner's UV);
+// - the normal (and the tangent frame) is the owner frame's, evaluated at the owner's parameter from
+//   control vectors both patches computed from the same stencils (`exact` uses the limit surface's own
+//   normals, which it already evaluates by owner; only its tangent comes from the frame);
+// - the LOD is a function of shared data only (the rule, also in ARCHITECTURE.md):
+//     edge point:    log2(texel length of the owner's UV edge / that edge's factor);
+//     vertex point:  the same for the vertex owner's outgoing edge;
+//     interior:      log2(max(Lu / inside_u, Lv / inside_v)), Lu and Lv the longer texel length of
+//                    the patch's two UV edges in each direction;
+//   i.e. texels per tessellated segment; factors below 1 count as 1 and the sampler clamps the LOD to
+//   the map's levels. Interior points use their patch's LOD (no crack can come from it).
+// With the scheme's own watertight positions, the displaced positions are then bit-identical.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "displacement_frames.h"
+#include "patch_eval.h"
+#include "subd_shaders.h"
+#include "texture.h"
+#include "watertight_uv.h"
+
+namespace tessera {
+
+enum class DisplacementKind : std::uint8_t { scalar, vector_tangent, vector_object };
+
+struct DisplacementParams {
+  const Texture2D* map = nullptr;  // 1 channel (scalar) or 3 (vector)
+  DisplacementKind kind = DisplacementKind::scalar;
+  float scale = 1.0f, bias = 0.0f;
+  // Test knob: false displaces every point along its own patch's normal (cracks for acc and gregory).
+  bool shared_normals = true;
+};
+
+struct DisplacedPatchConstants {
+  TessFactors factors;
+  std::array<std::array<glm::vec3, 8>, 4> edge{};    // per patch edge: along A0..A3, cross C0..C3 (owner's)
+  std::array<std::array<glm::vec3, 2>, 4> corner{};  // per patch corner: the vertex owner's two tangents
+  float lod_interior = 0.0f;
+  std::array<float, 4> lod_edge{}, lod_corner{};
+};
+
+// log2(texels per segment) of a UV step covering `factor` segments; see the LOD rule above.
+inline float displacement_lod(glm::vec2 duv, glm::vec2 map_size, float factor) {
+  const glm::vec2 texels = duv * map_size;
+  const float length = std::sqrt(texels.x * texels.x + texels.y * texels.y);
+  const float f = factor > 1.0f ? factor : 1.0f;  // NaN counts as 1 too
+  const float x = length / f;
+  return std::log2(x > 1e-20f ? x : 1e-20f);
+}
+
+struct DisplacedHS {
+  static constexpr int kOutputControlPoints = SubdHS::kOutputControlPoints;
+  SubdHS base;
+  std::span<const PatchTexcoords> texcoords;
+  const PatchFrames* frames = nullptr;
+  glm::vec2 map_size{1.0f};
+
+  SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
+    return base.control_point(in, i, patch_id);
+  }
+
+  DisplacedPatchConstants patch_constants(std::span<const SubdVertex> in, std::span<const SubdControlPoint> out,
+                                          std::uint32_t patch_id) const {
+    DisplacedPatchConstants pc;
+    pc.factors = base.patch_constants(in, out, patch_id).factors;
+    const std::uint32_t* off = frames->offsets.data() + std::size_t(patch_id) * kFrameStencils;
+    auto stencil = [&](int r) {
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t k = off[r]; k < off[r + 1]; ++k) {
+        const FrameTerm& term = frames->terms[k];
+        sum += double(term.weight) * glm::dvec3(in[term.position].position);
+      }
+      return glm::vec3(sum);
+    };
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 8; ++i) pc.edge[std::size_t(k)][std::size_t(i)] = stencil(8 * k + i);
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 2; ++i) pc.corner[std::size_t(k)][std::size_t(i)] = stencil(32 + 2 * k + i);
+
+    const PatchTexcoords& tc = texcoords[patch_id];
+    const SubdPatch& patch = base.patches[patch_id];
+    for (int k = 0; k < 4; ++k) {
+      const auto& e = tc.edge[std::size_t(k)];
+      // Patch edge k is SV_TessFactor (k + 1) % 4.
+      pc.lod_edge[std::size_t(k)] = displacement_lod(e[1] - e[0], map_size, pc.factors.edge[std::size_t((k + 1) % 4)]);
+      pc.lod_corner[std::size_t(k)] =
+          displacement_lod(tc.corner_span[std::size_t(k)][0], map_size, base.factors.edge(tc.corner_key[std::size_t(k)]));
+    }
+    (void)patch;
+    const auto& c = tc.interior;
+    auto texels = [&](glm::vec2 d) {
+      const glm::vec2 x = d * map_size;
+      return std::sqrt(x.x * x.x + x.y * x.y);
+    };
+    const float lu = std::max(texels(c[1] - c[0]), texels(c[2] - c[3]));
+    const float lv = std::max(texels(c[3] - c[0]), texels(c[2] - c[1]));
+    const float fu = pc.factors.inside[0] > 1.0f ? pc.factors.inside[0] : 1.0f;
+    const float fv = pc.factors.inside[1] > 1.0f ? pc.factors.inside[1] : 1.0f;
+    const float x = std::max(lu / fu, lv / fv);
+    pc.lod_interior = std::log2(x > 1e-20f ? x : 1e-20f);
+    return pc;
+  }
+};
+
+// A displaced domain point: the displaced position; the base surface's unit normal it moved along (shared
+// on edges and vertices); the base face and location (SurfaceSample's); the base surface's derivatives
+// with respect to the texture coordinates U and V and the UV itself (for tangent-space shading).
+struct DisplacedPoint {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};
+  std::uint32_t face = 0;
+  float u = 0, v = 0;
+  glm::vec3 dpdu{0.0f}, dpdv{0.0f};
+  glm::vec2 uv{0.0f};
+};
+
+// dP/dU and dP/dV from the derivatives along two parameters a, b and the UV's derivatives along them.
+inline void texture_derivatives(const glm::vec3& pa, const glm::vec3& pb, glm::vec2 ja, glm::vec2 jb, glm::vec3& dpdu,
+                                glm::vec3& dpdv) {
+  const float det = ja.x * jb.y - jb.x * ja.y;
+  if (det != 0.0f && std::isfinite(det)) {
+    dpdu = (pa * jb.y - pb * ja.y) / det;
+    dpdv = (pb * ja.x - pa * jb.x) / det;
+  } else {
+    dpdu = pa, dpdv = pb;
+  }
+}
+
+inline glm::vec3 unit_or_zero(const glm::vec3& v) {
+  const float len = glm::length(v);
+  return len > 0.0f ? v / len : glm::vec3(0.0f);
+}
+
+struct DisplacedDS {
+  SubdDS base;
+  std::span<const PatchTexcoords> texcoords;
+  DisplacementParams params;
+
+  DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
+                            std::uint32_t patch_id) const {
+    const SurfaceSample s = base(SubdPatchConstants{pc.factors}, cp, loc, patch_id);
+    const PatchTexcoords& tc = texcoords[patch_id];
+    const bool exact = base.patches[patch_id].kind == PatchKind::exact;
+    const float u = loc.u, v = loc.v;
+    DisplacedPoint out;
+    out.face = s.face, out.u = s.u, out.v = s.v;
+    glm::vec3 n = s.normal, pa = s.du, pb = s.dv;
+    glm::vec2 ja, jb, uv;
+    float lod = pc.lod_interior;
+    const bool on_u = u == 0.0f || u == 1.0f, on_v = v == 0.0f || v == 1.0f;
+    if (on_u && on_v) {
+      const int k = v == 0.0f ? (u == 0.0f ? 0 : 1) : (u == 1.0f ? 2 : 3);
+      const auto& t = pc.corner[std::size_t(k)];
+      uv = tc.corner[std::size_t(k)];
+      lod = pc.lod_corner[std::size_t(k)];
+      pa = t[0], pb = t[1];
+      ja = tc.corner_span[std::size_t(k)][0], jb = tc.corner_span[std::size_t(k)][1];
+      if (exact) owner_derivatives(tc.vertex_face[std::size_t(k)], tc.vertex_corner[std::size_t(k)], 0.0f, pa, pb);
+      else if (params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
+    } else if (on_u || on_v) {
+      int k;
+      float t;
+      if (v == 0.0f) k = 0, t = u;
+      else if (u == 1.0f) k = 1, t = v;
+      else if (v == 1.0f) k = 2, t = 1.0f - u;
+      else k = 3, t = 1.0f - v;
+      const auto& e = tc.edge[std::size_t(k)];
+      const auto& f = pc.edge[std::size_t(k)];
+      // The owner's parameter: exact, tessellator parameters are multiples of 2^-16.
+      const float to = tc.reversed[std::size_t(k)] ? 1.0f - t : t;
+      const float so = 1.0f - to;
+      uv = e[0] * so + e[1] * to;
+      lod = pc.lod_edge[std::size_t(k)];
+      ja = e[1] - e[0];
+      jb = so * (e[3] - e[0]) + to * (e[2] - e[1]);
+      if (exact) {
+        owner_derivatives(tc.edge_face[std::size_t(k)], tc.edge_corner[std::size_t(k)], to, pa, pb);
+      } else {
+        const Cubic b = cubic_bernstein(to);
+        pa = cubic_sum(b, f[0], f[1], f[2], f[3]);
+        pb = cubic_sum(b, f[4], f[5], f[6], f[7]);
+        if (params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
+      }
+    } else {
+      uv = bilerp_uv(tc.interior, u, v);
+      const auto& c = tc.interior;
+      ja = (1.0f - v) * (c[1] - c[0]) + v * (c[2] - c[3]);
+      jb = (1.0f - u) * (c[3] - c[0]) + u * (c[2] - c[1]);
+    }
+    texture_derivatives(pa, pb, ja, jb, out.dpdu, out.dpdv);
+    out.normal = n;
+    out.uv = uv;
+
+    Sampler sampler;
+    sampler.filter = Filter::bilinear;
+    sampler.address_u = sampler.address_v = AddressMode::clamp;
+    const glm::vec4 texel = params.map->sample_level(sampler, uv, lod);
+    switch (params.kind) {
+      case DisplacementKind::scalar: out.position = s.position + (params.scale * texel.x + params.bias) * n; break;
+      case DisplacementKind::vector_object:
+        out.position = s.position + (params.scale * glm::vec3(texel) + params.bias);
+        break;
+      case DisplacementKind::vector_tangent: {
+        const glm::vec3 tangent = unit_or_zero(out.dpdu - glm::dot(n, out.dpdu) * n);
+        glm::vec3 bitangent = glm::cross(n, tangent);
+        if (glm::dot(bitangent, out.dpdv) < 0.0f) bitangent = -bitangent;
+        const glm::vec3 d = params.scale * glm::vec3(texel) + params.bias;
+        out.position = s.position + ((d.x * tangent + d.y * bitangent) + d.z * n);
+        break;
+      }
+    }
+    return out;
+  }
+
+ private:
+  glm::vec3 oriented(const glm::vec3& n) const { return base.flip_normals ? -n : n; }
+  // The limit surface's derivatives of face f along its edge from corner c (parameter t) and across it
+  // (into the face), at that edge point (exact scheme, quads: corner c at (0,0),(1,0),(1,1),(0,1)).
+  void owner_derivatives(int f, int c, float t, glm::vec3& along, glm::vec3& across) const {
+    const float r = 1.0f - t;
+    const float u = c == 0 ? t : c == 1 ? 1.0f : c == 2 ? r : 0.0f;
+    const float v = c == 0 ? 0.0f : c == 1 ? t : c == 2 ? 1.0f : r;
+    const SurfacePoint l = base.limit->evaluate(f, 0, u, v);
+    switch (c) {
+      case 0: along = l.du, across = l.dv; break;
+      case 1: along = l.dv, across = -l.du; break;
+      case 2: along = -l.du, across = -l.dv; break;
+      default: along = -l.dv, across = l.du; break;
+    }
+  }
+};
+
+// For rendering: clip-space position and 11 attributes: the base normal (0..2), dP/dU (3..5), dP/dV
+// (6..8), the texture coordinates (9, 10).
+inline constexpr std::size_t kDisplacedAttributes = 11;
+
+template <class Inner>
+struct DisplacedProjectDS {
+  Inner inner;
+  glm::mat4 view_projection{1.0f};
+  float z_bias = 0.0f;
+  template <class PC, class CP>
+  ClipVertex<kDisplacedAttributes> operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc,
+                                               std::uint32_t patch_id) const {
+    const DisplacedPoint s = inner(pc, cps, loc, patch_id);
+    ClipVertex<kDisplacedAttributes> out;
+    out.position = view_projection * glm::vec4(s.position, 1.0f);
+    out.position.z -= z_bias * out.position.w;
+    out.attributes = {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z,
+                      s.dpdv.x, s.dpdv.y, s.dpdv.z, s.uv.x, s.uv.y};
+    return out;
+  }
+};
+
+// Clay with a headlight, on the displaced surface's shading normal: from a tangent-space normal map
+// (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized;
+// `flip_green` for maps whose y points along −V: OBJ cages, whose v points up the image), or derived from the height map (the normal of
+// P + h N with h's texture gradient by central differences one level-0 texel apart, sampled with the
+// pixel's UV derivatives), or the base normal when neither is given.
+struct DisplacedPS {
+  const Texture2D* normal_map = nullptr;
+  const Texture2D* height = nullptr;  // one channel; used when normal_map is null
+  float height_scale = 1.0f;
+  bool flip_green = false;
+  glm::vec3 light{0.0f, 0.0f, 1.0f};
+  glm::vec3 color{0.78f, 0.74f, 0.68f};
+
+  glm::vec4 operator()(const PixelInput<kDisplacedAttributes>& in) const {
+    const auto& a = in.attributes;
+    const glm::vec3 n0 = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
+    const glm::vec3 dpdu(a[3], a[4], a[5]), dpdv(a[6], a[7], a[8]);
+    const glm::vec2 uv(a[9], a[10]);
+    glm::vec3 n = n0;
+    Sampler sampler;  // trilinear
+    sampler.address_u = sampler.address_v = AddressMode::clamp;
+    const glm::vec2 ddx = in.ddx_attributes ? glm::vec2(in.ddx(9), in.ddx(10)) : glm::vec2(0.0f);
+    const glm::vec2 ddy = in.ddy_attributes ? glm::vec2(in.ddy(9), in.ddy(10)) : glm::vec2(0.0f);
+    if (normal_map) {
+      const glm::vec4 t = normal_map->sample_grad(sampler, uv, ddx, ddy);
+      const glm::vec3 m(2.0f * t.x - 1.0f, (2.0f * t.y - 1.0f) * (flip_green ? -1.0f : 1.0f), 2.0f * t.z - 1.0f);
+      const glm::vec3 tangent = unit_or_zero(dpdu - glm::dot(n0, dpdu) * n0);
+      const glm::vec3 bitangent = unit_or_zero(dpdv - glm::dot(n0, dpdv) * n0 - glm::dot(tangent, dpdv) * tangent);
+      const glm::vec3 shaded = unit_or_zero(m.x * tangent + m.y * bitangent + m.z * n0);
+      if (shaded != glm::vec3(0.0f)) n = shaded;
+    } else if (height) {
+      const float du = 1.0f / float(height->width()), dv = 1.0f / float(height->height());
+      auto h = [&](glm::vec2 p) { return height->sample_grad(sampler, p, ddx, ddy).x; };
+      const float dhdu = height_scale * (h(uv + glm::vec2(du, 0.0f)) - h(uv - glm::vec2(du, 0.0f))) / (2.0f * du);
+      const float dhdv = height_scale * (h(uv + glm::vec2(0.0f, dv)) - h(uv - glm::vec2(0.0f, dv))) / (2.0f * dv);
+      glm::vec3 d = unit_or_zero(glm::cross(dpdu + dhdu * n0, dpdv + dhdv * n0));
+      if (glm::dot(d, n0) < 0.0f) d = -d;
+      if (d != glm::vec3(0.0f)) n = d;
+    }
+    const float diffuse = std::max(0.0f, glm::dot(n, light));
+    return {color * (0.18f + 0.82f * diffuse), 1.0f};
+  }
+};
+
+}  // namespace tessera

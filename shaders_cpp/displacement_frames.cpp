@@ -1,0 +1,114 @@
+#include "displacement_frames.h"
+
+#include <array>
+#include <map>
+#include <string>
+#include <unordered_map>
+
+#include "corner_ring.h"
+#include "limit_masks.h"
+#include "patch_stencils.h"
+#include "watertight_uv.h"
+
+namespace tessera {
+namespace {
+
+using Frame8 = std::array<Stencil, 8>;
+
+// The cubic (Bernstein, four control vectors) equal to the quadratic q0, q1, q2.
+std::array<Stencil, 4> elevate(const Stencil& q0, const Stencil& q1, const Stencil& q2) {
+  return {q0, (1.0 / 3.0) * q0 + (2.0 / 3.0) * q1, (2.0 / 3.0) * q1 + (1.0 / 3.0) * q2, q2};
+}
+
+// Along and cross tangents of the edge from corner 0 to corner 1 (v = 0) of the face whose corner rings
+// are `c` (corner 0 first), for the scheme's patch.
+Frame8 edge_frame(Scheme scheme, const std::array<CornerRing, 4>& c) {
+  Frame8 f;
+  auto put = [&](const std::array<Stencil, 4>& along, const std::array<Stencil, 4>& cross) {
+    for (int i = 0; i < 4; ++i) f[std::size_t(i)] = along[std::size_t(i)], f[std::size_t(4 + i)] = cross[std::size_t(i)];
+  };
+  if (scheme == Scheme::acc) {
+    const auto s = acc_quad_stencils(c);
+    // du[i + 3 j] at 16, dv[i + 4 j] at 28; v = 0 is j = 0.
+    put(elevate(s[16], s[17], s[18]), {s[28], s[29], s[30], s[31]});
+  } else if (scheme == Scheme::gregory || scheme == Scheme::bspline) {
+    const auto g = gregory_quad_stencils(c);
+    // Bezier row 0 and row 1 at v = 0 (patch_eval.h gregory_to_bezier): b0..b3 = P0, E+0, E-1, P1;
+    // b4..b7 = E-0, F+0, F-1, E+1.
+    const std::array<Stencil, 4> row0{g[0], g[1], g[7], g[5]}, row1{g[2], g[3], g[9], g[6]};
+    put(elevate(3.0 * (row0[1] - row0[0]), 3.0 * (row0[2] - row0[1]), 3.0 * (row0[3] - row0[2])),
+        {3.0 * (row1[0] - row0[0]), 3.0 * (row1[1] - row0[1]), 3.0 * (row1[2] - row0[2]), 3.0 * (row1[3] - row0[3])});
+  } else {
+    // Bilinear: along p1 − p0 everywhere, across (1 − t)(p3 − p0) + t (p2 − p1).
+    const Stencil p0 = Stencil::vertex(c[0].center), p1 = Stencil::vertex(c[1].center),
+                  p2 = Stencil::vertex(c[2].center), p3 = Stencil::vertex(c[3].center);
+    const Stencil a = p1 - p0, x0 = p3 - p0, x1 = p2 - p1;
+    put({a, a, a, a}, {x0, (2.0 / 3.0) * x0 + (1.0 / 3.0) * x1, (1.0 / 3.0) * x0 + (2.0 / 3.0) * x1, x1});
+  }
+  return f;
+}
+
+}  // namespace
+
+PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchGroup& group, Scheme scheme) {
+  std::unordered_map<int, Frame8> edges;                   // by cage edge
+  std::unordered_map<int, std::array<Stencil, 2>> vertices;  // by cage vertex
+  auto edge_stencils = [&](int h) -> const Frame8& {
+    const int e = t.edge(h);
+    auto it = edges.find(e);
+    if (it != edges.end()) return it->second;
+    const int ho = edge_owner(t, h), fo = t.face(ho), co = t.corner(ho);
+    std::array<CornerRing, 4> c;
+    for (int j = 0; j < 4; ++j) c[std::size_t(j)] = gather_corner_ring(cage, t, fo, (co + j) % 4);
+    return edges.emplace(e, edge_frame(scheme, c)).first->second;
+  };
+  auto vertex_stencils = [&](int v) -> const std::array<Stencil, 2>& {
+    auto it = vertices.find(v);
+    if (it != vertices.end()) return it->second;
+    const int hv = vertex_owner(t, v), fv = t.face(hv);
+    const CornerRing r = gather_corner_ring(cage, t, fv, t.corner(hv));
+    std::array<Stencil, 2> s;
+    if (scheme == Scheme::flat) {
+      s = {Stencil::vertex(t.destination(hv)) - Stencil::vertex(v), Stencil::vertex(t.origin(t.prev(hv))) - Stencil::vertex(v)};
+    } else {
+      s = {limit_tangent(r, r.slot), limit_tangent(r, r.slot + 1)};
+    }
+    return vertices.emplace(v, s).first->second;
+  };
+
+  PatchFrames out;
+  out.offsets.reserve(group.size() * kFrameStencils + 1);
+  out.offsets.push_back(0);
+  for (std::size_t p = 0; p < group.size(); ++p) {
+    const SubdPatch& patch = group.patches[p];
+    if (scheme == Scheme::exact) {
+      out.offsets.insert(out.offsets.end(), kFrameStencils, out.offsets.back());
+      continue;
+    }
+    std::map<int, std::uint32_t> position;  // cage vertex -> ring position
+    for (int i = 0; i < patch.ring_size; ++i)
+      position.emplace(int(group.indices[p * std::size_t(group.control_points) + std::size_t(i)]), std::uint32_t(i));
+    auto add = [&](const Stencil& s) {
+      // Stencil terms are sorted by vertex index: the summation order both patches use.
+      for (const auto& [v, w] : s.terms) {
+        const auto it = position.find(v);
+        if (it == position.end())
+          throw CageError(cage.name + ": face " + std::to_string(patch.face) + ": internal error, a frame stencil reaches vertex " +
+                          std::to_string(v) + " outside the patch's ring");
+        out.terms.push_back({it->second, float(w)});
+      }
+      out.offsets.push_back(std::uint32_t(out.terms.size()));
+    };
+    for (int k = 0; k < 4; ++k) {
+      const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
+      for (const Stencil& s : edge_stencils(h)) add(s);
+    }
+    for (int k = 0; k < 4; ++k) {
+      const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
+      for (const Stencil& s : vertex_stencils(t.origin(h))) add(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,363 @@
+// Displacement mapping on the subdivision schemes: map loading (EXR, TIFF, PNG 8/16, DDS), watertight
+// displaced surfaces on the monster frog (welded on exact bits) and the cracks without ownership,
+// determinism, and one-line errors.
+#include <catch2/catch.hpp>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "displaced_model.h"
+#include "displaced_render.h"
+#include "weld_check.h"
+
+namespace fs = std::filesystem;
+using namespace tessera;
+
+namespace {
+
+std::string data(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/" + name; }
+const std::string kFrog = data("sdk-cages/monsterfrog_mapped_00.obj");
+const std::string kFrogMap = data("sdk-cages/monsterfrog.dds");
+
+fs::path temp_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("tessera-disp-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Writes w x h x c pixels of `type` (values given as floats, converted by OIIO).
+std::string write_image(const std::string& name, int w, int h, int c, OIIO::TypeDesc type, const std::vector<float>& px,
+                        std::vector<std::string> names = {}) {
+  const std::string path = (temp_dir() / name).string();
+  auto out = OIIO::ImageOutput::create(path);
+  REQUIRE(out);
+  OIIO::ImageSpec spec(w, h, c, type);
+  if (!names.empty()) spec.channelnames = names;
+  REQUIRE(out->open(path, spec));
+  REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+  out->close();
+  return path;
+}
+
+std::vector<float> ramp(int n, float scale) {
+  std::vector<float> v(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) v[std::size_t(i)] = float((i * 37) % 256) * scale;
+  return v;
+}
+
+cli::WeldReport weld_displaced(const SubdModel& m, const Displacement& d, float factor, float vary, ts::Partitioning p,
+                               int threads = 2, std::uint64_t* digest = nullptr) {
+  DeviceOptions o;
+  o.threads = threads;
+  o.chunk_primitives = threads == 1 ? 16384 : 777;
+  Device device(o);
+  cli::WeldChecker w;
+  SubdFactors f;
+  f.factor = factor;
+  f.vary = vary;
+  std::uint64_t h = 1469598103934665603ull;
+  const DrawResult r = stream_displaced(device, m, d, f, p, [&](const PatchOutput<DisplacedPoint>& out, const PatchGroup&) {
+    for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3)
+      w.add_triangle(out.points[out.indices[i]].position, out.points[out.indices[i + 1]].position,
+                     out.points[out.indices[i + 2]].position);
+    for (const DisplacedPoint& q : out.points)
+      for (float x : {q.position.x, q.position.y, q.position.z, q.normal.x, q.dpdu.y, q.uv.x})
+        h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
+  });
+  REQUIRE(r.ok());
+  if (digest) *digest = h;
+  return w.report();
+}
+
+// A float height map that changes from every texel to the next (the frog's own map is mid-grey along
+// its UV seams, so it alone could not show a seam crack): a hash of the texel.
+std::string noise_map() {
+  static const std::string path = [] {
+    std::vector<float> px(256 * 256);
+    for (std::uint32_t i = 0; i < px.size(); ++i) {
+      std::uint32_t x = i * 2654435761u;
+      x ^= x >> 15;
+      x *= 2246822519u;
+      x ^= x >> 13;
+      px[i] = float(x % 1000u) / 1000.0f;
+    }
+    return write_image("noise.exr", 256, 256, 1, OIIO::TypeDesc::FLOAT, px);
+  }();
+  return path;
+}
+
+DisplacementOptions noise_options() {
+  DisplacementOptions o;
+  o.map = noise_map();
+  o.scale = 0.8f;
+  o.bias = -0.4f;
+  return o;
+}
+
+DisplacementOptions frog_options() {
+  // Designated initializers: GCC 12's -Wrestrict misfires on assigning a literal to a std::string here.
+  return DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 0.8f, .bias = -0.4f};  // large, so that any disagreement shows
+}
+
+struct Result {
+  int exit_code;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Result run_cli(const std::string& args) {
+  const fs::path dir = temp_dir();
+  const std::string cmd = std::string(TESSERA_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
+}
+
+}  // namespace
+
+TEST_CASE("Displacement maps load from EXR, TIFF, PNG 8 and 16 bit with channel selection and mips", "[disp]") {
+  const int w = 8, h = 4;
+  SECTION("float EXR, one channel") {
+    std::vector<float> px = ramp(w * h, 0.01f);
+    px[5] = -2.5f;  // floats keep their sign and range
+    const auto m = DisplacementMap::load(write_image("h.exr", w, h, 1, OIIO::TypeDesc::FLOAT, px));
+    CHECK(m.channels() == 1);
+    CHECK(m.width() == 8);
+    CHECK(m.height() == 4);
+    CHECK(m.levels() == 4);  // 8x4, 4x2, 2x1, 1x1
+    for (int i = 0; i < w * h; ++i) CHECK(m.texture().load(0, i % w, i / w).x == px[std::size_t(i)]);
+  }
+  SECTION("float TIFF, three channels picked by name and reordered") {
+    const std::vector<float> px = ramp(w * h * 3, 0.5f);
+    const std::string path = write_image("v.tif", w, h, 3, OIIO::TypeDesc::FLOAT, px);
+    const auto rgb = DisplacementMap::load(path);  // three channels: a vector by default
+    CHECK(rgb.channels() == 3);
+    const auto bgr = DisplacementMap::load(path, "B,G,R", 3);
+    const auto g = DisplacementMap::load(path, "g", 1);
+    for (int i = 0; i < w * h; ++i) {
+      const glm::vec4 t = bgr.texture().load(0, i % w, i / w);
+      CHECK(t.x == px[std::size_t(3 * i + 2)]);
+      CHECK(t.z == px[std::size_t(3 * i)]);
+      CHECK(g.texture().load(0, i % w, i / w).x == px[std::size_t(3 * i + 1)]);
+    }
+  }
+  SECTION("8-bit PNG RGBA: the alpha by letter maps 0..255 to 0..1") {
+    std::vector<float> px(std::size_t(w * h * 4));
+    for (std::size_t i = 0; i < px.size(); ++i) px[i] = float((i * 53) % 256) / 255.0f;
+    const std::string path = write_image("rgba8.png", w, h, 4, OIIO::TypeDesc::UINT8, px);
+    const auto a = DisplacementMap::load(path, "A", 1);
+    for (int i = 0; i < w * h; ++i) CHECK(a.texture().load(0, i % w, i / w).x == Approx(px[std::size_t(4 * i + 3)]).epsilon(1e-6));
+    CHECK_THROWS_AS(DisplacementMap::load(path), DisplacementMapError);  // RGBA is ambiguous without a channel
+  }
+  SECTION("16-bit PNG grey") {
+    std::vector<float> px(std::size_t(w * h));
+    for (int i = 0; i < w * h; ++i) px[std::size_t(i)] = float(i * 2000) / 65535.0f;
+    const auto m = DisplacementMap::load(write_image("h16.png", w, h, 1, OIIO::TypeDesc::UINT16, px));
+    for (int i = 0; i < w * h; ++i) CHECK(m.texture().load(0, i % w, i / w).x == Approx(px[std::size_t(i)]).epsilon(1e-6));
+    // The top mip is the mean of level 0.
+    double mean = 0;
+    for (float x : px) mean += x;
+    CHECK(m.texture().load(m.levels() - 1, 0, 0).x == Approx(mean / double(px.size())).epsilon(1e-5));
+  }
+  SECTION("DDS: the monster frog's BGRA8, height in A") {
+    const auto a = DisplacementMap::load(kFrogMap, "A", 1);
+    CHECK(a.width() == 512);
+    CHECK(a.height() == 512);
+    CHECK(a.levels() == 10);
+    float lo = 1, hi = 0;
+    double sum = 0;
+    for (int y = 0; y < 512; ++y)
+      for (int x = 0; x < 512; ++x) {
+        const float height = a.texture().load(0, x, y).x;
+        lo = std::min(lo, height), hi = std::max(hi, height), sum += height;
+      }
+    // What `oiiotool monsterfrog.dds --ch A -d uint8 -o a.pgm` gives: bytes 95..249, mean 135.14.
+    CHECK(lo == Approx(95.0f / 255.0f));
+    CHECK(hi == Approx(249.0f / 255.0f));
+    CHECK(sum / (512.0 * 512.0) == Approx(135.14 / 255.0).epsilon(1e-4));
+    const auto n = DisplacementMap::load(kFrogMap, "RGB", 3);
+    double z = 0;
+    for (int y = 0; y < 512; ++y)
+      for (int x = 0; x < 512; ++x) z += n.texture().load(0, x, y).z;
+    CHECK(z / (512.0 * 512.0) > 0.9);  // a tangent-space normal map: blue near 1
+  }
+  SECTION("errors name the file") {
+    const std::string path = write_image("two.exr", w, h, 2, OIIO::TypeDesc::FLOAT, ramp(w * h * 2, 1.0f), {"U", "V"});
+    auto message = [&](auto f) {
+      try {
+        f();
+      } catch (const DisplacementMapError& e) {
+        return std::string(e.what());
+      }
+      return std::string("no error");
+    };
+    const std::string none = message([&] { DisplacementMap::load(path); });
+    CHECK(none.rfind(path + ": ", 0) == 0);
+    CHECK(none.find("U, V") != std::string::npos);
+    const std::string bad = message([&] { DisplacementMap::load(path, "Q"); });
+    CHECK(bad.find("no channel 'Q'") != std::string::npos);
+    const std::string count = message([&] { DisplacementMap::load(path, "U,V", 3); });
+    CHECK(count.find("needs 3") != std::string::npos);
+    const std::string missing = message([&] { DisplacementMap::load(path + ".missing.png"); });
+    CHECK(missing.rfind(path + ".missing.png: ", 0) == 0);
+    const std::string text = (temp_dir() / "not-an-image.png").string();
+    std::ofstream(text) << "hello\n";
+    const std::string unreadable = message([&] { DisplacementMap::load(text); });
+    CHECK(unreadable.rfind(text + ": ", 0) == 0);
+    for (const auto& m : {none, bad, count, missing, unreadable}) CHECK(m.find('\n') == std::string::npos);
+  }
+}
+
+TEST_CASE("The displaced monster frog is watertight on exact bits: acc, gregory, exact, bspline, integer and fractional "
+          "factors varying per edge",
+          "[disp]") {
+  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::bspline}) {
+    const SubdModel m = load_subd_model(kFrog, s);
+    const Displacement d = make_displacement(m, frog_options());
+    const Displacement noise = make_displacement(m, noise_options());
+    CHECK(weld_displaced(m, noise, 2.3f, 1.7f, ts::Partitioning::fractional_odd).closed_manifold());
+    struct Case {
+      ts::Partitioning p;
+      float factor, vary;
+    };
+    for (const Case c : {Case{ts::Partitioning::integer, 3.0f, 1.0f}, Case{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
+                         Case{ts::Partitioning::fractional_even, 2.6f, 1.3f}}) {
+      INFO(to_string(s) << " " << ts::to_string(c.p));
+      const auto r = weld_displaced(m, d, c.factor, c.vary, c.p);
+      CHECK(r.closed_manifold());
+      CHECK(r.boundary_edges == 0);
+      CHECK(r.nonmanifold_edges == 0);
+      CHECK(r.degenerate_triangles == 0);
+    }
+  }
+}
+
+TEST_CASE("Vector displacement (tangent and object space) on the frog is watertight too", "[disp]") {
+  // A 3-channel float map made from the frog's normal map and height.
+  const auto n = DisplacementMap::load(kFrogMap, "R,G,A", 3);
+  std::vector<float> px;
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) {
+      const glm::vec4 t = n.texture().load(0, x, y);
+      px.insert(px.end(), {t.x - 0.5f, t.y - 0.5f, t.z});
+    }
+  const std::string path = write_image("vector.exr", 512, 512, 3, OIIO::TypeDesc::FLOAT, px);
+  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact})
+    for (DisplacementSpace space : {DisplacementSpace::tangent, DisplacementSpace::object}) {
+      const SubdModel m = load_subd_model(kFrog, s);
+      DisplacementOptions o;
+      o.map = path;
+      o.scale = 0.5f;
+      o.space = space;
+      const Displacement d = make_displacement(m, o);
+      CHECK(d.kind == (space == DisplacementSpace::tangent ? DisplacementKind::vector_tangent : DisplacementKind::vector_object));
+      INFO(to_string(s) << (space == DisplacementSpace::tangent ? " tangent" : " object"));
+      const auto r = weld_displaced(m, d, 2.5f, 1.5f, ts::Partitioning::fractional_odd);
+      CHECK(r.closed_manifold());
+    }
+}
+
+TEST_CASE("Without ownership the displaced frog cracks: per-face UVs at the seams, per-patch normals on edges", "[disp]") {
+  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact}) {
+    const SubdModel m = load_subd_model(kFrog, s);
+    DisplacementOptions o = noise_options();
+    o.ownership = UvOwnership::per_face;
+    const auto naive_uv = weld_displaced(m, make_displacement(m, o), 3.0f, 1.0f, ts::Partitioning::integer);
+    INFO(to_string(s) << ": per-face UVs give " << naive_uv.boundary_edges << " open edges");
+    CHECK(naive_uv.boundary_edges > 0);
+    if (s == Scheme::exact) continue;  // the limit surface's normals are owned already
+    o = noise_options();
+    o.shared_normals = false;
+    const auto own_normals = weld_displaced(m, make_displacement(m, o), 3.0f, 1.0f, ts::Partitioning::integer);
+    INFO(to_string(s) << ": per-patch normals give " << own_normals.boundary_edges << " open edges");
+    CHECK(own_normals.boundary_edges > 0);
+  }
+}
+
+TEST_CASE("Displaced stream output and rendering give the same bytes for 1 and 2 threads", "[disp]") {
+  const SubdModel m = load_subd_model(kFrog, Scheme::gregory);
+  const Displacement d = make_displacement(m, frog_options());
+  std::uint64_t one = 0, two = 0;
+  weld_displaced(m, d, 3.5f, 1.0f, ts::Partitioning::fractional_odd, 1, &one);
+  weld_displaced(m, d, 3.5f, 1.0f, ts::Partitioning::fractional_odd, 2, &two);
+  CHECK(one == two);
+  auto image = [&](int threads) {
+    DeviceOptions o;
+    o.threads = threads;
+    Device device(o);
+    auto fb = Framebuffer::create(160, 120, ColorFormat::rgba8_unorm, nullptr);
+    REQUIRE(fb);
+    fb->clear(glm::vec4(0.0f), 1.0f);
+    SubdFactors f;
+    f.factor = 4.0f;
+    const SubdCamera cam = frame_cage(m.cage, 160, 120, 35.0f, std::nullopt, std::nullopt);
+    REQUIRE(render_displaced(device, m, d, f, ts::Partitioning::integer, SubdView::shaded, cam, *fb).ok());
+    return fb->color_bytes();
+  };
+  const auto a = image(1);
+  CHECK(std::count_if(a.begin(), a.end(), [](std::uint8_t x) { return x != 0; }) > 1000);  // the frog is drawn
+  CHECK(image(2) == a);
+}
+
+TEST_CASE("tessera with --displacement: watertight frog, render, and one-line errors naming the file", "[disp][cli]") {
+  const std::string out = (temp_dir() / "frog.png").string();
+  auto r = run_cli("tessellate " + kFrog + " --scheme acc --factor 3 --vary-factors 1 --partitioning fractional_odd "
+                   "--displacement " + kFrogMap + " --displacement-channel A --displacement-scale 0.6 "
+                   "--displacement-bias -0.3 --check-watertight --json");
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("\"closed_manifold\": true") != std::string::npos);
+  r = run_cli("render " + kFrog + " --scheme gregory --factor 3 --resolution 96x64 --displacement " + kFrogMap +
+              " --displacement-channel A -o " + out);
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(out));
+
+  const std::string two = write_image("cli-two.exr", 4, 4, 2, OIIO::TypeDesc::FLOAT, ramp(32, 1.0f));
+  struct Bad {
+    std::string args, names;
+  };
+  for (const Bad& b : {Bad{"--displacement " + kFrogMap + ".missing.dds", kFrogMap + ".missing.dds"},
+                       Bad{"--displacement " + kFrogMap + " --displacement-channel Q", kFrogMap},
+                       Bad{"--displacement " + kFrogMap, kFrogMap},  // RGBA: which channel?
+                       Bad{"--displacement " + two, two},            // two channels: neither scalar nor vector
+                       Bad{"--displacement " + kFrogMap + " --displacement-channel R,G", kFrogMap}}) {
+    INFO(b.args);
+    const auto e = run_cli("tessellate " + kFrog + " --scheme exact --check-watertight " + b.args);
+    CHECK(e.exit_code != 0);
+    CHECK(e.err.find(b.names) != std::string::npos);
+    CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+  }
+  // A cage without UVs, and a map whose UVs do not fit: both name the file.
+  auto e = run_cli("tessellate " + data("sdk-cages/cube.obj") + " --scheme gregory --check-watertight --displacement " +
+                   kFrogMap + " --displacement-channel A");
+  CHECK(e.exit_code != 0);
+  CHECK(e.err.find("cube.obj") != std::string::npos);
+  CHECK(e.err.find("texture coordinates") != std::string::npos);
+  const std::string shifted = (temp_dir() / "shifted.obj").string();
+  {
+    std::ifstream in(kFrog);
+    std::ofstream o(shifted);
+    std::string line;
+    bool done = false;
+    while (std::getline(in, line)) {
+      if (!done && line.rfind("vt ", 0) == 0) line = "vt 1.5 0.5", done = true;
+      o << line << "\n";
+    }
+  }
+  e = run_cli("render " + shifted + " --scheme gregory --resolution 32x32 -o " + out + ".bad.png --displacement " + kFrogMap +
+              " --displacement-channel A");
+  CHECK(e.exit_code != 0);
+  CHECK(e.err.find(kFrogMap) != std::string::npos);
+  CHECK(e.err.find("vt 1") != std::string::npos);
+  CHECK(!fs::exists(out + ".bad.png"));
+}
