@@ -11,6 +11,12 @@ Device::Device(DeviceOptions options) : options_(options) {
   options_.chunk_primitives = std::max<std::size_t>(options_.chunk_primitives, 64);
   options_.window_patches = std::max(options_.window_patches, 1);
   options_.chunks_in_flight = std::max(options_.chunks_in_flight, 1);
+  // oneTBB caps its workers at the hardware concurrency and says so on stderr when an arena asks for
+  // more. A device asked for more threads than cores (to test determinism, or on an oversubscribed
+  // machine) raises the cap while it lives. Active controls combine by their minimum, so two such
+  // devices alive at once share the smaller raise; results do not depend on the worker count.
+  if (threads_ > int(tbb::this_task_arena::max_concurrency()))
+    worker_limit_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads_));
   arena_ = std::make_unique<tbb::task_arena>(threads_);
 }
 

@@ -26,6 +26,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include "framebuffer.h"
@@ -337,6 +338,7 @@ class Device {
  private:
   DeviceOptions options_;
   int threads_ = 1;
+  std::unique_ptr<tbb::global_control> worker_limit_;  // only when threads_ exceeds the default limit
   std::unique_ptr<tbb::task_arena> arena_;
 };
 

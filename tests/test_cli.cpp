@@ -358,3 +358,11 @@ TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured re
   r = run_cli("make-cage torus --grid 2x8 -o " + cage);
   CHECK(r.exit_code == 2);
 }
+
+TEST_CASE("tessera with more --threads than cores runs them without oneTBB's worker-limit warning", "[cli]") {
+  const fs::path dir = temp_dir();
+  const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/cube.obj";
+  const auto r = run_cli("-q render " + cube + " --factor 3 --resolution 64x64 --threads 64 -o " + (dir / "cube.png").string());
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.empty());  // oneTBB would print "TBB Warning: The number of workers is currently limited..."
+}
