@@ -13,8 +13,9 @@
 //   them (the n-gon's n inner edges and its centre). Each vertex is `mesh_vertex_bytes` (default 32:
 //   float3 position, float3 normal, float2 UV); each triangle is 3 indices of `index_bytes` (default 4).
 // - Tessera keeps the cage (positions, UVs, face and face-UV index lists), its patches (IA index
-//   buffer, stencil tables, per-patch records, and 16 texture coordinates per patch for watertight
-//   sampling), and the displacement map.
+//   buffer, stencil tables, per-patch records, and the displacement's per-patch data: its watertight
+//   texture coordinates and owner frames as built, or 16 texture coordinates per patch when not given),
+//   and the displacement map.
 // - The map a level needs holds one texel per generated vertex over the cage's UV area: a square atlas
 //   of side R_L = ceil(L * sqrt(faces / UV area)) (not rounded to a power of two, which would charge the
 //   map up to 4x the texels it needs; its mip chain halves with floor, as OpenImageIO's). Given a real map, Tessera
@@ -48,6 +49,9 @@ struct MemoryModelOptions {
   int index_bytes = 4;
   int texel_bytes = 4;
   std::optional<MapSize> map;  // the real map; none: a map of exactly the resolution each level needs
+  // The per-patch data displacement adds (watertight UVs, owner frames: displaced_model.h), as the
+  // caller measured it; none: Castaño's 16 texture coordinates per patch.
+  std::optional<std::uint64_t> displacement_data_bytes;
 };
 
 struct MemoryLevel {
@@ -67,7 +71,7 @@ struct MemoryLevel {
 struct MemoryTable {
   // Independent of the level.
   std::uint64_t cage_bytes = 0;    // positions, UVs, face and face-UV indices
-  std::uint64_t patch_bytes = 0;   // IA indices, stencil tables, patch records, watertight UVs
+  std::uint64_t patch_bytes = 0;   // IA indices, stencil tables, patch records, displacement data
   double uv_area = 0.0;            // sum of the faces' areas in UV space (0 without UVs: unit area per face)
   int faces = 0;                   // non-hole faces
   std::vector<MemoryLevel> levels;

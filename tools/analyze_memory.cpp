@@ -15,6 +15,8 @@
 #include <sstream>
 
 #include "cli_common.h"
+#include "displaced_model.h"
+#include "displacement_map.h"
 #include "subd_patches.h"
 #include "tessellate_options.h"
 
@@ -34,27 +36,42 @@ std::vector<int> parse_levels(const std::string& text) {
   return levels;
 }
 
-// The map's size and a description, checking that the file opens and has the channel.
-MapSize read_map_size(const std::string& path, const std::string& channel, std::string& description) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    if (why.empty()) why = "cannot open the image";
-    throw InputError(path + ": " + why.substr(0, why.find('\n')));
+// The displacement as `tessera render --displacement` would build it: its map's size and bytes per
+// texel as kept (the selected channels as floats) and its per-patch data. Schemes and cages that
+// cannot be displaced (faces that are not quads) still get the map's row, with the model's estimate for
+// the per-patch data.
+struct MapFacts {
+  MapSize size;
+  int texel_bytes = 0;
+  std::optional<std::uint64_t> patch_data_bytes;
+  std::string description;
+};
+
+MapFacts load_map_facts(const std::string& path, const std::string& channel, const Cage& cage, Scheme scheme) {
+  try {
+    MapFacts f;
+    const DisplacementMap map = DisplacementMap::load(path, channel);
+    std::string names;
+    for (const std::string& n : map.selected()) names += (names.empty() ? "" : ",") + n;
+    f.description = std::filesystem::path(path).filename().string() + " " + std::to_string(map.width()) + "x" +
+                    std::to_string(map.height()) + " (channel " + names + ")";
+    f.size = {map.width(), map.height()};
+    f.texel_bytes = map.channels() * int(sizeof(float));
+    try {
+      const SubdModel model = make_subd_model(cage, scheme);
+      DisplacementOptions d;
+      d.map = path;
+      d.channel = channel;
+      d.normal_map = "derived";  // the normal map is not part of the comparison (memory_model.h)
+      const Displacement displacement = make_displacement(model, d);
+      f.patch_data_bytes = displacement.bytes() - displacement.map->bytes();
+    } catch (const CageError& e) {
+      f.description += "; per-patch data estimated (" + std::string(e.what()) + ")";
+    }
+    return f;
+  } catch (const DisplacementMapError& e) {
+    throw InputError(e.what());
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0) throw InputError(path + ": the image is empty");
-  std::string names;
-  int found = channel.empty() ? 0 : -1;
-  for (int c = 0; c < spec.nchannels; ++c) {
-    const std::string& name = spec.channelnames[std::size_t(c)];
-    names += (c ? "," : "") + name;
-    if (!channel.empty() && (OIIO::Strutil::iequals(name, channel) || channel == std::to_string(c))) found = c;
-  }
-  if (found < 0) throw InputError(path + ": no channel '" + channel + "' (the image has " + names + ")");
-  description = std::filesystem::path(path).filename().string() + " " + std::to_string(spec.width) + "x" +
-                std::to_string(spec.height) + " (channel " + spec.channelnames[std::size_t(found)] + ")";
-  return {spec.width, spec.height};
 }
 
 std::string read_text(const std::string& path) {
@@ -135,7 +152,7 @@ void add_memory_options(CLI::App& cmd, MemoryOptions& o) {
   cmd.add_option("--displacement-channel", o.channel, "--memory: the map's height channel, by name (A) or index");
   cmd.add_option("--levels", o.levels, "--memory: tessellation levels (integer factors 1..64)")->capture_default_str();
   cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")->capture_default_str();
-  cmd.add_option("--texel-bytes", o.texel_bytes, "--memory: bytes per map texel as kept")->capture_default_str();
+  cmd.add_option("--texel-bytes", o.texel_bytes, "--memory: bytes per map texel (0: as Tessera keeps the map, a float per channel)")->capture_default_str();
   cmd.add_option("--mesh-vertex-bytes", o.mesh_vertex_bytes, "--memory: bytes per vertex of the pre-tessellated mesh")
       ->capture_default_str();
   cmd.add_flag("--measure", o.measure, "--memory: also render each level (tessera render) and report its peak memory");
@@ -149,17 +166,26 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   a.options = o;
   MemoryModelOptions model;
   model.levels = parse_levels(o.levels);
-  if (o.texel_bytes < 1 || o.texel_bytes > 64) throw UsageError("--texel-bytes: must be in 1..64");
+  if (o.texel_bytes < 0 || o.texel_bytes > 64) throw UsageError("--texel-bytes: must be in 0..64");
   if (o.mesh_vertex_bytes < 1 || o.mesh_vertex_bytes > 1024) throw UsageError("--mesh-vertex-bytes: must be in 1..1024");
-  model.texel_bytes = o.texel_bytes;
+  int texel_bytes = o.texel_bytes;
   model.mesh_vertex_bytes = o.mesh_vertex_bytes;
   const Scheme scheme = scheme_option(o.scheme);
   if (o.measure) {
     parse_resolution(o.resolution);
     device_options(o.threads);
   }
-  if (!o.displacement.empty()) model.map = read_map_size(o.displacement, o.channel, a.map_description);
-  else a.map_description = "none given: a square map of exactly the side each level needs";
+  if (!o.displacement.empty()) {
+    const MapFacts facts = load_map_facts(o.displacement, o.channel, cage, scheme);
+    model.map = facts.size;
+    model.displacement_data_bytes = facts.patch_data_bytes;
+    a.map_description = facts.description;
+    if (texel_bytes == 0) texel_bytes = facts.texel_bytes;
+  } else {
+    a.map_description = "none given: a square map of exactly the side each level needs";
+    if (texel_bytes == 0) texel_bytes = int(sizeof(float));  // one float channel, as a scalar map is kept
+  }
+  model.texel_bytes = a.texel_bytes = texel_bytes;
   try {
     a.table = memory_table(cage, topology, build_patches(cage, topology, scheme), model);
   } catch (const CageError& e) {
@@ -185,7 +211,7 @@ std::string memory_text(const MemoryAnalysis& a) {
   s << "- pre-tessellated mesh: " << a.options.mesh_vertex_bytes
     << " B per vertex (position, normal, UV; split on UV seams), 32-bit indices\n";
   s << "- Tessera: cage " << megabytes(t.cage_bytes) << " MB + patch data (" << a.options.scheme << ") "
-    << megabytes(t.patch_bytes) << " MB + map at one texel per generated vertex, " << a.options.texel_bytes
+    << megabytes(t.patch_bytes) << " MB + map at one texel per generated vertex, " << a.texel_bytes
     << " B per texel, with its mip chain\n";
   s << "- map: " << a.map_description << "; UV area " << t.uv_area << " over " << t.faces << " faces\n";
   s << "level | mesh vertices | mesh triangles | mesh MB (vertices + indices) | map side needed | map kept | Tessera MB | ratio";
@@ -211,7 +237,7 @@ nlohmann::ordered_json memory_json(const MemoryAnalysis& a) {
   nlohmann::ordered_json j;
   j["model"] = {{"mesh_vertex_bytes", a.options.mesh_vertex_bytes},
                 {"index_bytes", 4},
-                {"texel_bytes", a.options.texel_bytes},
+                {"texel_bytes", a.texel_bytes},
                 {"scheme", a.options.scheme},
                 {"map", a.map_description},
                 {"uv_area", t.uv_area},

@@ -21,7 +21,7 @@ struct MemoryOptions {
   bool enabled = false;
   std::string scheme = "gregory", levels = "8,16,32,64";
   std::string displacement, channel;  // the map, and the channel that holds the height (name or index)
-  int texel_bytes = 4, mesh_vertex_bytes = 32;
+  int texel_bytes = 0, mesh_vertex_bytes = 32;  // texel_bytes 0: as the map is kept
   bool measure = false;
   std::string resolution = "1920x1080";
   int threads = 0;
@@ -37,7 +37,8 @@ struct MeasuredMemory {
 
 struct MemoryAnalysis {
   MemoryOptions options;
-  std::string map_description;  // "monsterfrog.dds 512x512 (channel A)" or the assumption made without one
+  std::string map_description;
+  int texel_bytes = 0;          // as used  // "monsterfrog.dds 512x512 (channel A)" or the assumption made without one
   MemoryTable table;
   std::vector<MeasuredMemory> measured;  // per level, with --measure
   std::uint64_t base_rss_bytes = 0;      // with --measure: peak RSS of a tessera that draws nothing
