@@ -3,15 +3,19 @@
 // shader (subd_shaders.h) applies to that 1-ring.
 //
 // Contract
-// - Every non-hole face becomes one patch (quads and, for `flat` and `exact`, triangles and the n
-//   quad sub-patches of an n-gon); patches are in face order within each domain.
+// - Every non-hole face becomes one patch (quads; triangles on the tri domain for every scheme but
+//   `acc`; for `flat` and `exact` the n quad sub-patches of an n-gon); patches are in face order within
+//   each domain.
 // - Tables are deduplicated by content: faces whose 1-rings have the same structure share one table
 //   (the talk's topology combinations); `tables.size()` is how many distinct ones the cage needs.
 // - A patch's `order` lists its ring positions sorted by cage vertex index: the hull shader sums in
 //   that order, so shared control points come out bit-identical on both patches (stencil.h).
-// - Faces a scheme cannot handle give a CageError naming the face and why (a triangle for acc, a 1-ring
-//   of more than 32 vertices, ...). `bspline` draws faces that are not regular as Gregory patches and
-//   counts them in `fallback_faces`.
+// - Faces a scheme cannot handle give a CageError naming the face and why (a triangle for acc, an
+//   n-gon for gregory or pn, a 1-ring of more than 32 vertices, ...). `bspline` draws faces that are not
+//   regular as Gregory patches (triangles as triangular Gregory patches) and counts them in
+//   `fallback_faces`.
+// - `pn` patches are the face's corners only (no table): the hull shader builds the PN points from
+//   the corners' positions and the per-vertex normals SubdVS passes along (pn_patch.h).
 #pragma once
 
 #include <array>
@@ -29,7 +33,7 @@ namespace tessera {
 
 class LimitSurface;
 
-enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact };
+enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact, pn };
 std::optional<Scheme> parse_scheme(std::string_view name);
 const char* to_string(Scheme s);
 
@@ -39,6 +43,9 @@ enum class PatchKind : std::uint8_t {
   linear,    // 3 corners (flat triangles)
   acc,       // 16 Bezier points + tangent patches (control points carry du/dv)
   gregory,   // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
+  gregory_triangle,  // 15 triangular Gregory points (quartic, cubic boundaries) on the tri domain
+  pn_triangle,       // PN triangle: 10 cubic Bezier points, 6 normal coefficients, from the corners
+  pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
   exact,     // the limit surface (limit_surface.h), evaluated per domain point
 };
 
@@ -69,7 +76,7 @@ struct SubdPatch {
   int table = -1;              // into SubdPatches::tables, -1 for exact
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
-  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % 4
+  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % (3 or 4)
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0): a key
   // naming the cage edge (or half of it, for n-gon sub-patches) so both sides pick the same factor; -1

@@ -43,10 +43,10 @@ int run_accuracy(const AccuracyOptions& o) {
     const SubdPatch& patch = g.patches[p.patch_id];
     for (std::size_t i = 0; i < p.points.size(); ++i) {
       const SurfaceSample& s = p.points[i];
-      const ts::DomainPoint q = p.domain[i];
       glm::dvec3 pos, nrm;
       if (g.domain == ts::Domain::tri) {
-        const SurfacePoint e = reference.evaluate_triangle(patch.face, q.u, q.v, (1.0f - q.u) - q.v);
+        // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
+        const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);
         pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
       } else {
         const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
