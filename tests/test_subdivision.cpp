@@ -417,7 +417,14 @@ TEST_CASE("Faces of one topology combination share one stencil table", "[subd]")
 }
 
 TEST_CASE("Stream output and stencil evaluation give the same bytes for any thread count", "[subd]") {
-  const SubdModel m = load_subd_model(data("sdk-cages/monsterfrog_mapped_00.obj"), Scheme::acc);
+  struct Case {
+    const char* cage;
+    Scheme scheme;
+  };
+  for (const Case c : {Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::acc}, Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::pn},
+                       Case{"osd-shapes/catmark_smoothtris0.obj", Scheme::gregory}}) {
+  INFO(c.cage << " " << to_string(c.scheme));
+  const SubdModel m = load_subd_model(data(c.cage), c.scheme);
   auto digest = [&](int threads) {
     DeviceOptions o;
     o.threads = threads;
@@ -437,6 +444,7 @@ TEST_CASE("Stream output and stencil evaluation give the same bytes for any thre
   const auto one = digest(1);
   CHECK(digest(2) == one);
   CHECK(digest(3) == one);
+  }
 }
 
 TEST_CASE("Faces a scheme cannot take give one line naming the face", "[subd]") {
