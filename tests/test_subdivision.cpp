@@ -423,27 +423,27 @@ TEST_CASE("Stream output and stencil evaluation give the same bytes for any thre
   };
   for (const Case c : {Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::acc}, Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::pn},
                        Case{"osd-shapes/catmark_smoothtris0.obj", Scheme::gregory}}) {
-  INFO(c.cage << " " << to_string(c.scheme));
-  const SubdModel m = load_subd_model(data(c.cage), c.scheme);
-  auto digest = [&](int threads) {
-    DeviceOptions o;
-    o.threads = threads;
-    o.chunk_primitives = threads == 1 ? 16384 : 777;
-    Device device(o);
-    std::uint64_t h = 1469598103934665603ull;
-    SubdFactors f;
-    f.factor = 3.5f;
-    f.vary = 1.0f;
-    stream_subd(device, m, f, ts::Partitioning::fractional_odd, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
-      for (const SurfaceSample& p : out.points)
-        for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
-          h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
-    });
-    return h;
-  };
-  const auto one = digest(1);
-  CHECK(digest(2) == one);
-  CHECK(digest(3) == one);
+    INFO(c.cage << " " << to_string(c.scheme));
+    const SubdModel m = load_subd_model(data(c.cage), c.scheme);
+    auto digest = [&](int threads) {
+      DeviceOptions o;
+      o.threads = threads;
+      o.chunk_primitives = threads == 1 ? 16384 : 777;
+      Device device(o);
+      std::uint64_t h = 1469598103934665603ull;
+      SubdFactors f;
+      f.factor = 3.5f;
+      f.vary = 1.0f;
+      stream_subd(device, m, f, ts::Partitioning::fractional_odd, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
+        for (const SurfaceSample& p : out.points)
+          for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
+            h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
+      });
+      return h;
+    };
+    const auto one = digest(1);
+    CHECK(digest(2) == one);
+    CHECK(digest(3) == one);
   }
 }
 
