@@ -1,5 +1,6 @@
 #include "limit_masks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -36,9 +37,19 @@ int pseudo_valence(const CornerRing& r) {
   return r.valence() == 2 ? 4 : 2 * (r.valence() - 1);
 }
 
-Stencil limit_position(const CornerRing& r) {
-  const int n = r.valence();
-  if (r.sharp_corner) return Stencil::vertex(r.center);
+Stencil limit_position(const CornerRing& ring) {
+  const int n = ring.valence();
+  if (ring.sharp_corner) return Stencil::vertex(ring.center);
+  // Every face at the vertex computes this point, each from the ring rotated to its own face. Sums
+  // of unequal weights (a triangle's and a quad's share of p) depend on their order, so an interior
+  // ring is first turned to start at its lowest-index neighbour: every face adds in the same order.
+  CornerRing r = ring;
+  if (!r.boundary) {
+    const auto first = std::min_element(r.edges.begin(), r.edges.end()) - r.edges.begin();
+    std::rotate(r.edges.begin(), r.edges.begin() + first, r.edges.end());
+    std::rotate(r.face_others.begin(), r.face_others.begin() + first, r.face_others.end());
+    r.slot = 0;  // no longer the patch face; the position does not need it
+  }
   if (r.boundary) {
     Stencil s;
     s.add_vertex(r.edges.front(), 1.0 / 6.0).add_vertex(r.center, 4.0 / 6.0).add_vertex(r.edges.back(), 1.0 / 6.0);

@@ -13,6 +13,11 @@
 //   r1 along the boundary).
 // - Sharp corner: the vertex itself, and tangents toward each neighbour (e_j - p).
 // - Every tangent is scaled so that p + t/3 is the Bezier edge point of a regular (valence 4) vertex.
+// - Faces other than quads in a ring act through their virtual quad point 4 c_i - p - e_i - e_{i+1}
+//   (a triangle's: its centroid). One Catmull-Clark step sees a face only through its centroid, so the
+//   limit position and tangents come out exact for any face sizes.
+// - Bit-identical on every face that asks: the tangent along e_j is summed from edge j; the position
+//   from the ring turned to start at its lowest-index neighbour.
 #pragma once
 
 #include "corner_ring.h"

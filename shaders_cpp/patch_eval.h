@@ -1,5 +1,6 @@
 // Evaluation of the patches the schemes build: bicubic Bezier (with Loop & Schaefer's tangent
-// patches), 20-point Gregory, bilinear; position and the two partial derivatives.
+// patches), 20-point Gregory, 15-point triangular Gregory (quartic), Bezier triangles (PN triangles),
+// bilinear and linear; position and the two partial derivatives, and PN's quadratic normal fields.
 //
 // Watertight by construction: a point on a patch edge (u or v exactly 0 or 1) is evaluated from that
 // edge's four boundary control points only, with a cubic Bernstein sum that is symmetric under
@@ -8,6 +9,10 @@
 // shared edge at mirrored parameters (t on one side, 1 - t on the other, both exact multiples of 2^-16),
 // and the schemes make shared boundary control points bit-identical, so both patches produce the same
 // bits. Interior points use the full tensor-product sum. No FMA is contracted (-ffp-contract=off).
+// The tri domain does the same: corner 0 at w = 1, corner 1 at u = 1, corner 2 at v = 1; the edge v = 0
+// runs from corner 0 with parameter u, w = 0 from corner 1 with v, u = 0 from corner 2 with w, and the
+// other coordinate is exactly 1 - t there (tessellator coordinates are multiples of 2^-16), so a
+// triangle's edge is the same cubic sum as a quad's.
 #pragma once
 
 #include <array>
@@ -169,6 +174,148 @@ inline PatchPoint linear_triangle(const glm::vec3& p0, const glm::vec3& p1, cons
   p.du = p1 - p0;
   p.dv = p2 - p0;
   return p;
+}
+
+// Which edge of the tri domain a location lies on, if any; corners count as edges.
+enum class TriEdge { none, v0, w0, u0 };
+inline TriEdge tri_edge(float u, float v, float w) {
+  if (v == 0.0f) return TriEdge::v0;
+  if (w == 0.0f) return TriEdge::w0;
+  if (u == 0.0f) return TriEdge::u0;
+  return TriEdge::none;
+}
+
+// Bezier triangles of degree D: point b[tri_index(D, j, k)] carries w^i u^j v^k, i = D - j - k, stored
+// row by row in k, j ascending within a row.
+constexpr int tri_index(int D, int j, int k) { return k * (D + 1) - k * (k - 1) / 2 + j; }
+
+// Position and d/du, d/dv (v resp. u held, w = 1 - u - v) of a degree-D Bezier triangle, by the
+// Bernstein sums in a fixed order: sum over k, then j, of (D! / (i! j! k!)) w^i u^j v^k b_ijk.
+template <int D>
+inline PatchPoint bezier_triangle(std::span<const glm::vec3, (D + 1) * (D + 2) / 2> b, float u, float v, float w) {
+  static_assert(D >= 1 && D <= 4);
+  std::array<float, D + 1> pu{}, pv{}, pw{};
+  pu[0] = pv[0] = pw[0] = 1.0f;
+  for (int n = 1; n <= D; ++n) {
+    pu[std::size_t(n)] = pu[std::size_t(n - 1)] * u;
+    pv[std::size_t(n)] = pv[std::size_t(n - 1)] * v;
+    pw[std::size_t(n)] = pw[std::size_t(n - 1)] * w;
+  }
+  constexpr float kFactorial[] = {1.0f, 1.0f, 2.0f, 6.0f, 24.0f};
+  auto basis = [&](int n, int j, int k) {
+    const int i = n - j - k;
+    const float c = kFactorial[n] / (kFactorial[i] * kFactorial[j] * kFactorial[k]);
+    return c * ((pw[std::size_t(i)] * pu[std::size_t(j)]) * pv[std::size_t(k)]);
+  };
+  auto at = [&](int j, int k) { return b[std::size_t(tri_index(D, j, k))]; };
+  PatchPoint p;
+  for (int k = 0; k <= D; ++k)
+    for (int j = 0; j + k <= D; ++j) p.position += basis(D, j, k) * at(j, k);
+  for (int k = 0; k < D; ++k)
+    for (int j = 0; j + k < D; ++j) {
+      const float w1 = basis(D - 1, j, k);
+      const glm::vec3 base = at(j, k);  // b_{i+1, j, k}
+      p.du += w1 * (at(j + 1, k) - base);
+      p.dv += w1 * (at(j, k + 1) - base);
+    }
+  p.du *= float(D);
+  p.dv *= float(D);
+  return p;
+}
+
+// The triangular Gregory patch (Loop, Schaefer, Ni, Castano 2009, after Kovacs): 15 points, five per
+// corner k at 5k as the quad's, P, E+ (on edge k -> k+1), E- (on edge k -> k-1), F+ (pairs with E+),
+// F-. It is a quartic Bezier triangle whose boundaries are the cubics (P_k, E_k+, E_{k+1}-, P_{k+1})
+// raised to degree 4, and whose three interior points are rational blends of each corner's face-point
+// pair, weighted by parametric distance: the point of an edge takes over as the location reaches it,
+//   b211 = (u F0+ + v F0-) / (u + v),  b121 = (v F1+ + w F1-) / (v + w),  b112 = (w F2+ + u F2-) / (w + u)
+// (corner 0's F+ belongs to v = 0, F- to u = 0; corner 1's F+ to w = 0, F- to v = 0; corner 2's F+ to
+// u = 0, F- to w = 0). On an edge the position is that edge's cubic (watertight); d/du and d/dv freeze
+// the blend, as the quad's do, which is exact on the edges (the blended points' weights vanish there).
+inline PatchPoint gregory_triangle(std::span<const glm::vec3, 15> g, float u, float v, float w) {
+  auto P = [&](int k) { return g[std::size_t(5 * k)]; };
+  auto Ep = [&](int k) { return g[std::size_t(5 * k + 1)]; };
+  auto Em = [&](int k) { return g[std::size_t(5 * k + 2)]; };
+  auto Fp = [&](int k) { return g[std::size_t(5 * k + 3)]; };
+  auto Fm = [&](int k) { return g[std::size_t(5 * k + 4)]; };
+  auto blend = [](const glm::vec3& plus, float wp, const glm::vec3& minus, float wm) {
+    const float d = wp + wm;
+    if (d == 0.0f) return 0.5f * (plus + minus);
+    return (wp * plus + wm * minus) / d;
+  };
+  // Degree raising of the cubic (a0, a1, a2, a3) to (a0, (a0 + 3 a1) / 4, (a1 + a2) / 2, (3 a2 + a3) / 4, a3).
+  auto raise1 = [](const glm::vec3& a0, const glm::vec3& a1) { return 0.25f * (a0 + 3.0f * a1); };
+  auto raise2 = [](const glm::vec3& a1, const glm::vec3& a2) { return 0.5f * (a1 + a2); };
+  std::array<glm::vec3, 15> b;
+  auto at = [&](int j, int k) -> glm::vec3& { return b[std::size_t(tri_index(4, j, k))]; };
+  at(0, 0) = P(0), at(4, 0) = P(1), at(0, 4) = P(2);
+  at(1, 0) = raise1(P(0), Ep(0)), at(2, 0) = raise2(Ep(0), Em(1)), at(3, 0) = raise1(P(1), Em(1));  // v = 0
+  at(3, 1) = raise1(P(1), Ep(1)), at(2, 2) = raise2(Ep(1), Em(2)), at(1, 3) = raise1(P(2), Em(2));  // w = 0
+  at(0, 3) = raise1(P(2), Ep(2)), at(0, 2) = raise2(Ep(2), Em(0)), at(0, 1) = raise1(P(0), Em(0));  // u = 0
+  at(1, 1) = blend(Fp(0), u, Fm(0), v);
+  at(2, 1) = blend(Fp(1), v, Fm(1), w);
+  at(1, 2) = blend(Fp(2), w, Fm(2), u);
+  PatchPoint p = bezier_triangle<4>(b, u, v, w);
+  switch (tri_edge(u, v, w)) {
+    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
+    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;
+    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0)); break;
+    case TriEdge::none: break;
+  }
+  return p;
+}
+
+// A cubic Bezier triangle (PN triangles) b[tri_index(3, j, k)], with the edge rule of the quads: on an
+// edge, the cubic sum of that edge's four points from its first corner.
+inline PatchPoint cubic_triangle(std::span<const glm::vec3, 10> b, float u, float v, float w) {
+  PatchPoint p = bezier_triangle<3>(b, u, v, w);
+  auto at = [&](int j, int k) { return b[std::size_t(tri_index(3, j, k))]; };
+  switch (tri_edge(u, v, w)) {
+    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), at(0, 0), at(1, 0), at(2, 0), at(3, 0)); break;
+    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), at(3, 0), at(2, 1), at(1, 2), at(0, 3)); break;
+    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), at(0, 3), at(0, 2), at(0, 1), at(0, 0)); break;
+    case TriEdge::none: break;
+  }
+  return p;
+}
+
+// The quadratic normal field of a PN triangle, n[tri_index(2, j, k)], normalized; on an edge only
+// that edge's three coefficients, by a sum symmetric under reversal (the same bits from both sides).
+inline glm::vec3 quadratic_triangle_normal(std::span<const glm::vec3, 6> n, float u, float v, float w) {
+  auto at = [&](int j, int k) { return n[std::size_t(tri_index(2, j, k))]; };
+  auto edge = [](float t, const glm::vec3& a, const glm::vec3& m, const glm::vec3& b) {
+    const glm::vec3 q = quadratic_bernstein(t);
+    return (q.x * a + q.z * b) + q.y * m;
+  };
+  glm::vec3 r;
+  switch (tri_edge(u, v, w)) {
+    case TriEdge::v0: r = edge(u, at(0, 0), at(1, 0), at(2, 0)); break;
+    case TriEdge::w0: r = edge(v, at(2, 0), at(1, 1), at(0, 2)); break;
+    case TriEdge::u0: r = edge(w, at(0, 2), at(0, 1), at(0, 0)); break;
+    case TriEdge::none: r = bezier_triangle<2>(n, u, v, w).position; break;
+  }
+  const float len = glm::length(r);
+  return len > 0.0f ? r / len : glm::vec3(0.0f);
+}
+
+// The biquadratic normal field of a PN quad, n[i + 3 j] (i along u), normalized, with the same edge rule.
+inline glm::vec3 biquadratic_normal(std::span<const glm::vec3, 9> n, float u, float v) {
+  const glm::vec3 qu = quadratic_bernstein(u), qv = quadratic_bernstein(v);
+  auto sum = [](const glm::vec3& q, const glm::vec3& a, const glm::vec3& m, const glm::vec3& b) {
+    return (q.x * a + q.z * b) + q.y * m;
+  };
+  glm::vec3 r;
+  switch (quad_edge(u, v)) {
+    case QuadEdge::v0: r = sum(qu, n[0], n[1], n[2]); break;
+    case QuadEdge::v1: r = sum(qu, n[6], n[7], n[8]); break;
+    case QuadEdge::u0: r = sum(qv, n[0], n[3], n[6]); break;
+    case QuadEdge::u1: r = sum(qv, n[2], n[5], n[8]); break;
+    case QuadEdge::none:
+      r = sum(qv, sum(qu, n[0], n[1], n[2]), sum(qu, n[3], n[4], n[5]), sum(qu, n[6], n[7], n[8]));
+      break;
+  }
+  const float len = glm::length(r);
+  return len > 0.0f ? r / len : glm::vec3(0.0f);
 }
 
 }  // namespace tessera

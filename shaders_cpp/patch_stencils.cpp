@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "limit_masks.h"
 
@@ -158,52 +159,83 @@ double tangent_scale(const CornerRing& r) {
   return kScale[std::min(r.valence(), 13) - 3];
 }
 
-std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& c) {
-  std::vector<Stencil> out(kGregoryQuadStencils);
-  std::array<Stencil, 4> P, Ep, Em;
-  for (int k = 0; k < 4; ++k) {
+namespace {
+
+// The Gregory points of a face with c.size() = 3 or 4 corners, five per corner k at 5k: P, E+, E-, F+,
+// F-. `degree` is the patch's degree across an edge: 3 for the bicubic quad, 4 for the quartic triangle.
+//
+// Corner and edge points are the same for both (a point on a shared edge comes from the same stencil
+// on both sides). The face points come from one condition on the cross-boundary derivative D(t) along
+// the edge k -> k+1 (t from corner k), written as Loop et al. 2009 write it for quads:
+//   D(t) = c(t) T(t) + R(t),   c(t) = c_near (1 - t) - c_far t,   c = cos(2 pi / pseudo-valence),
+// T the derivative of the cubic boundary (P, E, E_far, P_far), R a cubic whose inner coefficients are
+// the ring vectors r (cross_ring_vector), negated on the other side of the edge. At the corners the
+// limit tangents satisfy T_{j+1} + T_{j-1} = 2 c T_j, so the two patches' D add up to 2 c(t) T(t) all
+// along the edge: one tangent plane, G1. The second Bezier coefficient of c(t) T(t) is
+//   k1 = c_far (P - E) + 2 c_near (E_far - E).
+// - Quad: D(t)'s second coefficient is 3 (F - E), so F = E + (k1 + r) / 3, Loop et al.'s
+//   F = (c_far P + (3 - 2 c_near - c_far) E + 2 c_near E_far + r) / 3.
+// - Triangle (quartic, cubic boundary degree-raised; see patch_eval.h): the cross derivative d/dv along
+//   the edge v = 0 is D_tri(t) = Q(t) + t T(t), where Q is the cross derivative of the triangle seen as a
+//   quad whose last corner is collapsed onto corner 2 ((u, v) = (s (1 - r), r)), which is what the
+//   condition above constrains. D_tri's second coefficient is 4 (F - b310) with b310 = (P + 3 E) / 4,
+//   t T(t)'s is T's first, E - P; so F = E + (k1 + r) / 4:
+//   F = (c_far P + (4 - 2 c_near - c_far) E + 2 c_near E_far + r) / 4.
+//   (Castano's triangle face points scale the quad's offsets by 3/4: the same thing.)
+std::vector<Stencil> gregory_stencils(std::span<const CornerRing> c, int degree) {
+  const int N = int(c.size());
+  auto at = [&](int k) { return std::size_t(((k % N) + N) % N); };
+  std::vector<Stencil> out(std::size_t(5 * N));
+  const auto corners = static_cast<std::size_t>(N);
+  std::vector<Stencil> P(corners), Ep(corners), Em(corners);
+  for (int k = 0; k < N; ++k) {
     const CornerRing& r = c[std::size_t(k)];
-    P[std::size_t(k)] = limit_position(r);
+    const std::size_t K = std::size_t(k);
+    P[K] = limit_position(r);
     if (r.sharp_corner) {
-      Ep[std::size_t(k)] = Stencil{}.add_vertex(r.center, 2.0 / 3.0).add_vertex(r.e(next_edge(r)), 1.0 / 3.0);
-      Em[std::size_t(k)] = Stencil{}.add_vertex(r.center, 2.0 / 3.0).add_vertex(r.e(prev_edge(r)), 1.0 / 3.0);
+      Ep[K] = Stencil{}.add_vertex(r.center, 2.0 / 3.0).add_vertex(r.e(next_edge(r)), 1.0 / 3.0);
+      Em[K] = Stencil{}.add_vertex(r.center, 2.0 / 3.0).add_vertex(r.e(prev_edge(r)), 1.0 / 3.0);
     } else {
-      Ep[std::size_t(k)] = P[std::size_t(k)];
       const double scale = tangent_scale(r) / 3.0;
-      Ep[std::size_t(k)].add(limit_tangent(r, next_edge(r)), scale);
-      Em[std::size_t(k)] = P[std::size_t(k)];
-      Em[std::size_t(k)].add(limit_tangent(r, prev_edge(r)), scale);
+      Ep[K] = P[K];
+      Ep[K].add(limit_tangent(r, next_edge(r)), scale);
+      Em[K] = P[K];
+      Em[K].add(limit_tangent(r, prev_edge(r)), scale);
     }
   }
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < N; ++k) {
     const CornerRing& r = c[std::size_t(k)];
-    const std::size_t K = std::size_t(k), next = std::size_t((k + 1) & 3), prev = std::size_t((k + 3) & 3);
+    const std::size_t K = std::size_t(k), next = at(k + 1), prev = at(k - 1);
     out[5 * K + 0] = P[K];
     out[5 * K + 1] = Ep[K];
     out[5 * K + 2] = Em[K];
-    if (r.sharp_corner && r.valence() == 2) {
-      // A valence-2 corner: both face points are (4 p + p_opp + 2 p_+ + 2 p_-) / 9.
+    if (N == 4 && r.sharp_corner && r.valence() == 2) {
+      // A valence-2 quad corner: both face points are (4 p + p_opp + 2 p_+ + 2 p_-) / 9.
       Stencil f;
-      f.add_vertex(r.center, 4.0 / 9.0).add_vertex(corner_vertex(c, k + 2), 1.0 / 9.0);
-      f.add_vertex(corner_vertex(c, k + 1), 2.0 / 9.0).add_vertex(corner_vertex(c, k + 3), 2.0 / 9.0);
+      f.add_vertex(r.center, 4.0 / 9.0).add_vertex(c[at(k + 2)].center, 1.0 / 9.0);
+      f.add_vertex(c[next].center, 2.0 / 9.0).add_vertex(c[prev].center, 2.0 / 9.0);
       out[5 * K + 3] = f;
       out[5 * K + 4] = f;
       continue;
     }
-    // F = (c_far P + (3 - 2 c_near - c_far) E + 2 c_near E_far + r) / 3, with E this corner's edge
-    // point on the face point's edge and E_far the far corner's edge point on the same edge.
-    const double c_near = cos_valence(r);
+    const double c_near = cos_valence(r), d = double(degree);
     auto face_point = [&](std::size_t far, const Stencil& e, const Stencil& e_far, int edge, int dir) {
       const double c_far = cos_valence(c[far]);
       Stencil f = c_far * P[K];
-      f.add(e, 3.0 - 2.0 * c_near - c_far).add(e_far, 2.0 * c_near);
+      f.add(e, d - 2.0 * c_near - c_far).add(e_far, 2.0 * c_near);
       f.add(cross_ring_vector(r, edge, dir), 1.0);
-      return f.scale(1.0 / 3.0);
+      return f.scale(1.0 / d);
     };
     out[5 * K + 3] = face_point(next, Ep[K], Em[next], next_edge(r), +1);
     out[5 * K + 4] = face_point(prev, Em[K], Ep[prev], prev_edge(r), -1);
   }
   return out;
 }
+
+}  // namespace
+
+std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& c) { return gregory_stencils(c, 3); }
+
+std::vector<Stencil> gregory_triangle_stencils(const std::array<CornerRing, 3>& c) { return gregory_stencils(c, 4); }
 
 }  // namespace tessera

@@ -9,7 +9,14 @@
 //   and its exact derivatives.
 // - gregory_quad_stencils: 20 stencils, five per corner k at 5k: P, E+, E-, F+, F- (Loop, Schaefer, Ni,
 //   Castano 2009). E+ lies on the edge k -> k+1, E- on the edge k -> k-1; F+ pairs with E+.
-// Both require a quad face whose corner rings have only quads (checked by the caller: patch_builder.h).
+// - gregory_triangle_stencils: 15 stencils in the same layout for a triangle face (corners 0, 1, 2 at
+//   w = 1, u = 1, v = 1 of the tri domain): the quartic triangular Gregory patch with cubic boundaries
+//   (Loop et al. 2009 after Kovacs; evaluated by patch_eval.h). P and E are built exactly as for quads,
+//   so a triangle and a quad sharing an edge share its four boundary points bit for bit; the face points
+//   are re-derived for the quartic (patch_stencils.cpp states the derivation).
+// acc needs a quad whose corner rings have only quads; gregory takes quads and triangles whose corner
+// rings have triangles and quads (other faces in a ring act through their "virtual quad" far point,
+// limit_masks.h). The caller (subd_patches.cpp) checks.
 #pragma once
 
 #include <array>
@@ -22,8 +29,10 @@ namespace tessera {
 
 inline constexpr int kAccStencils = 40;
 inline constexpr int kGregoryQuadStencils = 20;
+inline constexpr int kGregoryTriangleStencils = 15;
 
 std::vector<Stencil> acc_quad_stencils(const std::array<CornerRing, 4>& corners);
 std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& corners);
+std::vector<Stencil> gregory_triangle_stencils(const std::array<CornerRing, 3>& corners);
 
 }  // namespace tessera

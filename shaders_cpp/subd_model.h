@@ -1,5 +1,6 @@
 // A cage ready to draw with one scheme: the cage, its topology, its patches (and, for `exact`, the
-// limit surface), and the calls that run it through the pipeline as stream output or as a render.
+// limit surface; for `pn`, the per-vertex normals), and the calls that run it through the pipeline as
+// stream output or as a render.
 //
 // Contract: load_subd_model throws CageError (one line naming the file and element) for files that
 // cannot be read, cages that fail validation, and faces the scheme cannot handle. The draws run the
@@ -23,6 +24,13 @@ struct SubdModel {
   std::unique_ptr<Topology> topology;
   SubdPatches patches;
   std::unique_ptr<LimitSurface> limit;  // exact scheme only
+  std::vector<glm::vec3> normals;       // pn only: per cage vertex (pn_patch.h)
+  // The vertex shader: no animation; the normals as a second vertex stream.
+  SubdVS vertex_shader() const {
+    SubdVS vs;
+    vs.normals = normals;
+    return vs;
+  }
 };
 
 SubdModel load_subd_model(const std::string& path, Scheme scheme);
@@ -61,7 +69,7 @@ DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& fa
                        Sink&& sink) {
   return for_each_patch_group(m, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
                                                             const SubdHS& hs, const SubdDS& ds) {
-    const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{m.cage.positions, g.indices, g.control_points, SubdVS{}, hs, ds, ts};
+    const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
     return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, g); });
   });
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <span>
 #include <string>
 
 #include "corner_ring.h"
@@ -18,12 +19,13 @@ const char* to_string(Scheme s) {
     case Scheme::acc: return "acc";
     case Scheme::gregory: return "gregory";
     case Scheme::exact: return "exact";
+    case Scheme::pn: return "pn";
   }
   return "?";
 }
 
 std::optional<Scheme> parse_scheme(std::string_view name) {
-  for (Scheme s : {Scheme::flat, Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact})
+  for (Scheme s : {Scheme::flat, Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn})
     if (name == to_string(s)) return s;
   return std::nullopt;
 }
@@ -114,7 +116,7 @@ class Builder {
 
 // The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
 // neighbours and far vertices, counter-clockwise from the face).
-std::vector<int> gather_ring(const std::array<CornerRing, 4>& rings) {
+std::vector<int> gather_ring(std::span<const CornerRing> rings) {
   std::vector<int> ring;
   auto push = [&](int v) {
     if (std::find(ring.begin(), ring.end(), v) == ring.end()) ring.push_back(v);
@@ -157,6 +159,17 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     if (n <= 4)
       for (int k = 0; k < n; ++k) edges[std::size_t((k + 1) % n)] = {cage_edge_key(corner(k), corner(k + 1)), -1};
 
+    if (scheme == Scheme::pn) {
+      // The IA patch is the face; the hull shader builds the PN points from its corners (pn_patch.h).
+      if (n > 4)
+        throw CageError(where(cage, f) + " has " + std::to_string(n) +
+                        " sides; --scheme pn handles triangles and quads only (use --scheme exact or flat)");
+      std::vector<int> ring;
+      for (int k = 0; k < n; ++k) ring.push_back(corner(k));
+      builder.add(n == 3 ? out.tris : out.quads, f, 0, n == 3 ? PatchKind::pn_triangle : PatchKind::pn_quad, ring, {},
+                  edges);
+      continue;
+    }
     if (!stencil_scheme) {
       // flat and exact: the IA patch is the face itself.
       if (n > kMaxPatchControlPoints)
@@ -192,17 +205,27 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       }
       continue;
     }
-    // acc, gregory, bspline: quads whose corner rings are all quads.
-    if (n != 4)
+    // acc: quads whose corner rings are all quads. gregory and bspline: quads and triangles; faces of
+    // other sizes in a corner ring act through their virtual quad point (limit_masks.h).
+    if (n != 4 && (n != 3 || scheme == Scheme::acc))
       throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
-                      " handles quads only (use --scheme exact or flat)");
+                      (scheme == Scheme::acc ? " handles quads only" : " handles triangles and quads only") +
+                      " (use --scheme exact or flat)");
+    if (n == 3) {
+      std::array<CornerRing, 3> corners;
+      for (int k = 0; k < 3; ++k) corners[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rot) % 3);
+      if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
+      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), gregory_triangle_stencils(corners),
+                  edges, rot);
+      continue;
+    }
     std::array<CornerRing, 4> corners;
     for (int k = 0; k < 4; ++k) {
       corners[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rot) % 4);
-      if (!corners[std::size_t(k)].all_quads())
+      if (scheme == Scheme::acc && !corners[std::size_t(k)].all_quads())
         throw CageError(where(cage, f) + ": vertex " + std::to_string(corners[std::size_t(k)].center) +
-                        " touches a face that is not a quad; --scheme " + to_string(scheme) +
-                        " needs quads around every corner (use --scheme exact or flat)");
+                        " touches a face that is not a quad; --scheme acc needs quads around every corner (use "
+                        "--scheme gregory, exact or flat)");
     }
     const std::vector<int> ring = gather_ring(corners);
     if (scheme == Scheme::acc) {

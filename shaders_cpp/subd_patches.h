@@ -3,18 +3,22 @@
 // shader (subd_shaders.h) applies to that 1-ring.
 //
 // Contract
-// - Every non-hole face becomes patches in face order within each domain: a quad one quad-domain patch,
-//   and, for `flat` and `exact`, a triangle one tri-domain patch and a face of n > 4 sides n tri-domain
-//   patches, its fan: triangle k = (vertex k, vertex k+1, centre) with u = 1 at vertex k+1 and v = 1 at
-//   the centre (limit_surface.h states how `exact` maps it onto the face's surface). The fan's outer edge
-//   is the whole cage edge, so every cage edge is tessellated as one edge on both of its sides.
+// - Every non-hole face becomes patches in face order within each domain: a quad one quad-domain patch;
+//   a triangle one tri-domain patch (every scheme but `acc`); and, for `flat` and `exact`, a face of
+//   n > 4 sides n tri-domain patches, its fan: triangle k = (vertex k, vertex k+1, centre) with u = 1 at
+//   vertex k+1 and v = 1 at the centre (limit_surface.h states how `exact` maps it onto the face's
+//   surface). The fan's outer edge is the whole cage edge, so every cage edge is tessellated as one edge
+//   on both of its sides.
 // - Tables are deduplicated by content: faces whose 1-rings have the same structure share one table
 //   (the talk's topology combinations); `tables.size()` is how many distinct ones the cage needs.
 // - A patch's `order` lists its ring positions sorted by cage vertex index: the hull shader sums in
 //   that order, so shared control points come out bit-identical on both patches (stencil.h).
-// - Faces a scheme cannot handle give a CageError naming the face and why (a triangle for acc, a 1-ring
-//   of more than 32 vertices, ...). `bspline` draws faces that are not regular as Gregory patches and
-//   counts them in `fallback_faces`.
+// - Faces a scheme cannot handle give a CageError naming the face and why (a triangle for acc, an
+//   n-gon for gregory or pn, a 1-ring of more than 32 vertices, ...). `bspline` draws faces that are not
+//   regular as Gregory patches (triangles as triangular Gregory patches) and counts them in
+//   `fallback_faces`.
+// - `pn` patches are the face's corners only (no table): the hull shader builds the PN points from
+//   the corners' positions and the per-vertex normals SubdVS passes along (pn_patch.h).
 #pragma once
 
 #include <array>
@@ -32,7 +36,7 @@ namespace tessera {
 
 class LimitSurface;
 
-enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact };
+enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact, pn };
 std::optional<Scheme> parse_scheme(std::string_view name);
 const char* to_string(Scheme s);
 
@@ -42,6 +46,9 @@ enum class PatchKind : std::uint8_t {
   linear,    // 3 corners (flat triangles and the fan triangles of n-gons)
   acc,       // 16 Bezier points + tangent patches (control points carry du/dv)
   gregory,   // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
+  gregory_triangle,  // 15 triangular Gregory points (quartic, cubic boundaries) on the tri domain
+  pn_triangle,       // PN triangle: 10 cubic Bezier points, 6 normal coefficients, from the corners
+  pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
   exact,     // the limit surface (limit_surface.h), evaluated per domain point
 };
 
@@ -73,7 +80,7 @@ struct SubdPatch {
   int table = -1;              // into SubdPatches::tables, -1 for exact
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
-  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % 4
+  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % (3 or 4)
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan
   // triangle's Veq0 is its cage edge, Ueq0 the spoke to vertex k, Weq0 the spoke to vertex k+1.

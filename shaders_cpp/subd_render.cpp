@@ -46,7 +46,8 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
       auto go = [&](const auto& ps) {
         using Ps = std::decay_t<decltype(ps)>;
         const PatchDraw<glm::vec3, SubdVS, SubdHS, ProjectDS<SubdDS>, Ps> d{
-            model.cage.positions, g.indices, g.control_points, SubdVS{}, hs, project, ps, ts, rs, depth, viewport};
+            model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts, rs, depth,
+            viewport};
         return device.draw(d, fb);
       };
       return wire ? go(ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(ClayPS{light});

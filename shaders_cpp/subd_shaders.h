@@ -1,7 +1,9 @@
 // The subdivision schemes as shader functors (pipeline/stage_io.h shapes):
-// - SubdVS: animation at control-point rate (an affine transform of the cage; identity by default).
+// - SubdVS: animation at control-point rate (an affine transform of the cage; identity by default),
+//   and the per-vertex normal (`pn` only) read by SV_VertexID from a second vertex stream.
 // - SubdHS: control-point phase = the patch's stencil table applied to its 1-ring, summed in vertex
-//   index order; patch-constant phase = tessellation factors per cage edge (SubdFactors).
+//   index order, or for `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
+//   tessellation factors per cage edge (SubdFactors).
 // - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample.
 // - ProjectDS wraps a DS that returns SurfaceSample into one that returns ClipVertex for rendering.
 #pragma once
@@ -16,6 +18,7 @@
 
 #include "limit_surface.h"
 #include "patch_eval.h"
+#include "pn_patch.h"
 #include "stage_io.h"
 #include "subd_patches.h"
 
@@ -23,18 +26,25 @@ namespace tessera {
 
 struct SubdVertex {
   glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};  // pn only
 };
 
 struct SubdVS {
   glm::mat4 transform{1.0f};
+  glm::mat3 normal_transform{1.0f};  // the inverse transpose of transform's upper 3x3
   bool identity = true;
-  SubdVertex operator()(const glm::vec3& p, std::uint32_t) const {
-    if (identity) return {p};
-    return {glm::vec3(transform * glm::vec4(p, 1.0f))};
+  std::span<const glm::vec3> normals;  // per cage vertex (pn); empty otherwise
+  SubdVertex operator()(const glm::vec3& p, std::uint32_t id) const {
+    SubdVertex out{p, id < normals.size() ? normals[id] : glm::vec3(0.0f)};
+    if (identity) return out;
+    out.position = glm::vec3(transform * glm::vec4(p, 1.0f));
+    out.normal = glm::normalize(normal_transform * out.normal);
+    return out;
   }
 };
 
-// Hull-shader output control point: a position, and for acc the matching tangent-patch points.
+// Hull-shader output control point: a position, and for acc the matching tangent-patch points (for pn,
+// du holds the normal field's coefficient of the same index).
 struct SubdControlPoint {
   glm::vec3 p{0.0f}, du{0.0f}, dv{0.0f};
 };
@@ -81,6 +91,22 @@ struct SubdHS {
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
     const SubdPatch& patch = patches[patch_id];
     SubdControlPoint cp;
+    if (patch.kind == PatchKind::pn_triangle) {
+      const glm::vec3 p[3] = {in[0].position, in[1].position, in[2].position};
+      const glm::vec3 n[3] = {in[0].normal, in[1].normal, in[2].normal};
+      const PNTriangle t = pn_triangle(p, n);
+      if (i < 10) cp.p = t.b[std::size_t(i)];
+      if (i < 6) cp.du = t.n[std::size_t(i)];
+      return cp;
+    }
+    if (patch.kind == PatchKind::pn_quad) {
+      const glm::vec3 p[4] = {in[0].position, in[1].position, in[2].position, in[3].position};
+      const glm::vec3 n[4] = {in[0].normal, in[1].normal, in[2].normal, in[3].normal};
+      const PNQuad q = pn_quad(p, n);
+      if (i < 16) cp.p = q.b[std::size_t(i)];
+      if (i < 9) cp.du = q.n[std::size_t(i)];
+      return cp;
+    }
     if (patch.table < 0) return cp;
     const StencilTable& t = tables[std::size_t(patch.table)];
     auto row = [&](int r) {
@@ -132,6 +158,12 @@ struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with deriva
   glm::vec3 du{0.0f}, dv{0.0f};
 };
 
+// Positions leave the domain shader with -0 turned into +0 (x + 0 is x for every other x): a point
+// that is exactly zero in some coordinate, such as a cage vertex on a coordinate plane evaluated at a
+// patch corner, may otherwise carry the sign of a zero-weighted term, which differs between the edges
+// and patches that meet there.
+inline glm::vec3 positive_zero(const glm::vec3& p) { return p + glm::vec3(0.0f); }
+
 struct SubdDS {
   std::span<const SubdPatch> patches;
   const LimitSurface* limit = nullptr;
@@ -143,12 +175,22 @@ struct SubdDS {
     const SubdPatch& patch = patches[patch_id];
     SurfaceSample s;
     s.face = std::uint32_t(patch.face);
-    // Report the location in the face's own frame (corner 0 at (0,0)): undo the patch's rotation.
-    switch (patch.rotation) {
-      case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
-      case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
-      case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
-      default: s.u = loc.u, s.v = loc.v; break;
+    // Report the location in the face's own frame (corner 0 at (0,0), or at w = 1): undo the patch's
+    // rotation. Patch corner k is face corner k + r; on the tri domain face corner c takes the
+    // barycentric of patch corner c - r (corner 0: w, 1: u, 2: v).
+    if (triangles) {
+      switch (patch.rotation) {
+        case 1: s.u = loc.w, s.v = loc.u; break;
+        case 2: s.u = loc.v, s.v = loc.w; break;
+        default: s.u = loc.u, s.v = loc.v; break;
+      }
+    } else {
+      switch (patch.rotation) {
+        case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
+        case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
+        case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
+        default: s.u = loc.u, s.v = loc.v; break;
+      }
     }
     PatchPoint p;
     switch (patch.kind) {
@@ -175,17 +217,47 @@ struct SubdDS {
         p = bezier_patch(b, loc.u, loc.v);
         break;
       }
+      case PatchKind::gregory_triangle: {
+        std::array<glm::vec3, 15> g;
+        for (int i = 0; i < 15; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+        p = gregory_triangle(g, loc.u, loc.v, loc.w);
+        break;
+      }
+      case PatchKind::pn_triangle: {
+        std::array<glm::vec3, 10> b;
+        std::array<glm::vec3, 6> n;
+        for (int i = 0; i < 10; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+        for (int i = 0; i < 6; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
+        const PatchPoint q = cubic_triangle(b, loc.u, loc.v, loc.w);
+        s.position = positive_zero(q.position);
+        s.du = q.du, s.dv = q.dv;
+        s.normal = quadratic_triangle_normal(n, loc.u, loc.v, loc.w);
+        if (flip_normals) s.normal = -s.normal;
+        return s;
+      }
+      case PatchKind::pn_quad: {
+        std::array<glm::vec3, 16> b;
+        std::array<glm::vec3, 9> n;
+        for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+        for (int i = 0; i < 9; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
+        const PatchPoint q = bezier_patch(b, loc.u, loc.v);
+        s.position = positive_zero(q.position);
+        s.du = q.du, s.dv = q.dv;
+        s.normal = biquadratic_normal(n, loc.u, loc.v);
+        if (flip_normals) s.normal = -s.normal;
+        return s;
+      }
       case PatchKind::exact: {
         const SurfacePoint l = !triangles                  ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
                                : limit->face_size(patch.face) == 3 ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
                                                                   : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
-        s.position = l.position;
+        s.position = positive_zero(l.position);
         s.normal = l.normal;
         s.du = l.du, s.dv = l.dv;
         return s;
       }
     }
-    s.position = p.position;
+    s.position = positive_zero(p.position);
     s.du = p.du, s.dv = p.dv;
     const glm::vec3 n = glm::cross(p.du, p.dv);
     const float len = glm::length(n);

@@ -7,12 +7,15 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "cage_obj.h"
+#include "patch_eval.h"
+#include "pn_patch.h"
 #include "subd_model.h"
 #include "topology_combinations.h"
 #include "weld_check.h"
@@ -97,6 +100,117 @@ Cage hexagonal_prism() {
   return parse_obj_cage(obj, "hexagonal_prism");
 }
 
+// A closed quad-triangle cage: a cube whose bottom is split into two triangles and whose top is a
+// four-triangle pyramid cap; corners where triangles and quads meet, valence 3 and 4, an all-triangle
+// vertex.
+const char* const kMixedCube = R"(v -1 -1 -1
+v 1 -1 -1
+v 1 1 -1
+v -1 1 -1
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+v 0 0 1.5
+f 1 4 3
+f 1 3 2
+f 5 6 9
+f 6 7 9
+f 7 8 9
+f 8 5 9
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+)";
+
+SubdModel mixed_cube(Scheme s) { return make_subd_model(parse_obj_cage(kMixedCube, "mixed_cube.obj"), s); }
+
+// Face f's patch evaluated at a location of its own domain, through SubdVS, SubdHS and SubdDS as the
+// pipeline calls them.
+struct PatchEvaluator {
+  const SubdModel& m;
+  SurfaceSample operator()(int face, DomainLocation loc) const {
+    for (const PatchGroup* g : {&m.patches.quads, &m.patches.tris})
+      for (std::size_t id = 0; id < g->size(); ++id) {
+        if (g->patches[id].face != face) continue;
+        const bool tri = g->domain == ts::Domain::tri;
+        const SubdVS vs = m.vertex_shader();
+        std::vector<SubdVertex> in;
+        for (int k = 0; k < g->control_points; ++k) {
+          const std::uint32_t v = g->indices[id * std::size_t(g->control_points) + std::size_t(k)];
+          in.push_back(vs(m.cage.positions[v], v));
+        }
+        const SubdHS hs{g->patches, m.patches.tables, SubdFactors{}, tri};
+        std::vector<SubdControlPoint> cps;
+        for (int i = 0; i < SubdHS::kOutputControlPoints; ++i) cps.push_back(hs.control_point(in, i, std::uint32_t(id)));
+        const SubdDS ds{g->patches, m.limit.get(), m.cage.tags.left_handed, tri};
+        return ds(SubdPatchConstants{}, cps, loc, std::uint32_t(id));
+      }
+    FAIL("no patch for face " << face);
+    return {};
+  }
+  // The location at fraction t of patch edge k (patch corner k -> k + 1) of a face with n corners.
+  static DomainLocation on_edge(int n, int k, float t) {
+    if (n == 3) {
+      switch (k) {
+        case 0: return {t, 0.0f, 1.0f - t};
+        case 1: return {1.0f - t, t, 0.0f};
+        default: return {0.0f, 1.0f - t, t};
+      }
+    }
+    switch (k) {
+      case 0: return {t, 0.0f, 0.0f};
+      case 1: return {1.0f, t, 0.0f};
+      case 2: return {1.0f - t, 1.0f, 0.0f};
+      default: return {0.0f, 1.0f - t, 0.0f};
+    }
+  }
+  // Patch edge k of face f and whether it runs a -> b (else b -> a); -1 if the face has no such edge.
+  std::pair<int, bool> patch_edge(int face, int a, int b) const {
+    const int n = m.topology->face_size(face);
+    int rotation = 0;
+    for (const PatchGroup* g : {&m.patches.quads, &m.patches.tris})
+      for (const SubdPatch& p : g->patches)
+        if (p.face == face) rotation = p.rotation;
+    for (int k = 0; k < n; ++k) {
+      const int x = m.cage.face_vertex(face, (k + rotation) % n), y = m.cage.face_vertex(face, (k + 1 + rotation) % n);
+      if (x == a && y == b) return {k, true};
+      if (x == b && y == a) return {k, false};
+    }
+    return {-1, false};
+  }
+};
+
+// Along every interior cage edge, both patches at t = i/16: counts positions that are not
+// bit-identical, and returns the largest angle between the two patches' normals (radians).
+double max_normal_jump_across_edges(const SubdModel& m, std::uint64_t& mismatched_positions) {
+  const PatchEvaluator eval{m};
+  const Topology& t = *m.topology;
+  double worst = 0;
+  for (int e = 0; e < t.edge_count(); ++e) {
+    if (t.is_boundary_edge(e)) continue;
+    const auto [h0, h1] = t.edge_half_edges(e);
+    const int a = t.origin(h0), b = t.destination(h0);
+    const int f0 = t.face(h0), f1 = t.face(h1);
+    const auto [k0, fwd0] = eval.patch_edge(f0, a, b);
+    const auto [k1, fwd1] = eval.patch_edge(f1, a, b);
+    REQUIRE(k0 >= 0);
+    REQUIRE(k1 >= 0);
+    for (int i = 0; i <= 16; ++i) {
+      const float s = float(i) / 16.0f;  // from a toward b
+      const SurfaceSample p0 = eval(f0, PatchEvaluator::on_edge(t.face_size(f0), k0, fwd0 ? s : 1.0f - s));
+      const SurfaceSample p1 = eval(f1, PatchEvaluator::on_edge(t.face_size(f1), k1, fwd1 ? s : 1.0f - s));
+      using Bits = std::array<std::uint32_t, 3>;
+      if (std::bit_cast<Bits>(p0.position) != std::bit_cast<Bits>(p1.position)) ++mismatched_positions;
+      // atan2 of |n0 x n1| and n0 . n1 in double: acos would stop at 5e-4 (one float ulp below 1).
+      const glm::dvec3 n0(p0.normal), n1(p1.normal);
+      worst = std::max(worst, std::atan2(glm::length(glm::cross(n0, n1)), glm::dot(n0, n1)));
+    }
+  }
+  return worst;
+}
+
 }  // namespace
 
 TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fractional factors varying per edge",
@@ -104,7 +218,7 @@ TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fra
   const char* cages[] = {"osd-shapes/catmark_cube.obj", "osd-shapes/catmark_torus.obj", "osd-shapes/catmark_toroidal_tet.obj",
                          "osd-shapes/catmark_lefthanded.obj", "sdk-cages/monsterfrog_mapped_00.obj", "sdk-cages/guy3.obj"};
   for (const char* cage : cages)
-    for (Scheme s : {Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact}) {
+    for (Scheme s : {Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn}) {
       const SubdModel m = load_subd_model(data(cage), s);
       struct Case {
         ts::Partitioning p;
@@ -120,6 +234,144 @@ TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fra
         CHECK(r.degenerate_triangles == 0);
       }
     }
+}
+
+TEST_CASE("Gregory, bspline and pn are watertight on closed quad-triangle cages at factors varying per edge",
+          "[subd]") {
+  // catmark_pyramid (4 triangles on a quad), catmark_smoothtris0 (80 triangles, two valence-20 poles; a
+  // vertex at x = -0, whose corners must weld with +0), loop_cube and loop_tetrahedron (all triangles)
+  // and the mixed cube above (triangles and quads around one vertex).
+  struct Case {
+    ts::Partitioning p;
+    float factor, vary;
+  };
+  auto check = [](const SubdModel& m, const std::string& name) {
+    REQUIRE(m.patches.tris.size() > 0);
+    for (const Case c : {Case{ts::Partitioning::integer, 3.0f, 1.0f}, Case{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
+                         Case{ts::Partitioning::fractional_even, 2.6f, 1.3f}}) {
+      INFO(name << " " << to_string(m.patches.scheme) << " " << ts::to_string(c.p));
+      const auto r = weld(m, c.factor, c.vary, c.p);
+      CHECK(r.closed_manifold());
+      CHECK(r.boundary_edges == 0);
+      CHECK(r.nonmanifold_edges == 0);
+      CHECK(r.degenerate_triangles == 0);
+    }
+  };
+  for (Scheme s : {Scheme::gregory, Scheme::bspline, Scheme::pn, Scheme::exact}) {
+    for (const char* cage : {"osd-shapes/catmark_pyramid.obj", "osd-shapes/catmark_smoothtris0.obj",
+                             "osd-shapes/loop_cube.obj", "osd-shapes/loop_tetrahedron.obj"})
+      check(load_subd_model(data(cage), s), cage);
+    check(mixed_cube(s), "mixed cube");
+  }
+}
+
+TEST_CASE("Triangular Gregory face points make the surface G1 across triangle-quad and triangle-triangle edges",
+          "[subd]") {
+  // The face points are derived from the condition that the cross-boundary derivatives of the two
+  // patches on an edge add up to 2 c(t) T(t) (patch_stencils.cpp), so the normals of the two patches
+  // agree all along every edge of a closed untagged cage, up to float round-off. The quad rule on a
+  // triangle (F = E + (k1 + r) / 3) breaks this by degrees.
+  for (const bool mixed : {false, true}) {
+    const SubdModel m =
+        mixed ? mixed_cube(Scheme::gregory) : load_subd_model(data("osd-shapes/catmark_pyramid.obj"), Scheme::gregory);
+    INFO((mixed ? "mixed cube" : "pyramid"));
+    std::uint64_t mismatched = 0;
+    const double jump = max_normal_jump_across_edges(m, mismatched);
+    CHECK(mismatched == 0);
+    CHECK(jump < 1e-5);  // radians; measured 7e-7 and 5e-7, the quad rule gives 0.049 and 0.023
+  }
+}
+
+TEST_CASE("Gregory triangles stay close to the exact limit surface", "[subd]") {
+  // The mixed cube at factor 7, parametric distance (the tri domain against the limit surface's own
+  // triangle parametrization, limit_surface.h) relative to the bounding-box diagonal, triangles only.
+  const SubdModel m = mixed_cube(Scheme::gregory);
+  const LimitSurface exact = LimitSurface::create(m.cage);
+  const double diagonal = exact.bounding_box_diagonal();
+  Device device(DeviceOptions{});
+  SubdFactors f;
+  f.factor = 7;
+  double sum2 = 0, max_d = 0, angle = 0;
+  std::size_t n = 0;
+  stream_subd(device, m, f, ts::Partitioning::integer, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup& g) {
+    if (g.domain != ts::Domain::tri) return;
+    for (const SurfaceSample& p : out.points) {
+      const SurfacePoint e = exact.evaluate_triangle(g.patches[out.patch_id].face, p.u, p.v, (1.0f - p.u) - p.v);
+      const double d = glm::length(p.position - e.position);
+      sum2 += d * d;
+      max_d = std::max(max_d, d);
+      angle += std::acos(std::clamp(double(glm::dot(p.normal, e.normal)), -1.0, 1.0));
+      ++n;
+    }
+  });
+  REQUIRE(n > 0);
+  INFO("rms " << std::sqrt(sum2 / double(n)) / diagonal << " max " << max_d / diagonal << " mean angle " << angle / double(n));
+  CHECK(std::sqrt(sum2 / double(n)) / diagonal < 1e-2);
+  CHECK(max_d / diagonal < 2.5e-2);
+  CHECK(angle / double(n) < 0.075);  // radians, 4.3 degrees
+}
+
+TEST_CASE("PN triangles and quads: planar faces stay flat and linear, corners and normals interpolate", "[subd]") {
+  // A planar triangle or parallelogram with the plane's normal at every corner has straight edges
+  // with points at thirds, so the PN triangle is the linear triangle (its centre rule adds nothing) and
+  // the Coons interior makes the PN quad the bilinear patch.
+  const glm::vec3 n(0.0f, 0.0f, 1.0f);
+  const std::array<glm::vec3, 3> tp{glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(3.0f, 0.5f, 2.0f), glm::vec3(1.0f, 2.0f, 2.0f)};
+  const std::array<glm::vec3, 3> tn{n, n, n};
+  const PNTriangle t = pn_triangle(tp, tn);
+  const std::array<glm::vec3, 4> qp{glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(3.0f, 0.5f, 2.0f), glm::vec3(4.0f, 2.5f, 2.0f),
+                                    glm::vec3(1.0f, 2.0f, 2.0f)};
+  const std::array<glm::vec3, 4> qn{n, n, n, n};
+  const PNQuad q = pn_quad(qp, qn);
+  for (int i = 1; i < 8; ++i)
+    for (int j = 1; i + j < 8; ++j) {
+      const float u = float(i) / 8.0f, v = float(j) / 8.0f, w = (1.0f - u) - v;
+      const glm::vec3 p = cubic_triangle(t.b, u, v, w).position;
+      CHECK(glm::length(p - (w * tp[0] + u * tp[1] + v * tp[2])) < 1e-5f);
+      CHECK(glm::length(quadratic_triangle_normal(t.n, u, v, w) - n) < 1e-6f);
+      const glm::vec3 b = bezier_patch(q.b, u, v).position;
+      const glm::vec3 bl = (1.0f - v) * ((1.0f - u) * qp[0] + u * qp[1]) + v * ((1.0f - u) * qp[3] + u * qp[2]);
+      CHECK(glm::length(b - bl) < 1e-5f);
+    }
+  // Curved: corners interpolate, corner normals are the vertex normals, an edge leaves its corner in the
+  // corner's tangent plane, and the centre bulges by (E - V) / 2.
+  const std::array<glm::vec3, 3> cn{glm::normalize(glm::vec3(-0.3f, -0.2f, 1.0f)), glm::normalize(glm::vec3(0.4f, 0.0f, 1.0f)),
+                                    glm::normalize(glm::vec3(0.0f, 0.5f, 1.0f))};
+  const PNTriangle c = pn_triangle(tp, cn);
+  CHECK(cubic_triangle(c.b, 0.0f, 0.0f, 1.0f).position == tp[0]);
+  CHECK(cubic_triangle(c.b, 1.0f, 0.0f, 0.0f).position == tp[1]);
+  CHECK(glm::length(quadratic_triangle_normal(c.n, 0.0f, 1.0f, 0.0f) - cn[2]) < 1e-6f);
+  CHECK(std::abs(glm::dot(c.b[std::size_t(tri_index(3, 1, 0))] - tp[0], cn[0])) < 1e-6f);
+  glm::vec3 e(0.0f);
+  for (int i : {1, 2, 4, 6, 7, 8}) e += c.b[std::size_t(i)];
+  e /= 6.0f;
+  const glm::vec3 centre = (tp[0] + tp[1] + tp[2]) / 3.0f;
+  CHECK(glm::length(c.b[std::size_t(tri_index(3, 1, 1))] - (e + 0.5f * (e - centre))) < 1e-5f);
+}
+
+TEST_CASE("pn normals are continuous to the bit: every welded point has one normal", "[subd]") {
+  for (const char* cage : {"osd-shapes/catmark_pyramid.obj", "osd-shapes/catmark_cube.obj"}) {
+    const SubdModel m = load_subd_model(data(cage), Scheme::pn);
+    Device device(DeviceOptions{});
+    SubdFactors f;
+    f.factor = 3.3f;
+    f.vary = 1.0f;
+    using Bits = std::array<std::uint32_t, 3>;
+    std::map<Bits, Bits> normal_at;
+    std::uint64_t shared = 0, differing = 0;
+    stream_subd(device, m, f, ts::Partitioning::fractional_even, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
+      for (const SurfaceSample& p : out.points) {
+        const auto [it, added] = normal_at.emplace(std::bit_cast<Bits>(p.position), std::bit_cast<Bits>(p.normal));
+        if (!added) {
+          ++shared;
+          differing += it->second != std::bit_cast<Bits>(p.normal) ? 1 : 0;
+        }
+      }
+    });
+    INFO(cage);
+    CHECK(shared > 0);
+    CHECK(differing == 0);
+  }
 }
 
 TEST_CASE("Flat and exact schemes draw triangles and n-gons watertight next to quads and triangles", "[subd]") {
@@ -319,26 +571,34 @@ TEST_CASE("Faces of one topology combination share one stencil table", "[subd]")
 }
 
 TEST_CASE("Stream output and stencil evaluation give the same bytes for any thread count", "[subd]") {
-  const SubdModel m = load_subd_model(data("sdk-cages/monsterfrog_mapped_00.obj"), Scheme::acc);
-  auto digest = [&](int threads) {
-    DeviceOptions o;
-    o.threads = threads;
-    o.chunk_primitives = threads == 1 ? 16384 : 777;
-    Device device(o);
-    std::uint64_t h = 1469598103934665603ull;
-    SubdFactors f;
-    f.factor = 3.5f;
-    f.vary = 1.0f;
-    stream_subd(device, m, f, ts::Partitioning::fractional_odd, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
-      for (const SurfaceSample& p : out.points)
-        for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
-          h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
-    });
-    return h;
+  struct Case {
+    const char* cage;
+    Scheme scheme;
   };
-  const auto one = digest(1);
-  CHECK(digest(2) == one);
-  CHECK(digest(3) == one);
+  for (const Case c : {Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::acc}, Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::pn},
+                       Case{"osd-shapes/catmark_smoothtris0.obj", Scheme::gregory}}) {
+    INFO(c.cage << " " << to_string(c.scheme));
+    const SubdModel m = load_subd_model(data(c.cage), c.scheme);
+    auto digest = [&](int threads) {
+      DeviceOptions o;
+      o.threads = threads;
+      o.chunk_primitives = threads == 1 ? 16384 : 777;
+      Device device(o);
+      std::uint64_t h = 1469598103934665603ull;
+      SubdFactors f;
+      f.factor = 3.5f;
+      f.vary = 1.0f;
+      stream_subd(device, m, f, ts::Partitioning::fractional_odd, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
+        for (const SurfaceSample& p : out.points)
+          for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
+            h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
+      });
+      return h;
+    };
+    const auto one = digest(1);
+    CHECK(digest(2) == one);
+    CHECK(digest(3) == one);
+  }
 }
 
 TEST_CASE("Faces a scheme cannot take give one line naming the face", "[subd]") {
@@ -358,4 +618,18 @@ TEST_CASE("Faces a scheme cannot take give one line naming the face", "[subd]") 
     CHECK(std::string(e.what()).find("face") != std::string::npos);
   }
   CHECK_THROWS_AS(load_subd_model(data("osd-shapes/catmark_nonman_edges.obj"), Scheme::gregory), CageError);
+  // Pentagons: gregory and pn take triangles and quads only.
+  for (Scheme s : {Scheme::gregory, Scheme::pn}) {
+    INFO(to_string(s));
+    try {
+      load_subd_model(data("osd-shapes/catmark_gregory_test2.obj"), s);
+      FAIL("no error");
+    } catch (const CageError& e) {
+      const std::string m = e.what();
+      CHECK(m.find("catmark_gregory_test2.obj: face") != std::string::npos);
+      CHECK(m.find("has 5 sides") != std::string::npos);
+      CHECK(m.find("triangles and quads only") != std::string::npos);
+      CHECK(m.find('\n') == std::string::npos);
+    }
+  }
 }

@@ -47,7 +47,8 @@ int run_accuracy(const AccuracyOptions& o) {
       glm::dvec3 pos, nrm;
       const int n = reference.face_size(patch.face);
       if (g.domain == ts::Domain::tri && n == 3) {
-        const SurfacePoint e = reference.evaluate_triangle(patch.face, q.u, q.v, (1.0f - q.u) - q.v);
+        // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
+        const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);
         pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
       } else if (g.domain == ts::Domain::tri) {  // a fan triangle of a larger face
         const LimitSurface::SubPatchLocation l = LimitSurface::fan_location(n, patch.sub, q.u, q.v);

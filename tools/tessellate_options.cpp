@@ -11,7 +11,9 @@ namespace tessera::cli {
 
 void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float& vary, std::string& factors_file,
                         std::string& partitioning, int& threads) {
-  cmd.add_option("--scheme", scheme, "flat, bspline, acc, gregory or exact")->capture_default_str();
+  cmd.add_option("--scheme", scheme,
+                 "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
+                 "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit) or pn (PN triangles and quads)")->capture_default_str();
   cmd.add_option("--factor", factor, "tessellation factor on every edge")->capture_default_str();
   cmd.add_option("--vary-factors", vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
   cmd.add_option("--factors-per-edge", factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
@@ -21,7 +23,7 @@ void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float
 
 Scheme scheme_option(const std::string& name) {
   const auto s = parse_scheme(name);
-  if (!s) throw UsageError("--scheme: '" + name + "' is not one of flat, bspline, acc, gregory, exact");
+  if (!s) throw UsageError("--scheme: '" + name + "' is not one of flat, bspline, acc, gregory, exact, pn");
   return *s;
 }
 
