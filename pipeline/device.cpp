@@ -20,6 +20,15 @@ Device::Device(DeviceOptions options) : options_(options) {
   arena_ = std::make_unique<tbb::task_arena>(threads_);
 }
 
+void Device::clear(Framebuffer& fb, glm::vec4 color, float depth) {
+  constexpr int kRows = 32;  // rows per task: large enough to amortize a task, small enough to balance
+  detail::arena_execute(*arena_, [&] {
+    detail::parallel_for(tbb::blocked_range<int>(0, (fb.height() + kRows - 1) / kRows, 1), [&](const auto& r) {
+      fb.clear_rows(r.begin() * kRows, r.end() * kRows, color, depth);
+    });
+  });
+}
+
 std::string validate_viewport(const Viewport& vp, const Framebuffer& fb) {
   const bool finite = std::isfinite(vp.x) && std::isfinite(vp.y) && std::isfinite(vp.width) &&
                       std::isfinite(vp.height) && std::isfinite(vp.min_depth) && std::isfinite(vp.max_depth);

@@ -329,6 +329,10 @@ class Device {
   // The arena the device's work runs in (stream_output.h runs there too).
   tbb::task_arena& arena() const { return *arena_; }
 
+  // Clears the colour and depth buffers on the device's threads (bands of rows); the same bytes as
+  // Framebuffer::clear.
+  void clear(Framebuffer& fb, glm::vec4 color, float depth);
+
   template <class Vertex, class Vs, class Hs, class Ds, class Ps>
   DrawResult draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb);
 

@@ -29,15 +29,25 @@ std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorForma
   return Framebuffer(width, height, format);
 }
 
-void Framebuffer::clear(glm::vec4 c, float d) {
-  std::fill(depth_.begin(), depth_.end(), d);
+void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
+  y0 = std::clamp(y0, 0, height_);
+  y1 = std::clamp(y1, y0, height_);
+  if (y0 == y1) return;
+  std::fill(depth_.begin() + std::ptrdiff_t(index(0, y0)), depth_.begin() + std::ptrdiff_t(index(0, y1)), d);
+  const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
+  std::uint8_t px[16];
   if (format_ == ColorFormat::rgba8_unorm) {
-    const std::uint8_t px[4] = {float_to_unorm8(c.r), float_to_unorm8(c.g), float_to_unorm8(c.b), float_to_unorm8(c.a)};
-    for (std::size_t i = 0; i < color_.size(); i += 4) std::memcpy(&color_[i], px, 4);
+    const std::uint8_t b[4] = {float_to_unorm8(c.r), float_to_unorm8(c.g), float_to_unorm8(c.b), float_to_unorm8(c.a)};
+    std::memcpy(px, b, 4);
   } else {
-    const float px[4] = {c.r, c.g, c.b, c.a};
-    for (std::size_t i = 0; i < color_.size(); i += 16) std::memcpy(&color_[i], px, 16);
+    const float f[4] = {c.r, c.g, c.b, c.a};
+    std::memcpy(px, f, 16);
   }
+  // The first row pixel by pixel, the others copied from it.
+  const std::size_t row_bytes = std::size_t(width_) * pixel_bytes;
+  std::uint8_t* first = &color_[index(0, y0) * pixel_bytes];
+  for (std::size_t i = 0; i < row_bytes; i += pixel_bytes) std::memcpy(first + i, px, pixel_bytes);
+  for (int y = y0 + 1; y < y1; ++y) std::memcpy(&color_[index(0, y) * pixel_bytes], first, row_bytes);
 }
 
 glm::vec4 Framebuffer::color(int x, int y) const {

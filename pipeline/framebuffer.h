@@ -16,8 +16,11 @@
 
 #include <glm/glm.hpp>
 
+#include "simd4.h"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#include <xmmintrin.h>
 #endif
 
 namespace tessera {
@@ -42,7 +45,10 @@ class Framebuffer {
   int height() const { return height_; }
   ColorFormat format() const { return format_; }
 
-  void clear(glm::vec4 color, float depth);
+  void clear(glm::vec4 color, float depth) { clear_rows(0, height_, color, depth); }
+  // Clears rows [y0, y1) only: disjoint row ranges may be cleared by different threads
+  // (Device::clear does).
+  void clear_rows(int y0, int y1, glm::vec4 color, float depth);
 
   // Output merger writes (the caller owns the pixel; different threads write different pixels).
   float depth(int x, int y) const { return depth_[index(x, y)]; }
@@ -62,26 +68,49 @@ class Framebuffer {
   }
   glm::vec4 color(int x, int y) const;
 
+  // The 2x2 quad whose top-left pixel is (x, y) lies wholly inside the target: the quad forms below
+  // then read and write its two row pairs directly.
+  bool quad_inside(int x, int y) const { return x + 1 < width_ && y + 1 < height_; }
+  // Depth of the quad's pixels in lanes k = 0 (x, y), 1 (x + 1, y), 2 (x, y + 1), 3 (x + 1, y + 1).
+  simd::F4 depth_quad(int x, int y) const { return simd::F4::load_pairs(&depth_[index(x, y)], &depth_[index(x, y + 1)]); }
+  void set_depth_quad(int x, int y, simd::F4 d) { d.store_pairs(&depth_[index(x, y)], &depth_[index(x, y + 1)]); }
+
   // The output merger for one 2x2 quad whose top-left pixel is (x, y): pixel (x + (k & 1), y + (k >> 1))
   // gets colour c[.][k] where bit k of `mask` is set (only those pixels need to exist). The format is
-  // checked once per quad and the 16 conversions are one loop, which vectorizes.
-  void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
+  // checked once per quad and the 16 conversions are one packed sequence.
+  [[gnu::always_inline]] void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
     if (format_ == ColorFormat::rgba8_unorm) {
-      std::uint8_t bytes[4][4];  // [lane][channel]
 #if defined(__SSE2__)
       // float_to_unorm8 on 16 values: max(x, 0) and min(., 1) with std::max/std::min's NaN behaviour
-      // (maxps returns its second operand for NaN), then truncation, as the scalar cast does.
+      // (maxps returns its second operand for NaN), scale and add 0.5, then (after a transpose to
+      // pixel order, which moves bits only) truncation, as the scalar cast does. The results are in
+      // 0..255, so the saturating packs to 16 and 8 bits keep them unchanged.
       const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
-      __m128i ints[4];
-      for (std::size_t ch = 0; ch < 4; ++ch) {
-        const __m128 v = _mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero));
-        ints[ch] = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, scale), half));
+      __m128 v[4];
+      for (std::size_t ch = 0; ch < 4; ++ch)
+        v[ch] = _mm_add_ps(_mm_mul_ps(_mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero)), scale), half);
+      _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);  // v[k]: pixel k's r, g, b, a
+      const __m128i px = _mm_packus_epi16(_mm_packs_epi32(_mm_cvttps_epi32(v[0]), _mm_cvttps_epi32(v[1])),
+                                          _mm_packs_epi32(_mm_cvttps_epi32(v[2]), _mm_cvttps_epi32(v[3])));
+      if (quad_inside(x, y)) {
+        std::uint8_t* r0 = &color_[index(x, y) * 4];
+        std::uint8_t* r1 = &color_[index(x, y + 1) * 4];
+        __m128i out = px;
+        if (mask != 0xFu) {
+          const __m128i m = _mm_setr_epi32(-int(mask & 1u), -int((mask >> 1) & 1u), -int((mask >> 2) & 1u),
+                                           -int((mask >> 3) & 1u));
+          const __m128i old = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r0)),
+                                                 _mm_loadl_epi64(reinterpret_cast<const __m128i*>(r1)));
+          out = _mm_or_si128(_mm_and_si128(m, px), _mm_andnot_si128(m, old));
+        }
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(r0), out);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(r1), _mm_srli_si128(out, 8));
+        return;
       }
-      alignas(16) std::int32_t lanes[4][4];
-      for (std::size_t ch = 0; ch < 4; ++ch) _mm_store_si128(reinterpret_cast<__m128i*>(lanes[ch]), ints[ch]);
-      for (int ch = 0; ch < 4; ++ch)
-        for (int k = 0; k < 4; ++k) bytes[k][ch] = static_cast<std::uint8_t>(lanes[ch][k]);
+      alignas(16) std::uint8_t bytes[4][4];  // [pixel][channel]
+      _mm_store_si128(reinterpret_cast<__m128i*>(bytes), px);
 #else
+      std::uint8_t bytes[4][4];  // [pixel][channel]
       for (int ch = 0; ch < 4; ++ch)
         for (int k = 0; k < 4; ++k) bytes[k][ch] = float_to_unorm8(c[std::size_t(ch)][std::size_t(k)]);
 #endif

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "clipper.h"
+#include "simd4.h"
 #include "pipeline_state.h"
 #include "statistics.h"
 
@@ -49,7 +50,13 @@ struct ScreenPrimitive {
 struct TileGrid {
   int tile_size = 64;
   int columns = 0, rows = 0;
+  // tile_of(p) = p / tile_size by a multiply and a shift (setup bins every primitive; a division is
+  // slow): with reciprocal = floor(2^40 / tile_size) + 1, p * reciprocal / 2^40 exceeds p / tile_size
+  // by less than p / 2^40, which stays below the 1 / tile_size gap to the next integer while
+  // p * tile_size < 2^40 (pixels < 16384, tile_size <= 1024: below 2^24).
+  std::uint64_t reciprocal = (std::uint64_t(1) << 40) / 64 + 1;
   int count() const { return columns * rows; }
+  int tile_of(std::int32_t pixel) const { return int((std::uint64_t(std::uint32_t(pixel)) * reciprocal) >> 40); }
 };
 
 // What setup needs to know about the draw, computed once.
@@ -146,10 +153,10 @@ template <std::size_t N>
 void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>& p) {
   const auto index = static_cast<std::uint32_t>(chunk.primitives.size());
   chunk.primitives.push_back(p);
-  const int ts = c.tiles.tile_size;
-  const int tx0 = p.min_x / ts, tx1 = p.max_x / ts, ty0 = p.min_y / ts, ty1 = p.max_y / ts;
+  const TileGrid& g = c.tiles;
+  const int tx0 = g.tile_of(p.min_x), tx1 = g.tile_of(p.max_x), ty0 = g.tile_of(p.min_y), ty1 = g.tile_of(p.max_y);
   for (int ty = ty0; ty <= ty1; ++ty)
-    for (int tx = tx0; tx <= tx1; ++tx) chunk.entries.emplace_back(std::uint32_t(ty * c.tiles.columns + tx), index);
+    for (int tx = tx0; tx <= tx1; ++tx) chunk.entries.emplace_back(std::uint32_t(ty * g.columns + tx), index);
 }
 
 // Clips the pixel box to what may be written; false if nothing is left.
@@ -236,8 +243,8 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   const bool front = (area > 0) != c.front_ccw;
   if ((c.cull == CullMode::back && !front) || (c.cull == CullMode::front && front)) return;
   // The box test comes before the primitive is built: most micro-triangles stop here.
-  const auto [lx, hx] = std::minmax({a.x, b.x, d.x});
-  const auto [ly, hy] = std::minmax({a.y, b.y, d.y});
+  const std::int32_t lx = std::min(std::min(a.x, b.x), d.x), hx = std::max(std::max(a.x, b.x), d.x);
+  const std::int32_t ly = std::min(std::min(a.y, b.y), d.y), hy = std::max(std::max(a.y, b.y), d.y);
   const std::int32_t min_x = std::max(first_pixel_at_or_after(lx), c.clip_min_x);
   const std::int32_t max_x = std::min(last_pixel_at_or_before(hx), c.clip_max_x);
   if (min_x > max_x) return;
@@ -267,20 +274,36 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   const float x1 = float(v[1]->x - v[0]->x) * inv_sub, y1 = float(v[1]->y - v[0]->y) * inv_sub;
   const float x2 = float(v[2]->x - v[0]->x) * inv_sub, y2 = float(v[2]->y - v[0]->y) * inv_sub;
   const float inv_area = 1.0f / (x1 * y2 - x2 * y1);
-  auto plane = [&](float a0, float a1, float a2) {
-    const float d1 = a1 - a0, d2 = a2 - a0;
-    return std::array<float, 3>{a0, (d1 * y2 - d2 * y1) * inv_area, (d2 * x1 - d1 * x2) * inv_area};
-  };
+  // For z, 1/w and each attribute / w: the value at vertex 0 and its x and y slopes, four values at a
+  // time in lanes, each lane the scalar expression
+  //   (a0, ((a1 - a0) * y2 - (a2 - a0) * y1) * inv_area, ((a2 - a0) * x1 - (a1 - a0) * x2) * inv_area).
+  constexpr std::size_t kValues = 2 + N, kGroups = (kValues + 3) / 4;
+  std::array<float, 4 * kGroups> value[3]{};
+  for (int j = 0; j < 3; ++j) {
+    value[j][0] = v[j]->z;
+    value[j][1] = v[j]->inv_w;
+    for (std::size_t k = 0; k < N; ++k) value[j][2 + k] = v[j]->clip.attributes[k] * v[j]->inv_w;
+  }
+  std::array<float, 4 * kGroups> slope_x, slope_y;
+  {
+    using simd::F4;
+    const F4 fx1 = F4::splat(x1), fy1 = F4::splat(y1), fx2 = F4::splat(x2), fy2 = F4::splat(y2);
+    const F4 fia = F4::splat(inv_area);
+    for (std::size_t g = 0; g < kGroups; ++g) {
+      const F4 a0 = F4::load_at(&value[0][4 * g]), a1 = F4::load_at(&value[1][4 * g]), a2 = F4::load_at(&value[2][4 * g]);
+      const F4 d1 = a1 - a0, d2 = a2 - a0;
+      ((d1 * fy2 - d2 * fy1) * fia).store_at(&slope_x[4 * g]);
+      ((d2 * fx1 - d1 * fx2) * fia).store_at(&slope_y[4 * g]);
+    }
+  }
   p.origin_x = float(v[0]->x) * inv_sub;
   p.origin_y = float(v[0]->y) * inv_sub;
-  p.z = plane(v[0]->z, v[1]->z, v[2]->z);
-  p.inv_w = plane(v[0]->inv_w, v[1]->inv_w, v[2]->inv_w);
+  p.z = {value[0][0], slope_x[0], slope_y[0]};
+  p.inv_w = {value[0][1], slope_x[1], slope_y[1]};
   for (std::size_t k = 0; k < N; ++k) {
-    const auto q = plane(v[0]->clip.attributes[k] * v[0]->inv_w, v[1]->clip.attributes[k] * v[1]->inv_w,
-                         v[2]->clip.attributes[k] * v[2]->inv_w);
-    p.attributes[0][k] = q[0];
-    p.attributes[1][k] = q[1];
-    p.attributes[2][k] = q[2];
+    p.attributes[0][k] = value[0][2 + k];
+    p.attributes[1][k] = slope_x[2 + k];
+    p.attributes[2][k] = slope_y[2 + k];
   }
   p.front_face = front;
   p.primitive_id = primitive_id;

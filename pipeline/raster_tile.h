@@ -14,9 +14,13 @@
 // on the thread count.
 #pragma once
 
+#include <algorithm>
 #include <array>
-#include <bit>
 #include <cstdint>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "framebuffer.h"
 #include "primitive_setup.h"
@@ -49,11 +53,196 @@ inline bool depth_test(const RasterContext& rc, const Framebuffer& fb, int x, in
 
 namespace detail {
 
+inline constexpr std::uint8_t kQuadLanes[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};  // popcount
+
+// Lanes of a quad where `z kDepthFunc stored` holds, as depth_passes() decides per pixel.
+template <CompareFunc kDepthFunc>
+unsigned depth_pass_mask(simd::F4 z, simd::F4 stored) {
+  switch (kDepthFunc) {
+    case CompareFunc::never: return 0;
+    case CompareFunc::less: return simd::less_mask(z, stored);
+    case CompareFunc::equal: return simd::equal_mask(z, stored);
+    case CompareFunc::less_equal: return simd::less_equal_mask(z, stored);
+    case CompareFunc::greater: return simd::less_mask(stored, z);
+    case CompareFunc::not_equal: return simd::not_equal_mask(z, stored);
+    case CompareFunc::greater_equal: return simd::less_equal_mask(stored, z);
+    case CompareFunc::always: return 0xF;
+  }
+  return 0;
+}
+
+// One 2x2 quad of triangle `p` at (qx, qy) whose lanes `covered` (bit k = pixel (qx + (k & 1),
+// qy + (k >> 1))) are inside the triangle and the tile: early depth, perspective-correct attributes,
+// the pixel shader, the output merger. Returns the pixel shader invocations.
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsigned covered, const Ps& ps,
+                             const RasterContext& rc, Framebuffer& fb) {
+  // Planes evaluated at the four pixel centres, four lanes at once (simd4.h: the same bits as scalar).
+  using simd::F4;
+  const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
+  const F4 dxk = F4::lanes(fx, fx + 1.0f, fx, fx + 1.0f), dyk = F4::lanes(fy, fy, fy + 1.0f, fy + 1.0f);
+  QuadInput<N> q;
+  const F4 zq = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
+  const F4 z = simd::min(simd::max(zq, F4::splat(rc.min_depth)), F4::splat(rc.max_depth));
+  z.store(q.z);
+
+  // Early depth for the whole quad without a branch per pixel. A quad inside the target reads its
+  // four depths at once (its other lanes are in the same tile, so owned by this thread); one that
+  // hangs over the target's last row or column reads only its covered pixels.
+  const bool inside = fb.quad_inside(qx, qy);
+  unsigned passed = covered;
+  F4 stored = F4::splat(0.0f);
+  if (rc.depth.test) {
+    unsigned pass_bits = 0;
+    if (inside) {
+      stored = fb.depth_quad(qx, qy);
+      pass_bits = depth_pass_mask<kDepthFunc>(z, stored);
+    } else {
+      for (int k = 0; k < 4; ++k) {
+        const float s = (covered >> k) & 1u ? fb.depth(qx + (k & 1), qy + (k >> 1)) : 0.0f;
+        pass_bits |= unsigned(depth_passes(kDepthFunc, q.z[k], s)) << k;
+      }
+    }
+    passed &= pass_bits;
+    if (!passed) return 0;
+  }
+
+  // Perspective-correct attributes at all four pixels (helpers included, for derivatives), in
+  // lanes: q.attributes[a][k].
+  const F4 inv_w = (F4::splat(p.inv_w[0]) + F4::splat(p.inv_w[1]) * dxk) + F4::splat(p.inv_w[2]) * dyk;
+  inv_w.store(q.inv_w);
+  const F4 w = F4::splat(1.0f) / inv_w;
+  for (std::size_t a = 0; a < N; ++a)
+    (((F4::splat(p.attributes[0][a]) + F4::splat(p.attributes[1][a]) * dxk) + F4::splat(p.attributes[2][a]) * dyk) * w)
+        .store(q.attributes[a]);
+  for (int k = 0; k < 4; ++k) {
+    q.x[k] = float(qx + (k & 1)) + 0.5f;
+    q.y[k] = float(qy + (k >> 1)) + 0.5f;
+  }
+  std::array<float, N> ddx, ddy;
+  for (std::size_t a = 0; a < N; ++a) {
+    ddx[a] = q.attributes[a][1] - q.attributes[a][0];
+    ddy[a] = q.attributes[a][2] - q.attributes[a][0];
+  }
+  QuadColor color;
+  if constexpr (QuadPixelShader<Ps, N>) {
+    q.ddx_attributes = &ddx;
+    q.ddy_attributes = &ddy;
+    q.front_face = p.front_face;
+    q.primitive_id = p.primitive_id;
+    q.mask = passed;
+    ps.shade_quad(static_cast<const QuadInput<N>&>(q), color);
+  } else {
+    PixelInput<N> in;
+    in.front_face = p.front_face;
+    in.primitive_id = p.primitive_id;
+    in.ddx_attributes = &ddx;
+    in.ddy_attributes = &ddy;
+    for (int k = 0; k < 4; ++k) {
+      if (!(passed & (1u << k))) continue;
+      for (std::size_t a = 0; a < N; ++a) in.attributes[a] = q.attributes[a][k];
+      in.position = glm::vec4(q.x[k], q.y[k], q.z[k], q.inv_w[k]);
+      const glm::vec4 c = ps(static_cast<const PixelInput<N>&>(in));
+      for (int ch = 0; ch < 4; ++ch) color.c[std::size_t(ch)][k] = c[ch];
+    }
+  }
+  fb.write_quad(qx, qy, passed, color.c);
+  if (rc.depth.test && rc.depth.write) {
+    if (inside) {
+      fb.set_depth_quad(qx, qy, simd::select(passed, stored, z));
+    } else {
+      for (int k = 0; k < 4; ++k)
+        if (passed & (1u << k)) fb.set_depth(qx + (k & 1), qy + (k >> 1), q.z[k]);
+    }
+  }
+  return kQuadLanes[passed];
+}
+
+// The three edge functions of a triangle at the four pixels of a quad, stepped quad by quad. Edge i
+// at pixel k of the quad: k = 0 (x, y), 1 (x + 1, y), 2 (x, y + 1), 3 (x + 1, y + 1). `e0` is the value
+// at the first quad's top-left pixel, `sx`/`sy` the steps for one pixel right/down.
+//
+// Edges64 holds them in 64-bit integers: exact for any triangle inside the guard band.
+struct Edges64 {
+  std::int64_t row[3], e[3], sx[3], sy[3];
+  Edges64(const std::int64_t (&e0)[3], const std::int64_t (&step_x)[3], const std::int64_t (&step_y)[3]) {
+    for (int i = 0; i < 3; ++i) row[i] = e[i] = e0[i], sx[i] = step_x[i], sy[i] = step_y[i];
+  }
+  void start_row() { e[0] = row[0], e[1] = row[1], e[2] = row[2]; }
+  void next_quad() { e[0] += 2 * sx[0], e[1] += 2 * sx[1], e[2] += 2 * sx[2]; }
+  void next_row() { row[0] += 2 * sy[0], row[1] += 2 * sy[1], row[2] += 2 * sy[2]; }
+  // Bit k: pixel k is inside all three edges (all values >= 0).
+  unsigned covered() const {
+    unsigned c = 0;
+    for (int k = 0; k < 4; ++k) {
+      const std::int64_t dx = (k & 1) ? 1 : 0, dy = (k >> 1);
+      c |= unsigned(((e[0] + dx * sx[0] + dy * sy[0]) | (e[1] + dx * sx[1] + dy * sy[1]) |
+                     (e[2] + dx * sx[2] + dy * sy[2])) >= 0)
+           << k;
+    }
+    return c;
+  }
+};
+
+#if defined(__SSE2__)
+// Edges32 holds the four pixels' values of each edge in the lanes of one 32-bit vector, for triangles
+// small enough that every value it evaluates fits (kMaxEdges32Extent): then the values are the exact
+// integers Edges64 computes, and coverage is three ORs and a sign mask. Steps wrap modulo 2^32 (defined
+// for vector adds); a value past the last quad or row may wrap but is never used.
+struct Edges32 {
+  // Vertex box extent in 16.8 units. Every pixel centre evaluated lies at most one pixel (256) outside
+  // the box (a quad's lane beside the first or last covered centre), so |edge| <= ext_y * (ext_x + 256) + ext_x * (ext_y + 256) + 1 < 2^31.
+  static constexpr std::int32_t kMaxExtent = 32767 - 256;
+  __m128i row[3], e[3], step_x2[3], step_y2[3];
+  Edges32(const std::int64_t (&e0)[3], const std::int64_t (&sx)[3], const std::int64_t (&sy)[3]) {
+    for (int i = 0; i < 3; ++i) {
+      const auto x = std::int32_t(sx[i]), y = std::int32_t(sy[i]);
+      row[i] = _mm_add_epi32(_mm_set1_epi32(std::int32_t(e0[i])), _mm_setr_epi32(0, x, y, x + y));
+      e[i] = row[i];
+      step_x2[i] = _mm_set1_epi32(2 * x);
+      step_y2[i] = _mm_set1_epi32(2 * y);
+    }
+  }
+  void start_row() { e[0] = row[0], e[1] = row[1], e[2] = row[2]; }
+  void next_quad() {
+    for (int i = 0; i < 3; ++i) e[i] = _mm_add_epi32(e[i], step_x2[i]);
+  }
+  void next_row() {
+    for (int i = 0; i < 3; ++i) row[i] = _mm_add_epi32(row[i], step_y2[i]);
+  }
+  unsigned covered() const {
+    const __m128i any_negative = _mm_or_si128(_mm_or_si128(e[0], e[1]), e[2]);
+    return ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu;
+  }
+};
+#endif
+
+// Walks the quads of [x_begin, x_end] x [y_begin, y_end] (quads aligned to even pixels, starting at
+// (qx0, qy0)); pixels of a quad outside the range are masked out (bit k = pixel k).
+template <class Edges, class Shade>
+std::uint64_t walk_quads(Edges edges, int qx0, int qy0, int x_begin, int x_end, int y_begin, int y_end, Shade&& shade) {
+  std::uint64_t invocations = 0;
+  for (int qy = qy0; qy <= y_end; qy += 2, edges.next_row()) {
+    unsigned row_mask = 0xF;
+    if (qy < y_begin) row_mask &= 0xC;
+    if (qy + 1 > y_end) row_mask &= 0x3;
+    edges.start_row();
+    for (int qx = qx0; qx <= x_end; qx += 2, edges.next_quad()) {
+      unsigned mask = row_mask;
+      if (qx < x_begin) mask &= 0xA;
+      if (qx + 1 > x_end) mask &= 0x5;
+      const unsigned covered = edges.covered() & mask;
+      if (covered) invocations += shade(qx, qy, covered);
+    }
+  }
+  return invocations;
+}
+
 // Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
 // The depth function is a template argument so the per-pixel test compiles to one comparison.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
-                                 const RasterContext& rc, Framebuffer& fb) {
+                                      const RasterContext& rc, Framebuffer& fb) {
   const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
   const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
   if (x_begin > x_end || y_begin > y_end) return 0;
@@ -63,117 +252,26 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
 
   // Edge i runs from vertex i to vertex i+1: zero on that edge, positive towards the third vertex. The
   // edge opposite vertex i is (i + 1) % 3, and its value over the area is vertex i's weight.
-  std::int64_t ea[3], eb[3], e0[3], bias[3];
+  // Steps of each edge function for one pixel right (sx) and one pixel down (sy).
+  std::int64_t e0[3], sx[3], sy[3];
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
     const std::int64_t dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
     const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-    bias[i] = top_left ? 0 : -1;
-    ea[i] = -dy;
-    eb[i] = dx;
-    e0[i] = ea[i] * (px0 - p.x[i]) + eb[i] * (py0 - p.y[i]) + bias[i];
+    e0[i] = -dy * (px0 - p.x[i]) + dx * (py0 - p.y[i]) + (top_left ? 0 : -1);
+    sx[i] = -dy * kSubpixelOne;
+    sy[i] = dx * kSubpixelOne;
   }
-  std::uint64_t invocations = 0;
-  std::array<float, N> ddx, ddy;
-  PixelInput<N> in;
-  in.front_face = p.front_face;
-  in.primitive_id = p.primitive_id;
-  in.ddx_attributes = &ddx;
-  in.ddy_attributes = &ddy;
-
-  // Steps of each edge function for one pixel right (sx) and one pixel down (sy).
-  std::int64_t sx[3], sy[3], row[3];
-  for (int i = 0; i < 3; ++i) {
-    sx[i] = ea[i] * kSubpixelOne;
-    sy[i] = eb[i] * kSubpixelOne;
-    row[i] = e0[i];
-  }
-  // Pixels of the quad row outside [x_begin, x_end] or [y_begin, y_end] are masked out (bit k = pixel k).
-  for (int qy = qy0; qy <= y_end; qy += 2) {
-    unsigned row_mask = 0xF;
-    if (qy < y_begin) row_mask &= 0xC;
-    if (qy + 1 > y_end) row_mask &= 0x3;
-    std::int64_t e[3] = {row[0], row[1], row[2]};
-    for (int qx = qx0; qx <= x_end; qx += 2, e[0] += 2 * sx[0], e[1] += 2 * sx[1], e[2] += 2 * sx[2]) {
-      unsigned mask = row_mask;
-      if (qx < x_begin) mask &= 0xA;
-      if (qx + 1 > x_end) mask &= 0x5;
-      // Edge i at pixel k of the quad: k = 0 (x,y), 1 (x+1,y), 2 (x,y+1), 3 (x+1,y+1).
-      std::int64_t ek[3][4];
-      for (int i = 0; i < 3; ++i) {
-        ek[i][0] = e[i];
-        ek[i][1] = e[i] + sx[i];
-        ek[i][2] = e[i] + sy[i];
-        ek[i][3] = e[i] + sx[i] + sy[i];
-      }
-      unsigned covered = 0;
-      for (int k = 0; k < 4; ++k) covered |= unsigned((ek[0][k] | ek[1][k] | ek[2][k]) >= 0) << k;
-      covered &= mask;
-      if (!covered) continue;
-
-      // Planes evaluated at the four pixel centres, four lanes at once (simd4.h: the same bits as scalar).
-      using simd::F4;
-      const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
-      const F4 dxk = F4::lanes(fx, fx + 1.0f, fx, fx + 1.0f), dyk = F4::lanes(fy, fy, fy + 1.0f, fy + 1.0f);
-      QuadInput<N> q;
-      const F4 zq = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
-      simd::min(simd::max(zq, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
-
-      // Early depth for the whole quad without a branch per pixel; only covered pixels are read (a
-      // quad may hang over the render target's last row or column).
-      unsigned passed = covered;
-      if (rc.depth.test) {
-        unsigned pass_bits = 0;
-        for (int k = 0; k < 4; ++k) {
-          const float stored = (covered >> k) & 1u ? fb.depth(qx + (k & 1), qy + (k >> 1)) : 0.0f;
-          pass_bits |= unsigned(depth_passes(kDepthFunc, q.z[k], stored)) << k;
-        }
-        passed &= pass_bits;
-        if (!passed) continue;
-      }
-
-      // Perspective-correct attributes at all four pixels (helpers included, for derivatives), in
-      // lanes: q.attributes[a][k].
-      const F4 inv_w = (F4::splat(p.inv_w[0]) + F4::splat(p.inv_w[1]) * dxk) + F4::splat(p.inv_w[2]) * dyk;
-      inv_w.store(q.inv_w);
-      const F4 w = F4::splat(1.0f) / inv_w;
-      for (std::size_t a = 0; a < N; ++a)
-        (((F4::splat(p.attributes[0][a]) + F4::splat(p.attributes[1][a]) * dxk) + F4::splat(p.attributes[2][a]) * dyk) * w)
-            .store(q.attributes[a]);
-      for (int k = 0; k < 4; ++k) {
-        q.x[k] = float(qx + (k & 1)) + 0.5f;
-        q.y[k] = float(qy + (k >> 1)) + 0.5f;
-      }
-      for (std::size_t a = 0; a < N; ++a) {
-        ddx[a] = q.attributes[a][1] - q.attributes[a][0];
-        ddy[a] = q.attributes[a][2] - q.attributes[a][0];
-      }
-      QuadColor color;
-      if constexpr (QuadPixelShader<Ps, N>) {
-        q.ddx_attributes = &ddx;
-        q.ddy_attributes = &ddy;
-        q.front_face = p.front_face;
-        q.primitive_id = p.primitive_id;
-        q.mask = passed;
-        ps.shade_quad(static_cast<const QuadInput<N>&>(q), color);
-      } else {
-        for (int k = 0; k < 4; ++k) {
-          if (!(passed & (1u << k))) continue;
-          for (std::size_t a = 0; a < N; ++a) in.attributes[a] = q.attributes[a][k];
-          in.position = glm::vec4(q.x[k], q.y[k], q.z[k], q.inv_w[k]);
-          const glm::vec4 c = ps(static_cast<const PixelInput<N>&>(in));
-          for (int ch = 0; ch < 4; ++ch) color.c[std::size_t(ch)][k] = c[ch];
-        }
-      }
-      fb.write_quad(qx, qy, passed, color.c);
-      if (rc.depth.test && rc.depth.write)
-        for (int k = 0; k < 4; ++k)
-          if (passed & (1u << k)) fb.set_depth(qx + (k & 1), qy + (k >> 1), q.z[k]);
-      invocations += unsigned(std::popcount(passed));
-    }
-    for (int i = 0; i < 3; ++i) row[i] += 2 * sy[i];
-  }
-  return invocations;
+  auto shade = [&](int qx, int qy, unsigned covered) {
+    return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
+  };
+#if defined(__SSE2__)
+  const std::int32_t ext_x = std::max(std::max(p.x[0], p.x[1]), p.x[2]) - std::min(std::min(p.x[0], p.x[1]), p.x[2]);
+  const std::int32_t ext_y = std::max(std::max(p.y[0], p.y[1]), p.y[2]) - std::min(std::min(p.y[0], p.y[1]), p.y[2]);
+  if (ext_x <= Edges32::kMaxExtent && ext_y <= Edges32::kMaxExtent)
+    return walk_quads(Edges32(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
+#endif
+  return walk_quads(Edges64(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
 }
 
 }  // namespace detail

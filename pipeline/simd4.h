@@ -29,6 +29,17 @@ struct F4 {
   static F4 lanes(float a, float b, float c, float d) { return {_mm_setr_ps(a, b, c, d)}; }
   static F4 load(const std::array<float, 4>& a) { return {_mm_loadu_ps(a.data())}; }
   void store(std::array<float, 4>& a) const { _mm_storeu_ps(a.data(), v); }
+  static F4 load_at(const float* p) { return {_mm_loadu_ps(p)}; }  // p[0..3]
+  void store_at(float* p) const { _mm_storeu_ps(p, v); }
+  // A 2x2 block of a row-major image: lanes {r0[0], r0[1], r1[0], r1[1]}.
+  static F4 load_pairs(const float* r0, const float* r1) {
+    return {_mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(r0)),
+                         reinterpret_cast<const __m64*>(r1))};
+  }
+  void store_pairs(float* r0, float* r1) const {
+    _mm_storel_pi(reinterpret_cast<__m64*>(r0), v);
+    _mm_storeh_pi(reinterpret_cast<__m64*>(r1), v);
+  }
   friend F4 operator+(F4 a, F4 b) { return {_mm_add_ps(a.v, b.v)}; }
   friend F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
   friend F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
@@ -40,6 +51,18 @@ inline F4 sqrt(F4 a) { return {_mm_sqrt_ps(a.v)}; }
 inline F4 max(F4 a, F4 b) { return {_mm_max_ps(b.v, a.v)}; }
 // std::min(a, b) is (b < a) ? b : a; minps(b, a) is (b < a) ? b : a.
 inline F4 min(F4 a, F4 b) { return {_mm_min_ps(b.v, a.v)}; }
+// Comparisons as 4-bit lane masks (bit k = lane k), with C++'s operators' results for every input
+// (NaN compares unordered: false, except !=).
+inline unsigned less_mask(F4 a, F4 b) { return unsigned(_mm_movemask_ps(_mm_cmplt_ps(a.v, b.v))); }
+inline unsigned less_equal_mask(F4 a, F4 b) { return unsigned(_mm_movemask_ps(_mm_cmple_ps(a.v, b.v))); }
+inline unsigned equal_mask(F4 a, F4 b) { return unsigned(_mm_movemask_ps(_mm_cmpeq_ps(a.v, b.v))); }
+inline unsigned not_equal_mask(F4 a, F4 b) { return unsigned(_mm_movemask_ps(_mm_cmpneq_ps(a.v, b.v))); }
+// Lane k of the result is b's where bit k of `mask` is set, else a's.
+inline F4 select(unsigned mask, F4 a, F4 b) {
+  const __m128 m = _mm_castsi128_ps(_mm_setr_epi32(-int(mask & 1u), -int((mask >> 1) & 1u), -int((mask >> 2) & 1u),
+                                                   -int((mask >> 3) & 1u)));
+  return {_mm_or_ps(_mm_and_ps(m, b.v), _mm_andnot_ps(m, a.v))};
+}
 
 #else
 
@@ -49,6 +72,14 @@ struct F4 {
   static F4 lanes(float a, float b, float c, float d) { return {{a, b, c, d}}; }
   static F4 load(const std::array<float, 4>& a) { return {a}; }
   void store(std::array<float, 4>& a) const { a = v; }
+  static F4 load_at(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+  void store_at(float* p) const {
+    for (int k = 0; k < 4; ++k) p[k] = v[k];
+  }
+  static F4 load_pairs(const float* r0, const float* r1) { return {{r0[0], r0[1], r1[0], r1[1]}}; }
+  void store_pairs(float* r0, float* r1) const {
+    r0[0] = v[0], r0[1] = v[1], r1[0] = v[2], r1[1] = v[3];
+  }
   template <class Op>
   static F4 map(F4 a, F4 b, Op op) {
     F4 r;
@@ -70,6 +101,21 @@ inline F4 sqrt(F4 a) {
 }
 inline F4 max(F4 a, F4 b) { return F4::map(a, b, [](float x, float y) { return x < y ? y : x; }); }
 inline F4 min(F4 a, F4 b) { return F4::map(a, b, [](float x, float y) { return y < x ? y : x; }); }
+template <class Op>
+unsigned compare_mask(F4 a, F4 b, Op op) {
+  unsigned m = 0;
+  for (int k = 0; k < 4; ++k) m |= unsigned(op(a.v[k], b.v[k])) << k;
+  return m;
+}
+inline unsigned less_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x < y; }); }
+inline unsigned less_equal_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x <= y; }); }
+inline unsigned equal_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x == y; }); }
+inline unsigned not_equal_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x != y; }); }
+inline F4 select(unsigned mask, F4 a, F4 b) {
+  for (int k = 0; k < 4; ++k)
+    if ((mask >> k) & 1u) a.v[k] = b.v[k];
+  return a;
+}
 
 #endif
 

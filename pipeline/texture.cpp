@@ -1,5 +1,7 @@
 #include "texture.h"
 
+#include "simd4.h"
+
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -334,6 +336,41 @@ glm::vec4 Texture2D::sample_at_lod(const Sampler& s, glm::vec2 uv, float lod) co
 
 glm::vec4 Texture2D::sample_level(const Sampler& s, glm::vec2 uv, float lod) const {
   return sample_at_lod(s, uv, clamp_lod(s, lod + s.mip_lod_bias));
+}
+
+void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod,
+                              std::array<glm::vec4, 4>& out) const {
+  const float l = clamp_lod(s, lod + s.mip_lod_bias);
+  if (s.filter != Filter::bilinear || channels_ != 1) {
+    for (std::size_t k = 0; k < 4; ++k) out[k] = sample_at_lod(s, uv[k], l);
+    return;
+  }
+  // bilerp<1> in lanes: the taps per lane as sample_bilinear finds them, then the same weights and
+  // the same operations in the same order.
+  using simd::F4;
+  const Level& level = levels_info_[static_cast<std::size_t>(l + 0.5f)];
+  const float* base = texels_.data() + level.offset;
+  const std::size_t stride = static_cast<std::size_t>(level.width);
+  std::array<float, 4> t00, t01, t10, t11, fu, fv;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const LinearTaps tu = linear_taps(uv[k].x * level.fwidth - 0.5f, level.width, s.address_u);
+    const LinearTaps tv = linear_taps(uv[k].y * level.fheight - 0.5f, level.height, s.address_v);
+    const float* row0 = base + static_cast<std::size_t>(tv.i0) * stride;
+    const float* row1 = base + static_cast<std::size_t>(tv.i1) * stride;
+    t00[k] = row0[tu.i0];
+    t01[k] = row0[tu.i1];
+    t10[k] = row1[tu.i0];
+    t11[k] = row1[tu.i1];
+    fu[k] = tu.frac;
+    fv[k] = tv.frac;
+  }
+  const F4 one = F4::splat(1.0f), u1 = F4::load(fu), v1 = F4::load(fv);
+  const F4 u0 = one - u1, v0 = one - v1;
+  const F4 top = F4::load(t00) * u0 + F4::load(t01) * u1;
+  const F4 bottom = F4::load(t10) * u0 + F4::load(t11) * u1;
+  std::array<float, 4> r;
+  (top * v0 + bottom * v1).store(r);
+  for (std::size_t k = 0; k < 4; ++k) out[k] = glm::vec4(r[k], 0.0f, 0.0f, 1.0f);
 }
 
 glm::vec4 Texture2D::sample_grad(const Sampler& s, glm::vec2 uv, glm::vec2 ddx, glm::vec2 ddy) const {

@@ -98,6 +98,9 @@ class Texture2D {
 
   // HLSL SampleLevel: explicit lod, usable in any stage (no derivatives needed).
   glm::vec4 sample_level(const Sampler& s, glm::vec2 uv, float lod) const;
+  // Four sample_level calls with one lod (a batch shader's lanes): out[k] = sample_level(s, uv[k], lod),
+  // the same bits; a one-channel bilinear level is filtered in SIMD lanes.
+  void sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod, std::array<glm::vec4, 4>& out) const;
 
   // HLSL SampleGrad, and Sample in a pixel shader (with the quad's derivatives): isotropic lod =
   // log2(max(|ddx * size|, |ddy * size|)), size = level 0's (width, height), then as sample_level.

@@ -162,11 +162,13 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     const V3 cr{pu.y * pv.z - pv.y * pu.z, pu.z * pv.x - pv.z * pu.x, pu.x * pv.y - pv.x * pu.y};
     const F4 inv_len = F4::splat(1.0f) / simd::sqrt((cr.x * cr.x + cr.y * cr.y) + cr.z * cr.z);
     const V3 n{cr.x * inv_len, cr.y * inv_len, cr.z * inv_len};
+    std::array<glm::vec2, 4> st;
+    for (std::size_t k = 0; k < 4; ++k)
+      st[k] = glm::vec2((float(pi) + u[k]) / float(kTorusColumns), (float(pj) + v[k]) / float(kTorusRows));
+    std::array<glm::vec4, 4> texels;
+    height->sample_level4(sampler, st, 0.0f, texels);
     std::array<float, 4> h{};
-    for (std::size_t k = 0; k < 4; ++k) {
-      const glm::vec2 st((float(pi) + u[k]) / float(kTorusColumns), (float(pj) + v[k]) / float(kTorusRows));
-      h[k] = height->sample_level(sampler, st, 0.0f).x;
-    }
+    for (std::size_t k = 0; k < 4; ++k) h[k] = texels[k].x;
     // p += n * scale * (h - 0.5f), grouped as glm does: (n * scale) * (h - 0.5f).
     const F4 dh = F4::load(h) - F4::splat(0.5f), sc = F4::splat(scale);
     p = p + V3{(n.x * sc) * dh, (n.y * sc) * dh, (n.z * sc) * dh};

@@ -80,7 +80,7 @@ struct DisplacedBsplineDS {
   ClipVertex<3> operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp, DomainLocation loc,
                            std::uint32_t patch_id) const;
   // The batch form: four points at a time in SIMD lanes, each lane the same operations in the same
-  // order as the per-point form (so the same bits); the texture is sampled per lane.
+  // order as the per-point form (so the same bits); the texture is sampled four lanes at a time.
   void operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp, std::span<const DomainLocation> locations,
                   std::uint32_t patch_id, std::span<ClipVertex<3>> out) const;
 };

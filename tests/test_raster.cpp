@@ -2,6 +2,7 @@
 // depth functions, lines and points.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -371,5 +372,68 @@ TEST_CASE("raster: pixel-shader derivatives select the mip level; float targets 
       in->close();
       std::filesystem::remove(path);
     }
+  }
+}
+
+TEST_CASE("raster: coverage equals the exact edge test on both sides of the 32-bit edge limit", "[raster]") {
+  // Triangles of 100..160 pixels: below about 127 pixels of extent the rasterizer evaluates edges in
+  // 32-bit lanes, above in 64-bit integers; both must give exactly the pixels the one-centre test gives.
+  // Vertices lie on the 16.8 grid of a 512x512 target (NDC = window / 256 - 1 is exact), so the snapped
+  // positions are known.
+  constexpr int kSize = 512;
+  Device device(DeviceOptions{2, 64});
+  Rng rng(7);
+  int small = 0, large = 0;
+  for (int t = 0; t < 24; ++t) {
+    const double extent = rng.uniform(100, 160);
+    const double cx = rng.uniform(100, 400), cy = rng.uniform(100, 400);
+    std::int32_t sx[3], sy[3];
+    for (int k = 0; k < 3; ++k) {
+      sx[k] = std::int32_t(std::lround((cx + rng.uniform(-0.5, 0.5) * extent) * kSubpixelOne));
+      sy[k] = std::int32_t(std::lround((cy + rng.uniform(-0.5, 0.5) * extent) * kSubpixelOne));
+    }
+    const std::int32_t ext = std::max(std::max(sx[0], sx[1]), sx[2]) - std::min(std::min(sx[0], sx[1]), sx[2]);
+    (ext <= 32767 - 256 ? small : large) += 1;
+    std::vector<V1> vertices;
+    for (int k = 0; k < 3; ++k)
+      vertices.push_back(clip_vertex<1>(float(sx[k]) / float(kSubpixelOne) / 256.0f - 1.0f,
+                                        1.0f - float(sy[k]) / float(kSubpixelOne) / 256.0f, 0.5f, 1.0f));
+    std::vector<std::uint32_t> indices = {0, 1, 2};
+    std::vector<int> counts(std::size_t(kSize) * kSize, 0);
+    auto fb = make_target(kSize, kSize);
+    MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
+    d.vertices = vertices;
+    d.indices = indices;
+    d.ps = {&counts, kSize};
+    d.rasterizer.cull = CullMode::none;
+    d.depth.test = false;
+    d.viewport = full_viewport(kSize, kSize);
+    REQUIRE(device.draw(d, fb).ok());
+    // covers_centre wants positive area (clockwise on screen, y down).
+    const std::int64_t area = std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
+    if (area < 0) std::swap(sx[1], sx[2]), std::swap(sy[1], sy[2]);
+    int wrong = 0, covered = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const int expected = area != 0 && detail::covers_centre(sx, sy, x, y) ? 1 : 0;
+        wrong += counts[std::size_t(y) * kSize + std::size_t(x)] != expected;
+        covered += expected;
+      }
+    INFO("triangle " << t << ", extent " << ext << " (16.8 units), " << covered << " pixels");
+    CHECK(wrong == 0);
+  }
+  CHECK(small > 0);
+  CHECK(large > 0);
+}
+
+TEST_CASE("raster: Device::clear writes the bytes Framebuffer::clear writes", "[raster]") {
+  Device device(DeviceOptions{2, 64});
+  for (const ColorFormat f : {ColorFormat::rgba8_unorm, ColorFormat::rgba32_float}) {
+    auto a = make_target(97, 61, f), b = make_target(97, 61, f);
+    a.clear(glm::vec4(0.2f, 0.4f, 0.6f, 0.8f), 0.25f);
+    b.clear(glm::vec4(0.9f, 0.9f, 0.9f, 0.9f), 0.75f);  // different first, so the clear must overwrite
+    device.clear(b, glm::vec4(0.2f, 0.4f, 0.6f, 0.8f), 0.25f);
+    CHECK(a.color_bytes() == b.color_bytes());
+    CHECK(a.depth_values() == b.depth_values());
   }
 }

@@ -2,7 +2,11 @@
 // chosen so that most expected results are exact in float; the rest use Approx with a stated margin.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -445,4 +449,43 @@ TEST_CASE("texture: filter and address mode names round-trip", "[texture]") {
   CHECK_FALSE(parse_filter("linear").has_value());
   CHECK_FALSE(parse_address_mode("border").has_value());
   CHECK_FALSE(parse_address_mode("").has_value());
+}
+
+TEST_CASE("texture: sample_level4 gives the bits of four sample_level calls", "[texture][simd]") {
+  // Coordinates inside, outside (every addressing mode), on texel edges and non-finite; one and four
+  // channels (the SIMD path and the fallback), each filter.
+  std::vector<float> one(64 * 32), four(16 * 8 * 4);
+  for (std::size_t i = 0; i < one.size(); ++i) one[i] = std::sin(float(i) * 0.37f);
+  for (std::size_t i = 0; i < four.size(); ++i) four[i] = std::cos(float(i) * 0.11f);
+  const Texture2D textures[] = {make(64, 32, 1, one), make(16, 8, 4, four)};
+  const float specials[] = {0.0f, 1.0f, -1.0f, 0.5f / 64.0f, 3e9f, -3e9f, std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::infinity()};
+  std::uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24) * 5.0f - 2.0f;  // [-2, 3)
+  };
+  int compared = 0;
+  for (const Texture2D& t : textures)
+    for (const Filter f : {Filter::point, Filter::bilinear, Filter::trilinear})
+      for (const AddressMode m : {AddressMode::wrap, AddressMode::clamp, AddressMode::mirror})
+        for (const float lod : {0.0f, 0.3f, 1.0f}) {
+          const Sampler s = sampler(f, m, m);
+          for (int round = 0; round < 40; ++round) {
+            std::array<glm::vec2, 4> uv;
+            for (std::size_t k = 0; k < 4; ++k) {
+              uv[k] = {next(), next()};
+              if (round % 5 == 0) uv[k].x = specials[(std::size_t(round) + k) % std::size(specials)];
+            }
+            std::array<glm::vec4, 4> batch;
+            t.sample_level4(s, uv, lod, batch);
+            for (std::size_t k = 0; k < 4; ++k) {
+              const glm::vec4 single = t.sample_level(s, uv[k], lod);
+              INFO("uv " << uv[k].x << ", " << uv[k].y << " lod " << lod);
+              CHECK(std::memcmp(&single, &batch[k], sizeof single) == 0);
+              ++compared;
+            }
+          }
+        }
+  CHECK(compared == 2 * 3 * 3 * 3 * 40 * 4);
 }

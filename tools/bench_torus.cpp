@@ -104,7 +104,7 @@ int run_bench_torus(const TorusOptions& o) {
   DrawReport report;
   for (int frame = 0; frame <= o.frames; ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    fb->clear(glm::vec4(0, 0, 0, 1), 1.0f);
+    device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
     DrawResult r = device.draw(draw, *fb);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.ok()) throw InputError(r.error);
