@@ -1,9 +1,31 @@
 #include "subd_model.h"
 
+#include <algorithm>
+
 #include "cage_obj.h"
 #include "pn_patch.h"
 
 namespace tessera {
+namespace {
+
+// Removes the patches of faces `keep` rejects, with their IA indices; returns how many went.
+template <class Keep>
+int remove_patches(PatchGroup& g, Keep&& keep) {
+  const std::size_t cp = std::size_t(g.control_points);
+  std::size_t kept = 0;
+  for (std::size_t p = 0; p < g.patches.size(); ++p) {
+    if (!keep(g.patches[p])) continue;
+    g.patches[kept] = g.patches[p];
+    std::copy_n(g.indices.begin() + std::ptrdiff_t(p * cp), cp, g.indices.begin() + std::ptrdiff_t(kept * cp));
+    ++kept;
+  }
+  const int removed = int(g.patches.size() - kept);
+  g.patches.resize(kept);
+  g.indices.resize(kept * cp);
+  return removed;
+}
+
+}  // namespace
 
 SubdModel make_subd_model(Cage cage, Scheme scheme) {
   SubdModel m;
@@ -11,7 +33,13 @@ SubdModel make_subd_model(Cage cage, Scheme scheme) {
   m.topology = std::make_unique<Topology>(m.cage);
   m.patches = build_patches(m.cage, *m.topology, scheme);
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, *m.topology);
-  if (scheme == Scheme::exact) m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage));
+  if (scheme == Scheme::exact) {
+    m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage));
+    // Faces OpenSubdiv gives no surface besides holes: boundary faces under `t interpolateboundary`
+    // none. They draw nothing, like holes.
+    auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
+    for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
+  }
   return m;
 }
 

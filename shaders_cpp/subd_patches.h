@@ -100,7 +100,7 @@ struct SubdPatches {
   std::vector<StencilTable> tables;
   PatchGroup quads, tris;
   int fallback_faces = 0;
-  int holes = 0;
+  int holes = 0;  // faces that draw nothing: hole tags (and, for exact, faces without a limit surface)
 };
 
 SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme);

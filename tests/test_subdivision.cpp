@@ -633,3 +633,35 @@ TEST_CASE("Faces a scheme cannot take give one line naming the face", "[subd]") 
     }
   }
 }
+
+TEST_CASE("Exact draws only the faces OpenSubdiv gives a surface: boundary faces under interpolateboundary none",
+          "[subd]") {
+  // catmark_edgenone: `t interpolateboundary 0`, so its boundary faces have no limit surface; drawing
+  // them used to fail with "face 0 has no surface". Every face with a surface is drawn exactly once,
+  // and the drawn region's only open edges are its own boundary (welded on exact bits).
+  const SubdModel m = load_subd_model(data("osd-shapes/catmark_edgenone.obj"), Scheme::exact);
+  REQUIRE(m.cage.tags.boundary == BoundaryInterpolation::none);
+  std::vector<int> drawn(std::size_t(m.cage.face_count()), 0);
+  for (const SubdPatch& p : m.patches.quads.patches) ++drawn[std::size_t(p.face)];
+  for (const SubdPatch& p : m.patches.tris.patches) ++drawn[std::size_t(p.face)];
+  int with_surface = 0;
+  for (int f = 0; f < m.cage.face_count(); ++f) {
+    const int expected = m.limit->has_surface(f) ? m.limit->sub_patch_count(f) == 1 ? 1 : m.cage.face_sizes[std::size_t(f)] : 0;
+    CHECK(drawn[std::size_t(f)] == expected);
+    with_surface += m.limit->has_surface(f);
+  }
+  CHECK(with_surface > 0);
+  CHECK(with_surface < m.cage.face_count());
+  CHECK(m.patches.holes == m.cage.face_count() - with_surface);
+  // Open edges of the drawn region: cage edges with exactly one drawn face, 3 segments each at factor 3.
+  const Topology& t = *m.topology;
+  int region_boundary = 0;
+  for (int e = 0; e < t.edge_count(); ++e) {
+    const auto [h0, h1] = t.edge_half_edges(e);
+    region_boundary += (drawn[std::size_t(t.face(h0))] > 0) != (h1 >= 0 && drawn[std::size_t(t.face(h1))] > 0);
+  }
+  const auto r = weld(m, 3.0f, 0.0f, ts::Partitioning::integer);
+  CHECK(r.boundary_edges == std::uint64_t(3 * region_boundary));
+  CHECK(r.nonmanifold_edges == 0);
+  CHECK(r.degenerate_triangles == 0);
+}
