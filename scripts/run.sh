@@ -27,6 +27,12 @@ done | tee "$out/frog_displaced_watertight.txt"
 "$bin" render "$frog" --scheme exact --factor 8 --view wire-on-shaded --resolution 1280x960 -o "$out/frog_exact_wire.png"
 "$bin" tessellate "$frog" --scheme gregory --factor 5.5 --partitioning fractional_odd --vary-factors 1.5 --check-watertight -o "$out/frog_gregory.ply"
 "$bin" analyze "$frog" > "$out/frog_analyze.txt"
+# The talk's memory table on the frog (its own map) and on a synthetic cage of the talk's size, each level
+# also rendered to measure its real peak memory.
+"$bin" analyze "$frog" --memory --measure --displacement "$root/tests/data/sdk-cages/monsterfrog.dds" \
+    --displacement-channel A --json > "$out/frog_memory.json"
+"$bin" make-cage torus --grid 128x64 -o "$out/torus_128x64.obj"
+"$bin" analyze "$out/torus_128x64.obj" --memory --measure | tee "$out/torus_128x64_memory.txt"
 for scheme in acc gregory; do "$bin" accuracy "$frog" --scheme "$scheme"; done | tee "$out/frog_accuracy.txt"
 "$bin" bench torus --factor 16 --frames 5 -o "$out/torus_f16.png" --stats "$out/torus_f16_stats.json" | tee "$out/bench_torus.txt"
 "$bin" bench torus --factor 5.5 --partitioning fractional_odd --resolution 960x540 --frames 3 -o "$out/torus_f5.5_odd.png" | tee -a "$out/bench_torus.txt"
@@ -36,4 +42,4 @@ for scheme in acc gregory; do "$bin" accuracy "$frog" --scheme "$scheme"; done |
 "$bin" pattern --domain isoline --partitioning fractional_odd --outer 4,5.5 --image "$out/isoline.png"
 "$bin" pattern --domain tri --partitioning integer --outer 3,3,3 --inner 3 --json > "$out/tri_333.json"
 "$bin" bench tessellator --seconds 3 | tee "$out/bench_tessellator.txt"
-echo "run: displaced frog render and crack checks; frog renders, PLY, accuracy; torus render and statistics; pattern pictures; benchmarks in $out" >&2
+echo "run: displaced frog render and crack checks; memory tables; frog renders, PLY, accuracy; torus render and statistics; pattern pictures; benchmarks in $out" >&2
