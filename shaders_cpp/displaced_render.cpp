@@ -45,15 +45,7 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
       return go(ps);
     });
   };
-  DrawResult total;
-  for (const bool wire : {false, true}) {
-    if (wire ? view == SubdView::shaded : view == SubdView::wireframe) continue;
-    const DrawResult r = pass(wire);
-    if (!r.ok()) return r;
-    add_draw_report(total.report, r.report);
-  }
-  total.report.memory.framebuffer_bytes = fb.bytes();
-  return total;
+  return draw_view_passes(view, fb, pass);
 }
 
 }  // namespace tessera

@@ -53,15 +53,7 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
       return wire ? go(ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(ClayPS{light});
     });
   };
-  DrawResult total;
-  for (const bool wire : {false, true}) {
-    if (wire ? view == SubdView::shaded : view == SubdView::wireframe) continue;
-    const DrawResult r = pass(wire);
-    if (!r.ok()) return r;
-    add_draw_report(total.report, r.report);
-  }
-  total.report.memory.framebuffer_bytes = fb.bytes();
-  return total;
+  return draw_view_passes(view, fb, pass);
 }
 
 }  // namespace tessera

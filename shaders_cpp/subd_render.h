@@ -25,4 +25,19 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
 DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
                        SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
+// Runs pass(wire) -> DrawResult for the passes `view` needs (the shaded pass, then the wireframe over
+// it) and sums their reports, with the framebuffer's bytes; stops at the first error.
+template <class Pass>
+DrawResult draw_view_passes(SubdView view, const Framebuffer& fb, Pass&& pass) {
+  DrawResult total;
+  for (const bool wire : {false, true}) {
+    if (wire ? view == SubdView::shaded : view == SubdView::wireframe) continue;
+    const DrawResult r = pass(wire);
+    if (!r.ok()) return r;
+    add_draw_report(total.report, r.report);
+  }
+  total.report.memory.framebuffer_bytes = fb.bytes();
+  return total;
+}
+
 }  // namespace tessera

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "cli_runner.h"
 #include "tessellator.h"
 
 namespace fs = std::filesystem;
@@ -16,30 +17,9 @@ using namespace tessera;
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string out, err;
-};
-
-fs::path temp_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("tessera-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Result run_cli(const std::string& args) {
-  const fs::path dir = temp_dir();
-  const std::string cmd = std::string(TESSERA_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
-}
+using test::run_cli;
+using test::slurp;
+fs::path temp_dir() { return test::cli_temp_dir(); }
 
 int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
@@ -234,7 +214,7 @@ TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[
 TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and checks watertightness", "[cli]") {
   const fs::path ply = temp_dir() / "cube.ply";
   const std::string cage = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
-  const Result r = run_cli("tessellate " + cage + " --scheme gregory --factor 3 --partitioning fractional_odd --vary-factors 1 --check-watertight --json -o " + ply.string());
+  const auto r = run_cli("tessellate " + cage + " --scheme gregory --factor 3 --partitioning fractional_odd --vary-factors 1 --check-watertight --json -o " + ply.string());
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["watertight"]["closed_manifold"] == true);
@@ -267,7 +247,7 @@ TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a 
                         Case{"accuracy " + pentagons + " --scheme gregory", "triangles and quads only", 1},
                         Case{"tessellate " + pentagons + " --scheme pn --check-watertight", "has 5 sides", 1}}) {
     INFO(c.args);
-    const Result r = run_cli(c.args);
+    const auto r = run_cli(c.args);
     CHECK(r.exit_code == c.code);
     CHECK(r.err.find(c.expect) != std::string::npos);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
@@ -277,13 +257,13 @@ TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a 
 TEST_CASE("tessera render writes the image and tessera accuracy reports against the exact limit", "[cli]") {
   const fs::path png = temp_dir() / "frog.png";
   const std::string frog = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog_mapped_00.obj";
-  const Result r = run_cli("render " + frog + " --scheme acc --factor 3 --resolution 320x240 --view wire-on-shaded -o " + png.string());
+  const auto r = run_cli("render " + frog + " --scheme acc --factor 3 --resolution 320x240 --view wire-on-shaded -o " + png.string());
   REQUIRE(r.exit_code == 0);
   auto in = OIIO::ImageInput::open(png.string());
   REQUIRE(in);
   CHECK(in->spec().width == 320);
   CHECK(in->spec().height == 240);
-  const Result a = run_cli("accuracy " + std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_torus.obj --scheme bspline --json");
+  const auto a = run_cli("accuracy " + std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_torus.obj --scheme bspline --json");
   REQUIRE(a.exit_code == 0);
   const auto j = nlohmann::json::parse(a.out);
   CHECK(j["max_relative"].get<double>() < 1e-6);
@@ -294,17 +274,17 @@ TEST_CASE("tessera tessellate, render and accuracy take --scheme pn, and gregory
   const std::string pyramid = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_pyramid.obj";
   for (const char* scheme : {"pn", "gregory"}) {
     INFO(scheme);
-    const Result t = run_cli("tessellate " + pyramid + " --scheme " + scheme +
+    const auto t = run_cli("tessellate " + pyramid + " --scheme " + scheme +
                              " --factor 3.5 --partitioning fractional_even --vary-factors 1 --check-watertight --json");
     REQUIRE(t.exit_code == 0);
     const auto j = nlohmann::json::parse(t.out);
     CHECK(j["watertight"]["closed_manifold"] == true);
     CHECK(j["patches"] == 5);
     const fs::path png = temp_dir() / (std::string("pyramid-") + scheme + ".png");
-    const Result r = run_cli("render " + pyramid + " --scheme " + scheme + " --factor 4 --resolution 160x120 -o " + png.string());
+    const auto r = run_cli("render " + pyramid + " --scheme " + scheme + " --factor 4 --resolution 160x120 -o " + png.string());
     REQUIRE(r.exit_code == 0);
     CHECK(fs::file_size(png) > 0);
-    const Result a = run_cli("accuracy " + pyramid + " --scheme " + scheme + " --json");
+    const auto a = run_cli("accuracy " + pyramid + " --scheme " + scheme + " --json");
     REQUIRE(a.exit_code == 0);
     const auto acc = nlohmann::json::parse(a.out);
     CHECK(acc["samples"].get<long>() > 0);
@@ -314,7 +294,7 @@ TEST_CASE("tessera tessellate, render and accuracy take --scheme pn, and gregory
 }
 
 TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates", "[cli]") {
-  const Result r = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json");
+  const auto r = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["scene"] == "subd");
@@ -329,8 +309,8 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
     f << "# v0 v1 factor\n0 1 7.5\n1 3 2\n";
   }
   const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
-  const Result plain = run_cli("tessellate " + cube + " --factor 3 --check-watertight --json");
-  const Result edges = run_cli("tessellate " + cube + " --factor 3 --partitioning fractional_even --factors-per-edge " +
+  const auto plain = run_cli("tessellate " + cube + " --factor 3 --check-watertight --json");
+  const auto edges = run_cli("tessellate " + cube + " --factor 3 --partitioning fractional_even --factors-per-edge " +
                                factors.string() + " --check-watertight --json");
   REQUIRE(plain.exit_code == 0);
   REQUIRE(edges.exit_code == 0);
@@ -341,7 +321,7 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
     std::ofstream f(factors);
     f << "0 1 seven\n";
   }
-  const Result bad = run_cli("tessellate " + cube + " --factors-per-edge " + factors.string() + " --check-watertight");
+  const auto bad = run_cli("tessellate " + cube + " --factors-per-edge " + factors.string() + " --check-watertight");
   CHECK(bad.exit_code == 1);
   CHECK(bad.err.find("factors.txt:1:") != std::string::npos);
 }

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "cli_runner.h"
 #include "displaced_model.h"
 #include "displaced_render.h"
 #include "weld_check.h"
@@ -105,24 +106,7 @@ DisplacementOptions frog_options() {
   return DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 0.8f, .bias = -0.4f};  // large, so that any disagreement shows
 }
 
-struct Result {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Result run_cli(const std::string& args) {
-  const fs::path dir = temp_dir();
-  const std::string cmd = std::string(TESSERA_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
-}
+using test::run_cli;
 
 }  // namespace
 
