@@ -114,6 +114,16 @@ inline void acc_tangents(std::span<const glm::vec3, 12> du, std::span<const glm:
   out_dv = (qv.x * c[0] + qv.z * c[2]) + qv.y * c[1];
 }
 
+namespace detail {
+// A Gregory interior point: the face-point pair (F+, F-) blended by the weights of their edges. The
+// weights vanish together only at a corner, where edge evaluation does not read the point.
+inline glm::vec3 gregory_blend(const glm::vec3& plus, float wp, const glm::vec3& minus, float wm) {
+  const float d = wp + wm;
+  if (d == 0.0f) return 0.5f * (plus + minus);
+  return (wp * plus + wm * minus) / d;
+}
+}  // namespace detail
+
 // The 16 Bezier points of a 20-point Gregory patch at (u, v): the four interior points are rational
 // blends of each corner's face-point pair, the "+" point weighted toward its own edge. Denominators
 // that vanish (only at the corners, which edge evaluation handles) count as 1.
@@ -123,11 +133,7 @@ inline std::array<glm::vec3, 16> gregory_to_bezier(std::span<const glm::vec3, 20
   auto Em = [&](int k) { return g[std::size_t(5 * k + 2)]; };
   auto Fp = [&](int k) { return g[std::size_t(5 * k + 3)]; };
   auto Fm = [&](int k) { return g[std::size_t(5 * k + 4)]; };
-  auto blend = [](const glm::vec3& plus, float wp, const glm::vec3& minus, float wm) {
-    const float d = wp + wm;
-    if (d == 0.0f) return 0.5f * (plus + minus);
-    return (wp * plus + wm * minus) / d;
-  };
+  constexpr auto blend = detail::gregory_blend;
   const float s = u, t = v, s1 = 1.0f - u, t1 = 1.0f - v;
   std::array<glm::vec3, 16> b;
   b[0] = P(0), b[1] = Ep(0), b[2] = Em(1), b[3] = P(1);
@@ -238,11 +244,7 @@ inline PatchPoint gregory_triangle(std::span<const glm::vec3, 15> g, float u, fl
   auto Em = [&](int k) { return g[std::size_t(5 * k + 2)]; };
   auto Fp = [&](int k) { return g[std::size_t(5 * k + 3)]; };
   auto Fm = [&](int k) { return g[std::size_t(5 * k + 4)]; };
-  auto blend = [](const glm::vec3& plus, float wp, const glm::vec3& minus, float wm) {
-    const float d = wp + wm;
-    if (d == 0.0f) return 0.5f * (plus + minus);
-    return (wp * plus + wm * minus) / d;
-  };
+  constexpr auto blend = detail::gregory_blend;
   // Degree raising of the cubic (a0, a1, a2, a3) to (a0, (a0 + 3 a1) / 4, (a1 + a2) / 2, (3 a2 + a3) / 4, a3).
   auto raise1 = [](const glm::vec3& a0, const glm::vec3& a1) { return 0.25f * (a0 + 3.0f * a1); };
   auto raise2 = [](const glm::vec3& a1, const glm::vec3& a2) { return 0.5f * (a1 + a2); };
