@@ -300,6 +300,15 @@ TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates",
   CHECK(j["scene"] == "subd");
   CHECK(j["triangles"].get<long>() > 0);
   for (const char* key : {"median_s", "min_s", "hs_patches_per_thread_s", "ds_points_per_thread_s"}) CHECK(j.contains(key));
+  // Displaced: the same triangles (displacement moves points, it does not add them), the map named.
+  const std::string map = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog.dds";
+  const auto d = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json --displacement " + map +
+                         " --displacement-channel A");
+  REQUIRE(d.exit_code == 0);
+  const auto k = nlohmann::json::parse(d.out);
+  CHECK(k["triangles"] == j["triangles"]);
+  CHECK(k["displacement"].get<std::string>().find("monsterfrog.dds") != std::string::npos);
+  CHECK(j["displacement"] == "");
 }
 
 TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on both of its faces", "[cli]") {

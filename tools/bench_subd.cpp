@@ -1,6 +1,6 @@
 // `tessera bench frog`: the second benchmark scene, a Catmull-Clark cage (the monster frog by default)
 // through the whole pipeline with one scheme, plus the stream-output throughput of the hull shader's
-// control-point evaluation and of the domain shader.
+// control-point evaluation and of the domain shader; with --displacement, the displaced shaders.
 #include <algorithm>
 #include <chrono>
 #include <iostream>
@@ -8,6 +8,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "displaced_render.h"
 #include "subd_render.h"
 #include "tessellate_options.h"
 
@@ -20,6 +21,7 @@ struct BenchSubdOptions {
   float factor = 16.0f, vary = 0.0f;
   int threads = 0, frames = 5;
   bool json = false;
+  DisplacementCli displacement;
 };
 
 int run_bench_subd(const BenchSubdOptions& o) {
@@ -29,6 +31,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const auto [w, h] = parse_resolution(o.resolution);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const SubdModel model = load_model(o.cage, scheme);
+  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   Device device(device_options(o.threads));
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
@@ -41,7 +44,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
   for (int f = 0; f < o.frames + 1; ++f) {  // one warm-up frame
     const auto start = Clock::now();
     device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
-    const DrawResult r = render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
+    const DrawResult r =
+        displacement ? render_displaced(device, model, *displacement, factors, partitioning, SubdView::shaded, camera, *fb)
+                     : render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
     if (!r.ok()) throw InputError(o.cage + ": " + r.error);
     if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     last = r.report;
@@ -50,7 +55,10 @@ int run_bench_subd(const BenchSubdOptions& o) {
     if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
   const auto start = Clock::now();
-  const DrawResult s = stream_subd(device, model, factors, partitioning, [](const PatchOutput<SurfaceSample>&, const PatchGroup&) {});
+  const DrawResult s =
+      displacement
+          ? stream_displaced(device, model, *displacement, factors, partitioning, [](const PatchOutput<DisplacedPoint>&, const PatchGroup&) {})
+          : stream_subd(device, model, factors, partitioning, [](const PatchOutput<SurfaceSample>&, const PatchGroup&) {});
   const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
   std::sort(frame_s.begin(), frame_s.end());
   const double median = frame_s[frame_s.size() / 2];
@@ -59,6 +67,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const double ds_rate = double(s.report.statistics.DSInvocations) / std::max(1e-9, s.report.times.ds);
   if (o.json) {
     std::cout << "{\"scene\": \"subd\", \"cage\": \"" << o.cage << "\", \"scheme\": \"" << to_string(scheme)
+              << "\", \"displacement\": \"" << (displacement ? o.displacement.map : std::string())
               << "\", \"factor\": " << o.factor << ", \"resolution\": \"" << w << "x" << h << "\", \"threads\": "
               << device.threads() << ", \"frames\": " << o.frames << ", \"triangles\": " << st.CInvocations
               << ", \"median_s\": " << median << ", \"min_s\": " << frame_s.front()
@@ -68,9 +77,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
   } else {
     char line[400];
     std::snprintf(line, sizeof line,
-                  "%s, %s, factor %g, %dx%d, %d threads: median %.4f s (min %.4f), %llu triangles, %.1f M triangles/s\n"
+                  "%s, %s%s, factor %g, %dx%d, %d threads: median %.4f s (min %.4f), %llu triangles, %.1f M triangles/s\n"
                   "front end alone (stream output): %.4f s; HS %.2f M patches/thread-s, DS %.1f M points/thread-s\n",
-                  o.cage.c_str(), to_string(scheme), double(o.factor), w, h, device.threads(), median, frame_s.front(),
+                  o.cage.c_str(), to_string(scheme), displacement ? " displaced" : "", double(o.factor), w, h, device.threads(), median, frame_s.front(),
                   (unsigned long long)st.CInvocations, double(st.CInvocations) / median / 1e6, stream_s, hs_rate / 1e6,
                   ds_rate / 1e6);
     std::cout << line;
@@ -89,6 +98,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");
+  add_displacement_options(*cmd, o->displacement);
   cmd->fallthrough();
   return [o, cmd]() -> int { return cmd->parsed() ? run_bench_subd(*o) : -1; };
 }

@@ -24,7 +24,7 @@ SubdFactors factors_option(float factor, float vary, const std::string& file);
 // load_subd_model with its CageError turned into the CLI's InputError (one line, exit 1).
 SubdModel load_model(const std::string& path, Scheme scheme);
 
-// --displacement MAP and its companions (render and tessellate).
+// --displacement MAP and its companions (render, tessellate, bench frog).
 struct DisplacementCli {
   std::string map, channel, space = "tangent", normal_map = "auto";
   float scale = 1.0f, bias = 0.0f;
