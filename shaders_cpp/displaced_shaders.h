@@ -1,7 +1,7 @@
 // Displacement mapping on the subdivision schemes, as shader functors wrapping the scheme's own
 // (subd_shaders.h):
 // - DisplacedHS: SubdHS's control points; its patch constants add the owners' edge and corner frames
-//   (displacement_frames.h: shared stencils summed in global vertex order) and the sampling LODs.
+//   (displacement_frames.h: shared stencil units summed in the patch's global vertex order) and the sampling LODs.
 // - DisplacedDS: SubdDS's surface point, moved by the map sampled at the watertight UV
 //   (watertight_uv.h) with an explicit LOD, bilinear within the level (clamp addressing):
 //   scalar: along the unit normal; vector, tangent space: x T + y B + z N (T along the texture's U
@@ -26,6 +26,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -82,12 +83,19 @@ struct DisplacedHS {
                                           std::uint32_t patch_id) const {
     DisplacedPatchConstants pc;
     pc.factors = base.patch_constants(in, out, patch_id).factors;
-    const std::uint32_t* off = frames->offsets.data() + std::size_t(patch_id) * kFrameStencils;
+    const SubdPatch& patch = base.patches[patch_id];
+    // In the patch's global vertex order, skipping zero weights: the bits every patch sharing the
+    // element computes (displacement_frames.h).
     auto stencil = [&](int r) {
+      const std::uint32_t s = frames->stencil(patch_id, r), mask = frames->masks[s];
+      const float* w = frames->weights.data() + frames->starts[s];
       glm::dvec3 sum(0.0);
-      for (std::uint32_t k = off[r]; k < off[r + 1]; ++k) {
-        const FrameTerm& term = frames->terms[k];
-        sum += double(term.weight) * glm::dvec3(in[term.position].position);
+      if (mask == 0) return glm::vec3(sum);
+      for (int k = 0; k < patch.ring_size; ++k) {
+        const int j = patch.order[std::size_t(k)];
+        if ((mask >> j & 1u) == 0) continue;
+        const float weight = w[std::popcount(mask & ((std::uint32_t(1) << j) - 1u))];
+        sum += double(weight) * glm::dvec3(in[std::size_t(j)].position);
       }
       return glm::vec3(sum);
     };
@@ -97,7 +105,6 @@ struct DisplacedHS {
       for (int i = 0; i < 2; ++i) pc.corner[std::size_t(k)][std::size_t(i)] = stencil(32 + 2 * k + i);
 
     const PatchTexcoords& tc = texcoords[patch_id];
-    const SubdPatch& patch = base.patches[patch_id];
     for (int k = 0; k < 4; ++k) {
       const auto& e = tc.edge[std::size_t(k)];
       // Patch edge k is SV_TessFactor (k + 1) % 4.
@@ -105,7 +112,6 @@ struct DisplacedHS {
       pc.lod_corner[std::size_t(k)] =
           displacement_lod(tc.corner_span[std::size_t(k)][0], map_size, base.factors.edge(tc.corner_key[std::size_t(k)]));
     }
-    (void)patch;
     const auto& c = tc.interior;
     auto texels = [&](glm::vec2 d) {
       const glm::vec2 x = d * map_size;

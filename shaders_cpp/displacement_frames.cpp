@@ -1,6 +1,7 @@
 #include "displacement_frames.h"
 
 #include <array>
+#include <bit>
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -12,6 +13,8 @@
 
 namespace tessera {
 namespace {
+
+static_assert(kMaxPatchControlPoints <= 32, "a frame stencil's ring positions are a 32-bit mask");
 
 using Frame8 = std::array<Stencil, 8>;
 
@@ -77,37 +80,78 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
   };
 
   PatchFrames out;
-  out.offsets.reserve(group.size() * kFrameStencils + 1);
-  out.offsets.push_back(0);
+  out.units.reserve(group.size() * 8);
+  std::unordered_map<std::string, std::uint32_t> interned;  // unit content -> its first stored stencil
+  std::vector<std::uint32_t> masks;
+  std::vector<float> weights;
+  std::string key;
+  // Stores the unit of `masks` / `weights` (ring-position form) once, returns its first stencil.
+  auto intern = [&]() {
+    key.assign(1, char(masks.size()));
+    key.append(reinterpret_cast<const char*>(masks.data()), masks.size() * sizeof(std::uint32_t));
+    key.append(reinterpret_cast<const char*>(weights.data()), weights.size() * sizeof(float));
+    const auto [it, added] = interned.emplace(key, std::uint32_t(out.masks.size()));
+    if (added) {
+      std::size_t w = 0;
+      for (const std::uint32_t m : masks) {
+        out.masks.push_back(m);
+        out.starts.push_back(std::uint32_t(out.weights.size()));
+        const int n = std::popcount(m);
+        out.weights.insert(out.weights.end(), weights.begin() + std::ptrdiff_t(w), weights.begin() + std::ptrdiff_t(w) + n);
+        w += std::size_t(n);
+      }
+    }
+    return it->second;
+  };
   for (std::size_t p = 0; p < group.size(); ++p) {
     const SubdPatch& patch = group.patches[p];
-    if (scheme == Scheme::exact) {
-      out.offsets.insert(out.offsets.end(), kFrameStencils, out.offsets.back());
-      continue;
-    }
-    std::map<int, std::uint32_t> position;  // cage vertex -> ring position
+    std::map<int, std::uint32_t> position;  // cage vertex -> its first ring position
     for (int i = 0; i < patch.ring_size; ++i)
       position.emplace(int(group.indices[p * std::size_t(group.control_points) + std::size_t(i)]), std::uint32_t(i));
+    std::array<float, kMaxPatchControlPoints> dense{};
     auto add = [&](const Stencil& s) {
-      // Stencil terms are sorted by vertex index: the summation order both patches use.
+      std::uint32_t mask = 0;
       for (const auto& [v, w] : s.terms) {
         const auto it = position.find(v);
         if (it == position.end())
           throw CageError(cage.name + ": face " + std::to_string(patch.face) + ": internal error, a frame stencil reaches vertex " +
                           std::to_string(v) + " outside the patch's ring");
-        out.terms.push_back({it->second, float(w)});
+        // A zero (or underflowed) weight adds nothing to the sum: it is left out.
+        const float f = float(w);
+        if (f == 0.0f) continue;
+        dense[it->second] = f;
+        mask |= std::uint32_t(1) << it->second;
       }
-      out.offsets.push_back(std::uint32_t(out.terms.size()));
+      masks.push_back(mask);
+      for (std::uint32_t j = 0; j < std::uint32_t(kMaxPatchControlPoints); ++j)
+        if (mask >> j & 1u) weights.push_back(dense[j]);
     };
+    auto unit = [&](auto&& fill) {
+      masks.clear(), weights.clear();
+      fill();
+      out.units.push_back(intern());
+    };
+    const Stencil none;
     for (int k = 0; k < 4; ++k) {
       const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
-      for (const Stencil& s : edge_stencils(h)) add(s);
+      unit([&] {
+        if (scheme == Scheme::exact)
+          for (int i = 0; i < 8; ++i) add(none);
+        else
+          for (const Stencil& s : edge_stencils(h)) add(s);
+      });
     }
     for (int k = 0; k < 4; ++k) {
       const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
-      for (const Stencil& s : vertex_stencils(t.origin(h))) add(s);
+      unit([&] {
+        if (scheme == Scheme::exact)
+          for (int i = 0; i < 2; ++i) add(none);
+        else
+          for (const Stencil& s : vertex_stencils(t.origin(h))) add(s);
+      });
     }
   }
+  out.unit_count = int(interned.size());
   return out;
 }
 

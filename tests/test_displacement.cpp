@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <unistd.h>
 
@@ -224,6 +225,53 @@ TEST_CASE("The displaced monster frog is watertight on exact bits: acc, gregory,
       CHECK(r.nonmanifold_edges == 0);
       CHECK(r.degenerate_triangles == 0);
     }
+  }
+}
+
+TEST_CASE("Owner frames are stored once per distinct unit and read back identically by every patch sharing an element",
+          "[disp]") {
+  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::bspline}) {
+    INFO(to_string(s));
+    const SubdModel m = load_subd_model(kFrog, s);
+    const Displacement d = make_displacement(m, frog_options());
+    const PatchGroup& g = m.patches.quads;
+    const Topology& t = *m.topology;
+    const PatchFrames& f = d.frames;
+    REQUIRE(f.units.size() == 8 * g.size());
+    // Sharing has to pay: far fewer distinct units than patch edges and corners, and a small per-patch cost.
+    CHECK(std::size_t(f.unit_count) * 4 < 8 * g.size());
+    CHECK(f.bytes() < 200 * g.size());
+    // Stencil r of patch p as the hull shader reads it: (global vertex, weight bits) in the patch's order.
+    auto read = [&](std::size_t p, int r) {
+      const SubdPatch& patch = g.patches[p];
+      const std::uint32_t i = f.stencil(p, r), mask = f.masks[i];
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> terms;
+      for (int k = 0; k < patch.ring_size; ++k) {
+        const int j = patch.order[std::size_t(k)];
+        if ((mask >> j & 1u) == 0) continue;
+        const float w = f.weights[f.starts[i] + std::uint32_t(std::popcount(mask & ((1u << j) - 1u)))];
+        terms.emplace_back(g.indices[p * std::size_t(g.control_points) + std::size_t(j)], std::bit_cast<std::uint32_t>(w));
+      }
+      return terms;
+    };
+    std::map<std::pair<char, int>, std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>>> first;
+    int shared = 0, differ = 0, empty = 0;
+    for (std::size_t p = 0; p < g.size(); ++p) {
+      const SubdPatch& patch = g.patches[p];
+      for (int k = 0; k < 4; ++k) {
+        const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
+        for (const auto& [key, r0, n] : {std::tuple{std::pair{'e', t.edge(h)}, 8 * k, 8},
+                                         std::tuple{std::pair{'v', t.origin(h)}, 32 + 2 * k, 2}}) {
+          std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> frame;
+          for (int r = r0; r < r0 + n; ++r) frame.push_back(read(p, r)), empty += frame.back().empty();
+          const auto [it, added] = first.emplace(key, frame);
+          if (!added) ++shared, differ += it->second != frame;
+        }
+      }
+    }
+    CHECK(shared >= int(4 * g.size()));  // every edge twice, every vertex at least twice
+    CHECK(differ == 0);
+    CHECK(empty == 0);
   }
 }
 
