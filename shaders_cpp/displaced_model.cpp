@@ -37,6 +37,13 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   d.flip_v = o.flip_v;
 
   const Cage& cage = model.cage;
+  // Owner frames are stencils over the 1-ring of the shared edge or vertex (displacement_frames.h);
+  // flat and pn patches carry only their face, so a frame owned by a neighbour is out of their reach.
+  const Scheme scheme = model.patches.scheme;
+  if (scheme == Scheme::flat || scheme == Scheme::pn)
+    throw CageError(cage.name + ": --scheme " + to_string(scheme) +
+                    " cannot be displaced (its patches carry no 1-ring for the shared normals); use acc, gregory, "
+                    "bspline or exact");
   if (!cage.has_uvs())
     throw CageError(cage.name + ": has no texture coordinates (vt); the displacement map " + o.map + " needs them");
   for (std::size_t i = 0; i < cage.uvs.size(); ++i) {

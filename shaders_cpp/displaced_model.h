@@ -4,8 +4,8 @@
 //
 // Contract: make_displacement throws DisplacementMapError (one line starting with the map's path) for a
 // missing or unreadable map, a channel the map does not have, a wrong channel count, a cage whose UVs
-// leave the map's [0, 1] square; CageError (naming the cage) for a cage without UVs or with faces that
-// are not quads. Everything it builds is immutable; draws may run on any number of threads.
+// leave the map's [0, 1] square; CageError (naming the cage) for a cage without UVs, with faces that
+// are not quads, or drawn with a scheme whose patches carry no 1-ring (flat, pn). Everything it builds is immutable; draws may run on any number of threads.
 //
 // Normal maps (for shading): `normal_map` = "auto" takes the RGB of the displacement file when the
 // displacement is a scalar read from a file that has RGB besides it (the monster frog: height in A,

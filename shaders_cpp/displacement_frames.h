@@ -12,7 +12,8 @@
 //   `exact` has no stencils (its IA patch is the face alone): its normals are owned by the limit
 //   surface already, and its DS reads the owner's derivatives from the limit surface directly.
 // - a cage vertex: two limit tangents (limit_masks.h) along the vertex owner face's next and previous
-//   edges (flat: those edges themselves); the normal is normalize(T0 x T1).
+//   edges (flat: those edges themselves); the normal is normalize(T0 x T1). (The flat frames reach the
+//   owner's corners, which a flat IA patch does not hold: make_displacement refuses flat and pn.)
 // Each stencil only reaches the 1-rings of the element's vertices, which every patch containing the
 // element has in its IA patch. A patch writes its stencils over its ring positions (the weights rounded
 // once from double); the hull shader sums each one over the patch's ring in `SubdPatch::order`

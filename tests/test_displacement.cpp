@@ -392,4 +392,12 @@ TEST_CASE("tessera with --displacement: watertight frog, render, and one-line er
   CHECK(e.err.find(kFrogMap) != std::string::npos);
   CHECK(e.err.find("vt 1") != std::string::npos);
   CHECK(!fs::exists(out + ".bad.png"));
+  // Schemes whose patches hold only their face cannot carry the shared frames: a clear refusal.
+  for (const char* scheme : {"flat", "pn"}) {
+    e = run_cli("tessellate " + kFrog + " --scheme " + scheme + " --factor 2 --check-watertight --displacement " + kFrogMap +
+                " --displacement-channel A");
+    CHECK(e.exit_code == 1);
+    CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+    CHECK(e.err.find("cannot be displaced") != std::string::npos);
+  }
 }
