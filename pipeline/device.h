@@ -43,7 +43,7 @@ namespace tessera {
 struct DeviceOptions {
   int threads = 0;                      // worker threads; 0 = all hardware threads
   int tile_size = 64;                   // screen tile edge in pixels (even, 8..1024)
-  std::size_t chunk_primitives = 16384; // a chunk is cut before its primitive count would pass this
+  std::size_t chunk_primitives = 4096;  // a chunk is cut before its primitive count would pass this
   int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
   int chunks_in_flight = 8;             // chunks produced before they are flushed to the rasterizer
 };
