@@ -421,7 +421,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
                   locations[i] = DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f};
                 }
                 d.ds(pc, cps, std::span<const DomainLocation>(locations), patch_id, std::span<ClipVertex<N>>(clips));
-                for (std::size_t i = 0; i < clips.size(); ++i) outs[i] = make_setup_vertex<N>(backend.setup(), clips[i]);
+                make_setup_vertices<N>(backend.setup(), std::span<const ClipVertex<N>>(clips), std::span<SetupVertex<N>>(outs));
               } else {
                 for (std::size_t i = 0; i < pattern.points.size(); ++i) {
                   const ts::DomainPoint q = pattern.points[i];

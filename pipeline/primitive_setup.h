@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "clipper.h"
@@ -237,6 +239,85 @@ SetupVertex<N> make_setup_vertex(const SetupContext& c, const ClipVertex<N>& v, 
   return s;
 }
 
+// make_setup_vertex for many vertices (a batch domain shader's output): the same bits, with the
+// outcodes, the perspective division, the viewport transform and the snapping of four vertices in SIMD
+// lanes (each lane the scalar expression; cvtps2dq rounds to nearest even like std::nearbyint in the
+// default rounding mode, and every value it converts lies inside the guard band).
+template <std::size_t N>
+void make_setup_vertices(const SetupContext& c, std::span<const ClipVertex<N>> in, std::span<SetupVertex<N>> out) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f);
+  const __m128i exponent = _mm_set1_epi32(0x7f800000);
+  const auto bit = [](__m128 mask, unsigned b) { return _mm_and_si128(_mm_castps_si128(mask), _mm_set1_epi32(int(1u << b))); };
+  for (; i + 4 <= in.size(); i += 4) {
+    __m128 x = _mm_loadu_ps(&in[i].position.x), y = _mm_loadu_ps(&in[i + 1].position.x);
+    __m128 z = _mm_loadu_ps(&in[i + 2].position.x), w = _mm_loadu_ps(&in[i + 3].position.x);
+    _MM_TRANSPOSE4_PS(x, y, z, w);  // now lane k of x, y, z, w is vertex i + k
+    // finite_position: no coordinate has an all-ones exponent.
+    const __m128i inf_or_nan =
+        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(x), exponent), exponent),
+                                  _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(y), exponent), exponent)),
+                     _mm_or_si128(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(z), exponent), exponent),
+                                  _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(w), exponent), exponent)));
+    const unsigned finite = ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(inf_or_nan))) & 0xFu;
+    // view_outcode
+    const __m128 neg_w = _mm_xor_ps(w, sign);
+    const __m128i view = _mm_or_si128(
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(z, zero), kNear), bit(_mm_cmplt_ps(w, z), kFar)),
+                     _mm_or_si128(bit(_mm_cmplt_ps(x, neg_w), kLeft), bit(_mm_cmplt_ps(w, x), kRight))),
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(y, neg_w), kBottom), bit(_mm_cmplt_ps(w, y), kTop)),
+                     _mm_andnot_si128(_mm_castps_si128(_mm_cmpgt_ps(w, zero)), _mm_set1_epi32(int(1u << kW)))));
+    // clip_outcode
+    const __m128 gx = _mm_mul_ps(_mm_set1_ps(c.guard.gx), w), gy = _mm_mul_ps(_mm_set1_ps(c.guard.gy), w);
+    const __m128i clip = _mm_or_si128(
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(z, zero), kNear), bit(_mm_cmplt_ps(_mm_sub_ps(w, z), zero), kFar)),
+                     _mm_or_si128(bit(_mm_cmplt_ps(_mm_add_ps(gx, x), zero), kLeft),
+                                  bit(_mm_cmplt_ps(_mm_sub_ps(gx, x), zero), kRight))),
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(_mm_add_ps(gy, y), zero), kBottom),
+                                  bit(_mm_cmplt_ps(_mm_sub_ps(gy, y), zero), kTop)),
+                     bit(_mm_cmplt_ps(_mm_sub_ps(w, _mm_set1_ps(kMinClipW)), zero), kW)));
+    // Projection and snapping (used only in lanes that are finite with clip code 0).
+    const __m128 inv_w = _mm_div_ps(_mm_set1_ps(1.0f), w);
+    const __m128 one_pixel = _mm_set1_ps(float(kSubpixelOne));
+    const __m128i sx = _mm_cvtps_epi32(_mm_mul_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_mul_ps(x, inv_w), _mm_set1_ps(c.scale_x)), _mm_set1_ps(c.offset_x)), one_pixel));
+    const __m128i sy = _mm_cvtps_epi32(_mm_mul_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_mul_ps(y, inv_w), _mm_set1_ps(c.scale_y)), _mm_set1_ps(c.offset_y)), one_pixel));
+    const __m128 sz = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(z, inv_w), _mm_set1_ps(c.z_scale)), _mm_set1_ps(c.z_offset));
+    alignas(16) std::int32_t view_codes[4], clip_codes[4], xs[4], ys[4];
+    alignas(16) float zs[4], inv_ws[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(view_codes), view);
+    _mm_store_si128(reinterpret_cast<__m128i*>(clip_codes), clip);
+    _mm_store_si128(reinterpret_cast<__m128i*>(xs), sx);
+    _mm_store_si128(reinterpret_cast<__m128i*>(ys), sy);
+    _mm_store_ps(zs, sz);
+    _mm_store_ps(inv_ws, inv_w);
+    for (int k = 0; k < 4; ++k) {
+      SetupVertex<N>& s = out[i + std::size_t(k)];
+      const ClipVertex<N>& v = in[i + std::size_t(k)];
+      s = SetupVertex<N>{};
+      s.clip = v;
+      if (!((finite >> k) & 1u)) {
+        s.finite = false;
+        continue;
+      }
+      s.view_code = unsigned(view_codes[k]);
+      s.clip_code = unsigned(clip_codes[k]);
+      if (s.clip_code != 0) continue;
+      s.x = xs[k];
+      s.y = ys[k];
+      s.z = zs[k];
+      s.inv_w = inv_ws[k];
+      s.plane_values[0] = s.z;
+      s.plane_values[1] = s.inv_w;
+      for (std::size_t a = 0; a < N; ++a) s.plane_values[2 + a] = v.attributes[a] * s.inv_w;
+    }
+  }
+#endif
+  for (; i < in.size(); ++i) out[i] = make_setup_vertex<N>(c, in[i]);
+}
+
 namespace detail {
 
 template <std::size_t N>
@@ -297,10 +378,16 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   if (edges32) {
     const std::int32_t cx = min_x * kSubpixelOne + kSubpixelOne / 2, cy = min_y * kSubpixelOne + kSubpixelOne / 2;
 #if defined(__SSE2__)
-    // The three edges in lanes 0..2 (lane 3 is a degenerate edge, never used).
-    const __m128i x = _mm_setr_epi32(vx[0], vx[1], vx[2], 0), y = _mm_setr_epi32(vy[0], vy[1], vy[2], 0);
-    const __m128i dx = _mm_sub_epi32(_mm_setr_epi32(vx[1], vx[2], vx[0], 0), x);
-    const __m128i dy = _mm_sub_epi32(_mm_setr_epi32(vy[1], vy[2], vy[0], 0), y);
+    // The three edges in lanes 0..2 (lane 3 repeats edge 2's direction; it is never used). A
+    // SetupVertex's x and y are adjacent: one 64-bit load per vertex.
+    static_assert(offsetof(SetupVertex<N>, y) == offsetof(SetupVertex<N>, x) + sizeof(std::int32_t));
+    const __m128i p0 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[0]->x));  // x0 y0
+    const __m128i p1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[1]->x));
+    const __m128i p2 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[2]->x));
+    const __m128i p01 = _mm_unpacklo_epi32(p0, p1), p22 = _mm_unpacklo_epi32(p2, p2);  // x0 x1 y0 y1, x2 x2 y2 y2
+    const __m128i x = _mm_unpacklo_epi64(p01, p22), y = _mm_unpackhi_epi64(p01, p22);  // x0 x1 x2 x2, y0 y1 y2 y2
+    const __m128i dx = _mm_sub_epi32(_mm_shuffle_epi32(x, _MM_SHUFFLE(0, 0, 2, 1)), x);
+    const __m128i dy = _mm_sub_epi32(_mm_shuffle_epi32(y, _MM_SHUFFLE(0, 0, 2, 1)), y);
     const __m128i zero = _mm_setzero_si128();
     const __m128i top_left = _mm_or_si128(_mm_cmplt_epi32(dy, zero), _mm_and_si128(_mm_cmpeq_epi32(dy, zero), _mm_cmpgt_epi32(dx, zero)));
     const __m128i bias = _mm_xor_si128(top_left, _mm_set1_epi32(-1));  // 0 on a top or left edge, else -1
@@ -315,13 +402,14 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
     if (small_box) {
       // A box of at most 2x2 pixel centres: the edges at (min_x + (k & 1), min_y + (k >> 1)) in lane k.
       const __m128i right = _mm_setr_epi32(0, -1, 0, -1), down = _mm_setr_epi32(0, 0, -1, -1);
-      __m128i any_negative = zero;
-      for (int i = 0; i < 3; ++i) {
-        const __m128i r = _mm_set1_epi32(std::int32_t(edge_ref[i]));
-        const __m128i e = _mm_add_epi32(_mm_add_epi32(r, _mm_and_si128(_mm_set1_epi32(std::int32_t(edge_sx[i])), right)),
-                                        _mm_and_si128(_mm_set1_epi32(std::int32_t(edge_sy[i])), down));
-        any_negative = _mm_or_si128(any_negative, e);
-      }
+      const auto edge_at = [&](auto lane) {  // edge `lane` at the four centres
+        constexpr int k = decltype(lane)::value, broadcast = _MM_SHUFFLE(k, k, k, k);
+        return _mm_add_epi32(_mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), _mm_and_si128(_mm_shuffle_epi32(sx, broadcast), right)),
+                             _mm_and_si128(_mm_shuffle_epi32(sy, broadcast), down));
+      };
+      const __m128i any_negative =
+          _mm_or_si128(_mm_or_si128(edge_at(std::integral_constant<int, 0>{}), edge_at(std::integral_constant<int, 1>{})),
+                       edge_at(std::integral_constant<int, 2>{}));
       const unsigned inside = ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu;
       const unsigned in_box = (max_x > min_x ? 0xFu : 0x5u) & (max_y > min_y ? 0xFu : 0x3u);
       covers = (inside & in_box) != 0;
@@ -355,7 +443,6 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   // triangle does not cover (tested exactly, as the rasterizer will) is dropped before its planes are
   // built and it is binned. The image and the PS invocations cannot change; only the work does.
   if (!covers) return;
-  // Built in place in the chunk (the record is large; a copy costs as much as filling it).
   ScreenPrimitive<N> p;
   p.min_x = min_x, p.max_x = max_x, p.min_y = min_y, p.max_y = max_y;
   if (edges32) {
