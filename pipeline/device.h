@@ -43,7 +43,7 @@ namespace tessera {
 struct DeviceOptions {
   int threads = 0;                      // worker threads; 0 = all hardware threads
   int tile_size = 64;                   // screen tile edge in pixels (even, 8..1024)
-  std::size_t chunk_primitives = 16384; // a chunk is cut before its primitive count would pass this
+  std::size_t chunk_primitives = 4096;  // a chunk is cut before its primitive count would pass this
   int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
   int chunks_in_flight = 8;             // chunks produced before they are flushed to the rasterizer
 };
@@ -421,7 +421,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
                   locations[i] = DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f};
                 }
                 d.ds(pc, cps, std::span<const DomainLocation>(locations), patch_id, std::span<ClipVertex<N>>(clips));
-                for (std::size_t i = 0; i < clips.size(); ++i) outs[i] = make_setup_vertex<N>(backend.setup(), clips[i]);
+                make_setup_vertices<N>(backend.setup(), std::span<const ClipVertex<N>>(clips), std::span<SetupVertex<N>>(outs));
               } else {
                 for (std::size_t i = 0; i < pattern.points.size(); ++i) {
                   const ts::DomainPoint q = pattern.points[i];

@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "clipper.h"
@@ -33,9 +35,28 @@ enum class PrimitiveKind : std::uint8_t { triangle, line, point };
 // there instead, computed once at setup: value(x, y) = [0] + [1] * (x - origin_x) + [2] * (y - origin_y)
 // in pixels, for window depth, for 1/w, and for each attribute divided by w (perspective-correct
 // interpolation divides the attribute plane by the 1/w plane per pixel).
+//
+// A triangle whose vertex box is small enough that every edge-function value the rasterizer evaluates
+// fits in 32 bits (`edges32`, kEdges32MaxExtent; nearly all of them) keeps its edge functions, set up
+// once here rather than per tile, in place of its vertices (the rasterizer needs nothing else of them,
+// and the record stays as small as it was: setup writes and the rasterizer reads it through memory).
+// Other triangles keep their vertices; the rasterizer sets their edges up in 64-bit integers.
+struct VertexPositions {
+  std::array<std::int32_t, 3> x, y;  // 16.8 fixed-point window coordinates
+};
+// Edge i runs from vertex i to vertex i + 1 (top-left bias included); its value at the centre of pixel
+// (min_x, min_y) is ref[i], and it changes by -dy[i] * 256 per pixel right and dx[i] * 256 per pixel down
+// (dx, dy: vertex i + 1 minus vertex i, at most kEdges32MaxExtent in magnitude).
+struct SmallTriangleEdges {
+  std::array<std::int32_t, 3> ref;
+  std::array<std::int16_t, 3> dx, dy;
+};
 template <std::size_t N>
 struct ScreenPrimitive {
-  std::array<std::int32_t, 3> x{}, y{};  // 16.8 fixed-point window coordinates
+  union {
+    VertexPositions xy{};      // lines, points, triangles without edges32
+    SmallTriangleEdges edges;  // triangles with edges32
+  };
   std::array<float, 3> z{};              // window depth (viewport-mapped), or its plane
   std::array<float, 3> inv_w{};          // 1/w, or its plane
   std::array<std::array<float, N>, 3> attributes{};  // per vertex, or planes: attributes[j][a] = coefficient j of a
@@ -44,7 +65,14 @@ struct ScreenPrimitive {
   std::uint32_t primitive_id = 0;
   PrimitiveKind kind = PrimitiveKind::triangle;
   bool front_face = true;
+  bool edges32 = false;
 };
+
+// The largest vertex box extent (16.8 units, either axis) of a triangle whose edge functions the
+// rasterizer evaluates in 32-bit lanes. Every pixel centre it evaluates lies at most one pixel (256)
+// outside the box (a quad's lane beside the first or last covered centre), so
+// |edge| <= ext_y * (ext_x + 256) + ext_x * (ext_y + 256) + 1 < 2^31.
+inline constexpr std::int32_t kEdges32MaxExtent = 32767 - 256;
 
 // Screen tiles: the unit of parallel rasterization.
 struct TileGrid {
@@ -180,6 +208,9 @@ struct SetupVertex {
   ClipVertex<N> clip;
   std::int32_t x = 0, y = 0;  // 16.8 window position (valid when clip_code == 0)
   float z = 0, inv_w = 0;
+  // What a triangle's plane equations interpolate, computed once per vertex and laid out for SIMD loads
+  // (setup_snapped_triangle): z, 1/w, each attribute times 1/w, then zeros to a multiple of 4.
+  std::array<float, 4 * ((N + 5) / 4)> plane_values{};
   unsigned view_code = 0;     // outside which view-volume planes
   unsigned clip_code = 0;     // outside which clipping planes (near, far, guard band)
   bool finite = true;
@@ -201,16 +232,98 @@ SetupVertex<N> make_setup_vertex(const SetupContext& c, const ClipVertex<N>& v, 
     s.y = detail::snap(v.position.y * inv_w * c.scale_y + c.offset_y);
     s.z = v.position.z * inv_w * c.z_scale + c.z_offset;
     s.inv_w = inv_w;
+    s.plane_values[0] = s.z;
+    s.plane_values[1] = inv_w;
+    for (std::size_t k = 0; k < N; ++k) s.plane_values[2 + k] = v.attributes[k] * inv_w;
   }
   return s;
+}
+
+// make_setup_vertex for many vertices (a batch domain shader's output): the same bits, with the
+// outcodes, the perspective division, the viewport transform and the snapping of four vertices in SIMD
+// lanes (each lane the scalar expression; cvtps2dq rounds to nearest even like std::nearbyint in the
+// default rounding mode, and every value it converts lies inside the guard band).
+template <std::size_t N>
+void make_setup_vertices(const SetupContext& c, std::span<const ClipVertex<N>> in, std::span<SetupVertex<N>> out) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f);
+  const __m128i exponent = _mm_set1_epi32(0x7f800000);
+  const auto bit = [](__m128 mask, unsigned b) { return _mm_and_si128(_mm_castps_si128(mask), _mm_set1_epi32(int(1u << b))); };
+  for (; i + 4 <= in.size(); i += 4) {
+    __m128 x = _mm_loadu_ps(&in[i].position.x), y = _mm_loadu_ps(&in[i + 1].position.x);
+    __m128 z = _mm_loadu_ps(&in[i + 2].position.x), w = _mm_loadu_ps(&in[i + 3].position.x);
+    _MM_TRANSPOSE4_PS(x, y, z, w);  // now lane k of x, y, z, w is vertex i + k
+    // finite_position: no coordinate has an all-ones exponent.
+    const __m128i inf_or_nan =
+        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(x), exponent), exponent),
+                                  _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(y), exponent), exponent)),
+                     _mm_or_si128(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(z), exponent), exponent),
+                                  _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(w), exponent), exponent)));
+    const unsigned finite = ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(inf_or_nan))) & 0xFu;
+    // view_outcode
+    const __m128 neg_w = _mm_xor_ps(w, sign);
+    const __m128i view = _mm_or_si128(
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(z, zero), kNear), bit(_mm_cmplt_ps(w, z), kFar)),
+                     _mm_or_si128(bit(_mm_cmplt_ps(x, neg_w), kLeft), bit(_mm_cmplt_ps(w, x), kRight))),
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(y, neg_w), kBottom), bit(_mm_cmplt_ps(w, y), kTop)),
+                     _mm_andnot_si128(_mm_castps_si128(_mm_cmpgt_ps(w, zero)), _mm_set1_epi32(int(1u << kW)))));
+    // clip_outcode
+    const __m128 gx = _mm_mul_ps(_mm_set1_ps(c.guard.gx), w), gy = _mm_mul_ps(_mm_set1_ps(c.guard.gy), w);
+    const __m128i clip = _mm_or_si128(
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(z, zero), kNear), bit(_mm_cmplt_ps(_mm_sub_ps(w, z), zero), kFar)),
+                     _mm_or_si128(bit(_mm_cmplt_ps(_mm_add_ps(gx, x), zero), kLeft),
+                                  bit(_mm_cmplt_ps(_mm_sub_ps(gx, x), zero), kRight))),
+        _mm_or_si128(_mm_or_si128(bit(_mm_cmplt_ps(_mm_add_ps(gy, y), zero), kBottom),
+                                  bit(_mm_cmplt_ps(_mm_sub_ps(gy, y), zero), kTop)),
+                     bit(_mm_cmplt_ps(_mm_sub_ps(w, _mm_set1_ps(kMinClipW)), zero), kW)));
+    // Projection and snapping (used only in lanes that are finite with clip code 0).
+    const __m128 inv_w = _mm_div_ps(_mm_set1_ps(1.0f), w);
+    const __m128 one_pixel = _mm_set1_ps(float(kSubpixelOne));
+    const __m128i sx = _mm_cvtps_epi32(_mm_mul_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_mul_ps(x, inv_w), _mm_set1_ps(c.scale_x)), _mm_set1_ps(c.offset_x)), one_pixel));
+    const __m128i sy = _mm_cvtps_epi32(_mm_mul_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_mul_ps(y, inv_w), _mm_set1_ps(c.scale_y)), _mm_set1_ps(c.offset_y)), one_pixel));
+    const __m128 sz = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(z, inv_w), _mm_set1_ps(c.z_scale)), _mm_set1_ps(c.z_offset));
+    alignas(16) std::int32_t view_codes[4], clip_codes[4], xs[4], ys[4];
+    alignas(16) float zs[4], inv_ws[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(view_codes), view);
+    _mm_store_si128(reinterpret_cast<__m128i*>(clip_codes), clip);
+    _mm_store_si128(reinterpret_cast<__m128i*>(xs), sx);
+    _mm_store_si128(reinterpret_cast<__m128i*>(ys), sy);
+    _mm_store_ps(zs, sz);
+    _mm_store_ps(inv_ws, inv_w);
+    for (int k = 0; k < 4; ++k) {
+      SetupVertex<N>& s = out[i + std::size_t(k)];
+      const ClipVertex<N>& v = in[i + std::size_t(k)];
+      s = SetupVertex<N>{};
+      s.clip = v;
+      if (!((finite >> k) & 1u)) {
+        s.finite = false;
+        continue;
+      }
+      s.view_code = unsigned(view_codes[k]);
+      s.clip_code = unsigned(clip_codes[k]);
+      if (s.clip_code != 0) continue;
+      s.x = xs[k];
+      s.y = ys[k];
+      s.z = zs[k];
+      s.inv_w = inv_ws[k];
+      s.plane_values[0] = s.z;
+      s.plane_values[1] = s.inv_w;
+      for (std::size_t a = 0; a < N; ++a) s.plane_values[2 + a] = v.attributes[a] * s.inv_w;
+    }
+  }
+#endif
+  for (; i < in.size(); ++i) out[i] = make_setup_vertex<N>(c, in[i]);
 }
 
 namespace detail {
 
 template <std::size_t N>
 void copy_vertex(const SetupVertex<N>& v, ScreenPrimitive<N>& out, int slot) {
-  out.x[slot] = v.x;
-  out.y[slot] = v.y;
+  out.xy.x[slot] = v.x;
+  out.xy.y[slot] = v.y;
   out.z[slot] = v.z;
   out.inv_w[slot] = v.inv_w;
   out.attributes[slot] = v.clip.attributes;
@@ -226,8 +339,8 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
   copy_vertex(b, p, 1);
   // A line may light the pixel its end point lies in; widen the box by half a pixel.
   const std::int32_t h = kSubpixelOne / 2;
-  if (!finish_box(c, p, std::min(p.x[0], p.x[1]) - h, std::max(p.x[0], p.x[1]) + h, std::min(p.y[0], p.y[1]) - h,
-                  std::max(p.y[0], p.y[1]) + h))
+  if (!finish_box(c, p, std::min(p.xy.x[0], p.xy.x[1]) - h, std::max(p.xy.x[0], p.xy.x[1]) + h,
+                  std::min(p.xy.y[0], p.xy.y[1]) - h, std::max(p.xy.y[0], p.xy.y[1]) + h))
     return;
   bin(c, chunk, p);
 }
@@ -253,37 +366,111 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   if (min_y > max_y) return;
   // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.
   const SetupVertex<N>* v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};
-  // A box of at most 2x2 pixel centres (nearly every triangle at high factors): test those centres
-  // exactly, as the rasterizer will, and drop a triangle that covers none before its planes are built
-  // and it is binned. The image and the PS invocations cannot change; only the work does.
-  if (max_x - min_x <= 1 && max_y - min_y <= 1) {
-    const std::int32_t vx[3] = {v[0]->x, v[1]->x, v[2]->x}, vy[3] = {v[0]->y, v[1]->y, v[2]->y};
-    bool any = false;
-    for (std::int32_t py = min_y; py <= max_y && !any; ++py)
-      for (std::int32_t px = min_x; px <= max_x && !any; ++px) any = covers_centre(vx, vy, px, py);
-    if (!any) return;
+  const std::int32_t vx[3] = {v[0]->x, v[1]->x, v[2]->x}, vy[3] = {v[0]->y, v[1]->y, v[2]->y};
+  // Edge functions (covers_centre's) of a triangle small enough for 32 bits: computed modulo 2^32 (unsigned
+  // arithmetic wraps, defined), which gives the exact values because every value used fits
+  // (kEdges32MaxExtent; the reference centre lies inside the vertex box).
+  const bool edges32 = hx - lx <= kEdges32MaxExtent && hy - ly <= kEdges32MaxExtent;
+  alignas(16) std::uint32_t edge_ref[4] = {}, edge_sx[4] = {}, edge_sy[4] = {};
+  alignas(16) std::int16_t edge_d[8] = {};  // dx of edges 0..3, then dy
+  const bool small_box = max_x - min_x <= 1 && max_y - min_y <= 1;
+  bool covers = true;
+  if (edges32) {
+    const std::int32_t cx = min_x * kSubpixelOne + kSubpixelOne / 2, cy = min_y * kSubpixelOne + kSubpixelOne / 2;
+#if defined(__SSE2__)
+    // The three edges in lanes 0..2 (lane 3 repeats edge 2's direction; it is never used). A
+    // SetupVertex's x and y are adjacent: one 64-bit load per vertex.
+    static_assert(offsetof(SetupVertex<N>, y) == offsetof(SetupVertex<N>, x) + sizeof(std::int32_t));
+    const __m128i p0 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[0]->x));  // x0 y0
+    const __m128i p1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[1]->x));
+    const __m128i p2 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[2]->x));
+    const __m128i p01 = _mm_unpacklo_epi32(p0, p1), p22 = _mm_unpacklo_epi32(p2, p2);  // x0 x1 y0 y1, x2 x2 y2 y2
+    const __m128i x = _mm_unpacklo_epi64(p01, p22), y = _mm_unpackhi_epi64(p01, p22);  // x0 x1 x2 x2, y0 y1 y2 y2
+    const __m128i dx = _mm_sub_epi32(_mm_shuffle_epi32(x, _MM_SHUFFLE(0, 0, 2, 1)), x);
+    const __m128i dy = _mm_sub_epi32(_mm_shuffle_epi32(y, _MM_SHUFFLE(0, 0, 2, 1)), y);
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i top_left = _mm_or_si128(_mm_cmplt_epi32(dy, zero), _mm_and_si128(_mm_cmpeq_epi32(dy, zero), _mm_cmpgt_epi32(dx, zero)));
+    const __m128i bias = _mm_xor_si128(top_left, _mm_set1_epi32(-1));  // 0 on a top or left edge, else -1
+    const __m128i ref = _mm_add_epi32(_mm_add_epi32(simd::mullo32(dy, _mm_sub_epi32(x, _mm_set1_epi32(cx))),
+                                                    simd::mullo32(dx, _mm_sub_epi32(_mm_set1_epi32(cy), y))),
+                                      bias);
+    const __m128i sx = _mm_slli_epi32(_mm_sub_epi32(zero, dy), kSubpixelBits), sy = _mm_slli_epi32(dx, kSubpixelBits);
+    _mm_store_si128(reinterpret_cast<__m128i*>(edge_ref), ref);
+    _mm_store_si128(reinterpret_cast<__m128i*>(edge_sx), sx);
+    _mm_store_si128(reinterpret_cast<__m128i*>(edge_sy), sy);
+    _mm_store_si128(reinterpret_cast<__m128i*>(edge_d), _mm_packs_epi32(dx, dy));  // exact: |d| <= kEdges32MaxExtent
+    if (small_box) {
+      // A box of at most 2x2 pixel centres: the edges at (min_x + (k & 1), min_y + (k >> 1)) in lane k.
+      const __m128i right = _mm_setr_epi32(0, -1, 0, -1), down = _mm_setr_epi32(0, 0, -1, -1);
+      const auto edge_at = [&](auto lane) {  // edge `lane` at the four centres
+        constexpr int k = decltype(lane)::value, broadcast = _MM_SHUFFLE(k, k, k, k);
+        return _mm_add_epi32(_mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), _mm_and_si128(_mm_shuffle_epi32(sx, broadcast), right)),
+                             _mm_and_si128(_mm_shuffle_epi32(sy, broadcast), down));
+      };
+      const __m128i any_negative =
+          _mm_or_si128(_mm_or_si128(edge_at(std::integral_constant<int, 0>{}), edge_at(std::integral_constant<int, 1>{})),
+                       edge_at(std::integral_constant<int, 2>{}));
+      const unsigned inside = ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu;
+      const unsigned in_box = (max_x > min_x ? 0xFu : 0x5u) & (max_y > min_y ? 0xFu : 0x3u);
+      covers = (inside & in_box) != 0;
+    }
+#else
+    for (int i = 0; i < 3; ++i) {
+      const int j = i == 2 ? 0 : i + 1;
+      const std::int32_t dx = vx[j] - vx[i], dy = vy[j] - vy[i];
+      const std::uint32_t bias = std::uint32_t(int(dy < 0) | (int(dy == 0) & int(dx > 0))) - 1u;
+      edge_ref[i] = std::uint32_t(dy) * std::uint32_t(vx[i] - cx) + std::uint32_t(dx) * std::uint32_t(cy - vy[i]) + bias;
+      edge_sx[i] = std::uint32_t(-dy) * kSubpixelOne;
+      edge_sy[i] = std::uint32_t(dx) * kSubpixelOne;
+      edge_d[i] = std::int16_t(dx), edge_d[4 + i] = std::int16_t(dy);
+    }
+    if (small_box) {
+      covers = false;
+      for (std::int32_t py = 0; py <= max_y - min_y && !covers; ++py)
+        for (std::int32_t px = 0; px <= max_x - min_x && !covers; ++px) {
+          std::uint32_t all = 0;
+          for (int i = 0; i < 3; ++i) all |= edge_ref[i] + edge_sx[i] * std::uint32_t(px) + edge_sy[i] * std::uint32_t(py);
+          covers = std::int32_t(all) >= 0;
+        }
+    }
+#endif
+  } else if (small_box) {
+    covers = false;
+    for (std::int32_t py = min_y; py <= max_y && !covers; ++py)
+      for (std::int32_t px = min_x; px <= max_x && !covers; ++px) covers = covers_centre(vx, vy, px, py);
   }
+  // A box of at most 2x2 pixel centres (nearly every triangle at high factors) whose centres the
+  // triangle does not cover (tested exactly, as the rasterizer will) is dropped before its planes are
+  // built and it is binned. The image and the PS invocations cannot change; only the work does.
+  if (!covers) return;
   ScreenPrimitive<N> p;
   p.min_x = min_x, p.max_x = max_x, p.min_y = min_y, p.max_y = max_y;
-  for (int i = 0; i < 3; ++i) {
-    p.x[i] = v[i]->x;
-    p.y[i] = v[i]->y;
+  if (edges32) {
+    p.edges = SmallTriangleEdges{};
+    for (int i = 0; i < 3; ++i) {
+      p.edges.ref[i] = std::int32_t(edge_ref[i]);
+      p.edges.dx[i] = edge_d[i];
+      p.edges.dy[i] = edge_d[4 + i];
+    }
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      p.xy.x[i] = vx[i];
+      p.xy.y[i] = vy[i];
+    }
   }
+  p.edges32 = edges32;
   // Plane equations from the snapped positions, in pixels.
   const float inv_sub = 1.0f / float(kSubpixelOne);
-  const float x1 = float(v[1]->x - v[0]->x) * inv_sub, y1 = float(v[1]->y - v[0]->y) * inv_sub;
-  const float x2 = float(v[2]->x - v[0]->x) * inv_sub, y2 = float(v[2]->y - v[0]->y) * inv_sub;
+  const float x1 = float(vx[1] - vx[0]) * inv_sub, y1 = float(vy[1] - vy[0]) * inv_sub;
+  const float x2 = float(vx[2] - vx[0]) * inv_sub, y2 = float(vy[2] - vy[0]) * inv_sub;
   const float inv_area = 1.0f / (x1 * y2 - x2 * y1);
   // For z, 1/w and each attribute / w: the value at vertex 0 and its x and y slopes, four values at a
   // time in lanes, each lane the scalar expression
   //   (a0, ((a1 - a0) * y2 - (a2 - a0) * y1) * inv_area, ((a2 - a0) * x1 - (a1 - a0) * x2) * inv_area).
-  constexpr std::size_t kValues = 2 + N, kGroups = (kValues + 3) / 4;
-  std::array<float, 4 * kGroups> value[3]{};
-  for (int j = 0; j < 3; ++j) {
-    value[j][0] = v[j]->z;
-    value[j][1] = v[j]->inv_w;
-    for (std::size_t k = 0; k < N; ++k) value[j][2 + k] = v[j]->clip.attributes[k] * v[j]->inv_w;
-  }
+  // (The values come straight from the vertices' plane_values: assembling them here lane by lane and
+  // loading them as vectors stalls on store forwarding.)
+  constexpr std::size_t kGroups = (N + 5) / 4;
+  const float* value[3] = {v[0]->plane_values.data(), v[1]->plane_values.data(), v[2]->plane_values.data()};
   std::array<float, 4 * kGroups> slope_x, slope_y;
   {
     using simd::F4;
@@ -296,8 +483,8 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
       ((d2 * fx1 - d1 * fx2) * fia).store_at(&slope_y[4 * g]);
     }
   }
-  p.origin_x = float(v[0]->x) * inv_sub;
-  p.origin_y = float(v[0]->y) * inv_sub;
+  p.origin_x = float(vx[0]) * inv_sub;
+  p.origin_y = float(vy[0]) * inv_sub;
   p.z = {value[0][0], slope_x[0], slope_y[0]};
   p.inv_w = {value[0][1], slope_x[1], slope_y[1]};
   for (std::size_t k = 0; k < N; ++k) {
@@ -375,7 +562,7 @@ void setup_point(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex
   p.primitive_id = primitive_id;
   detail::copy_vertex(a, p, 0);
   // A point lights the one pixel it lies in.
-  const std::int32_t px = p.x[0] >> kSubpixelBits, py = p.y[0] >> kSubpixelBits;
+  const std::int32_t px = p.xy.x[0] >> kSubpixelBits, py = p.xy.y[0] >> kSubpixelBits;
   p.min_x = std::max(px, c.clip_min_x), p.max_x = std::min(px, c.clip_max_x);
   p.min_y = std::max(py, c.clip_min_y), p.max_y = std::min(py, c.clip_max_y);
   if (p.min_x > p.max_x || p.min_y > p.max_y) return;

@@ -186,18 +186,15 @@ struct Edges64 {
 
 #if defined(__SSE2__)
 // Edges32 holds the four pixels' values of each edge in the lanes of one 32-bit vector, for triangles
-// small enough that every value it evaluates fits (kMaxEdges32Extent): then the values are the exact
-// integers Edges64 computes, and coverage is three ORs and a sign mask. Steps wrap modulo 2^32 (defined
-// for vector adds); a value past the last quad or row may wrap but is never used.
+// small enough that every value it evaluates fits (kEdges32MaxExtent, primitive_setup.h): then the
+// values are the exact integers Edges64 computes, and coverage is three ORs and a sign mask. Steps wrap
+// modulo 2^32 (defined for vector adds); a value past the last quad or row may wrap but is never used.
 struct Edges32 {
-  // Vertex box extent in 16.8 units. Every pixel centre evaluated lies at most one pixel (256) outside
-  // the box (a quad's lane beside the first or last covered centre), so |edge| <= ext_y * (ext_x + 256) + ext_x * (ext_y + 256) + 1 < 2^31.
-  static constexpr std::int32_t kMaxExtent = 32767 - 256;
   __m128i row[3], e[3], step_x2[3], step_y2[3];
-  Edges32(const std::int64_t (&e0)[3], const std::int64_t (&sx)[3], const std::int64_t (&sy)[3]) {
+  Edges32(const std::int32_t (&e0)[3], const std::int32_t (&sx)[3], const std::int32_t (&sy)[3]) {
     for (int i = 0; i < 3; ++i) {
-      const auto x = std::int32_t(sx[i]), y = std::int32_t(sy[i]);
-      row[i] = _mm_add_epi32(_mm_set1_epi32(std::int32_t(e0[i])), _mm_setr_epi32(0, x, y, x + y));
+      const std::int32_t x = sx[i], y = sy[i];
+      row[i] = _mm_add_epi32(_mm_set1_epi32(e0[i]), _mm_setr_epi32(0, x, y, std::int32_t(std::uint32_t(x) + std::uint32_t(y))));
       e[i] = row[i];
       step_x2[i] = _mm_set1_epi32(2 * x);
       step_y2[i] = _mm_set1_epi32(2 * y);
@@ -247,6 +244,24 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
   const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
   if (x_begin > x_end || y_begin > y_end) return 0;
   const int qx0 = x_begin & ~1, qy0 = y_begin & ~1;  // 2x2 quads are aligned to even pixels
+
+  auto shade = [&](int qx, int qy, unsigned covered) {
+    return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
+  };
+#if defined(__SSE2__)
+  if (p.edges32) {
+    // Setup's edge functions moved from (min_x, min_y) to the first quad, modulo 2^32 (exact: the
+    // value fits, primitive_setup.h).
+    const auto ox = std::uint32_t(qx0 - p.min_x), oy = std::uint32_t(qy0 - p.min_y);
+    std::int32_t e0[3], sx[3], sy[3];
+    for (int i = 0; i < 3; ++i) {
+      sx[i] = -std::int32_t(p.edges.dy[i]) * kSubpixelOne;
+      sy[i] = std::int32_t(p.edges.dx[i]) * kSubpixelOne;
+      e0[i] = std::int32_t(std::uint32_t(p.edges.ref[i]) + std::uint32_t(sx[i]) * ox + std::uint32_t(sy[i]) * oy);
+    }
+    return walk_quads(Edges32(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
+  }
+#endif
   const std::int64_t px0 = std::int64_t(qx0) * kSubpixelOne + kSubpixelOne / 2;
   const std::int64_t py0 = std::int64_t(qy0) * kSubpixelOne + kSubpixelOne / 2;
 
@@ -256,21 +271,12 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
   std::int64_t e0[3], sx[3], sy[3];
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    const std::int64_t dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
+    const std::int64_t dx = p.xy.x[j] - p.xy.x[i], dy = p.xy.y[j] - p.xy.y[i];
     const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-    e0[i] = -dy * (px0 - p.x[i]) + dx * (py0 - p.y[i]) + (top_left ? 0 : -1);
+    e0[i] = -dy * (px0 - p.xy.x[i]) + dx * (py0 - p.xy.y[i]) + (top_left ? 0 : -1);
     sx[i] = -dy * kSubpixelOne;
     sy[i] = dx * kSubpixelOne;
   }
-  auto shade = [&](int qx, int qy, unsigned covered) {
-    return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
-  };
-#if defined(__SSE2__)
-  const std::int32_t ext_x = std::max(std::max(p.x[0], p.x[1]), p.x[2]) - std::min(std::min(p.x[0], p.x[1]), p.x[2]);
-  const std::int32_t ext_y = std::max(std::max(p.y[0], p.y[1]), p.y[2]) - std::min(std::min(p.y[0], p.y[1]), p.y[2]);
-  if (ext_x <= Edges32::kMaxExtent && ext_y <= Edges32::kMaxExtent)
-    return walk_quads(Edges32(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
-#endif
   return walk_quads(Edges64(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
 }
 
@@ -299,12 +305,12 @@ std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, 
 template <std::size_t N, class Ps>
 std::uint64_t rasterize_line(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
                              const RasterContext& rc, Framebuffer& fb) {
-  const std::int64_t dx = p.x[1] - p.x[0], dy = p.y[1] - p.y[0];
+  const std::int64_t dx = p.xy.x[1] - p.xy.x[0], dy = p.xy.y[1] - p.xy.y[0];
   if (dx == 0 && dy == 0) return 0;
   const bool x_major = (dx < 0 ? -dx : dx) >= (dy < 0 ? -dy : dy);
   // Steps along the major axis at pixel centres in the half-open span [start, end) of the segment.
-  const std::int32_t a_lo = x_major ? std::min(p.x[0], p.x[1]) : std::min(p.y[0], p.y[1]);
-  const std::int32_t a_hi = x_major ? std::max(p.x[0], p.x[1]) : std::max(p.y[0], p.y[1]);
+  const std::int32_t a_lo = x_major ? std::min(p.xy.x[0], p.xy.x[1]) : std::min(p.xy.y[0], p.xy.y[1]);
+  const std::int32_t a_hi = x_major ? std::max(p.xy.x[0], p.xy.x[1]) : std::max(p.xy.y[0], p.xy.y[1]);
   int first = detail::first_pixel_at_or_after(a_lo), last = detail::last_pixel_at_or_before(a_hi - 1);
   const int lo_major = x_major ? std::max(tx0, p.min_x) : std::max(ty0, p.min_y);
   const int hi_major = x_major ? std::min(tx1 - 1, p.max_x) : std::min(ty1 - 1, p.max_y);
@@ -317,12 +323,12 @@ std::uint64_t rasterize_line(const ScreenPrimitive<N>& p, int tx0, int ty0, int 
   in.primitive_id = p.primitive_id;
   in.ddx_attributes = &zero;
   in.ddy_attributes = &zero;
-  const float major_start = float(x_major ? p.x[0] : p.y[0]);
+  const float major_start = float(x_major ? p.xy.x[0] : p.xy.y[0]);
   const float major_delta = float(x_major ? dx : dy);
   for (int m = first; m <= last; ++m) {
     const float centre = float(m) * float(kSubpixelOne) + float(kSubpixelOne / 2);
     const float t = (centre - major_start) / major_delta;
-    const float minor = float(x_major ? p.y[0] : p.x[0]) + t * float(x_major ? dy : dx);
+    const float minor = float(x_major ? p.xy.y[0] : p.xy.x[0]) + t * float(x_major ? dy : dx);
     const int n = static_cast<int>(std::floor(minor / float(kSubpixelOne)));
     const int x = x_major ? m : n, y = x_major ? n : m;
     if (x < std::max(tx0, p.min_x) || x > std::min(tx1 - 1, p.max_x) || y < std::max(ty0, p.min_y) ||

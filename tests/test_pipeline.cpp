@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "pipeline_support.h"
@@ -233,6 +234,47 @@ TEST_CASE("pipeline: SIMD quad pixel shader and batch domain shader match their 
     CHECK(a.color_bytes() == b.color_bytes());
     CHECK(a.depth_values() == b.depth_values());
   }
+}
+
+TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for vertices it rejects", "[pipeline][simd]") {
+  RasterizerState rs;
+  const SetupContext c = make_setup_context(Viewport{0, 0, 1920, 1080, 0, 1}, rs, 1920, 1080, 64);
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  // Special values in every coordinate, points on and beside each plane (view volume, guard band, near,
+  // far, w = 0 and negative w), and ordinary points; 4k + 3 of them, so the scalar tail runs too.
+  const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 2.0f, -3.0f, 1e-7f, 1e-6f, 8.6f, -8.6f, 9.0f, inf, -inf, nan};
+  Rng rng(5);
+  std::vector<ClipVertex<3>> in;
+  for (int i = 0; i < 1023; ++i) {
+    ClipVertex<3> v;
+    for (int k = 0; k < 4; ++k)
+      v.position[k] = rng.uniform(0, 1) < 0.3 ? specials[std::size_t(rng.uniform(0, 15)) % 15] : float(rng.uniform(-1.2, 1.2));
+    if (i % 3 == 0) v.position.w = std::abs(v.position.w) + 0.5f;  // mostly projectable
+    v.attributes = {float(rng.uniform(-1, 1)), float(rng.uniform(-1, 1)), i % 17 == 0 ? nan : float(rng.uniform(-1, 1))};
+    in.push_back(v);
+  }
+  std::vector<SetupVertex<3>> batch(in.size());
+  make_setup_vertices<3>(c, in, batch);
+  int projected = 0, rejected = 0, non_finite = 0;
+  const auto bits = [](float f) { std::uint32_t u; std::memcpy(&u, &f, 4); return u; };
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const SetupVertex<3> one = make_setup_vertex<3>(c, in[i]);
+    const SetupVertex<3>& b = batch[i];
+    INFO("vertex " << i << ": " << in[i].position.x << " " << in[i].position.y << " " << in[i].position.z << " " << in[i].position.w);
+    CHECK(b.finite == one.finite);
+    CHECK(b.view_code == one.view_code);
+    CHECK(b.clip_code == one.clip_code);
+    CHECK(b.x == one.x);
+    CHECK(b.y == one.y);
+    CHECK(bits(b.z) == bits(one.z));
+    CHECK(bits(b.inv_w) == bits(one.inv_w));
+    for (std::size_t k = 0; k < one.plane_values.size(); ++k) CHECK(bits(b.plane_values[k]) == bits(one.plane_values[k]));
+    for (int k = 0; k < 4; ++k) CHECK(bits(b.clip.position[k]) == bits(one.clip.position[k]));
+    (!one.finite ? non_finite : one.clip_code ? rejected : projected) += 1;
+  }
+  CHECK(projected > 100);
+  CHECK(rejected > 100);
+  CHECK(non_finite > 50);
 }
 
 TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {

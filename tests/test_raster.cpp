@@ -437,3 +437,54 @@ TEST_CASE("raster: Device::clear writes the bytes Framebuffer::clear writes", "[
     CHECK(a.depth_values() == b.depth_values());
   }
 }
+
+TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge test", "[raster]") {
+  // Triangles of 0.2..3 pixels, one per 8x8 cell of a 256x256 target, at random sub-pixel positions: setup
+  // tests boxes of at most 2x2 centres itself (dropping triangles that cover none) and sets the edges of
+  // the rest up for the rasterizer; every pixel must be lit exactly when the one-centre test says so.
+  constexpr int kSize = 256, kCell = 8, kCells = kSize / kCell;
+  Rng rng(11);
+  std::vector<V1> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<std::array<std::int32_t, 6>> snapped;  // x0 y0 x1 y1 x2 y2 per triangle (16.8)
+  for (int cy = 0; cy < kCells; ++cy)
+    for (int cx = 0; cx < kCells; ++cx) {
+      const double extent = rng.uniform(0.2, 3.0);
+      const double ox = cx * kCell + 2 + rng.uniform(0, 2), oy = cy * kCell + 2 + rng.uniform(0, 2);
+      std::array<std::int32_t, 6> t{};
+      for (int k = 0; k < 3; ++k) {
+        t[std::size_t(2 * k)] = std::int32_t(std::lround((ox + rng.uniform(0, 1) * extent) * kSubpixelOne));
+        t[std::size_t(2 * k + 1)] = std::int32_t(std::lround((oy + rng.uniform(0, 1) * extent) * kSubpixelOne));
+        indices.push_back(std::uint32_t(vertices.size()));
+        vertices.push_back(clip_vertex<1>(float(t[std::size_t(2 * k)]) / float(kSubpixelOne) / 128.0f - 1.0f,
+                                          1.0f - float(t[std::size_t(2 * k + 1)]) / float(kSubpixelOne) / 128.0f, 0.5f, 1.0f));
+      }
+      snapped.push_back(t);
+    }
+  std::vector<int> counts(std::size_t(kSize) * kSize, 0);
+  auto fb = make_target(kSize, kSize);
+  MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
+  d.vertices = vertices;
+  d.indices = indices;
+  d.ps = {&counts, kSize};
+  d.rasterizer.cull = CullMode::none;
+  d.depth.test = false;
+  d.viewport = full_viewport(kSize, kSize);
+  Device device(DeviceOptions{2, 64});
+  REQUIRE(device.draw(d, fb).ok());
+  std::vector<int> expected(counts.size(), 0);
+  int lit = 0, empty = 0;
+  for (const auto& t : snapped) {
+    std::int32_t sx[3] = {t[0], t[2], t[4]}, sy[3] = {t[1], t[3], t[5]};
+    const std::int64_t area = std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
+    if (area < 0) std::swap(sx[1], sx[2]), std::swap(sy[1], sy[2]);
+    int pixels = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        if (area != 0 && detail::covers_centre(sx, sy, x, y)) ++expected[std::size_t(y) * kSize + std::size_t(x)], ++pixels;
+    (pixels ? lit : empty) += 1;
+  }
+  CHECK(counts == expected);
+  CHECK(lit > 100);   // both kinds occur
+  CHECK(empty > 50);
+}

@@ -31,7 +31,7 @@ struct TorusOptions {
   std::string stats;
   std::string llvmpipe;
   int tile_size = 64;
-  std::size_t chunk_primitives = 16384;
+  std::size_t chunk_primitives = 4096;
   bool json = false;
 };
 
