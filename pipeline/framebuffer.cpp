@@ -8,7 +8,8 @@
 #include <system_error>
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
+
+#include "atomic_file.h"
 
 namespace tessera {
 
@@ -77,36 +78,20 @@ std::string Framebuffer::write_depth(const std::string& path) const {
 
 std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
                                    const void* pixels) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  // The temporary keeps the extension: OpenImageIO picks the format from it.
-  std::string temp_name = ".";
-  temp_name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid()));
-  temp_name.append(target.extension().string());
-  const fs::path temp = dir / temp_name;
-  if (!fs::is_directory(dir)) return path + ": directory '" + dir.string() + "' does not exist";
-  auto out = OIIO::ImageOutput::create(target.string());
+  auto out = OIIO::ImageOutput::create(path);
   if (!out) return path + ": no image writer for this extension (" + OIIO::geterror() + ")";
-  OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (is_float && !out->supports("channelformats") && target.extension() == ".png") spec.set_format(OIIO::TypeDesc::UINT8);
-  bool ok = out->open(temp.string(), spec);
-  if (ok) ok = out->write_image(is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, pixels);
-  if (ok) ok = out->close();
-  if (!ok) {
+  return write_atomically(path, [&](const std::string& temp) -> std::string {
+    OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    if (is_float && !out->supports("channelformats") && std::filesystem::path(path).extension() == ".png")
+      spec.set_format(OIIO::TypeDesc::UINT8);
+    bool ok = out->open(temp, spec);
+    if (ok) ok = out->write_image(is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, pixels);
+    if (ok) ok = out->close();
+    if (ok) return {};
     std::string err = out->geterror();
-    std::error_code ec;
-    fs::remove(temp, ec);
     std::replace(err.begin(), err.end(), '\n', ' ');
     return path + ": cannot write image: " + err;
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    return path + ": cannot rename the finished image into place: " + ec.message();
-  }
-  return {};
+  });
 }
 
 }  // namespace tessera

@@ -1,5 +1,6 @@
 #include "cli_common.h"
 
+#include "atomic_file.h"
 #include "framebuffer.h"
 
 #include <cerrno>
@@ -7,10 +8,8 @@
 #include <regex>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <unistd.h>
 
 namespace tessera::cli {
 namespace {
@@ -55,21 +54,20 @@ std::vector<float> parse_float_list(std::string_view text, std::string_view what
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  fs::path dir = target.parent_path();
-  if (dir.empty()) dir = ".";
-  if (!fs::is_directory(dir)) throw InputError(path + ": directory '" + dir.string() + "' does not exist");
-  // Keep the extension last: image writers pick the format from it.
-  const fs::path temp = dir / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
-  try {
-    write(temp.string());
-    fs::rename(temp, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw;
-  }
+  // The pipeline's write_atomically returns errors; `write` here throws, and its exception (a
+  // UsageError, an InputError, ...) is the one to report.
+  std::exception_ptr failure;
+  const std::string error = write_atomically(path, [&](const std::string& temp) -> std::string {
+    try {
+      write(temp);
+      return {};
+    } catch (...) {
+      failure = std::current_exception();
+      return "failed";
+    }
+  });
+  if (failure) std::rethrow_exception(failure);
+  if (!error.empty()) throw InputError(error);
 }
 
 void write_text_atomically(const std::string& path, const std::string& text) {
