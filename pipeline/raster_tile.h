@@ -35,6 +35,19 @@ struct RasterContext {
 
 namespace detail {
 
+// Lines and points are not shaded in 2x2 quads: their pixel shader sees zero derivatives.
+template <std::size_t N>
+inline constexpr std::array<float, N> kNoDerivatives{};
+
+template <std::size_t N>
+PixelInput<N> quadless_pixel_input(std::uint32_t primitive_id) {
+  PixelInput<N> in;
+  in.primitive_id = primitive_id;
+  in.ddx_attributes = &kNoDerivatives<N>;
+  in.ddy_attributes = &kNoDerivatives<N>;
+  return in;
+}
+
 // Writes one shaded pixel after the depth test passed.
 template <std::size_t N, class Ps>
 inline void shade(const Ps& ps, const RasterContext& rc, Framebuffer& fb, int x, int y, PixelInput<N>& in) {
@@ -318,11 +331,7 @@ std::uint64_t rasterize_line(const ScreenPrimitive<N>& p, int tx0, int ty0, int 
   last = std::min(last, hi_major);
 
   std::uint64_t invocations = 0;
-  std::array<float, N> zero{};
-  PixelInput<N> in;
-  in.primitive_id = p.primitive_id;
-  in.ddx_attributes = &zero;
-  in.ddy_attributes = &zero;
+  PixelInput<N> in = detail::quadless_pixel_input<N>(p.primitive_id);
   const float major_start = float(x_major ? p.xy.x[0] : p.xy.y[0]);
   const float major_delta = float(x_major ? dx : dy);
   for (int m = first; m <= last; ++m) {
@@ -355,11 +364,7 @@ std::uint64_t rasterize_point(const ScreenPrimitive<N>& p, int tx0, int ty0, int
   if (x < tx0 || x >= tx1 || y < ty0 || y >= ty1) return 0;
   const float z = std::min(std::max(p.z[0], rc.min_depth), rc.max_depth);
   if (!detail::depth_test(rc, fb, x, y, z)) return 0;
-  std::array<float, N> zero{};
-  PixelInput<N> in;
-  in.primitive_id = p.primitive_id;
-  in.ddx_attributes = &zero;
-  in.ddy_attributes = &zero;
+  PixelInput<N> in = detail::quadless_pixel_input<N>(p.primitive_id);
   in.attributes = p.attributes[0];
   in.position.z = z;
   in.position.w = p.inv_w[0];
