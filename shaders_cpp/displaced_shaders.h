@@ -269,8 +269,7 @@ struct DisplacedProjectDS {
                                                std::uint32_t patch_id) const {
     const DisplacedPoint s = inner(pc, cps, loc, patch_id);
     ClipVertex<kDisplacedAttributes> out;
-    out.position = view_projection * glm::vec4(s.position, 1.0f);
-    out.position.z -= z_bias * out.position.w;
+    out.position = clip_position(view_projection, z_bias, s.position);
     out.attributes = {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z,
                       s.dpdv.x, s.dpdv.y, s.dpdv.z, s.uv.x, s.uv.y};
     return out;

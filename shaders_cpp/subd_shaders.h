@@ -267,6 +267,14 @@ struct SubdDS {
   }
 };
 
+// A world-space point in clip space, pulled toward the camera by `z_bias` of w (for wireframe drawn
+// over shading).
+inline glm::vec4 clip_position(const glm::mat4& view_projection, float z_bias, const glm::vec3& p) {
+  glm::vec4 c = view_projection * glm::vec4(p, 1.0f);
+  c.z -= z_bias * c.w;
+  return c;
+}
+
 // Wraps a DS returning SurfaceSample for rendering: clip-space position, and the normal (3 attributes).
 // `z_bias` pulls points toward the camera by a fraction of w (for wireframe drawn over shading).
 template <class Inner>
@@ -278,8 +286,7 @@ struct ProjectDS {
   ClipVertex<3> operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc, std::uint32_t patch_id) const {
     const SurfaceSample s = inner(pc, cps, loc, patch_id);
     ClipVertex<3> out;
-    out.position = view_projection * glm::vec4(s.position, 1.0f);
-    out.position.z -= z_bias * out.position.w;
+    out.position = clip_position(view_projection, z_bias, s.position);
     out.attributes = {s.normal.x, s.normal.y, s.normal.z};
     return out;
   }
