@@ -48,8 +48,8 @@ struct VertexPositions {
 // (min_x, min_y) is ref[i], and it changes by -dy[i] * 256 per pixel right and dx[i] * 256 per pixel down
 // (dx, dy: vertex i + 1 minus vertex i, at most kEdges32MaxExtent in magnitude).
 struct SmallTriangleEdges {
+  std::array<std::int16_t, 4> dx, dy;  // [3] unused: dx and dy are one 16-byte store from setup's lanes
   std::array<std::int32_t, 3> ref;
-  std::array<std::int16_t, 3> dx, dy;
 };
 template <std::size_t N>
 struct ScreenPrimitive {
@@ -66,6 +66,11 @@ struct ScreenPrimitive {
   PrimitiveKind kind = PrimitiveKind::triangle;
   bool front_face = true;
   bool edges32 = false;
+  // Triangles whose box holds at most 2x2 pixel centres (most of them at high factors): bit k is set
+  // when pixel (min_x + (k & 1), min_y + (k >> 1)) lies in the box and is covered, as setup found when
+  // it tested those centres; the rasterizer shades these pixels without walking edges. 0 otherwise
+  // (setup drops a small-box triangle that covers nothing).
+  std::uint8_t box_coverage = 0;
 };
 
 // The largest vertex box extent (16.8 units, either axis) of a triangle whose edge functions the
@@ -107,9 +112,16 @@ SetupContext make_setup_context(const Viewport& vp, const RasterizerState& rs, i
 // One chunk of the draw's primitives, in draw order, binned to tiles. Setup appends (tile, primitive)
 // pairs; finish_bins() sorts them by tile with a stable counting sort, so each tile's list keeps draw
 // order. Storage is proportional to the chunk's primitives (not to tiles x capacity), and is reused.
+//
+// Each buffer has cache lines of its own (alignas): threads fill neighbouring slots at the same time,
+// and setup updates the counters and vector ends here per primitive; sharing a line with the next
+// slot made setup run at half speed whenever two threads filled neighbours.
 template <std::size_t N>
-struct ChunkBuffer {
+struct alignas(128) ChunkBuffer {
+  // primitives[0, primitive_count) are this chunk's; the rest is storage kept from earlier chunks
+  // (append_primitive() hands out slots without clearing them: setup writes every field it uses).
   std::vector<ScreenPrimitive<N>> primitives;
+  std::size_t primitive_count = 0;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> entries;  // (tile, primitive) in draw order
   std::vector<std::uint32_t> tile_start;                         // per tile: first entry in `binned`, plus an end
   std::vector<std::uint32_t> binned;                             // primitive indices grouped by tile
@@ -117,7 +129,7 @@ struct ChunkBuffer {
   StageTimes times;
 
   void reset(int tile_count) {
-    primitives.clear();
+    primitive_count = 0;
     entries.clear();
     binned.clear();
     tile_start.assign(std::size_t(tile_count) + 1, 0);
@@ -134,6 +146,11 @@ struct ChunkBuffer {
     for (const auto& e : entries) binned[tile_start[e.first]++] = e.second;
     for (std::size_t t = tiles; t > 0; --t) tile_start[t] = tile_start[t - 1];
     tile_start[0] = 0;
+  }
+  // The next primitive's slot, holding whatever an earlier chunk left there.
+  ScreenPrimitive<N>& append_primitive() {
+    if (primitive_count == primitives.size()) primitives.resize(std::max<std::size_t>(16, 2 * primitives.size()));
+    return primitives[primitive_count++];
   }
   std::span<const std::uint32_t> bin(int tile) const {
     return {binned.data() + tile_start[std::size_t(tile)], binned.data() + tile_start[std::size_t(tile) + 1]};
@@ -153,9 +170,8 @@ inline std::int32_t snap(float window_coordinate) {
 
 // First and last pixel whose centre (p + 0.5) lies in [lo, hi] (16.8 fixed point).
 inline std::int32_t first_pixel_at_or_after(std::int32_t lo) {
-  // ceil((lo - 128) / 256) with floor division semantics for negatives.
-  const std::int32_t t = lo - kSubpixelOne / 2;
-  return t >= 0 ? (t + kSubpixelOne - 1) >> kSubpixelBits : -((-t) >> kSubpixelBits);
+  // ceil((lo - 128) / 256) = floor((lo - 128 + 255) / 256); >> is floor division (arithmetic shift).
+  return (lo - kSubpixelOne / 2 + kSubpixelOne - 1) >> kSubpixelBits;
 }
 inline std::int32_t last_pixel_at_or_before(std::int32_t hi) {
   return (hi - kSubpixelOne / 2) >> kSubpixelBits;  // arithmetic shift = floor
@@ -177,14 +193,20 @@ inline bool covers_centre(const std::int32_t (&x)[3], const std::int32_t (&y)[3]
   return all >= 0;
 }
 
+// Enters the chunk's last appended primitive in the bins of the tiles its box touches.
 template <std::size_t N>
-void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>& p) {
-  const auto index = static_cast<std::uint32_t>(chunk.primitives.size());
-  chunk.primitives.push_back(p);
+void bin_last(const SetupContext& c, ChunkBuffer<N>& chunk) {
+  const auto index = static_cast<std::uint32_t>(chunk.primitive_count - 1);
+  const ScreenPrimitive<N>& p = chunk.primitives[index];
   const TileGrid& g = c.tiles;
   const int tx0 = g.tile_of(p.min_x), tx1 = g.tile_of(p.max_x), ty0 = g.tile_of(p.min_y), ty1 = g.tile_of(p.max_y);
   for (int ty = ty0; ty <= ty1; ++ty)
     for (int tx = tx0; tx <= tx1; ++tx) chunk.entries.emplace_back(std::uint32_t(ty * g.columns + tx), index);
+}
+template <std::size_t N>
+void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>& p) {
+  chunk.append_primitive() = p;
+  bin_last(c, chunk);
 }
 
 // Clips the pixel box to what may be written; false if nothing is left.
@@ -371,10 +393,16 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   // arithmetic wraps, defined), which gives the exact values because every value used fits
   // (kEdges32MaxExtent; the reference centre lies inside the vertex box).
   const bool edges32 = hx - lx <= kEdges32MaxExtent && hy - ly <= kEdges32MaxExtent;
-  alignas(16) std::uint32_t edge_ref[4] = {}, edge_sx[4] = {}, edge_sy[4] = {};
-  alignas(16) std::int16_t edge_d[8] = {};  // dx of edges 0..3, then dy
+#if defined(__SSE2__)
+  // Edge i's reference value in lane i of one; dx of edges 0..3, then dy, in the 16-bit lanes of the other.
+  __m128i edge_ref_lanes = _mm_setzero_si128(), edge_d_lanes = _mm_setzero_si128();
+#else
+  std::uint32_t edge_ref[4] = {}, edge_sx[4] = {}, edge_sy[4] = {};
+  std::int16_t edge_d[8] = {};  // dx of edges 0..3, then dy
+#endif
   const bool small_box = max_x - min_x <= 1 && max_y - min_y <= 1;
   bool covers = true;
+  unsigned box_coverage = 0;  // for a small box: its covered centres (ScreenPrimitive::box_coverage)
   if (edges32) {
     const std::int32_t cx = min_x * kSubpixelOne + kSubpixelOne / 2, cy = min_y * kSubpixelOne + kSubpixelOne / 2;
 #if defined(__SSE2__)
@@ -395,10 +423,8 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
                                                     simd::mullo32(dx, _mm_sub_epi32(_mm_set1_epi32(cy), y))),
                                       bias);
     const __m128i sx = _mm_slli_epi32(_mm_sub_epi32(zero, dy), kSubpixelBits), sy = _mm_slli_epi32(dx, kSubpixelBits);
-    _mm_store_si128(reinterpret_cast<__m128i*>(edge_ref), ref);
-    _mm_store_si128(reinterpret_cast<__m128i*>(edge_sx), sx);
-    _mm_store_si128(reinterpret_cast<__m128i*>(edge_sy), sy);
-    _mm_store_si128(reinterpret_cast<__m128i*>(edge_d), _mm_packs_epi32(dx, dy));  // exact: |d| <= kEdges32MaxExtent
+    edge_ref_lanes = ref;
+    edge_d_lanes = _mm_packs_epi32(dx, dy);  // exact: |d| <= kEdges32MaxExtent
     if (small_box) {
       // A box of at most 2x2 pixel centres: the edges at (min_x + (k & 1), min_y + (k >> 1)) in lane k.
       const __m128i right = _mm_setr_epi32(0, -1, 0, -1), down = _mm_setr_epi32(0, 0, -1, -1);
@@ -412,7 +438,8 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
                        edge_at(std::integral_constant<int, 2>{}));
       const unsigned inside = ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu;
       const unsigned in_box = (max_x > min_x ? 0xFu : 0x5u) & (max_y > min_y ? 0xFu : 0x3u);
-      covers = (inside & in_box) != 0;
+      box_coverage = inside & in_box;
+      covers = box_coverage != 0;
     }
 #else
     for (int i = 0; i < 3; ++i) {
@@ -425,13 +452,13 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
       edge_d[i] = std::int16_t(dx), edge_d[4 + i] = std::int16_t(dy);
     }
     if (small_box) {
-      covers = false;
-      for (std::int32_t py = 0; py <= max_y - min_y && !covers; ++py)
-        for (std::int32_t px = 0; px <= max_x - min_x && !covers; ++px) {
+      for (std::int32_t py = 0; py <= max_y - min_y; ++py)
+        for (std::int32_t px = 0; px <= max_x - min_x; ++px) {
           std::uint32_t all = 0;
           for (int i = 0; i < 3; ++i) all |= edge_ref[i] + edge_sx[i] * std::uint32_t(px) + edge_sy[i] * std::uint32_t(py);
-          covers = std::int32_t(all) >= 0;
+          if (std::int32_t(all) >= 0) box_coverage |= 1u << (px + 2 * py);
         }
+      covers = box_coverage != 0;
     }
 #endif
   } else if (small_box) {
@@ -443,15 +470,24 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   // triangle does not cover (tested exactly, as the rasterizer will) is dropped before its planes are
   // built and it is binned. The image and the PS invocations cannot change; only the work does.
   if (!covers) return;
-  ScreenPrimitive<N> p;
+  // Built in place; every field the rasterizer reads of a triangle is written.
+  ScreenPrimitive<N>& p = chunk.append_primitive();
+  p.kind = PrimitiveKind::triangle;
   p.min_x = min_x, p.max_x = max_x, p.min_y = min_y, p.max_y = max_y;
   if (edges32) {
-    p.edges = SmallTriangleEdges{};
+#if defined(__SSE2__)
+    // Straight from the lanes: reading back a vector store in pieces stalls store forwarding.
+    static_assert(offsetof(SmallTriangleEdges, dy) == offsetof(SmallTriangleEdges, dx) + 8);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p.edges.dx.data()), edge_d_lanes);
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(p.edges.ref.data()), edge_ref_lanes);
+    p.edges.ref[2] = _mm_cvtsi128_si32(_mm_shuffle_epi32(edge_ref_lanes, _MM_SHUFFLE(2, 2, 2, 2)));
+#else
     for (int i = 0; i < 3; ++i) {
       p.edges.ref[i] = std::int32_t(edge_ref[i]);
       p.edges.dx[i] = edge_d[i];
       p.edges.dy[i] = edge_d[4 + i];
     }
+#endif
   } else {
     for (int i = 0; i < 3; ++i) {
       p.xy.x[i] = vx[i];
@@ -459,6 +495,7 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
     }
   }
   p.edges32 = edges32;
+  p.box_coverage = std::uint8_t(box_coverage);
   // Plane equations from the snapped positions, in pixels.
   const float inv_sub = 1.0f / float(kSubpixelOne);
   const float x1 = float(vx[1] - vx[0]) * inv_sub, y1 = float(vy[1] - vy[0]) * inv_sub;
@@ -494,7 +531,7 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   }
   p.front_face = front;
   p.primitive_id = primitive_id;
-  bin(c, chunk, p);
+  bin_last(c, chunk);
 }
 
 }  // namespace detail

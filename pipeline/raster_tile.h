@@ -248,6 +248,25 @@ std::uint64_t walk_quads(Edges edges, int qx0, int qy0, int x_begin, int x_end, 
   return invocations;
 }
 
+// For a triangle with box_coverage (its box at most 2x2 pixels, whose covered pixels setup found):
+// entry [ox + 2 * oy][coverage] holds, in four bits per quad, the lanes of the up to 2x2 quads the box
+// touches when the box starts at an odd column (ox = 1) or row (oy = 1): quad (dx, dy) in bits
+// 4 * (dx + 2 * dy) .. + 3, lane (x & 1) + 2 * (y & 1) as in a quad.
+inline constexpr auto kBoxQuads = [] {
+  std::array<std::array<std::uint16_t, 16>, 4> table{};
+  for (int o = 0; o < 4; ++o)
+    for (unsigned m = 0; m < 16; ++m) {
+      unsigned packed = 0;
+      for (int k = 0; k < 4; ++k) {
+        if (!((m >> k) & 1u)) continue;
+        const int x = (o & 1) + (k & 1), y = (o >> 1) + (k >> 1);  // pixel within the quads' 4x4 block
+        packed |= 1u << (4 * ((x >> 1) + 2 * (y >> 1)) + (x & 1) + 2 * (y & 1));
+      }
+      table[std::size_t(o)][m] = std::uint16_t(packed);
+    }
+  return table;
+}();
+
 // Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
 // The depth function is a template argument so the per-pixel test compiles to one comparison.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
@@ -261,6 +280,18 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
   auto shade = [&](int qx, int qy, unsigned covered) {
     return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
   };
+  if (p.box_coverage) {
+    // Setup tested the box's centres with these edge functions: shade its covered pixels' quads in the
+    // walker's order (rows of quads), those in this tile (tiles are aligned to quads).
+    const unsigned packed = kBoxQuads[std::size_t((p.min_x & 1) + 2 * (p.min_y & 1))][p.box_coverage];
+    std::uint64_t invocations = 0;
+    for (int q = 0; q < 4; ++q) {
+      const unsigned covered = (packed >> (4 * q)) & 0xFu;
+      const int qx = (p.min_x & ~1) + 2 * (q & 1), qy = (p.min_y & ~1) + 2 * (q >> 1);
+      if (covered && qx >= tx0 && qx < tx1 && qy >= ty0 && qy < ty1) invocations += shade(qx, qy, covered);
+    }
+    return invocations;
+  }
 #if defined(__SSE2__)
   if (p.edges32) {
     // Setup's edge functions moved from (min_x, min_y) to the first quad, modulo 2^32 (exact: the

@@ -441,8 +441,12 @@ TEST_CASE("raster: Device::clear writes the bytes Framebuffer::clear writes", "[
 TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge test", "[raster]") {
   // Triangles of 0.2..3 pixels, one per 8x8 cell of a 256x256 target, at random sub-pixel positions: setup
   // tests boxes of at most 2x2 centres itself (dropping triangles that cover none) and sets the edges of
-  // the rest up for the rasterizer; every pixel must be lit exactly when the one-centre test says so.
+  // the rest up for the rasterizer (a triangle with a box of at most 2x2 centres carries the centres it
+  // covers, and the rasterizer shades their quads without walking edges); every pixel must be lit
+  // exactly when the one-centre test says so. Second run: the triangles straddle the 8-pixel tiles.
   constexpr int kSize = 256, kCell = 8, kCells = kSize / kCell;
+  const auto [offset, tile_size] = GENERATE(std::pair{2, 64}, std::pair{6, 8});
+  CAPTURE(offset, tile_size);
   Rng rng(11);
   std::vector<V1> vertices;
   std::vector<std::uint32_t> indices;
@@ -450,7 +454,7 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   for (int cy = 0; cy < kCells; ++cy)
     for (int cx = 0; cx < kCells; ++cx) {
       const double extent = rng.uniform(0.2, 3.0);
-      const double ox = cx * kCell + 2 + rng.uniform(0, 2), oy = cy * kCell + 2 + rng.uniform(0, 2);
+      const double ox = cx * kCell + offset + rng.uniform(0, 2), oy = cy * kCell + offset + rng.uniform(0, 2);
       std::array<std::int32_t, 6> t{};
       for (int k = 0; k < 3; ++k) {
         t[std::size_t(2 * k)] = std::int32_t(std::lround((ox + rng.uniform(0, 1) * extent) * kSubpixelOne));
@@ -470,7 +474,7 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   d.rasterizer.cull = CullMode::none;
   d.depth.test = false;
   d.viewport = full_viewport(kSize, kSize);
-  Device device(DeviceOptions{2, 64});
+  Device device(DeviceOptions{2, tile_size});
   REQUIRE(device.draw(d, fb).ok());
   std::vector<int> expected(counts.size(), 0);
   int lit = 0, empty = 0;
