@@ -93,7 +93,8 @@ unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsign
   // Planes evaluated at the four pixel centres, four lanes at once (simd4.h: the same bits as scalar).
   using simd::F4;
   const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
-  const F4 dxk = F4::lanes(fx, fx + 1.0f, fx, fx + 1.0f), dyk = F4::lanes(fy, fy, fy + 1.0f, fy + 1.0f);
+  // fx + 0 is fx (a difference is never -0), so one add with constant lanes gives fx and fx + 1.0f.
+  const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f), dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
   QuadInput<N> q;
   const F4 zq = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
   const F4 z = simd::min(simd::max(zq, F4::splat(rc.min_depth)), F4::splat(rc.max_depth));
@@ -128,10 +129,9 @@ unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsign
   for (std::size_t a = 0; a < N; ++a)
     (((F4::splat(p.attributes[0][a]) + F4::splat(p.attributes[1][a]) * dxk) + F4::splat(p.attributes[2][a]) * dyk) * w)
         .store(q.attributes[a]);
-  for (int k = 0; k < 4; ++k) {
-    q.x[k] = float(qx + (k & 1)) + 0.5f;
-    q.y[k] = float(qy + (k >> 1)) + 0.5f;
-  }
+  // float(qx + 1) + 0.5f is float(qx) + 1.5f: both exact for any pixel coordinate.
+  (F4::splat(float(qx)) + F4::lanes(0.5f, 1.5f, 0.5f, 1.5f)).store(q.x);
+  (F4::splat(float(qy)) + F4::lanes(0.5f, 0.5f, 1.5f, 1.5f)).store(q.y);
   std::array<float, N> ddx, ddy;
   for (std::size_t a = 0; a < N; ++a) {
     ddx[a] = q.attributes[a][1] - q.attributes[a][0];
