@@ -18,18 +18,13 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
     return with_displaced_group(model, displacement, factors, partitioning,
                                 [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs,
                                     const DisplacedDS& ds) {
-      RasterizerState rs;
-      rs.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
-      rs.front_counter_clockwise = true;  // as render_subd
-      if (wire) rs.fill = FillMode::wireframe;
-      DepthState depth;
-      depth.func = CompareFunc::less_equal;
-      const Viewport viewport{0, 0, float(fb.width()), float(fb.height()), 0, 1};
-      const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, wire ? 2e-4f : 0.0f};
+      const SubdPassState st = subd_pass_state(model, fb, wire);
+      const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
       auto go = [&](const auto& ps) {
         using Ps = std::decay_t<decltype(ps)>;
         const PatchDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedProjectDS<DisplacedDS>, Ps> d{
-            model.cage.positions, g.indices, g.control_points, SubdVS{}, hs, project, ps, ts, rs, depth, viewport};
+            model.cage.positions, g.indices, g.control_points, SubdVS{}, hs, project, ps, ts, st.rasterizer, st.depth,
+            st.viewport};
         return device.draw(d, fb);
       };
       if (wire) return go(WirePS{});

@@ -126,30 +126,22 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
       for (std::uint32_t j = 0; j < std::uint32_t(kMaxPatchControlPoints); ++j)
         if (mask >> j & 1u) weights.push_back(dense[j]);
     };
-    auto unit = [&](auto&& fill) {
-      masks.clear(), weights.clear();
-      fill();
-      out.units.push_back(intern());
-    };
+    // One unit per corner k in the patch's rotation, from the stencils of its half-edge; `exact` has no
+    // frame stencils, and its units hold `empty` empty stencils.
     const Stencil none;
-    for (int k = 0; k < 4; ++k) {
-      const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
-      unit([&] {
+    auto add_units = [&](int empty, auto&& stencils_of) {
+      for (int k = 0; k < 4; ++k) {
+        const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
+        masks.clear(), weights.clear();
         if (scheme == Scheme::exact)
-          for (int i = 0; i < 8; ++i) add(none);
+          for (int i = 0; i < empty; ++i) add(none);
         else
-          for (const Stencil& s : edge_stencils(h)) add(s);
-      });
-    }
-    for (int k = 0; k < 4; ++k) {
-      const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
-      unit([&] {
-        if (scheme == Scheme::exact)
-          for (int i = 0; i < 2; ++i) add(none);
-        else
-          for (const Stencil& s : vertex_stencils(t.origin(h))) add(s);
-      });
-    }
+          for (const Stencil& s : stencils_of(h)) add(s);
+        out.units.push_back(intern());
+      }
+    };
+    add_units(8, edge_stencils);  // the edge units
+    add_units(2, [&](int h) -> const auto& { return vertex_stencils(t.origin(h)); });  // the corner units
   }
   out.unit_count = int(interned.size());
   return out;

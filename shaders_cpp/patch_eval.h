@@ -17,6 +17,7 @@
 
 #include <array>
 #include <span>
+#include <tuple>
 
 #include <glm/glm.hpp>
 
@@ -122,17 +123,21 @@ inline glm::vec3 gregory_blend(const glm::vec3& plus, float wp, const glm::vec3&
   if (d == 0.0f) return 0.5f * (plus + minus);
   return (wp * plus + wm * minus) / d;
 }
+
+// The five points of corner k of a Gregory patch (quad or triangle), stored at 5k: P, E+, E-, F+, F-,
+// as five accessors k -> point.
+template <std::size_t Extent>
+auto gregory_points(std::span<const glm::vec3, Extent> g) {
+  const auto slot = [g](int s) { return [g, s](int k) { return g[std::size_t(5 * k + s)]; }; };
+  return std::tuple{slot(0), slot(1), slot(2), slot(3), slot(4)};
+}
 }  // namespace detail
 
 // The 16 Bezier points of a 20-point Gregory patch at (u, v): the four interior points are rational
 // blends of each corner's face-point pair, the "+" point weighted toward its own edge. Denominators
 // that vanish (only at the corners, which edge evaluation handles) count as 1.
 inline std::array<glm::vec3, 16> gregory_to_bezier(std::span<const glm::vec3, 20> g, float u, float v) {
-  auto P = [&](int k) { return g[std::size_t(5 * k)]; };
-  auto Ep = [&](int k) { return g[std::size_t(5 * k + 1)]; };
-  auto Em = [&](int k) { return g[std::size_t(5 * k + 2)]; };
-  auto Fp = [&](int k) { return g[std::size_t(5 * k + 3)]; };
-  auto Fm = [&](int k) { return g[std::size_t(5 * k + 4)]; };
+  const auto [P, Ep, Em, Fp, Fm] = detail::gregory_points(g);
   constexpr auto blend = detail::gregory_blend;
   const float s = u, t = v, s1 = 1.0f - u, t1 = 1.0f - v;
   std::array<glm::vec3, 16> b;
@@ -239,11 +244,7 @@ inline PatchPoint bezier_triangle(std::span<const glm::vec3, (D + 1) * (D + 2) /
 // u = 0, F- to w = 0). On an edge the position is that edge's cubic (watertight); d/du and d/dv freeze
 // the blend, as the quad's do, which is exact on the edges (the blended points' weights vanish there).
 inline PatchPoint gregory_triangle(std::span<const glm::vec3, 15> g, float u, float v, float w) {
-  auto P = [&](int k) { return g[std::size_t(5 * k)]; };
-  auto Ep = [&](int k) { return g[std::size_t(5 * k + 1)]; };
-  auto Em = [&](int k) { return g[std::size_t(5 * k + 2)]; };
-  auto Fp = [&](int k) { return g[std::size_t(5 * k + 3)]; };
-  auto Fm = [&](int k) { return g[std::size_t(5 * k + 4)]; };
+  const auto [P, Ep, Em, Fp, Fm] = detail::gregory_points(g);
   constexpr auto blend = detail::gregory_blend;
   // Degree raising of the cubic (a0, a1, a2, a3) to (a0, (a0 + 3 a1) / 4, (a1 + a2) / 2, (3 a2 + a3) / 4, a3).
   auto raise1 = [](const glm::vec3& a0, const glm::vec3& a1) { return 0.25f * (a0 + 3.0f * a1); };

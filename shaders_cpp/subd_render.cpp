@@ -27,27 +27,32 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
   return c;
 }
 
+SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire) {
+  SubdPassState st;
+  st.rasterizer.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
+  // Patches emit triangle_cw: counter-clockwise seen from outside a counter-clockwise cage, which
+  // after the viewport's y flip is counter-clockwise on screen.
+  st.rasterizer.front_counter_clockwise = true;
+  if (wire) st.rasterizer.fill = FillMode::wireframe;
+  st.depth.func = CompareFunc::less_equal;
+  st.viewport = Viewport{0, 0, float(fb.width()), float(fb.height()), 0, 1};
+  st.z_bias = wire ? 2e-4f : 0.0f;
+  return st;
+}
+
 DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
                        SubdView view, const SubdCamera& camera, Framebuffer& fb) {
   const glm::vec3 light = glm::normalize(camera.eye - camera.target);
   auto pass = [&](bool wire) {
     return for_each_patch_group(model, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
                                                                   const SubdHS& hs, const SubdDS& ds) {
-      RasterizerState rs;
-      rs.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
-      // Patches emit triangle_cw: counter-clockwise seen from outside a counter-clockwise cage, which
-      // after the viewport's y flip is counter-clockwise on screen.
-      rs.front_counter_clockwise = true;
-      if (wire) rs.fill = FillMode::wireframe;
-      DepthState depth;
-      depth.func = CompareFunc::less_equal;
-      const Viewport viewport{0, 0, float(fb.width()), float(fb.height()), 0, 1};
-      const ProjectDS<SubdDS> project{ds, camera.view_projection, wire ? 2e-4f : 0.0f};
+      const SubdPassState st = subd_pass_state(model, fb, wire);
+      const ProjectDS<SubdDS> project{ds, camera.view_projection, st.z_bias};
       auto go = [&](const auto& ps) {
         using Ps = std::decay_t<decltype(ps)>;
         const PatchDraw<glm::vec3, SubdVS, SubdHS, ProjectDS<SubdDS>, Ps> d{
-            model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts, rs, depth,
-            viewport};
+            model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts, st.rasterizer,
+            st.depth, st.viewport};
         return device.draw(d, fb);
       };
       return wire ? go(ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(ClayPS{light});

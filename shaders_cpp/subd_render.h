@@ -25,6 +25,17 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
 DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
                        SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
+// The fixed-function state of one pass over a subdivision model: back faces culled (front faces on a
+// left-handed cage), solid or wireframe, depth less_equal (the wireframe pass draws over the shaded
+// one), the whole target; and the depth bias the wireframe's domain shader pulls points forward by.
+struct SubdPassState {
+  RasterizerState rasterizer;
+  DepthState depth;
+  Viewport viewport;
+  float z_bias = 0.0f;
+};
+SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire);
+
 // Runs pass(wire) -> DrawResult for the passes `view` needs (the shaded pass, then the wireframe over
 // it) and sums their reports, with the framebuffer's bytes; stops at the first error.
 template <class Pass>

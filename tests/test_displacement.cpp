@@ -17,9 +17,13 @@
 #include "displaced_model.h"
 #include "displaced_render.h"
 #include "weld_check.h"
+#include "weld_support.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
+using tessera::test::check_watertight;
+using tessera::test::kVaryingFactors;
+using tessera::test::VaryingFactors;
 
 namespace {
 
@@ -212,18 +216,9 @@ TEST_CASE("The displaced monster frog is watertight on exact bits: acc, gregory,
     const Displacement d = make_displacement(m, frog_options());
     const Displacement noise = make_displacement(m, noise_options());
     CHECK(weld_displaced(m, noise, 2.3f, 1.7f, ts::Partitioning::fractional_odd).closed_manifold());
-    struct Case {
-      ts::Partitioning p;
-      float factor, vary;
-    };
-    for (const Case c : {Case{ts::Partitioning::integer, 3.0f, 1.0f}, Case{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
-                         Case{ts::Partitioning::fractional_even, 2.6f, 1.3f}}) {
-      INFO(to_string(s) << " " << ts::to_string(c.p));
-      const auto r = weld_displaced(m, d, c.factor, c.vary, c.p);
-      CHECK(r.closed_manifold());
-      CHECK(r.boundary_edges == 0);
-      CHECK(r.nonmanifold_edges == 0);
-      CHECK(r.degenerate_triangles == 0);
+    for (const VaryingFactors c : kVaryingFactors) {
+      INFO(to_string(s) << " " << ts::to_string(c.partitioning));
+      check_watertight(weld_displaced(m, d, c.factor, c.vary, c.partitioning));
     }
   }
 }

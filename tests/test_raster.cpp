@@ -64,6 +64,27 @@ std::vector<int> draw_counting(Device& device, const Grid& g, int w, int h, Cull
   return counts;
 }
 
+// The clip vertex (w = 1) whose window position on a size x size target is (x, y) in 16.8 fixed point
+// exactly: NDC = window * 2 / size - 1 is exact for a power-of-two size.
+V1 snapped_vertex(std::int32_t x, std::int32_t y, int size) {
+  const float half = float(size) / 2.0f;
+  return clip_vertex<1>(float(x) / float(kSubpixelOne) / half - 1.0f, 1.0f - float(y) / float(kSubpixelOne) / half, 0.5f, 1.0f);
+}
+
+// Adds 1 to `counts` (size x size) at every pixel whose centre the triangle (16.8 vertices, either
+// winding) covers by the one-centre edge test; returns how many.
+int add_exact_coverage(std::int32_t (&sx)[3], std::int32_t (&sy)[3], int size, std::vector<int>& counts) {
+  // covers_centre wants positive area (clockwise on screen, y down).
+  const std::int64_t area = std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
+  if (area == 0) return 0;
+  if (area < 0) std::swap(sx[1], sx[2]), std::swap(sy[1], sy[2]);
+  int pixels = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      if (detail::covers_centre(sx, sy, x, y)) ++counts[std::size_t(y) * std::size_t(size) + std::size_t(x)], ++pixels;
+  return pixels;
+}
+
 float flat_z(float) { return 0.5f; }
 // z < 0 (in front of the near plane) for NDC x < -0.2: the left part is clipped away.
 float tilted_z(float x) { return 0.5f * (x + 0.2f); }
@@ -393,32 +414,15 @@ TEST_CASE("raster: coverage equals the exact edge test on both sides of the 32-b
       sy[k] = std::int32_t(std::lround((cy + rng.uniform(-0.5, 0.5) * extent) * kSubpixelOne));
     }
     const std::int32_t ext = std::max(std::max(sx[0], sx[1]), sx[2]) - std::min(std::min(sx[0], sx[1]), sx[2]);
-    (ext <= 32767 - 256 ? small : large) += 1;
-    std::vector<V1> vertices;
-    for (int k = 0; k < 3; ++k)
-      vertices.push_back(clip_vertex<1>(float(sx[k]) / float(kSubpixelOne) / 256.0f - 1.0f,
-                                        1.0f - float(sy[k]) / float(kSubpixelOne) / 256.0f, 0.5f, 1.0f));
-    std::vector<std::uint32_t> indices = {0, 1, 2};
-    std::vector<int> counts(std::size_t(kSize) * kSize, 0);
-    auto fb = make_target(kSize, kSize);
-    MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
-    d.vertices = vertices;
-    d.indices = indices;
-    d.ps = {&counts, kSize};
-    d.rasterizer.cull = CullMode::none;
-    d.depth.test = false;
-    d.viewport = full_viewport(kSize, kSize);
-    REQUIRE(device.draw(d, fb).ok());
-    // covers_centre wants positive area (clockwise on screen, y down).
-    const std::int64_t area = std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
-    if (area < 0) std::swap(sx[1], sx[2]), std::swap(sy[1], sy[2]);
-    int wrong = 0, covered = 0;
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x) {
-        const int expected = area != 0 && detail::covers_centre(sx, sy, x, y) ? 1 : 0;
-        wrong += counts[std::size_t(y) * kSize + std::size_t(x)] != expected;
-        covered += expected;
-      }
+    (ext <= kEdges32MaxExtent ? small : large) += 1;
+    Grid g;
+    for (int k = 0; k < 3; ++k) g.vertices.push_back(snapped_vertex(sx[k], sy[k], kSize));
+    g.indices = {0, 1, 2};
+    const std::vector<int> counts = draw_counting(device, g, kSize, kSize);
+    std::vector<int> expected(counts.size(), 0);
+    const int covered = add_exact_coverage(sx, sy, kSize, expected);
+    int wrong = 0;
+    for (std::size_t i = 0; i < counts.size(); ++i) wrong += counts[i] != expected[i];
     INFO("triangle " << t << ", extent " << ext << " (16.8 units), " << covered << " pixels");
     CHECK(wrong == 0);
   }
@@ -448,8 +452,7 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   const auto [offset, tile_size] = GENERATE(std::pair{2, 64}, std::pair{6, 8});
   CAPTURE(offset, tile_size);
   Rng rng(11);
-  std::vector<V1> vertices;
-  std::vector<std::uint32_t> indices;
+  Grid g;
   std::vector<std::array<std::int32_t, 6>> snapped;  // x0 y0 x1 y1 x2 y2 per triangle (16.8)
   for (int cy = 0; cy < kCells; ++cy)
     for (int cx = 0; cx < kCells; ++cx) {
@@ -459,34 +462,18 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
       for (int k = 0; k < 3; ++k) {
         t[std::size_t(2 * k)] = std::int32_t(std::lround((ox + rng.uniform(0, 1) * extent) * kSubpixelOne));
         t[std::size_t(2 * k + 1)] = std::int32_t(std::lround((oy + rng.uniform(0, 1) * extent) * kSubpixelOne));
-        indices.push_back(std::uint32_t(vertices.size()));
-        vertices.push_back(clip_vertex<1>(float(t[std::size_t(2 * k)]) / float(kSubpixelOne) / 128.0f - 1.0f,
-                                          1.0f - float(t[std::size_t(2 * k + 1)]) / float(kSubpixelOne) / 128.0f, 0.5f, 1.0f));
+        g.indices.push_back(std::uint32_t(g.vertices.size()));
+        g.vertices.push_back(snapped_vertex(t[std::size_t(2 * k)], t[std::size_t(2 * k + 1)], kSize));
       }
       snapped.push_back(t);
     }
-  std::vector<int> counts(std::size_t(kSize) * kSize, 0);
-  auto fb = make_target(kSize, kSize);
-  MeshDraw<V1, ClipPassVS<1>, CountingPS<1>> d;
-  d.vertices = vertices;
-  d.indices = indices;
-  d.ps = {&counts, kSize};
-  d.rasterizer.cull = CullMode::none;
-  d.depth.test = false;
-  d.viewport = full_viewport(kSize, kSize);
   Device device(DeviceOptions{2, tile_size});
-  REQUIRE(device.draw(d, fb).ok());
+  const std::vector<int> counts = draw_counting(device, g, kSize, kSize);
   std::vector<int> expected(counts.size(), 0);
   int lit = 0, empty = 0;
   for (const auto& t : snapped) {
     std::int32_t sx[3] = {t[0], t[2], t[4]}, sy[3] = {t[1], t[3], t[5]};
-    const std::int64_t area = std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
-    if (area < 0) std::swap(sx[1], sx[2]), std::swap(sy[1], sy[2]);
-    int pixels = 0;
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x)
-        if (area != 0 && detail::covers_centre(sx, sy, x, y)) ++expected[std::size_t(y) * kSize + std::size_t(x)], ++pixels;
-    (pixels ? lit : empty) += 1;
+    (add_exact_coverage(sx, sy, kSize, expected) ? lit : empty) += 1;
   }
   CHECK(counts == expected);
   CHECK(lit > 100);   // both kinds occur

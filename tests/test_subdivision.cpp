@@ -19,8 +19,12 @@
 #include "subd_model.h"
 #include "topology_combinations.h"
 #include "weld_check.h"
+#include "weld_support.h"
 
 using namespace tessera;
+using tessera::test::check_watertight;
+using tessera::test::kVaryingFactors;
+using tessera::test::VaryingFactors;
 
 namespace {
 
@@ -220,18 +224,9 @@ TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fra
   for (const char* cage : cages)
     for (Scheme s : {Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn}) {
       const SubdModel m = load_subd_model(data(cage), s);
-      struct Case {
-        ts::Partitioning p;
-        float factor, vary;
-      };
-      for (const Case c : {Case{ts::Partitioning::integer, 3.0f, 1.0f}, Case{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
-                           Case{ts::Partitioning::fractional_even, 2.6f, 1.3f}}) {
-        INFO(cage << " " << to_string(s) << " " << ts::to_string(c.p));
-        const auto r = weld(m, c.factor, c.vary, c.p);
-        CHECK(r.closed_manifold());
-        CHECK(r.boundary_edges == 0);
-        CHECK(r.nonmanifold_edges == 0);
-        CHECK(r.degenerate_triangles == 0);
+      for (const VaryingFactors c : kVaryingFactors) {
+        INFO(cage << " " << to_string(s) << " " << ts::to_string(c.partitioning));
+        check_watertight(weld(m, c.factor, c.vary, c.partitioning));
       }
     }
 }
@@ -241,20 +236,11 @@ TEST_CASE("Gregory, bspline and pn are watertight on closed quad-triangle cages 
   // catmark_pyramid (4 triangles on a quad), catmark_smoothtris0 (80 triangles, two valence-20 poles; a
   // vertex at x = -0, whose corners must weld with +0), loop_cube and loop_tetrahedron (all triangles)
   // and the mixed cube above (triangles and quads around one vertex).
-  struct Case {
-    ts::Partitioning p;
-    float factor, vary;
-  };
   auto check = [](const SubdModel& m, const std::string& name) {
     REQUIRE(m.patches.tris.size() > 0);
-    for (const Case c : {Case{ts::Partitioning::integer, 3.0f, 1.0f}, Case{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
-                         Case{ts::Partitioning::fractional_even, 2.6f, 1.3f}}) {
-      INFO(name << " " << to_string(m.patches.scheme) << " " << ts::to_string(c.p));
-      const auto r = weld(m, c.factor, c.vary, c.p);
-      CHECK(r.closed_manifold());
-      CHECK(r.boundary_edges == 0);
-      CHECK(r.nonmanifold_edges == 0);
-      CHECK(r.degenerate_triangles == 0);
+    for (const VaryingFactors c : kVaryingFactors) {
+      INFO(name << " " << to_string(m.patches.scheme) << " " << ts::to_string(c.partitioning));
+      check_watertight(weld(m, c.factor, c.vary, c.partitioning));
     }
   };
   for (Scheme s : {Scheme::gregory, Scheme::bspline, Scheme::pn, Scheme::exact}) {
