@@ -59,13 +59,19 @@ struct DisplacedPatchConstants {
   std::array<float, 4> lod_edge{}, lod_corner{};
 };
 
+// The length in texels of a UV step.
+inline float texel_length(glm::vec2 duv, glm::vec2 map_size) {
+  const glm::vec2 texels = duv * map_size;
+  return std::sqrt(texels.x * texels.x + texels.y * texels.y);
+}
+// A factor below 1 (or NaN) counts as 1 segment.
+inline float segments(float factor) { return factor > 1.0f ? factor : 1.0f; }
+// log2 of texels per segment, floored so that a zero length gives a finite LOD.
+inline float texels_per_segment_lod(float x) { return std::log2(x > 1e-20f ? x : 1e-20f); }
+
 // log2(texels per segment) of a UV step covering `factor` segments; see the LOD rule above.
 inline float displacement_lod(glm::vec2 duv, glm::vec2 map_size, float factor) {
-  const glm::vec2 texels = duv * map_size;
-  const float length = std::sqrt(texels.x * texels.x + texels.y * texels.y);
-  const float f = factor > 1.0f ? factor : 1.0f;  // NaN counts as 1 too
-  const float x = length / f;
-  return std::log2(x > 1e-20f ? x : 1e-20f);
+  return texels_per_segment_lod(texel_length(duv, map_size) / segments(factor));
 }
 
 struct DisplacedHS {
@@ -113,16 +119,9 @@ struct DisplacedHS {
           displacement_lod(tc.corner_span[std::size_t(k)][0], map_size, base.factors.edge(tc.corner_key[std::size_t(k)]));
     }
     const auto& c = tc.interior;
-    auto texels = [&](glm::vec2 d) {
-      const glm::vec2 x = d * map_size;
-      return std::sqrt(x.x * x.x + x.y * x.y);
-    };
-    const float lu = std::max(texels(c[1] - c[0]), texels(c[2] - c[3]));
-    const float lv = std::max(texels(c[3] - c[0]), texels(c[2] - c[1]));
-    const float fu = pc.factors.inside[0] > 1.0f ? pc.factors.inside[0] : 1.0f;
-    const float fv = pc.factors.inside[1] > 1.0f ? pc.factors.inside[1] : 1.0f;
-    const float x = std::max(lu / fu, lv / fv);
-    pc.lod_interior = std::log2(x > 1e-20f ? x : 1e-20f);
+    const float lu = std::max(texel_length(c[1] - c[0], map_size), texel_length(c[2] - c[3], map_size));
+    const float lv = std::max(texel_length(c[3] - c[0], map_size), texel_length(c[2] - c[1], map_size));
+    pc.lod_interior = texels_per_segment_lod(std::max(lu / segments(pc.factors.inside[0]), lv / segments(pc.factors.inside[1])));
     return pc;
   }
 };
@@ -149,11 +148,6 @@ inline void texture_derivatives(const glm::vec3& pa, const glm::vec3& pb, glm::v
   } else {
     dpdu = pa, dpdv = pb;
   }
-}
-
-inline glm::vec3 unit_or_zero(const glm::vec3& v) {
-  const float len = glm::length(v);
-  return len > 0.0f ? v / len : glm::vec3(0.0f);
 }
 
 struct DisplacedDS {

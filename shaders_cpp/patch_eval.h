@@ -115,6 +115,13 @@ inline void acc_tangents(std::span<const glm::vec3, 12> du, std::span<const glm:
   out_dv = (qv.x * c[0] + qv.z * c[2]) + qv.y * c[1];
 }
 
+// v / |v|, or zero where |v| is 0 (or NaN): a normal that degenerates (at a pole, or between a
+// patch's collapsed points) reads as none rather than as NaN.
+inline glm::vec3 unit_or_zero(const glm::vec3& v) {
+  const float len = glm::length(v);
+  return len > 0.0f ? v / len : glm::vec3(0.0f);
+}
+
 namespace detail {
 // A Gregory interior point: the face-point pair (F+, F-) blended by the weights of their edges. The
 // weights vanish together only at a corner, where edge evaluation does not read the point.
@@ -297,8 +304,7 @@ inline glm::vec3 quadratic_triangle_normal(std::span<const glm::vec3, 6> n, floa
     case TriEdge::u0: r = edge(w, at(0, 2), at(0, 1), at(0, 0)); break;
     case TriEdge::none: r = bezier_triangle<2>(n, u, v, w).position; break;
   }
-  const float len = glm::length(r);
-  return len > 0.0f ? r / len : glm::vec3(0.0f);
+  return unit_or_zero(r);
 }
 
 // The biquadratic normal field of a PN quad, n[i + 3 j] (i along u), normalized, with the same edge rule.
@@ -317,8 +323,7 @@ inline glm::vec3 biquadratic_normal(std::span<const glm::vec3, 9> n, float u, fl
       r = sum(qv, sum(qu, n[0], n[1], n[2]), sum(qu, n[3], n[4], n[5]), sum(qu, n[6], n[7], n[8]));
       break;
   }
-  const float len = glm::length(r);
-  return len > 0.0f ? r / len : glm::vec3(0.0f);
+  return unit_or_zero(r);
 }
 
 }  // namespace tessera

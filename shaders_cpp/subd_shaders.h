@@ -260,8 +260,7 @@ struct SubdDS {
     s.position = positive_zero(p.position);
     s.du = p.du, s.dv = p.dv;
     const glm::vec3 n = glm::cross(p.du, p.dv);
-    const float len = glm::length(n);
-    s.normal = len > 0.0f ? n / len : glm::vec3(0.0f);
+    s.normal = unit_or_zero(n);
     if (flip_normals) s.normal = -s.normal;
     return s;
   }

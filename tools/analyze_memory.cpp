@@ -195,12 +195,11 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
     // What the process holds before it draws anything (shared libraries, allocator, thread pool):
     // `tessera --version` loads the same libraries and exits.
     run_child({"tessera", "--version"}, a.base_rss_bytes);
-  }
-  if (o.measure)
     for (int level : model.levels) {
       log_info("analyze --measure: rendering level " + std::to_string(level));
       a.measured.push_back(measure_render(cage_path, o, level));
     }
+  }
   return a;
 }
 
