@@ -152,7 +152,8 @@ TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cl
 
 TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli][pipeline]") {
   for (const char* args : {"--resolution 0x10", "--resolution 100000x100000", "--resolution big", "--partitioning bogus",
-                           "--factor nan", "--frames 0", "--threads -3"}) {
+                           "--factor nan", "--frames 0", "--threads -3", "--tile-size 7", "--tile-size 2048",
+                           "--chunk-primitives 0"}) {
     INFO(args);
     const auto r = run_cli(std::string("bench torus --frames 1 ") + args);
     CHECK(r.exit_code == 2);

@@ -86,6 +86,11 @@ int run_bench_torus(const TorusOptions& o) {
   if (!partitioning) throw UsageError("--partitioning: expected integer, pow2, fractional_odd or fractional_even");
   if (!std::isfinite(o.factor)) throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
+  // The device would clamp these silently; a benchmark must run what it was asked to.
+  if (o.tile_size < 8 || o.tile_size > 1024 || o.tile_size % 2 != 0)
+    throw UsageError("--tile-size: " + std::to_string(o.tile_size) + " is not an even size in 8..1024");
+  if (o.chunk_primitives < 64 || o.chunk_primitives > (std::size_t(1) << 24))
+    throw UsageError("--chunk-primitives: " + std::to_string(o.chunk_primitives) + " is not in 64..16777216");
   const auto [w, h] = parse_resolution(o.resolution);
   if (!o.llvmpipe.empty()) check_llvmpipe(o, *partitioning);
 
