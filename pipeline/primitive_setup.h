@@ -316,24 +316,24 @@ void make_setup_vertices(const SetupContext& c, std::span<const ClipVertex<N>> i
     _mm_store_ps(zs, sz);
     _mm_store_ps(inv_ws, inv_w);
     for (int k = 0; k < 4; ++k) {
+      // Every field written in place (as make_setup_vertex leaves it): assigning a value-initialised
+      // SetupVertex went through a stack temporary whose copy stalled on store forwarding.
       SetupVertex<N>& s = out[i + std::size_t(k)];
       const ClipVertex<N>& v = in[i + std::size_t(k)];
-      s = SetupVertex<N>{};
+      const bool is_finite = (finite >> k) & 1u;
+      const bool snapped = is_finite && clip_codes[k] == 0;
       s.clip = v;
-      if (!((finite >> k) & 1u)) {
-        s.finite = false;
-        continue;
-      }
-      s.view_code = unsigned(view_codes[k]);
-      s.clip_code = unsigned(clip_codes[k]);
-      if (s.clip_code != 0) continue;
-      s.x = xs[k];
-      s.y = ys[k];
-      s.z = zs[k];
-      s.inv_w = inv_ws[k];
+      s.finite = is_finite;
+      s.view_code = is_finite ? unsigned(view_codes[k]) : 0u;
+      s.clip_code = is_finite ? unsigned(clip_codes[k]) : 0u;
+      s.x = snapped ? xs[k] : 0;
+      s.y = snapped ? ys[k] : 0;
+      s.z = snapped ? zs[k] : 0.0f;
+      s.inv_w = snapped ? inv_ws[k] : 0.0f;
       s.plane_values[0] = s.z;
       s.plane_values[1] = s.inv_w;
-      for (std::size_t a = 0; a < N; ++a) s.plane_values[2 + a] = v.attributes[a] * s.inv_w;
+      for (std::size_t a = 0; a < N; ++a) s.plane_values[2 + a] = snapped ? v.attributes[a] * s.inv_w : 0.0f;
+      for (std::size_t a = N + 2; a < s.plane_values.size(); ++a) s.plane_values[a] = 0.0f;
     }
   }
 #endif
