@@ -30,6 +30,7 @@
 #include <tbb/task_arena.h>
 
 #include "framebuffer.h"
+#include "front_end.h"
 #include "parallel.h"
 #include "pattern_cache.h"
 #include "pipeline_state.h"
@@ -87,68 +88,6 @@ std::string validate_viewport(const Viewport& vp, const Framebuffer& fb);
 std::string validate_patch_draw(std::size_t index_count, int control_points, const TessellatorState& ts);
 
 namespace detail {
-
-using Clock = std::chrono::steady_clock;
-inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// Maps the vertex indices of a window to unique VS invocations (vertex caching by index).
-struct VertexCache {
-  std::vector<std::uint32_t> stamp;   // per vertex: window number that last used it
-  std::vector<std::uint32_t> slot;    // per vertex: its VS output slot in that window
-  std::vector<std::uint32_t> unique;  // vertex ids run through the VS this window, in first-use order
-  std::vector<std::uint32_t> slots;   // per index of the window: its VS output slot
-  std::uint32_t window = 0;
-
-  // Out-of-range indices share one slot whose VS input is a zero vertex (D3D11: out-of-bounds fetch
-  // returns 0); `unique` holds vertex_count for it.
-  void build(std::span<const std::uint32_t> indices, std::size_t vertex_count) {
-    if (stamp.size() != vertex_count + 1) {
-      stamp.assign(vertex_count + 1, 0);
-      slot.assign(vertex_count + 1, 0);
-      window = 0;
-    }
-    ++window;
-    unique.clear();
-    slots.resize(indices.size());
-    for (std::size_t i = 0; i < indices.size(); ++i) {
-      const std::size_t v = std::min<std::size_t>(indices[i], vertex_count);
-      if (stamp[v] != window) {
-        stamp[v] = window;
-        slot[v] = static_cast<std::uint32_t>(unique.size());
-        unique.push_back(static_cast<std::uint32_t>(v));
-      }
-      slots[i] = slot[v];
-    }
-  }
-  std::size_t bytes() const {
-    return (stamp.capacity() + slot.capacity() + unique.capacity() + slots.capacity()) * sizeof(std::uint32_t);
-  }
-};
-
-template <class Vertex, class Vs, class Out>
-void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const VertexCache& cache, std::vector<Out>& out) {
-  out.resize(cache.unique.size());
-  detail::parallel_for(tbb::blocked_range<std::size_t>(0, cache.unique.size(), 256), [&](const auto& r) {
-    const Vertex zero{};
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::uint32_t id = cache.unique[i];
-      out[i] = vs(id < vertices.size() ? vertices[id] : zero, id);
-    }
-  });
-}
-
-// IA and VS for one window of indices: vertex caching by index, then the VS once per unique vertex.
-template <class Vertex, class Vs, class Out>
-void assemble_and_shade_vertices(const Vs& vs, std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
-                                 std::size_t primitives, VertexCache& cache, std::vector<Out>& out, DrawReport& report) {
-  const auto start = Clock::now();
-  cache.build(indices, vertices.size());
-  run_vertex_shader(vs, vertices, cache, out);
-  report.statistics.IAVertices += indices.size();
-  report.statistics.IAPrimitives += primitives;
-  report.statistics.VSInvocations += cache.unique.size();
-  report.times.ia_vs += seconds_since(start);
-}
 
 // The back end: chunk slots, and the tile-parallel flush that rasterizes them in draw order.
 template <std::size_t N, class Ps>
@@ -223,87 +162,6 @@ class Backend {
   std::size_t chunk_bytes_peak_ = 0;
 };
 
-// Cuts [0, count) into ranges whose summed cost stays at or below `budget` (a range holds at least one
-// item) and at most `max_items` items.
-inline void cut_chunks(std::span<const std::uint32_t> cost, std::size_t budget, std::size_t max_items,
-                       std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
-  out.clear();
-  std::uint32_t begin = 0;
-  std::size_t sum = 0;
-  for (std::uint32_t i = 0; i < cost.size(); ++i) {
-    if (i > begin && (sum + cost[i] > budget || i - begin >= max_items)) {
-      out.emplace_back(begin, i);
-      begin = i;
-      sum = 0;
-    }
-    sum += cost[i];
-  }
-  if (begin < cost.size()) out.emplace_back(begin, static_cast<std::uint32_t>(cost.size()));
-}
-
-inline ts::FactorSet factor_set(ts::Domain domain, const TessFactors& f) {
-  ts::FactorSet s;
-  s.domain = domain;
-  s.values = {f.edge[0], f.edge[1], f.edge[2], f.edge[3], f.inside[0], f.inside[1]};
-  if (domain == ts::Domain::tri) s.values[3] = f.inside[0];
-  return s;
-}
-
-// The hull-shader phase of one window of patches, shared by Device::draw and stream_out: for each
-// patch the control-point phase, the patch-constant phase, factor processing, and the pattern's
-// primitive count (the cost that chunks are cut by). Parallel over patches; the results are stored
-// by patch, so they do not depend on the thread count.
-template <class VsOut, class ControlPoint, class PatchConstants>
-struct HullPhase {
-  std::vector<ControlPoint> control_points;  // kOut per patch
-  std::vector<PatchConstants> constants;
-  std::vector<ts::ProcessedFactors> processed;
-  std::vector<std::uint32_t> cost;           // primitives; 0 when culled
-
-  // cache_of() and times_of() return the calling thread's PatternCache and StageTimes.
-  template <class Hs, class CacheOf, class TimesOf>
-  void run(const Hs& hs, const std::vector<VsOut>& vs_out, const VertexCache& vcache, std::size_t n, std::size_t n_in,
-           std::size_t first, const TessellatorState& tstate, CacheOf&& cache_of, TimesOf&& times_of) {
-    constexpr int kOut = Hs::kOutputControlPoints;
-    control_points.resize(n * kOut);
-    constants.resize(n);
-    processed.resize(n);
-    cost.resize(n);
-    detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
-      PatternCache& cache = cache_of();
-      StageTimes& times = times_of();
-      std::array<VsOut, 32> inputs;
-      for (std::size_t p = r.begin(); p != r.end(); ++p) {
-        const auto start = Clock::now();
-        const auto patch_id = static_cast<std::uint32_t>(first + p);
-        for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
-        const std::span<const VsOut> in(inputs.data(), n_in);
-        ControlPoint* out = control_points.data() + p * kOut;
-        for (int i = 0; i < kOut; ++i) out[i] = hs.control_point(in, i, patch_id);
-        constants[p] = hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
-        processed[p] = ts::process_factors(tstate.partitioning, factor_set(tstate.domain, constants[p].factors));
-        const auto hs_done = Clock::now();
-        times.hs += std::chrono::duration<double>(hs_done - start).count();
-        if (processed[p].culled) {
-          cost[p] = 0;
-          continue;
-        }
-        bool hit = false;
-        cost[p] = static_cast<std::uint32_t>(cache.get(processed[p], tstate.output, hit).primitive_count());
-        if (!hit) times.tessellator += seconds_since(hs_done);
-      }
-    });
-  }
-
-  std::span<const ControlPoint> patch_control_points(std::size_t p, int k_out) const {
-    return {control_points.data() + p * std::size_t(k_out), std::size_t(k_out)};
-  }
-  std::size_t bytes() const {
-    return control_points.capacity() * sizeof(ControlPoint) + constants.capacity() * sizeof(PatchConstants) +
-           processed.capacity() * sizeof(ts::ProcessedFactors) + cost.capacity() * sizeof(std::uint32_t);
-  }
-};
-
 template <std::size_t N>
 struct PatchScratch {
   PatternCache patterns;
@@ -348,121 +206,90 @@ class Device {
 
 template <class Vertex, class Vs, class Hs, class Ds, class Ps>
 DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb) {
-  using VsOut = vs_output_t<Vs, Vertex>;
-  static_assert(HullShader<Hs, VsOut>, "the hull shader does not have the shape stage_io.h describes");
-  using ControlPoint = hs_control_point_t<Hs, VsOut>;
-  using PatchConstants = hs_patch_constants_t<Hs, VsOut>;
+  using FrontEnd = detail::PatchFrontEnd<Vertex, Vs, Hs>;
+  using ControlPoint = typename FrontEnd::ControlPoint;
+  using PatchConstants = typename FrontEnd::PatchConstants;
   using DsOut = decltype(d.ds(std::declval<const PatchConstants&>(), std::span<const ControlPoint>(), DomainLocation{},
                               std::uint32_t{0}));
   static_assert(is_clip_vertex<DsOut>::value, "the domain shader must return ClipVertex<N>");
   constexpr std::size_t N = is_clip_vertex<DsOut>::attribute_count;
-  constexpr int kOut = Hs::kOutputControlPoints;
 
   DrawResult result;
   if (auto e = validate_viewport(d.viewport, fb); !e.empty()) return {e, {}};
   if (auto e = validate_patch_draw(d.indices.size(), d.control_points, d.tessellator); !e.empty()) return {e, {}};
   const auto draw_start = detail::Clock::now();
   DrawReport& report = result.report;
-  const std::size_t n_in = std::size_t(d.control_points);
-  const std::size_t patch_count = d.indices.size() / n_in;
   const TessellatorState tstate = d.tessellator;
 
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, options_.chunks_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
-    tbb::enumerable_thread_specific<StageTimes> front_times;
+    FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
+                   options_.chunk_primitives);
+    std::size_t scratch_bytes_peak = 0;
 
-    detail::VertexCache vcache;
-    std::vector<VsOut> vs_out;
-    detail::HullPhase<VsOut, ControlPoint, PatchConstants> hull;
-    const auto& processed = hull.processed;
-    const auto& constants = hull.constants;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
-    std::size_t window_bytes_peak = 0;
+    // A patch through the DS (in its batch form when it has one) and setup_vertex, then its primitives
+    // through setup into the chunk.
+    const auto patch_to_chunk = [&](const typename FrontEnd::Work& w, detail::PatchScratch<N>& local,
+                                    ChunkBuffer<N>& chunk) {
+      const auto start = detail::Clock::now();
+      const ts::Pattern& pattern = w.pattern;
+      auto& outs = local.domain_outputs;
+      outs.resize(pattern.points.size());
+      if constexpr (BatchDomainShader<Ds, PatchConstants, ControlPoint, N>) {
+        auto& locations = local.locations;
+        auto& clips = local.clip_outputs;
+        locations.resize(pattern.points.size());
+        clips.resize(pattern.points.size());
+        for (std::size_t i = 0; i < pattern.points.size(); ++i)
+          locations[i] = detail::domain_location(pattern.points[i], tstate.domain);
+        d.ds(w.constants, w.control_points, std::span<const DomainLocation>(locations), w.patch_id,
+             std::span<ClipVertex<N>>(clips));
+        make_setup_vertices<N>(setup, std::span<const ClipVertex<N>>(clips), std::span<SetupVertex<N>>(outs));
+      } else {
+        for (std::size_t i = 0; i < pattern.points.size(); ++i)
+          outs[i] = make_setup_vertex<N>(
+              setup, d.ds(w.constants, w.control_points, detail::domain_location(pattern.points[i], tstate.domain), w.patch_id));
+      }
+      chunk.statistics.DSInvocations += pattern.points.size();
+      const auto ds_done = detail::Clock::now();
+      chunk.times.ds += std::chrono::duration<double>(ds_done - start).count();
+      const auto& idx = pattern.indices;
+      switch (pattern.output) {
+        case ts::OutputPrimitive::triangle_cw:
+        case ts::OutputPrimitive::triangle_ccw:
+          for (std::size_t i = 0; i + 2 < idx.size(); i += 3)
+            setup_triangle<N>(setup, chunk, outs[idx[i]], outs[idx[i + 1]], outs[idx[i + 2]], w.patch_id);
+          break;
+        case ts::OutputPrimitive::line:
+          for (std::size_t i = 0; i + 1 < idx.size(); i += 2)
+            setup_line<N>(setup, chunk, outs[idx[i]], outs[idx[i + 1]], w.patch_id);
+          break;
+        case ts::OutputPrimitive::point:
+          for (std::uint32_t i : idx) setup_point<N>(setup, chunk, outs[i], w.patch_id);
+          break;
+      }
+      chunk.times.setup += detail::seconds_since(ds_done);
+    };
 
-    const std::size_t window = std::size_t(std::max(1, options_.window_patches));
-    for (std::size_t first = 0; first < patch_count; first += window) {
-      const std::size_t n = std::min(window, patch_count - first);
-      const auto indices = d.indices.subspan(first * n_in, n * n_in);
-
-      detail::assemble_and_shade_vertices(d.vs, d.vertices, indices, n, vcache, vs_out, report);
-      hull.run(d.hs, vs_out, vcache, n, n_in, first, tstate, [&]() -> PatternCache& { return scratch.local().patterns; },
-               [&]() -> StageTimes& { return front_times.local(); });
-      report.statistics.HSInvocations += n;
-
-      // Chunks of about chunk_primitives primitives, in draw order.
-      detail::cut_chunks(hull.cost, options_.chunk_primitives, 256, chunks);
-      backend.run(
-          chunks.size(),
-          [&](std::size_t c, ChunkBuffer<N>& chunk) {
-            auto& local = scratch.local();
-            const auto [begin, end] = chunks[c];
-            for (std::uint32_t p = begin; p < end; ++p) {
-              if (processed[p].culled) continue;
-              const auto start = detail::Clock::now();
-              bool hit = false;
-              const ts::Pattern& pattern = local.patterns.get(processed[p], tstate.output, hit);
-              const auto tess_done = detail::Clock::now();
-              if (!hit) chunk.times.tessellator += std::chrono::duration<double>(tess_done - start).count();
-              const auto patch_id = static_cast<std::uint32_t>(first + p);
-              const std::span<const ControlPoint> cps = hull.patch_control_points(p, kOut);
-              const PatchConstants& pc = constants[p];
-              auto& outs = local.domain_outputs;
-              outs.resize(pattern.points.size());
-              const bool tri = tstate.domain == ts::Domain::tri;
-              if constexpr (BatchDomainShader<Ds, PatchConstants, ControlPoint, N>) {
-                auto& locations = local.locations;
-                auto& clips = local.clip_outputs;
-                locations.resize(pattern.points.size());
-                clips.resize(pattern.points.size());
-                for (std::size_t i = 0; i < pattern.points.size(); ++i) {
-                  const ts::DomainPoint q = pattern.points[i];
-                  locations[i] = DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f};
-                }
-                d.ds(pc, cps, std::span<const DomainLocation>(locations), patch_id, std::span<ClipVertex<N>>(clips));
-                make_setup_vertices<N>(backend.setup(), std::span<const ClipVertex<N>>(clips), std::span<SetupVertex<N>>(outs));
-              } else {
-                for (std::size_t i = 0; i < pattern.points.size(); ++i) {
-                  const ts::DomainPoint q = pattern.points[i];
-                  outs[i] = make_setup_vertex<N>(
-                      backend.setup(), d.ds(pc, cps, DomainLocation{q.u, q.v, tri ? (1.0f - q.u) - q.v : 0.0f}, patch_id));
-                }
-              }
-              chunk.statistics.DSInvocations += pattern.points.size();
-              const auto ds_done = detail::Clock::now();
-              chunk.times.ds += std::chrono::duration<double>(ds_done - tess_done).count();
-              const auto& idx = pattern.indices;
-              switch (pattern.output) {
-                case ts::OutputPrimitive::triangle_cw:
-                case ts::OutputPrimitive::triangle_ccw:
-                  for (std::size_t i = 0; i + 2 < idx.size(); i += 3)
-                    setup_triangle<N>(backend.setup(), chunk, outs[idx[i]], outs[idx[i + 1]], outs[idx[i + 2]], patch_id);
-                  break;
-                case ts::OutputPrimitive::line:
-                  for (std::size_t i = 0; i + 1 < idx.size(); i += 2)
-                    setup_line<N>(backend.setup(), chunk, outs[idx[i]], outs[idx[i + 1]], patch_id);
-                  break;
-                case ts::OutputPrimitive::point:
-                  for (std::uint32_t i : idx) setup_point<N>(backend.setup(), chunk, outs[i], patch_id);
-                  break;
-              }
-              chunk.times.setup += detail::seconds_since(ds_done);
-            }
-          },
-          report);
-
-      std::size_t bytes = vcache.bytes() + vs_out.capacity() * sizeof(VsOut) + hull.bytes();
-      for (const auto& s : scratch) bytes += s.bytes();
-      window_bytes_peak = std::max(window_bytes_peak, bytes);
-    }
-    for (const auto& t : front_times) report.times += t;
-    for (const auto& s : scratch) {
-      report.memory.pattern_cache_hits += s.patterns.hits();
-      report.memory.pattern_cache_misses += s.patterns.misses();
-      report.memory.pattern_cache_bytes += s.patterns.bytes();
-    }
-    report.memory.geometry_peak_bytes = window_bytes_peak + backend.chunk_bytes_peak();
+    front.run(
+        report, [&]() -> PatternCache& { return scratch.local().patterns; },
+        [&] {
+          backend.run(
+              front.chunk_count(),
+              [&](std::size_t c, ChunkBuffer<N>& chunk) {
+                auto& local = scratch.local();
+                front.for_each_patch(c, local.patterns, chunk.times.tessellator,
+                                     [&](const typename FrontEnd::Work& w) { patch_to_chunk(w, local, chunk); });
+              },
+              report);
+          std::size_t bytes = 0;
+          for (const auto& s : scratch) bytes += s.bytes();
+          scratch_bytes_peak = std::max(scratch_bytes_peak, bytes);
+        });
+    for (const auto& s : scratch) detail::add_pattern_cache(report.memory, s.patterns);
+    report.memory.geometry_peak_bytes = front.window_bytes_peak() + scratch_bytes_peak + backend.chunk_bytes_peak();
   });
   report.memory.framebuffer_bytes = fb.bytes();
   report.times.wall = detail::seconds_since(draw_start);

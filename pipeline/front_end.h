@@ -1,0 +1,278 @@
+// The front end of a patch draw, shared by Device::draw (device.h) and stream_out (stream_output.h):
+// IA with vertex caching by index, the VS once per unique control point, the HS phases and factor
+// processing, window by window, and the cut of each window's patches into chunks by primitive count.
+// What happens to a chunk's patches (DS, then setup or the caller's sink) is the caller's.
+//
+// Contract
+// - Windows hold at most `window_patches` patches; their VS and HS outputs are the only storage that
+//   grows with the draw, and it is bounded by the window.
+// - Chunks are ranges of a window's patches in draw order whose primitive counts sum to at most
+//   `chunk_primitives` (a chunk holds at least one patch, and at most 256).
+// - Everything stored is indexed by patch, so results do not depend on the thread count.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+
+#include "parallel.h"
+#include "pattern_cache.h"
+#include "pipeline_state.h"
+#include "stage_io.h"
+#include "statistics.h"
+
+namespace tessera::detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Maps the vertex indices of a window to unique VS invocations (vertex caching by index).
+struct VertexCache {
+  std::vector<std::uint32_t> stamp;   // per vertex: window number that last used it
+  std::vector<std::uint32_t> slot;    // per vertex: its VS output slot in that window
+  std::vector<std::uint32_t> unique;  // vertex ids run through the VS this window, in first-use order
+  std::vector<std::uint32_t> slots;   // per index of the window: its VS output slot
+  std::uint32_t window = 0;
+
+  // Out-of-range indices share one slot whose VS input is a zero vertex (D3D11: out-of-bounds fetch
+  // returns 0); `unique` holds vertex_count for it.
+  void build(std::span<const std::uint32_t> indices, std::size_t vertex_count) {
+    if (stamp.size() != vertex_count + 1) {
+      stamp.assign(vertex_count + 1, 0);
+      slot.assign(vertex_count + 1, 0);
+      window = 0;
+    }
+    ++window;
+    unique.clear();
+    slots.resize(indices.size());
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      const std::size_t v = std::min<std::size_t>(indices[i], vertex_count);
+      if (stamp[v] != window) {
+        stamp[v] = window;
+        slot[v] = static_cast<std::uint32_t>(unique.size());
+        unique.push_back(static_cast<std::uint32_t>(v));
+      }
+      slots[i] = slot[v];
+    }
+  }
+  std::size_t bytes() const {
+    return (stamp.capacity() + slot.capacity() + unique.capacity() + slots.capacity()) * sizeof(std::uint32_t);
+  }
+};
+
+template <class Vertex, class Vs, class Out>
+void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const VertexCache& cache, std::vector<Out>& out) {
+  out.resize(cache.unique.size());
+  detail::parallel_for(tbb::blocked_range<std::size_t>(0, cache.unique.size(), 256), [&](const auto& r) {
+    const Vertex zero{};
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::uint32_t id = cache.unique[i];
+      out[i] = vs(id < vertices.size() ? vertices[id] : zero, id);
+    }
+  });
+}
+
+// IA and VS for one window of indices: vertex caching by index, then the VS once per unique vertex.
+template <class Vertex, class Vs, class Out>
+void assemble_and_shade_vertices(const Vs& vs, std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
+                                 std::size_t primitives, VertexCache& cache, std::vector<Out>& out, DrawReport& report) {
+  const auto start = Clock::now();
+  cache.build(indices, vertices.size());
+  run_vertex_shader(vs, vertices, cache, out);
+  report.statistics.IAVertices += indices.size();
+  report.statistics.IAPrimitives += primitives;
+  report.statistics.VSInvocations += cache.unique.size();
+  report.times.ia_vs += seconds_since(start);
+}
+
+// Cuts [0, count) into ranges whose summed cost stays at or below `budget` (a range holds at least one
+// item) and at most `max_items` items.
+inline void cut_chunks(std::span<const std::uint32_t> cost, std::size_t budget, std::size_t max_items,
+                       std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+  out.clear();
+  std::uint32_t begin = 0;
+  std::size_t sum = 0;
+  for (std::uint32_t i = 0; i < cost.size(); ++i) {
+    if (i > begin && (sum + cost[i] > budget || i - begin >= max_items)) {
+      out.emplace_back(begin, i);
+      begin = i;
+      sum = 0;
+    }
+    sum += cost[i];
+  }
+  if (begin < cost.size()) out.emplace_back(begin, static_cast<std::uint32_t>(cost.size()));
+}
+
+inline ts::FactorSet factor_set(ts::Domain domain, const TessFactors& f) {
+  ts::FactorSet s;
+  s.domain = domain;
+  s.values = {f.edge[0], f.edge[1], f.edge[2], f.edge[3], f.inside[0], f.inside[1]};
+  if (domain == ts::Domain::tri) s.values[3] = f.inside[0];
+  return s;
+}
+
+// SV_DomainLocation of a tessellator point: (u, v, 0) on quads and isolines, barycentric (u, v, w) on
+// triangles.
+inline DomainLocation domain_location(ts::DomainPoint q, ts::Domain domain) {
+  return DomainLocation{q.u, q.v, domain == ts::Domain::tri ? (1.0f - q.u) - q.v : 0.0f};
+}
+
+// Adds a thread's pattern cache counters and size to the draw's memory report.
+inline void add_pattern_cache(MemoryStats& memory, const PatternCache& cache) {
+  memory.pattern_cache_hits += cache.hits();
+  memory.pattern_cache_misses += cache.misses();
+  memory.pattern_cache_bytes += cache.bytes();
+}
+
+// The hull-shader phase of one window of patches: for each patch the control-point phase, the
+// patch-constant phase, factor processing, and the pattern's primitive count (the cost that chunks
+// are cut by). Parallel over patches; the results are stored by patch, so they do not depend on the
+// thread count.
+template <class VsOut, class ControlPoint, class PatchConstants>
+struct HullPhase {
+  std::vector<ControlPoint> control_points;  // kOut per patch
+  std::vector<PatchConstants> constants;
+  std::vector<ts::ProcessedFactors> processed;
+  std::vector<std::uint32_t> cost;           // primitives; 0 when culled
+
+  // cache_of() and times_of() return the calling thread's PatternCache and StageTimes.
+  template <class Hs, class CacheOf, class TimesOf>
+  void run(const Hs& hs, const std::vector<VsOut>& vs_out, const VertexCache& vcache, std::size_t n, std::size_t n_in,
+           std::size_t first, const TessellatorState& tstate, CacheOf&& cache_of, TimesOf&& times_of) {
+    constexpr int kOut = Hs::kOutputControlPoints;
+    control_points.resize(n * kOut);
+    constants.resize(n);
+    processed.resize(n);
+    cost.resize(n);
+    detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
+      PatternCache& cache = cache_of();
+      StageTimes& times = times_of();
+      std::array<VsOut, 32> inputs;
+      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+        const auto start = Clock::now();
+        const auto patch_id = static_cast<std::uint32_t>(first + p);
+        for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
+        const std::span<const VsOut> in(inputs.data(), n_in);
+        ControlPoint* out = control_points.data() + p * kOut;
+        for (int i = 0; i < kOut; ++i) out[i] = hs.control_point(in, i, patch_id);
+        constants[p] = hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
+        processed[p] = ts::process_factors(tstate.partitioning, factor_set(tstate.domain, constants[p].factors));
+        const auto hs_done = Clock::now();
+        times.hs += std::chrono::duration<double>(hs_done - start).count();
+        if (processed[p].culled) {
+          cost[p] = 0;
+          continue;
+        }
+        bool hit = false;
+        cost[p] = static_cast<std::uint32_t>(cache.get(processed[p], tstate.output, hit).primitive_count());
+        if (!hit) times.tessellator += seconds_since(hs_done);
+      }
+    });
+  }
+
+  std::size_t bytes() const {
+    return control_points.capacity() * sizeof(ControlPoint) + constants.capacity() * sizeof(PatchConstants) +
+           processed.capacity() * sizeof(ts::ProcessedFactors) + cost.capacity() * sizeof(std::uint32_t);
+  }
+};
+
+// A patch of a chunk, ready for its domain shader.
+template <class ControlPoint, class PatchConstants>
+struct PatchWork {
+  std::uint32_t patch_id = 0;  // SV_PrimitiveID
+  const ts::Pattern& pattern;
+  std::span<const ControlPoint> control_points;
+  const PatchConstants& constants;
+};
+
+template <class Vertex, class Vs, class Hs>
+class PatchFrontEnd {
+ public:
+  using VsOut = vs_output_t<Vs, Vertex>;
+  static_assert(HullShader<Hs, VsOut>, "the hull shader does not have the shape stage_io.h describes");
+  using ControlPoint = hs_control_point_t<Hs, VsOut>;
+  using PatchConstants = hs_patch_constants_t<Hs, VsOut>;
+  using Work = PatchWork<ControlPoint, PatchConstants>;
+  static constexpr int kOut = Hs::kOutputControlPoints;
+
+  // The draw's inputs must outlive the front end; validate_patch_draw() has accepted them.
+  PatchFrontEnd(std::span<const Vertex> vertices, std::span<const std::uint32_t> indices, int control_points,
+                const Vs& vs, const Hs& hs, const TessellatorState& tessellator, int window_patches,
+                std::size_t chunk_primitives)
+      : vertices_(vertices),
+        indices_(indices),
+        n_in_(std::size_t(control_points)),
+        vs_(vs),
+        hs_(hs),
+        tstate_(tessellator),
+        window_(std::size_t(std::max(1, window_patches))),
+        chunk_primitives_(chunk_primitives) {}
+
+  // Runs the front end window by window; after each window's HS phase, on_window() handles its
+  // chunk_count() chunks (with for_each_patch). cache_of() returns the calling thread's PatternCache.
+  template <class CacheOf, class OnWindow>
+  void run(DrawReport& report, CacheOf&& cache_of, OnWindow&& on_window) {
+    tbb::enumerable_thread_specific<StageTimes> front_times;
+    const std::size_t patch_count = indices_.size() / n_in_;
+    for (first_ = 0; first_ < patch_count; first_ += window_) {
+      const std::size_t n = std::min(window_, patch_count - first_);
+      assemble_and_shade_vertices(vs_, vertices_, indices_.subspan(first_ * n_in_, n * n_in_), n, vcache_, vs_out_,
+                                  report);
+      hull_.run(hs_, vs_out_, vcache_, n, n_in_, first_, tstate_, cache_of,
+                [&]() -> StageTimes& { return front_times.local(); });
+      report.statistics.HSInvocations += n;
+      cut_chunks(hull_.cost, chunk_primitives_, 256, chunks_);
+      on_window();
+      window_bytes_peak_ = std::max(window_bytes_peak_, window_bytes());
+    }
+    for (const auto& t : front_times) report.times += t;
+  }
+
+  std::size_t chunk_count() const { return chunks_.size(); }
+
+  // Calls visit(const Work&) for each patch of the current window's chunk `c` that is not culled, in
+  // draw order. Patterns come from `cache`; the time of a miss is added to `tessellator_seconds`.
+  template <class Visit>
+  void for_each_patch(std::size_t c, PatternCache& cache, double& tessellator_seconds, Visit&& visit) const {
+    const auto [begin, end] = chunks_[c];
+    for (std::uint32_t p = begin; p < end; ++p) {
+      if (hull_.processed[p].culled) continue;
+      const auto start = Clock::now();
+      bool hit = false;
+      const ts::Pattern& pattern = cache.get(hull_.processed[p], tstate_.output, hit);
+      if (!hit) tessellator_seconds += seconds_since(start);
+      visit(Work{static_cast<std::uint32_t>(first_ + p), pattern,
+                 std::span<const ControlPoint>(hull_.control_points.data() + p * kOut, kOut), hull_.constants[p]});
+    }
+  }
+
+  // Bytes of the current window's IA, VS and HS storage, and their peak over the windows so far.
+  std::size_t window_bytes() const { return vcache_.bytes() + vs_out_.capacity() * sizeof(VsOut) + hull_.bytes(); }
+  std::size_t window_bytes_peak() const { return window_bytes_peak_; }
+
+ private:
+  std::span<const Vertex> vertices_;
+  std::span<const std::uint32_t> indices_;
+  std::size_t n_in_;
+  const Vs& vs_;
+  const Hs& hs_;
+  TessellatorState tstate_;
+  std::size_t window_;
+  std::size_t chunk_primitives_;
+
+  std::size_t first_ = 0;  // the current window's first patch
+  VertexCache vcache_;
+  std::vector<VsOut> vs_out_;
+  HullPhase<VsOut, ControlPoint, PatchConstants> hull_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks_;
+  std::size_t window_bytes_peak_ = 0;
+};
+
+}  // namespace tessera::detail
