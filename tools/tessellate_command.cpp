@@ -2,12 +2,17 @@
 // the domain shader produced written as binary PLY. Each patch writes its own vertices (nothing is
 // merged across patches), so crack-freedom can be checked from outside by welding on exact float bits;
 // `--check-watertight` does that here too.
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -26,9 +31,14 @@ struct TessellateOptions {
   DisplacementCli displacement;
 };
 
+// One PLY value, little-endian as the header says, whatever the host's byte order.
 template <class T>
 void put(std::ofstream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof v);
+  static_assert(std::is_trivially_copyable_v<T>);
+  std::array<char, sizeof(T)> bytes;
+  std::memcpy(bytes.data(), &v, sizeof v);
+  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+  out.write(bytes.data(), bytes.size());
 }
 
 int run_tessellate(const TessellateOptions& o) {
