@@ -5,9 +5,9 @@
 // - Deterministic: the framebuffer bytes and the statistics are identical for any thread count and
 //   from run to run. Work is split into chunks of primitives in draw order; each tile rasterizes the
 //   chunks' primitives in draw order; every computation on a primitive is a pure function of it.
-// - Bounded memory: the front end handles at most `window_patches` patches at a time (VS and HS
-//   outputs), and cuts their output into chunks of about `chunk_primitives` primitives, at most
-//   `chunks_in_flight` of which exist at once before they are flushed to the rasterizer. Peak memory
+// - Bounded memory: the front end (front_end.h) handles at most `window_patches` patches at a time
+//   (VS and HS outputs), and cuts their output into chunks of about `chunk_primitives` primitives, at
+//   most `chunks_in_flight` of which exist at once before they are flushed to the rasterizer. Peak memory
 //   therefore does not grow with the tessellation factor (one patch is at most 8192 triangles).
 // - Bad data is reported, not crashed on: validate() errors are returned as one-line messages;
 //   D3D11's own rules cover the rest (out-of-range indices fetch a zero vertex, NaN/Inf positions
