@@ -178,18 +178,26 @@ inline std::int32_t last_pixel_at_or_before(std::int32_t hi) {
 }
 
 // Edge i of a triangle with positive area runs from vertex i to vertex i + 1; it is >= 0 on the inside
-// and biased by -1 unless it is a top or left edge (D3D11's top-left rule). raster_tile.h evaluates
-// exactly these functions incrementally; this is the one-centre form (pixel centre px + 0.5, py + 0.5).
+// and biased by -1 unless it is a top or left edge (D3D11's top-left rule). EdgeFunction is edge i's
+// value at (cx, cy) (16.8 units) and its steps for one pixel right and down, in 64-bit integers (exact
+// inside the guard band); raster_tile.h walks exactly these functions, and setup's 32-bit lanes compute
+// the same values for small triangles.
+struct EdgeFunction {
+  std::int64_t value, step_x, step_y;
+};
+inline EdgeFunction edge_function(const std::int32_t* x, const std::int32_t* y, int i, std::int64_t cx, std::int64_t cy) {
+  const int j = i == 2 ? 0 : i + 1;
+  const std::int64_t dx = x[j] - x[i], dy = y[j] - y[i];
+  const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+  return {-dy * (cx - x[i]) + dx * (cy - y[i]) + (top_left ? 0 : -1), -dy * kSubpixelOne, dx * kSubpixelOne};
+}
+
+// The one-centre form: whether pixel (px, py)'s centre (px + 0.5, py + 0.5) is covered.
 inline bool covers_centre(const std::int32_t (&x)[3], const std::int32_t (&y)[3], std::int32_t px, std::int32_t py) {
   const std::int64_t cx = std::int64_t(px) * kSubpixelOne + kSubpixelOne / 2;
   const std::int64_t cy = std::int64_t(py) * kSubpixelOne + kSubpixelOne / 2;
   std::int64_t all = 0;
-  for (int i = 0; i < 3; ++i) {
-    const int j = i == 2 ? 0 : i + 1;
-    const std::int64_t dx = x[j] - x[i], dy = y[j] - y[i];
-    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-    all |= -dy * (cx - x[i]) + dx * (cy - y[i]) + (top_left ? 0 : -1);
-  }
+  for (int i = 0; i < 3; ++i) all |= edge_function(x, y, i, cx, cy).value;
   return all >= 0;
 }
 
@@ -238,6 +246,15 @@ struct SetupVertex {
   bool finite = true;
 };
 
+// A snapped vertex's plane_values, from its z, 1/w and attributes.
+template <std::size_t N>
+void set_plane_values(SetupVertex<N>& s) {
+  s.plane_values[0] = s.z;
+  s.plane_values[1] = s.inv_w;
+  for (std::size_t a = 0; a < N; ++a) s.plane_values[2 + a] = s.clip.attributes[a] * s.inv_w;
+  for (std::size_t a = N + 2; a < s.plane_values.size(); ++a) s.plane_values[a] = 0.0f;
+}
+
 // `clipped` marks a vertex the clipper made: it lies on a clipping plane, possibly an ulp outside, and
 // is projected regardless.
 template <std::size_t N>
@@ -254,9 +271,7 @@ SetupVertex<N> make_setup_vertex(const SetupContext& c, const ClipVertex<N>& v, 
     s.y = detail::snap(v.position.y * inv_w * c.scale_y + c.offset_y);
     s.z = v.position.z * inv_w * c.z_scale + c.z_offset;
     s.inv_w = inv_w;
-    s.plane_values[0] = s.z;
-    s.plane_values[1] = inv_w;
-    for (std::size_t k = 0; k < N; ++k) s.plane_values[2 + k] = v.attributes[k] * inv_w;
+    set_plane_values(s);
   }
   return s;
 }
@@ -330,10 +345,8 @@ void make_setup_vertices(const SetupContext& c, std::span<const ClipVertex<N>> i
       s.y = snapped ? ys[k] : 0;
       s.z = snapped ? zs[k] : 0.0f;
       s.inv_w = snapped ? inv_ws[k] : 0.0f;
-      s.plane_values[0] = s.z;
-      s.plane_values[1] = s.inv_w;
-      for (std::size_t a = 0; a < N; ++a) s.plane_values[2 + a] = snapped ? v.attributes[a] * s.inv_w : 0.0f;
-      for (std::size_t a = N + 2; a < s.plane_values.size(); ++a) s.plane_values[a] = 0.0f;
+      if (snapped) set_plane_values(s);
+      else s.plane_values.fill(0.0f);
     }
   }
 #endif

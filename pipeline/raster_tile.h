@@ -309,17 +309,12 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
   const std::int64_t px0 = std::int64_t(qx0) * kSubpixelOne + kSubpixelOne / 2;
   const std::int64_t py0 = std::int64_t(qy0) * kSubpixelOne + kSubpixelOne / 2;
 
-  // Edge i runs from vertex i to vertex i+1: zero on that edge, positive towards the third vertex. The
-  // edge opposite vertex i is (i + 1) % 3, and its value over the area is vertex i's weight.
-  // Steps of each edge function for one pixel right (sx) and one pixel down (sy).
+  // Edge i runs from vertex i to vertex i+1: zero on that edge, positive towards the third vertex
+  // (primitive_setup.h's edge_function).
   std::int64_t e0[3], sx[3], sy[3];
   for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3;
-    const std::int64_t dx = p.xy.x[j] - p.xy.x[i], dy = p.xy.y[j] - p.xy.y[i];
-    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-    e0[i] = -dy * (px0 - p.xy.x[i]) + dx * (py0 - p.xy.y[i]) + (top_left ? 0 : -1);
-    sx[i] = -dy * kSubpixelOne;
-    sy[i] = dx * kSubpixelOne;
+    const EdgeFunction e = edge_function(p.xy.x.data(), p.xy.y.data(), i, px0, py0);
+    e0[i] = e.value, sx[i] = e.step_x, sy[i] = e.step_y;
   }
   return walk_quads(Edges64(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
 }
