@@ -44,8 +44,8 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     throw CageError(cage.name + ": --scheme " + to_string(scheme) +
                     " cannot be displaced (its patches carry no 1-ring for the shared normals); use acc, gregory, "
                     "bspline or exact");
-  if (!cage.has_uvs())
-    throw CageError(cage.name + ": has no texture coordinates (vt); the displacement map " + o.map + " needs them");
+  // Texture coordinates first: it checks that the cage has UVs and only quads (CageError).
+  d.texcoords = build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v);
   for (std::size_t i = 0; i < cage.uvs.size(); ++i) {
     const glm::vec2 uv = cage.uvs[i];
     if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
@@ -55,14 +55,13 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   }
 
   if (o.normal_map == "auto") {
-    const auto names = DisplacementMap::channel_names(o.map);
+    const auto& names = d.map->file_channels();
     const bool has_rgb = names.size() >= 4 && std::none_of(d.map->selected().begin(), d.map->selected().end(), is_rgb_name);
     if (!vector && has_rgb) d.normal_map = DisplacementMap::load(o.map, "R,G,B", 3);
   } else if (o.normal_map != "derived") {
     d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
   }
 
-  d.texcoords = build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v);
   d.frames = build_patch_frames(cage, *model.topology, model.patches.quads, model.patches.scheme);
   return d;
 }

@@ -77,7 +77,7 @@ DrawResult stream_displaced(Device& device, const SubdModel& m, const Displaceme
   return with_displaced_group(m, d, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
                                                                const DisplacedHS& hs, const DisplacedDS& ds) {
     const StreamDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedDS> draw{m.cage.positions, g.indices, g.control_points,
-                                                                       SubdVS{}, hs, ds, ts};
+                                                                       m.vertex_shader(), hs, ds, ts};
     return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) { sink(p, g); });
   });
 }

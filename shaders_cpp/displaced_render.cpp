@@ -1,15 +1,6 @@
 #include "displaced_render.h"
 
 namespace tessera {
-namespace {
-
-struct WirePS {
-  glm::vec4 color{0.2f, 0.25f, 0.35f, 1.0f};
-  glm::vec4 operator()(const PixelInput<kDisplacedAttributes>&) const { return color; }
-};
-
-}  // namespace
-
 DrawResult render_displaced(Device& device, const SubdModel& model, const Displacement& displacement,
                             const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
                             const SubdCamera& camera, Framebuffer& fb) {
@@ -23,11 +14,11 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
       auto go = [&](const auto& ps) {
         using Ps = std::decay_t<decltype(ps)>;
         const PatchDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedProjectDS<DisplacedDS>, Ps> d{
-            model.cage.positions, g.indices, g.control_points, SubdVS{}, hs, project, ps, ts, st.rasterizer, st.depth,
+            model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts, st.rasterizer, st.depth,
             st.viewport};
         return device.draw(d, fb);
       };
-      if (wire) return go(WirePS{});
+      if (wire) return go(ConstantPS<kDisplacedAttributes>{});
       DisplacedPS ps;
       ps.light = light;
       if (displacement.normal_map) {

@@ -270,7 +270,7 @@ struct DisplacedProjectDS {
   }
 };
 
-// Clay with a headlight, on the displaced surface's shading normal: from a tangent-space normal map
+// Clay with a headlight (clay(), subd_shaders.h) on the displaced surface's shading normal: from a tangent-space normal map
 // (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized;
 // `flip_green` for maps whose y points along −V: OBJ cages, whose v points up the image), or derived from the height map (the normal of
 // P + h N with h's texture gradient by central differences one level-0 texel apart, sampled with the
@@ -281,7 +281,7 @@ struct DisplacedPS {
   float height_scale = 1.0f;
   bool flip_green = false;
   glm::vec3 light{0.0f, 0.0f, 1.0f};
-  glm::vec3 color{0.78f, 0.74f, 0.68f};
+  glm::vec3 color = kClayColor;
 
   glm::vec4 operator()(const PixelInput<kDisplacedAttributes>& in) const {
     const auto& a = in.attributes;
@@ -309,8 +309,7 @@ struct DisplacedPS {
       if (glm::dot(d, n0) < 0.0f) d = -d;
       if (d != glm::vec3(0.0f)) n = d;
     }
-    const float diffuse = std::max(0.0f, glm::dot(n, light));
-    return {color * (0.18f + 0.82f * diffuse), 1.0f};
+    return clay(n, light, color);
   }
 };
 

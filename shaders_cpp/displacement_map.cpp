@@ -103,11 +103,6 @@ std::vector<int> select_channels(const std::string& path, const std::vector<std:
 
 }  // namespace
 
-std::vector<std::string> DisplacementMap::channel_names(const std::string& path) {
-  auto in = open(path);
-  return names_of(in->spec());
-}
-
 DisplacementMap DisplacementMap::load(const std::string& path, std::string_view spec, int count) {
   auto in = open(path);
   const OIIO::ImageSpec s = in->spec();
@@ -131,7 +126,7 @@ DisplacementMap DisplacementMap::load(const std::string& path, std::string_view 
   if (!t) fail(path, error);
   std::vector<std::string> selected;
   for (int c : chosen) selected.push_back(names[std::size_t(c)]);
-  return DisplacementMap(std::move(*t), path, std::move(selected));
+  return DisplacementMap(std::move(*t), path, std::move(selected), names);
 }
 
 }  // namespace tessera

@@ -35,8 +35,6 @@ struct DisplacementMapError : std::runtime_error {
 class DisplacementMap {
  public:
   static DisplacementMap load(const std::string& path, std::string_view spec = {}, int count = 0);
-  // Every channel name of an image file, in order (for messages and defaults); throws as load().
-  static std::vector<std::string> channel_names(const std::string& path);
 
   const Texture2D& texture() const { return texture_; }
   const std::string& path() const { return path_; }
@@ -46,15 +44,21 @@ class DisplacementMap {
   int levels() const { return texture_.levels(); }
   // The file's names of the selected channels, in texture order.
   const std::vector<std::string>& selected() const { return selected_; }
+  // Every channel name of the file, in order (the selected ones and the others).
+  const std::vector<std::string>& file_channels() const { return file_channels_; }
   // Bytes of texel storage, all mip levels.
   std::size_t bytes() const { return texture_.bytes(); }
 
  private:
-  DisplacementMap(Texture2D t, std::string path, std::vector<std::string> selected)
-      : texture_(std::move(t)), path_(std::move(path)), selected_(std::move(selected)) {}
+  DisplacementMap(Texture2D t, std::string path, std::vector<std::string> selected, std::vector<std::string> file_channels)
+      : texture_(std::move(t)),
+        path_(std::move(path)),
+        selected_(std::move(selected)),
+        file_channels_(std::move(file_channels)) {}
   Texture2D texture_;
   std::string path_;
   std::vector<std::string> selected_;
+  std::vector<std::string> file_channels_;
 };
 
 }  // namespace tessera

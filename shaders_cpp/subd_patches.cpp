@@ -154,6 +154,12 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     const int rot = rotation[std::size_t(f)];
     // Patch corner k is face corner k + rot.
     auto corner = [&](int k) { return cage.face_vertex(f, (((k + rot) % n) + n) % n); };
+    // The face's corners from patch corner `first` on: the IA patch of a patch made of the face alone.
+    auto corners_from = [&](int first) {
+      std::vector<int> ring;
+      for (int k = 0; k < n; ++k) ring.push_back(corner(first + k));
+      return ring;
+    };
     // Edge keys in SV_TessFactor order: patch edge k (corner k -> k+1) is factor (k + 1) % n.
     std::array<EdgeFactorKey, 4> edges{};
     if (n <= 4)
@@ -164,10 +170,8 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       if (n > 4)
         throw CageError(where(cage, f) + " has " + std::to_string(n) +
                         " sides; --scheme pn handles triangles and quads only (use --scheme exact or flat)");
-      std::vector<int> ring;
-      for (int k = 0; k < n; ++k) ring.push_back(corner(k));
-      builder.add(n == 3 ? out.tris : out.quads, f, 0, n == 3 ? PatchKind::pn_triangle : PatchKind::pn_quad, ring, {},
-                  edges);
+      builder.add(n == 3 ? out.tris : out.quads, f, 0, n == 3 ? PatchKind::pn_triangle : PatchKind::pn_quad,
+                  corners_from(0), {}, edges);
       continue;
     }
     if (!stencil_scheme) {
@@ -178,13 +182,11 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
                         " (the face is the patch's control points)");
       const PatchKind tri_kind = scheme == Scheme::exact ? PatchKind::exact : PatchKind::linear;
       if (n == 3 || n == 4) {
-        std::vector<int> ring;
         std::vector<Stencil> corners;
-        for (int k = 0; k < n; ++k) ring.push_back(corner(k));
         if (scheme == Scheme::flat)
           for (int k = 0; k < n; ++k) corners.push_back(Stencil::vertex(corner(k)));
         const PatchKind kind = n == 3 ? tri_kind : scheme == Scheme::exact ? PatchKind::exact : PatchKind::bilinear;
-        builder.add(n == 3 ? out.tris : out.quads, f, 0, kind, ring, corners, edges);
+        builder.add(n == 3 ? out.tris : out.quads, f, 0, kind, corners_from(0), corners, edges);
         continue;
       }
       // Larger faces: the fan of n triangles k = (corner k, corner k+1, centre). The ring starts at corner
@@ -193,15 +195,13 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       Stencil centre;
       for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
       for (int k = 0; k < n; ++k) {
-        std::vector<int> ring;
-        for (int j = 0; j < n; ++j) ring.push_back(corner(k + j));
         const std::int64_t before = cage_edge_key(corner(k - 1), corner(k)), outer = cage_edge_key(corner(k), corner(k + 1)),
                            after = cage_edge_key(corner(k + 1), corner(k + 2));
         const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
                                                      EdgeFactorKey{outer, after}, EdgeFactorKey{}};
         std::vector<Stencil> points;
         if (scheme == Scheme::flat) points = {Stencil::vertex(corner(k)), Stencil::vertex(corner(k + 1)), centre};
-        builder.add(out.tris, f, k, tri_kind, ring, points, fan_edges);
+        builder.add(out.tris, f, k, tri_kind, corners_from(k), points, fan_edges);
       }
       continue;
     }

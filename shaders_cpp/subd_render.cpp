@@ -55,7 +55,7 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
             st.depth, st.viewport};
         return device.draw(d, fb);
       };
-      return wire ? go(ConstantPS{glm::vec4(0.2f, 0.25f, 0.35f, 1.0f)}) : go(ClayPS{light});
+      return wire ? go(ConstantPS<>{}) : go(ClayPS{light});
     });
   };
   return draw_view_passes(view, fb, pass);

@@ -8,9 +8,11 @@
 // - ProjectDS wraps a DS that returns SurfaceSample into one that returns ClipVertex for rendering.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <unordered_map>
 
@@ -193,6 +195,7 @@ struct SubdDS {
       }
     }
     PatchPoint p;
+    std::optional<glm::vec3> field_normal;
     switch (patch.kind) {
       case PatchKind::bilinear:
         p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v);
@@ -228,24 +231,18 @@ struct SubdDS {
         std::array<glm::vec3, 6> n;
         for (int i = 0; i < 10; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
         for (int i = 0; i < 6; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
-        const PatchPoint q = cubic_triangle(b, loc.u, loc.v, loc.w);
-        s.position = positive_zero(q.position);
-        s.du = q.du, s.dv = q.dv;
-        s.normal = quadratic_triangle_normal(n, loc.u, loc.v, loc.w);
-        if (flip_normals) s.normal = -s.normal;
-        return s;
+        p = cubic_triangle(b, loc.u, loc.v, loc.w);
+        field_normal = quadratic_triangle_normal(n, loc.u, loc.v, loc.w);
+        break;
       }
       case PatchKind::pn_quad: {
         std::array<glm::vec3, 16> b;
         std::array<glm::vec3, 9> n;
         for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
         for (int i = 0; i < 9; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
-        const PatchPoint q = bezier_patch(b, loc.u, loc.v);
-        s.position = positive_zero(q.position);
-        s.du = q.du, s.dv = q.dv;
-        s.normal = biquadratic_normal(n, loc.u, loc.v);
-        if (flip_normals) s.normal = -s.normal;
-        return s;
+        p = bezier_patch(b, loc.u, loc.v);
+        field_normal = biquadratic_normal(n, loc.u, loc.v);
+        break;
       }
       case PatchKind::exact: {
         const SurfacePoint l = !triangles                  ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
@@ -259,8 +256,8 @@ struct SubdDS {
     }
     s.position = positive_zero(p.position);
     s.du = p.du, s.dv = p.dv;
-    const glm::vec3 n = glm::cross(p.du, p.dv);
-    s.normal = unit_or_zero(n);
+    // PN patches carry their own normal field; the others' normal is that of the surface.
+    s.normal = field_normal ? *field_normal : unit_or_zero(glm::cross(p.du, p.dv));
     if (flip_normals) s.normal = -s.normal;
     return s;
   }
@@ -291,23 +288,28 @@ struct ProjectDS {
   }
 };
 
-// Clay shading with a headlight: the light comes from the camera direction.
+// Clay shading with a headlight (the light comes from the camera direction): ambient plus diffuse on
+// a unit normal (zero shades as ambient only).
+inline glm::vec4 clay(const glm::vec3& unit_normal, const glm::vec3& light, const glm::vec3& color) {
+  const float diffuse = std::max(0.0f, glm::dot(unit_normal, light));
+  return {color * (0.18f + 0.82f * diffuse), 1.0f};
+}
+inline constexpr glm::vec3 kClayColor{0.78f, 0.74f, 0.68f};
+
 struct ClayPS {
   glm::vec3 light{0.0f, 0.0f, 1.0f};  // toward the light, world space
-  glm::vec3 color{0.78f, 0.74f, 0.68f};
+  glm::vec3 color = kClayColor;
   glm::vec4 operator()(const PixelInput<3>& in) const {
-    glm::vec3 n(in.attributes[0], in.attributes[1], in.attributes[2]);
-    const float len = glm::length(n);
-    n = len > 0.0f ? n / len : n;
-    const float diffuse = std::max(0.0f, glm::dot(n, light));
-    const glm::vec3 c = color * (0.18f + 0.82f * diffuse);
-    return {c, 1.0f};
+    return clay(unit_or_zero(glm::vec3(in.attributes[0], in.attributes[1], in.attributes[2])), light, color);
   }
 };
 
+// One colour for every pixel (wireframe passes), for any attribute count.
+inline constexpr glm::vec4 kWireColor{0.2f, 0.25f, 0.35f, 1.0f};
+template <std::size_t N = 3>
 struct ConstantPS {
-  glm::vec4 color{0.05f, 0.05f, 0.05f, 1.0f};
-  glm::vec4 operator()(const PixelInput<3>&) const { return color; }
+  glm::vec4 color = kWireColor;
+  glm::vec4 operator()(const PixelInput<N>&) const { return color; }
 };
 
 }  // namespace tessera
