@@ -41,11 +41,11 @@ int run_accuracy(const AccuracyOptions& o) {
   std::uint64_t samples = 0;
   const DrawResult r = stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup& g) {
     const SubdPatch& patch = g.patches[p.patch_id];
+    const int n = reference.face_size(patch.face);
     for (std::size_t i = 0; i < p.points.size(); ++i) {
       const SurfaceSample& s = p.points[i];
       const ts::DomainPoint q = p.domain[i];
       glm::dvec3 pos, nrm;
-      const int n = reference.face_size(patch.face);
       if (g.domain == ts::Domain::tri && n == 3) {
         // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
         const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);

@@ -141,7 +141,9 @@ void warnings_section(Report& r, const CageAnalysis& a) {
 void memory_section(Report& r, const CageAnalysis& a) {
   if (!a.memory) return;
   r.line("");
-  r.line(memory_text(*a.memory));
+  std::string text = memory_text(*a.memory);
+  text.pop_back();  // its last line's newline: r.line() ends the line
+  r.line(text);
   r.json()["memory"] = memory_json(*a.memory);
 }
 
@@ -149,6 +151,8 @@ using Section = void (*)(Report&, const CageAnalysis&);
 constexpr Section kSections[] = {cage_section, patch_section, memory_section, warnings_section};
 
 int run_analyze(const AnalyzeOptions& o) {
+  if (!o.memory.enabled && !(o.memory == MemoryOptions{}))
+    throw UsageError("--displacement, --levels, --measure and the other memory-table options need --memory");
   std::optional<CageAnalysis> a;
   try {
     Cage cage = load_obj_cage(o.cage);

@@ -1,6 +1,5 @@
 #include "analyze_memory.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -49,36 +48,35 @@ struct MapFacts {
 
 MapFacts load_map_facts(const std::string& path, const std::string& channel, const Cage& cage, Scheme scheme) {
   try {
+    // The displacement itself when the cage and scheme can take one (it loads the map before any
+    // cage check, so map errors come first either way); otherwise the map alone.
     MapFacts f;
-    const DisplacementMap map = DisplacementMap::load(path, channel);
-    std::string names;
-    for (const std::string& n : map.selected()) names += (names.empty() ? "" : ",") + n;
-    f.description = std::filesystem::path(path).filename().string() + " " + std::to_string(map.width()) + "x" +
-                    std::to_string(map.height()) + " (channel " + names + ")";
-    f.size = {map.width(), map.height()};
-    f.texel_bytes = map.channels() * int(sizeof(float));
+    std::optional<Displacement> displacement;
+    std::optional<DisplacementMap> map_only;
+    std::string estimated;
     try {
       const SubdModel model = make_subd_model(cage, scheme);
       DisplacementOptions d;
       d.map = path;
       d.channel = channel;
       d.normal_map = "derived";  // the normal map is not part of the comparison (memory_model.h)
-      const Displacement displacement = make_displacement(model, d);
-      f.patch_data_bytes = displacement.bytes() - displacement.map->bytes();
+      displacement = make_displacement(model, d);
+      f.patch_data_bytes = displacement->bytes() - displacement->map->bytes();
     } catch (const CageError& e) {
-      f.description += "; per-patch data estimated (" + std::string(e.what()) + ")";
+      map_only = DisplacementMap::load(path, channel);
+      estimated = "; per-patch data estimated (" + std::string(e.what()) + ")";
     }
+    const DisplacementMap& map = displacement ? *displacement->map : *map_only;
+    std::string names;
+    for (const std::string& n : map.selected()) names += (names.empty() ? "" : ",") + n;
+    f.description = std::filesystem::path(path).filename().string() + " " + std::to_string(map.width()) + "x" +
+                    std::to_string(map.height()) + " (channel " + names + ")" + estimated;
+    f.size = {map.width(), map.height()};
+    f.texel_bytes = map.channels() * int(sizeof(float));
     return f;
   } catch (const DisplacementMapError& e) {
     throw InputError(e.what());
   }
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // Runs this executable with `args` (argv[0] included), its stdout to /dev/null (its one-line summary
@@ -90,15 +88,17 @@ int run_child(std::vector<std::string> args, std::uint64_t& peak_rss_bytes) {
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   ::posix_spawn_file_actions_init(&actions);
-  ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  int spawned = ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   pid_t pid = 0;
-  const int spawned = ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  if (spawned == 0) spawned = ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
   ::posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw InputError(std::string("--measure: cannot start tessera: ") + std::strerror(spawned));
   int status = 0;
   struct rusage usage {};
-  while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  pid_t waited;
+  while ((waited = ::wait4(pid, &status, 0, &usage)) < 0 && errno == EINTR) {
   }
+  if (waited < 0) throw InputError(std::string("--measure: cannot wait for tessera: ") + std::strerror(errno));
   peak_rss_bytes = std::uint64_t(usage.ru_maxrss) * 1024;  // kilobytes on Linux
   return status;
 }
@@ -117,20 +117,22 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
     if (!o.channel.empty()) args.insert(args.end(), {"--displacement-channel", o.channel});
   }
   const auto start = std::chrono::steady_clock::now();
-  std::uint64_t child_rss = 0;
-  const int status = run_child(args, child_rss);
+  MeasuredMemory m;
+  // The peak from wait4, as for the process base row: both from the operating system, the same way.
+  const int status = run_child(args, m.peak_rss_bytes);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::error_code ec;
   fs::remove(image, ec);
-  const std::string text = read_text(stats);
+  nlohmann::json j;
+  {
+    std::ifstream in(stats);
+    j = nlohmann::json::parse(in, nullptr, false);
+  }
   fs::remove(stats, ec);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw InputError("--measure: tessera render at level " + std::to_string(level) + " failed (its error is above)");
-  const auto j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.contains("memory") || !j.contains("peak_rss_bytes"))
+  if (j.is_discarded() || !j.contains("memory"))
     throw InputError("--measure: tessera render at level " + std::to_string(level) + " wrote no memory statistics");
-  MeasuredMemory m;
-  m.peak_rss_bytes = j["peak_rss_bytes"].get<std::uint64_t>();
   m.geometry_peak_bytes = j["memory"].value("geometry_peak_bytes", std::uint64_t(0));
   m.framebuffer_bytes = j["memory"].value("framebuffer_bytes", std::uint64_t(0));
   m.seconds = seconds;
@@ -149,7 +151,7 @@ void add_memory_options(CLI::App& cmd, MemoryOptions& o) {
   cmd.add_flag("--memory", o.enabled,
                "print the talk's memory table: a pre-tessellated mesh against the cage, patches and displacement map");
   cmd.add_option("--displacement", o.displacement, "--memory: the displacement map (its size sets the map rows)");
-  cmd.add_option("--displacement-channel", o.channel, "--memory: the map's height channel, by name (A) or index");
+  cmd.add_option("--displacement-channel", o.channel, "--memory: the map's height channel, a name or letter (A, height)");
   cmd.add_option("--levels", o.levels, "--memory: tessellation levels (integer factors 1..64)")->capture_default_str();
   cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")->capture_default_str();
   cmd.add_option("--texel-bytes", o.texel_bytes, "--memory: bytes per map texel (0: as Tessera keeps the map, a float per channel)")->capture_default_str();
@@ -170,7 +172,7 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   if (o.mesh_vertex_bytes < 1 || o.mesh_vertex_bytes > 1024) throw UsageError("--mesh-vertex-bytes: must be in 1..1024");
   int texel_bytes = o.texel_bytes;
   model.mesh_vertex_bytes = o.mesh_vertex_bytes;
-  const Scheme scheme = scheme_option(o.scheme);
+  const Scheme scheme = scheme_option(o.scheme, "--memory-scheme");
   if (o.measure) {
     parse_resolution(o.resolution);
     device_options(o.threads);
@@ -235,7 +237,7 @@ nlohmann::ordered_json memory_json(const MemoryAnalysis& a) {
   const MemoryTable& t = a.table;
   nlohmann::ordered_json j;
   j["model"] = {{"mesh_vertex_bytes", a.options.mesh_vertex_bytes},
-                {"index_bytes", 4},
+                {"index_bytes", MemoryModelOptions{}.index_bytes},
                 {"texel_bytes", a.texel_bytes},
                 {"scheme", a.options.scheme},
                 {"map", a.map_description},

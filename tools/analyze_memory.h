@@ -20,11 +20,12 @@ namespace tessera::cli {
 struct MemoryOptions {
   bool enabled = false;
   std::string scheme = "gregory", levels = "8,16,32,64";
-  std::string displacement, channel;  // the map, and the channel that holds the height (name or index)
+  std::string displacement, channel;  // the map, and the channel that holds the height (displacement_map.h)
   int texel_bytes = 0, mesh_vertex_bytes = 32;  // texel_bytes 0: as the map is kept
   bool measure = false;
   std::string resolution = "1920x1080";
   int threads = 0;
+  friend bool operator==(const MemoryOptions&, const MemoryOptions&) = default;
 };
 
 void add_memory_options(CLI::App& cmd, MemoryOptions& o);
@@ -37,8 +38,8 @@ struct MeasuredMemory {
 
 struct MemoryAnalysis {
   MemoryOptions options;
-  std::string map_description;
-  int texel_bytes = 0;          // as used  // "monsterfrog.dds 512x512 (channel A)" or the assumption made without one
+  std::string map_description;  // "monsterfrog.dds 512x512 (channel A)" or the assumption made without one
+  int texel_bytes = 0;          // as used
   MemoryTable table;
   std::vector<MeasuredMemory> measured;  // per level, with --measure
   std::uint64_t base_rss_bytes = 0;      // with --measure: peak RSS of a tessera that draws nothing

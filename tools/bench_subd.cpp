@@ -54,11 +54,12 @@ int run_bench_subd(const BenchSubdOptions& o) {
   if (!o.output.empty())
     if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
+  const auto discard = [](const auto&, const PatchGroup&) {};
   const auto start = Clock::now();
   const DrawResult s =
       displacement
-          ? stream_displaced(device, model, *displacement, factors, partitioning, [](const PatchOutput<DisplacedPoint>&, const PatchGroup&) {})
-          : stream_subd(device, model, factors, partitioning, [](const PatchOutput<SurfaceSample>&, const PatchGroup&) {});
+          ? stream_displaced(device, model, *displacement, factors, partitioning, discard)
+          : stream_subd(device, model, factors, partitioning, discard);
   const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
   std::sort(frame_s.begin(), frame_s.end());
   const double median = frame_s[frame_s.size() / 2];

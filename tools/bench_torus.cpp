@@ -30,8 +30,8 @@ struct TorusOptions {
   std::string output;
   std::string stats;
   std::string llvmpipe;
-  int tile_size = 64;
-  std::size_t chunk_primitives = 4096;
+  int tile_size = DeviceOptions{}.tile_size;
+  std::size_t chunk_primitives = DeviceOptions{}.chunk_primitives;
   bool json = false;
 };
 

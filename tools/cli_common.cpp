@@ -79,14 +79,18 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   });
 }
 
-std::pair<int, int> parse_resolution(const std::string& text) {
+std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi) {
   const std::regex re(R"((\d{1,6})x(\d{1,6}))");
   std::smatch m;
-  if (!std::regex_match(text, m, re)) throw UsageError("--resolution: expected WIDTHxHEIGHT, got '" + text + "'");
-  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
-  if (w < 1 || h < 1 || w > kMaxRenderTargetSize || h > kMaxRenderTargetSize)
-    throw UsageError("--resolution: " + text + " is outside 1.." + std::to_string(kMaxRenderTargetSize) + " per side");
-  return {w, h};
+  if (!std::regex_match(text, m, re)) throw UsageError(what + ": expected AxB, got '" + text + "'");
+  const int a = std::stoi(m[1]), b = std::stoi(m[2]);
+  if (a < lo || b < lo || a > hi || b > hi)
+    throw UsageError(what + ": " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi) + " per side");
+  return {a, b};
+}
+
+std::pair<int, int> parse_resolution(const std::string& text) {
+  return parse_size(text, "--resolution", 1, kMaxRenderTargetSize);
 }
 
 DeviceOptions device_options(int threads) {

@@ -1,6 +1,8 @@
 // `tessera make-cage torus --grid AxB -o cage.obj`: writes a synthetic control cage (cage_generators.h)
 // as OBJ with UVs, for measurements at sizes no bundled asset has (the memory table's large cage).
 #include <iostream>
+#include <memory>
+#include <stdexcept>
 
 #include "cage_generators.h"
 #include "cage_obj.h"
@@ -18,10 +20,7 @@ struct MakeCageOptions {
 int run_make_cage(const MakeCageOptions& o) {
   if (o.shape != "torus") throw UsageError("make-cage: unknown shape '" + o.shape + "' (known: torus)");
   if (o.output.empty()) throw UsageError("-o cage.obj is required");
-  int around = 0, across = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(o.grid.c_str(), "%d%c%d%c", &around, &x, &across, &extra) != 3 || x != 'x')
-    throw UsageError("--grid: expected AxB, got '" + o.grid + "'");
+  const auto [around, across] = parse_size(o.grid, "--grid", 3, 4096);
   Cage cage;
   try {
     cage = torus_cage(around, across, o.major, o.minor);

@@ -21,9 +21,9 @@ void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float
   cmd.add_option("--threads", threads, "worker threads (0: all)");
 }
 
-Scheme scheme_option(const std::string& name) {
+Scheme scheme_option(const std::string& name, const std::string& what) {
   const auto s = parse_scheme(name);
-  if (!s) throw UsageError("--scheme: '" + name + "' is not one of flat, bspline, acc, gregory, exact, pn");
+  if (!s) throw UsageError(what + ": '" + name + "' is not one of flat, bspline, acc, gregory, exact, pn");
   return *s;
 }
 
@@ -86,7 +86,7 @@ void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
 
 std::optional<Displacement> displacement_option(const DisplacementCli& d, const SubdModel& model) {
   if (d.map.empty()) {
-    if (!d.channel.empty() || d.scale != 1.0f || d.bias != 0.0f || d.space != "tangent" || d.normal_map != "auto")
+    if (!(d == DisplacementCli{}))  // a companion option given without the map
       throw UsageError("--displacement-* and --normal-map need --displacement MAP");
     return std::nullopt;
   }

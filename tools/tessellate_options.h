@@ -16,7 +16,8 @@ namespace tessera::cli {
 
 void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float& vary, std::string& factors_file,
                         std::string& partitioning, int& threads);
-Scheme scheme_option(const std::string& name);
+// The scheme named by option `what` (--scheme, or analyze's --memory-scheme); UsageError otherwise.
+Scheme scheme_option(const std::string& name, const std::string& what = "--scheme");
 ts::Partitioning partitioning_option(const std::string& name);
 // --factor, --vary-factors and --factors-per-edge FILE (lines "v0 v1 factor", cage vertex indices from
 // 0; edges not listed take --factor).
@@ -28,6 +29,7 @@ SubdModel load_model(const std::string& path, Scheme scheme);
 struct DisplacementCli {
   std::string map, channel, space = "tangent", normal_map = "auto";
   float scale = 1.0f, bias = 0.0f;
+  friend bool operator==(const DisplacementCli&, const DisplacementCli&) = default;
 };
 void add_displacement_options(CLI::App& cmd, DisplacementCli& d);
 // Nothing without --displacement; otherwise the loaded displacement, its errors turned into InputError
