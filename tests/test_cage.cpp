@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "test_data.h"
 #include "cage_obj.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
+using tessera::test::data;
 
 namespace {
 
@@ -204,7 +206,7 @@ TEST_CASE("Every OpenSubdiv regression shape and DirectX SDK cage loads", "[cage
 }
 
 TEST_CASE("The monster frog: counts, UVs, and a tag-heavy shape", "[cage][data]") {
-  const Cage frog = load_obj_cage(std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog_mapped_00.obj");
+  const Cage frog = load_obj_cage(data("sdk-cages/monsterfrog_mapped_00.obj"));
   CHECK(frog.vertex_count() == 1308);
   CHECK(frog.face_count() == 1292);
   CHECK(frog.has_uvs());
@@ -212,9 +214,9 @@ TEST_CASE("The monster frog: counts, UVs, and a tag-heavy shape", "[cage][data]"
   CHECK(frog.face_uvs.size() == frog.face_vertices.size());
   CHECK(std::all_of(frog.face_sizes.begin(), frog.face_sizes.end(), [](int n) { return n == 4; }));
 
-  const Cage car = load_obj_cage(std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_car.obj");
+  const Cage car = load_obj_cage(data("osd-shapes/catmark_car.obj"));
   CHECK(car.face_count() == 1575);
   CHECK(car.tags.creases.size() >= 314);
-  const Cage holes = load_obj_cage(std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_hole_test3.obj");
+  const Cage holes = load_obj_cage(data("osd-shapes/catmark_hole_test3.obj"));
   CHECK(holes.tags.holes == std::vector<int>{15, 2, 7, 8, 9, 5, 13, 14});
 }

@@ -9,11 +9,13 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "test_data.h"
 #include "cli_runner.h"
 #include "tessellator.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
+using tessera::test::data;
 
 namespace {
 
@@ -166,7 +168,7 @@ TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli]
 }
 
 TEST_CASE("tessera analyze --json describes the monster frog", "[cli][cage]") {
-  const auto r = run_cli(std::string("analyze ") + TESSERA_TEST_DATA_DIR + "/sdk-cages/monsterfrog_mapped_00.obj --json");
+  const auto r = run_cli("analyze " + data("sdk-cages/monsterfrog_mapped_00.obj") + " --json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"vertices", "edges", "faces", "patches", "triangles", "quads", "polygons", "regular_patches", "boundary_patches",
@@ -193,7 +195,7 @@ TEST_CASE("tessera analyze --json describes the monster frog", "[cli][cage]") {
   CHECK(j["combination_histogram"][0]["key"] == "4 4 4 4");
   CHECK(j["combination_histogram"][0]["count"] == 528);
 
-  const auto text = run_cli(std::string("analyze ") + TESSERA_TEST_DATA_DIR + "/sdk-cages/monsterfrog_mapped_00.obj");
+  const auto text = run_cli("analyze " + data("sdk-cages/monsterfrog_mapped_00.obj"));
   REQUIRE(text.exit_code == 0);
   CHECK(text.out.find("patch count = 1292\n") != std::string::npos);
   CHECK(text.out.find("Interior Patches:\n- 4 4 4 4 : 528\n") != std::string::npos);
@@ -204,7 +206,7 @@ TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[
   auto r = run_cli("analyze /nonexistent/frog.obj");
   CHECK(r.exit_code == 1);
   CHECK(r.err == "tessera analyze: /nonexistent/frog.obj: cannot open the file\n");
-  r = run_cli(std::string("analyze ") + TESSERA_TEST_DATA_DIR + "/osd-shapes/catmark_fan.obj --json");
+  r = run_cli("analyze " + data("osd-shapes/catmark_fan.obj") + " --json");
   CHECK(r.exit_code == 1);
   CHECK(lines(r.err) == 1);
   CHECK(r.err.find("catmark_fan.obj: non-manifold edge between vertices 8 and 9") != std::string::npos);
@@ -214,7 +216,7 @@ TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[
 
 TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and checks watertightness", "[cli]") {
   const fs::path ply = temp_dir() / "cube.ply";
-  const std::string cage = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
+  const std::string cage = data("osd-shapes/catmark_cube.obj");
   const auto r = run_cli("tessellate " + cage + " --scheme gregory --factor 3 --partitioning fractional_odd --vary-factors 1 --check-watertight --json -o " + ply.string());
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
@@ -231,9 +233,9 @@ TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and 
 }
 
 TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a non-zero exit", "[cli]") {
-  const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
-  const std::string pyramid = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_pyramid.obj";
-  const std::string pentagons = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_gregory_test2.obj";
+  const std::string cube = data("osd-shapes/catmark_cube.obj");
+  const std::string pyramid = data("osd-shapes/catmark_pyramid.obj");
+  const std::string pentagons = data("osd-shapes/catmark_gregory_test2.obj");
   struct Case {
     std::string args, expect;
     int code;
@@ -257,14 +259,14 @@ TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a 
 
 TEST_CASE("tessera render writes the image and tessera accuracy reports against the exact limit", "[cli]") {
   const fs::path png = temp_dir() / "frog.png";
-  const std::string frog = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog_mapped_00.obj";
+  const std::string frog = data("sdk-cages/monsterfrog_mapped_00.obj");
   const auto r = run_cli("render " + frog + " --scheme acc --factor 3 --resolution 320x240 --view wire-on-shaded -o " + png.string());
   REQUIRE(r.exit_code == 0);
   auto in = OIIO::ImageInput::open(png.string());
   REQUIRE(in);
   CHECK(in->spec().width == 320);
   CHECK(in->spec().height == 240);
-  const auto a = run_cli("accuracy " + std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_torus.obj --scheme bspline --json");
+  const auto a = run_cli("accuracy " + data("osd-shapes/catmark_torus.obj") + " --scheme bspline --json");
   REQUIRE(a.exit_code == 0);
   const auto j = nlohmann::json::parse(a.out);
   CHECK(j["max_relative"].get<double>() < 1e-6);
@@ -272,7 +274,7 @@ TEST_CASE("tessera render writes the image and tessera accuracy reports against 
 }
 
 TEST_CASE("tessera tessellate, render and accuracy take --scheme pn, and gregory on triangles", "[cli]") {
-  const std::string pyramid = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_pyramid.obj";
+  const std::string pyramid = data("osd-shapes/catmark_pyramid.obj");
   for (const char* scheme : {"pn", "gregory"}) {
     INFO(scheme);
     const auto t = run_cli("tessellate " + pyramid + " --scheme " + scheme +
@@ -302,7 +304,7 @@ TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates",
   CHECK(j["triangles"].get<long>() > 0);
   for (const char* key : {"median_s", "min_s", "hs_patches_per_thread_s", "ds_points_per_thread_s"}) CHECK(j.contains(key));
   // Displaced: the same triangles (displacement moves points, it does not add them), the map named.
-  const std::string map = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog.dds";
+  const std::string map = data("sdk-cages/monsterfrog.dds");
   const auto d = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json --displacement " + map +
                          " --displacement-channel A");
   REQUIRE(d.exit_code == 0);
@@ -318,7 +320,7 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
     std::ofstream f(factors);
     f << "# v0 v1 factor\n0 1 7.5\n1 3 2\n";
   }
-  const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
+  const std::string cube = data("osd-shapes/catmark_cube.obj");
   const auto plain = run_cli("tessellate " + cube + " --factor 3 --check-watertight --json");
   const auto edges = run_cli("tessellate " + cube + " --factor 3 --partitioning fractional_even --factors-per-edge " +
                                factors.string() + " --check-watertight --json");
@@ -354,8 +356,8 @@ TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured re
     CHECK(l["render_geometry_peak_bytes"].get<std::uint64_t>() > 0);
     CHECK(l["render_framebuffer_bytes"].get<std::uint64_t>() == 64u * 48u * 8u);
   }
-  const std::string frog = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog_mapped_00.obj";
-  const std::string map = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/monsterfrog.dds";
+  const std::string frog = data("sdk-cages/monsterfrog_mapped_00.obj");
+  const std::string map = data("sdk-cages/monsterfrog.dds");
   r = run_cli("analyze " + frog + " --memory --displacement " + map + " --displacement-channel A");
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("monsterfrog.dds 512x512 (channel A)") != std::string::npos);
@@ -377,7 +379,7 @@ TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured re
 
 TEST_CASE("tessera with more --threads than cores runs them without oneTBB's worker-limit warning", "[cli]") {
   const fs::path dir = temp_dir();
-  const std::string cube = std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/cube.obj";
+  const std::string cube = data("sdk-cages/cube.obj");
   const auto r = run_cli("-q render " + cube + " --factor 3 --resolution 64x64 --threads 64 -o " + (dir / "cube.png").string());
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());  // oneTBB would print "TBB Warning: The number of workers is currently limited..."

@@ -11,8 +11,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <unistd.h>
 
+#include "test_data.h"
 #include "cli_runner.h"
 #include "displaced_model.h"
 #include "displaced_render.h"
@@ -21,21 +21,17 @@
 
 namespace fs = std::filesystem;
 using namespace tessera;
+using tessera::test::data;
 using tessera::test::check_watertight;
 using tessera::test::kVaryingFactors;
 using tessera::test::VaryingFactors;
 
 namespace {
 
-std::string data(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/" + name; }
 const std::string kFrog = data("sdk-cages/monsterfrog_mapped_00.obj");
 const std::string kFrogMap = data("sdk-cages/monsterfrog.dds");
 
-fs::path temp_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("tessera-disp-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return test::cli_temp_dir(); }
 
 // Writes w x h x c pixels of `type` (values given as floats, converted by OIIO).
 std::string write_image(const std::string& name, int w, int h, int c, OIIO::TypeDesc type, const std::vector<float>& px,
@@ -280,9 +276,9 @@ TEST_CASE("Vector displacement (tangent and object space) on the frog is waterti
       px.insert(px.end(), {t.x - 0.5f, t.y - 0.5f, t.z});
     }
   const std::string path = write_image("vector.exr", 512, 512, 3, OIIO::TypeDesc::FLOAT, px);
-  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact})
+  for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact}) {
+    const SubdModel m = load_subd_model(kFrog, s);
     for (DisplacementSpace space : {DisplacementSpace::tangent, DisplacementSpace::object}) {
-      const SubdModel m = load_subd_model(kFrog, s);
       DisplacementOptions o;
       o.map = path;
       o.scale = 0.5f;
@@ -293,6 +289,7 @@ TEST_CASE("Vector displacement (tangent and object space) on the frog is waterti
       const auto r = weld_displaced(m, d, 2.5f, 1.5f, ts::Partitioning::fractional_odd);
       CHECK(r.closed_manifold());
     }
+  }
 }
 
 TEST_CASE("Without ownership the displaced frog cracks: per-face UVs at the seams, per-patch normals on edges", "[disp]") {
@@ -338,7 +335,7 @@ TEST_CASE("Displaced stream output and rendering give the same bytes for 1 and 2
 }
 
 TEST_CASE("tessera with --displacement: watertight frog, render, and one-line errors naming the file", "[disp][cli]") {
-  const std::string out = (temp_dir() / "frog.png").string();
+  const std::string out = (temp_dir() / "displaced-frog.png").string();
   auto r = run_cli("tessellate " + kFrog + " --scheme acc --factor 3 --vary-factors 1 --partitioning fractional_odd "
                    "--displacement " + kFrogMap + " --displacement-channel A --displacement-scale 0.6 "
                    "--displacement-bias -0.3 --check-watertight --json");

@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "test_data.h"
 #include "limit_accuracy.h"
 #include "limit_surface.h"
 #include "cage_obj.h"
@@ -29,10 +30,21 @@
 #include "topology.h"
 
 using namespace tessera;
+using tessera::test::data;
 namespace {
 
-std::string osd_shape(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/" + name + ".obj"; }
-std::string sdk_cage(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/sdk-cages/" + name + ".obj"; }
+// LimitSurface::create's CageError message for `c`, or "" when it takes the cage.
+std::string create_error(const Cage& c) {
+  try {
+    LimitSurface::create(c);
+  } catch (const CageError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string osd_shape(const std::string& name) { return data("osd-shapes/" + name + ".obj"); }
+std::string sdk_cage(const std::string& name) { return data("sdk-cages/" + name + ".obj"); }
 
 // Tessellator-like parameter: k/n rounded to a multiple of 2^-16 (so 1 - t is exact).
 float tess_param(int k, int n) { return float(std::nearbyint(double(k) / n * 65536.0) / 65536.0); }
@@ -465,30 +477,22 @@ TEST_CASE("limit surface holes and out-of-range queries are reported", "[limit]"
 
 TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
   const Cage cube = load_obj_cage(osd_shape("catmark_cube"));
-  const auto message = [](const Cage& c) -> std::string {
-    try {
-      LimitSurface::create(c);
-    } catch (const CageError& e) {
-      return e.what();
-    }
-    return "";
-  };
   // The cage's own validation (validate_cage, topology.h) speaks first.
   Cage bad = cube;
   bad.face_vertices[5] = 99;
-  CHECK(message(bad).find("face 1 has vertex 99 (0-based), but the cage has 8 vertices") != std::string::npos);
+  CHECK(create_error(bad).find("face 1 has vertex 99 (0-based), but the cage has 8 vertices") != std::string::npos);
   bad = cube;
   bad.face_sizes[2] = 2;
-  CHECK(message(bad).find("face 2 has 2 vertices; a face needs at least 3") != std::string::npos);
+  CHECK(create_error(bad).find("face 2 has 2 vertices; a face needs at least 3") != std::string::npos);
   bad = cube;
   bad.tags.holes.push_back(6);
-  CHECK(message(bad).find("hole names face 6, but the cage has 6 faces") != std::string::npos);
+  CHECK(create_error(bad).find("hole names face 6, but the cage has 6 faces") != std::string::npos);
   bad = cube;
   bad.tags.corners.push_back({3, -1.0f});
-  CHECK(message(bad).find("corner at vertex 3 has sharpness") != std::string::npos);
+  CHECK(create_error(bad).find("corner at vertex 3 has sharpness") != std::string::npos);
   bad = cube;
   bad.positions[3].x = std::nanf("");
-  const std::string nan_message = message(bad);
+  const std::string nan_message = create_error(bad);
   CHECK(nan_message.find(": face ") != std::string::npos);
   CHECK(nan_message.find("has no finite limit surface") != std::string::npos);
   CHECK(nan_message.find('\n') == std::string::npos);
@@ -505,7 +509,7 @@ TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
       topology_message = e.what();
     }
     CHECK_FALSE(topology_message.empty());
-    CHECK(message(c) == topology_message);
+    CHECK(create_error(c) == topology_message);
   }
   {
     const LimitSurface s = LimitSurface::create(load_obj_cage(osd_shape("catmark_nonman_bareverts")));
@@ -524,35 +528,28 @@ TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
 
 TEST_CASE("limit surface rejects faces and valences beyond OpenSubdiv's limits", "[limit]") {
   const int limit = 65535;  // Bfr::Limits::MaxFaceSize() and MaxValence()
-  const auto message = [](const Cage& c) -> std::string {
-    try {
-      LimitSurface::create(c);
-    } catch (const CageError& e) {
-      return e.what();
-    }
-    return "";
-  };
+  std::vector<glm::vec3> circle;  // limit + 1 points on the unit circle
+  for (int i = 0; i <= limit; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / (limit + 1);
+    circle.push_back(glm::vec3(float(std::cos(a)), float(std::sin(a)), 0.0f));
+  }
   Cage big;  // one face of 65536 corners, valid for the topology
   big.name = "big";
   big.face_sizes = {limit + 1};
   big.face_offsets = {0};
-  for (int i = 0; i <= limit; ++i) {
-    const double a = 2 * 3.14159265358979323846 * i / (limit + 1);
-    big.positions.push_back(glm::vec3(float(std::cos(a)), float(std::sin(a)), 0.0f));
-    big.face_vertices.push_back(i);
-  }
-  CHECK(message(big) == "big: face 0 has 65536 vertices; OpenSubdiv takes at most 65535");
-  Cage pole;  // a disc of 65536 triangles around vertex 0: valence 65537 there
+  big.positions = circle;
+  for (int i = 0; i <= limit; ++i) big.face_vertices.push_back(i);
+  CHECK(create_error(big) == "big: face 0 has 65536 vertices; OpenSubdiv takes at most 65535");
+  Cage pole;  // a disc of 65536 triangles around vertex 0: valence 65536 there
   pole.name = "pole";
   pole.positions.push_back(glm::vec3(0.0f));
+  pole.positions.insert(pole.positions.end(), circle.begin(), circle.end());
   for (int i = 0; i <= limit; ++i) {
-    const double a = 2 * 3.14159265358979323846 * i / (limit + 1);
-    pole.positions.push_back(glm::vec3(float(std::cos(a)), float(std::sin(a)), 0.0f));
     pole.face_sizes.push_back(3);
     pole.face_offsets.push_back(3 * i);
     for (int v : {0, 1 + i, 1 + (i + 1) % (limit + 1)}) pole.face_vertices.push_back(v);
   }
-  CHECK(message(pole) == "pole: vertex 0 has valence 65536; OpenSubdiv takes at most 65535");
+  CHECK(create_error(pole) == "pole: vertex 0 has valence 65536; OpenSubdiv takes at most 65535");
 }
 
 TEST_CASE("limit surface evaluation is thread-safe and deterministic", "[limit]") {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "test_data.h"
 #include "cage_generators.h"
 #include "cage_obj.h"
 #include "memory_model.h"
@@ -13,6 +14,7 @@
 #include "topology.h"
 
 using namespace tessera;
+using tessera::test::data;
 
 namespace {
 
@@ -126,7 +128,7 @@ TEST_CASE("memory_table keeps the mip level of a real map that a level needs, ne
 }
 
 TEST_CASE("memory_table on the monster frog: the mesh grows as the square of the level, the ratio with it", "[memory]") {
-  const Cage c = load_obj_cage(TESSERA_TEST_DATA_DIR "/sdk-cages/monsterfrog_mapped_00.obj");
+  const Cage c = load_obj_cage(data("sdk-cages/monsterfrog_mapped_00.obj"));
   const Topology t(c);
   const SubdPatches p = build_patches(c, t, Scheme::gregory);
   MemoryModelOptions o;

@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "test_data.h"
 #include "cage_obj.h"
 #include "patch_eval.h"
 #include "pn_patch.h"
@@ -22,46 +23,41 @@
 #include "weld_support.h"
 
 using namespace tessera;
+using tessera::test::data;
 using tessera::test::check_watertight;
 using tessera::test::kVaryingFactors;
 using tessera::test::VaryingFactors;
 
 namespace {
 
-std::string data(const std::string& name) { return std::string(TESSERA_TEST_DATA_DIR) + "/" + name; }
 
 struct Weld {
   cli::WeldReport report;
-  std::uint64_t normal_mismatches = 0;  // points with the same position bits but different normal bits
+  // With normals tracked: points whose position bits an earlier point had, and those of them whose
+  // normal bits differ from that point's.
+  std::uint64_t shared_points = 0, normal_mismatches = 0;
 };
 
-Weld weld_with_normals(const SubdModel& m, const SubdFactors& f, ts::Partitioning p, int threads = 2) {
+// Welds the model's DS output on exact position bits; with `track_normals`, also compares the normal
+// bits of points that share a position (the cheaper plain weld serves the large cages).
+Weld weld_model(const SubdModel& m, const SubdFactors& f, ts::Partitioning p, bool track_normals) {
   DeviceOptions o;
-  o.threads = threads;
+  o.threads = 2;
   Device device(o);
   cli::WeldChecker w;
   Weld out;
-  std::unordered_map<std::uint64_t, std::vector<std::array<std::uint32_t, 6>>> seen;  // by position hash
-  const auto bits = [](const SurfaceSample& s) {
-    return std::array<std::uint32_t, 6>{std::bit_cast<std::uint32_t>(s.position.x), std::bit_cast<std::uint32_t>(s.position.y),
-                                        std::bit_cast<std::uint32_t>(s.position.z), std::bit_cast<std::uint32_t>(s.normal.x),
-                                        std::bit_cast<std::uint32_t>(s.normal.y), std::bit_cast<std::uint32_t>(s.normal.z)};
-  };
+  using Bits = std::array<std::uint32_t, 3>;
+  std::map<Bits, Bits> normal_at;  // position bits -> the first normal bits seen there
   const DrawResult r = stream_subd(device, m, f, p, [&](const PatchOutput<SurfaceSample>& patch, const PatchGroup&) {
     for (std::size_t i = 0; i + 2 < patch.indices.size(); i += 3)
       w.add_triangle(patch.points[patch.indices[i]].position, patch.points[patch.indices[i + 1]].position,
                      patch.points[patch.indices[i + 2]].position);
+    if (!track_normals) return;
     for (const SurfaceSample& s : patch.points) {
-      const auto b = bits(s);
-      auto& bucket = seen[(std::uint64_t(b[0]) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(b[1]) << 21) ^ b[2]];
-      bool placed = false;
-      for (const auto& other : bucket)
-        if (std::equal(b.begin(), b.begin() + 3, other.begin())) {
-          if (!std::equal(b.begin() + 3, b.end(), other.begin() + 3)) ++out.normal_mismatches;
-          placed = true;
-          break;
-        }
-      if (!placed) bucket.push_back(b);
+      const auto [it, added] = normal_at.emplace(std::bit_cast<Bits>(s.position), std::bit_cast<Bits>(s.normal));
+      if (added) continue;
+      ++out.shared_points;
+      if (it->second != std::bit_cast<Bits>(s.normal)) ++out.normal_mismatches;
     }
   });
   REQUIRE(r.ok());
@@ -69,11 +65,14 @@ Weld weld_with_normals(const SubdModel& m, const SubdFactors& f, ts::Partitionin
   return out;
 }
 
-cli::WeldReport weld(const SubdModel& m, float factor, float vary, ts::Partitioning p, int threads = 2) {
+cli::WeldReport weld(const SubdModel& m, const SubdFactors& f, ts::Partitioning p) {
+  return weld_model(m, f, p, false).report;
+}
+cli::WeldReport weld(const SubdModel& m, float factor, float vary, ts::Partitioning p) {
   SubdFactors f;
   f.factor = factor;
   f.vary = vary;
-  return weld_with_normals(m, f, p, threads).report;
+  return weld(m, f, p);
 }
 
 // A pentagonal pyramid (a pentagon among triangles) and a hexagonal prism (hexagons among quads).
@@ -338,25 +337,13 @@ TEST_CASE("PN triangles and quads: planar faces stay flat and linear, corners an
 TEST_CASE("pn normals are continuous to the bit: every welded point has one normal", "[subd]") {
   for (const char* cage : {"osd-shapes/catmark_pyramid.obj", "osd-shapes/catmark_cube.obj"}) {
     const SubdModel m = load_subd_model(data(cage), Scheme::pn);
-    Device device(DeviceOptions{});
     SubdFactors f;
     f.factor = 3.3f;
     f.vary = 1.0f;
-    using Bits = std::array<std::uint32_t, 3>;
-    std::map<Bits, Bits> normal_at;
-    std::uint64_t shared = 0, differing = 0;
-    stream_subd(device, m, f, ts::Partitioning::fractional_even, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
-      for (const SurfaceSample& p : out.points) {
-        const auto [it, added] = normal_at.emplace(std::bit_cast<Bits>(p.position), std::bit_cast<Bits>(p.normal));
-        if (!added) {
-          ++shared;
-          differing += it->second != std::bit_cast<Bits>(p.normal) ? 1 : 0;
-        }
-      }
-    });
+    const Weld w = weld_model(m, f, ts::Partitioning::fractional_even, true);
     INFO(cage);
-    CHECK(shared > 0);
-    CHECK(differing == 0);
+    CHECK(w.shared_points > 0);
+    CHECK(w.normal_mismatches == 0);
   }
 }
 
@@ -372,22 +359,14 @@ TEST_CASE("Flat and exact schemes draw triangles and n-gons watertight next to q
   for (const auto& [name, cage] : cages)
     for (Scheme s : {Scheme::flat, Scheme::exact}) {
       const SubdModel m = make_subd_model(cage, s);
-      struct Case {
-        ts::Partitioning p;
-        float factor, vary;
-      };
-      for (const Case c : {Case{ts::Partitioning::integer, 4.0f, 0.0f}, Case{ts::Partitioning::integer, 3.0f, 1.0f},
-                           Case{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
-                           Case{ts::Partitioning::fractional_even, 2.6f, 1.3f}}) {
-        INFO(name << " " << to_string(s) << " " << ts::to_string(c.p) << " vary " << c.vary);
+      for (const VaryingFactors c : {VaryingFactors{ts::Partitioning::integer, 4.0f, 0.0f}, kVaryingFactors[0],
+                                     kVaryingFactors[1], kVaryingFactors[2]}) {
+        INFO(name << " " << to_string(s) << " " << ts::to_string(c.partitioning) << " vary " << c.vary);
         SubdFactors f;
         f.factor = c.factor;
         f.vary = c.vary;
-        const Weld w = weld_with_normals(m, f, c.p);
-        CHECK(w.report.closed_manifold());
-        CHECK(w.report.boundary_edges == 0);
-        CHECK(w.report.nonmanifold_edges == 0);
-        CHECK(w.report.degenerate_triangles == 0);
+        const Weld w = weld_model(m, f, c.partitioning, true);
+        check_watertight(w.report);
         // The exact surface is smooth: one normal per welded point (flat is faceted).
         if (s == Scheme::exact) CHECK(w.normal_mismatches == 0);
       }
@@ -460,7 +439,7 @@ TEST_CASE("On open cages with n-gons the only open edges are the cage's boundary
           expected += std::uint64_t(std::ceil(f.edge(cage_edge_key(m.topology->origin(h), m.topology->destination(h)))));
         }
       REQUIRE(expected > 0);
-      const cli::WeldReport r = weld_with_normals(m, f, ts::Partitioning::integer).report;
+      const cli::WeldReport r = weld(m, f, ts::Partitioning::integer);
       CHECK(r.boundary_edges == expected);
       CHECK(r.nonmanifold_edges == 0);
       CHECK(r.degenerate_triangles == 0);

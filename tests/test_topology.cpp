@@ -9,16 +9,17 @@
 #include <map>
 #include <set>
 
+#include "test_data.h"
 #include "cage_obj.h"
 #include "topology.h"
 #include "topology_combinations.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
+using tessera::test::data;
 
 namespace {
 
-std::string data(const std::string& rel) { return std::string(TESSERA_TEST_DATA_DIR) + "/" + rel; }
 
 std::vector<fs::path> all_cages() {
   std::vector<fs::path> files;
