@@ -3,11 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <OpenImageIO/imageio.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <unistd.h>
 
 #include "test_data.h"
 #include "cli_runner.h"

@@ -6,11 +6,9 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 #include "test_data.h"
 #include "cli_runner.h"

@@ -2,8 +2,8 @@
 // counts and chunking, bounded memory, and bad input handled as D3D11 specifies or reported.
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "pipeline_support.h"
@@ -256,7 +256,7 @@ TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for
   std::vector<SetupVertex<3>> batch(in.size());
   make_setup_vertices<3>(c, in, batch);
   int projected = 0, rejected = 0, non_finite = 0;
-  const auto bits = [](float f) { std::uint32_t u; std::memcpy(&u, &f, 4); return u; };
+  const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
   for (std::size_t i = 0; i < in.size(); ++i) {
     const SetupVertex<3> one = make_setup_vertex<3>(c, in[i]);
     const SetupVertex<3>& b = batch[i];

@@ -74,7 +74,7 @@ int run_accuracy(const AccuracyOptions& o) {
   const double rms = samples ? std::sqrt(sum_d2 / double(samples)) : 0.0;
   const double rel_max = max_d / diagonal, rel_rms = rms / diagonal;
   if (o.json) {
-    std::cout << "{\"cage\": \"" << o.cage << "\", \"scheme\": \"" << to_string(scheme) << "\", \"factor\": " << o.factor
+    std::cout << "{\"cage\": " << json_quoted(o.cage) << ", \"scheme\": \"" << to_string(scheme) << "\", \"factor\": " << o.factor
               << ", \"samples\": " << samples << ", \"diagonal\": " << diagonal << ", \"max_distance\": " << max_d
               << ", \"rms_distance\": " << rms << ", \"max_relative\": " << rel_max << ", \"rms_relative\": " << rel_rms
               << ", \"max_normal_degrees\": " << max_angle

@@ -67,9 +67,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const double hs_rate = double(s.report.statistics.HSInvocations) / std::max(1e-9, s.report.times.hs);
   const double ds_rate = double(s.report.statistics.DSInvocations) / std::max(1e-9, s.report.times.ds);
   if (o.json) {
-    std::cout << "{\"scene\": \"subd\", \"cage\": \"" << o.cage << "\", \"scheme\": \"" << to_string(scheme)
-              << "\", \"displacement\": \"" << (displacement ? o.displacement.map : std::string())
-              << "\", \"factor\": " << o.factor << ", \"resolution\": \"" << w << "x" << h << "\", \"threads\": "
+    std::cout << "{\"scene\": \"subd\", \"cage\": " << json_quoted(o.cage) << ", \"scheme\": \"" << to_string(scheme)
+              << "\", \"displacement\": " << json_quoted(displacement ? o.displacement.map : std::string())
+              << ", \"factor\": " << o.factor << ", \"resolution\": \"" << w << "x" << h << "\", \"threads\": "
               << device.threads() << ", \"frames\": " << o.frames << ", \"triangles\": " << st.CInvocations
               << ", \"median_s\": " << median << ", \"min_s\": " << frame_s.front()
               << ", \"triangles_per_s\": " << double(st.CInvocations) / median << ", \"stream_s\": " << stream_s

@@ -3,6 +3,8 @@
 #include "atomic_file.h"
 #include "framebuffer.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cerrno>
 #include <cmath>
 #include <regex>
@@ -78,6 +80,8 @@ void write_text_atomically(const std::string& path, const std::string& text) {
     if (!out) throw InputError(path + ": write failed");
   });
 }
+
+std::string json_quoted(const std::string& text) { return nlohmann::json(text).dump(); }
 
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi) {
   const std::regex re(R"((\d{1,6})x(\d{1,6}))");

@@ -48,6 +48,9 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 // write_file_atomically for a text that is already complete in memory.
 void write_text_atomically(const std::string& path, const std::string& text);
 
+// `text` as a JSON string literal, quotes and escapes included (paths in --json output).
+std::string json_quoted(const std::string& text);
+
 // "AxB" for option `what`, each side in lo..hi; throws UsageError naming the option.
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi);
 // "WIDTHxHEIGHT" for --resolution, each side 1..kMaxRenderTargetSize (framebuffer.h).

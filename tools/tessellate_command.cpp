@@ -133,7 +133,7 @@ int run_tessellate(const TessellateOptions& o) {
   WeldReport w;
   if (o.check) w = weld.report();
   if (o.json) {
-    std::cout << "{\"cage\": \"" << o.cage << "\", \"scheme\": \"" << to_string(scheme) << "\", \"patches\": "
+    std::cout << "{\"cage\": " << json_quoted(o.cage) << ", \"scheme\": \"" << to_string(scheme) << "\", \"patches\": "
               << model.patches.quads.size() + model.patches.tris.size() << ", \"stencil_tables\": " << model.patches.tables.size()
               << ", \"fallback_faces\": " << model.patches.fallback_faces << ", \"vertices\": " << vertices
               << ", \"triangles\": " << triangles << ", \"hs_invocations\": " << st.HSInvocations
