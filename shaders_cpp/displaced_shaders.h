@@ -253,22 +253,13 @@ struct DisplacedDS {
 // (6..8), the texture coordinates (9, 10).
 inline constexpr std::size_t kDisplacedAttributes = 11;
 
-template <class Inner>
-struct DisplacedProjectDS {
-  Inner inner;
-  glm::mat4 view_projection{1.0f};
-  float z_bias = 0.0f;
-  template <class PC, class CP>
-  ClipVertex<kDisplacedAttributes> operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc,
-                                               std::uint32_t patch_id) const {
-    const DisplacedPoint s = inner(pc, cps, loc, patch_id);
-    ClipVertex<kDisplacedAttributes> out;
-    out.position = clip_position(view_projection, z_bias, s.position);
-    out.attributes = {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z,
-                      s.dpdv.x, s.dpdv.y, s.dpdv.z, s.uv.x, s.uv.y};
-    return out;
+struct DisplacedAttributes {
+  std::array<float, kDisplacedAttributes> operator()(const DisplacedPoint& s) const {
+    return {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z, s.dpdv.x, s.dpdv.y, s.dpdv.z, s.uv.x, s.uv.y};
   }
 };
+template <class Inner>
+using DisplacedProjectDS = ProjectingDS<Inner, DisplacedAttributes>;
 
 // Clay with a headlight (clay(), subd_shaders.h) on the displaced surface's shading normal: from a tangent-space normal map
 // (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized;

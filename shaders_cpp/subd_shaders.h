@@ -5,15 +5,17 @@
 //   index order, or for `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
 //   tessellation factors per cage edge (SubdFactors).
 // - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample.
-// - ProjectDS wraps a DS that returns SurfaceSample into one that returns ClipVertex for rendering.
+// - ProjectingDS (ProjectDS for SurfaceSample) wraps a DS into one that returns ClipVertex for rendering.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
+#include <tuple>
 #include <unordered_map>
 
 #include <glm/glm.hpp>
@@ -271,22 +273,31 @@ inline glm::vec4 clip_position(const glm::mat4& view_projection, float z_bias, c
   return c;
 }
 
-// Wraps a DS returning SurfaceSample for rendering: clip-space position, and the normal (3 attributes).
-// `z_bias` pulls points toward the camera by a fraction of w (for wireframe drawn over shading).
-template <class Inner>
-struct ProjectDS {
+// Wraps a DS for rendering: its point's `position` in clip space, pulled toward the camera by `z_bias`
+// of w (for wireframe drawn over shading), and the attributes AttributesOf{}(point) (std::array<float, N>)
+// for the pixel shader.
+template <class Inner, class AttributesOf>
+struct ProjectingDS {
   Inner inner;
   glm::mat4 view_projection{1.0f};
   float z_bias = 0.0f;
   template <class PC, class CP>
-  ClipVertex<3> operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc, std::uint32_t patch_id) const {
-    const SurfaceSample s = inner(pc, cps, loc, patch_id);
-    ClipVertex<3> out;
+  auto operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc, std::uint32_t patch_id) const {
+    const auto s = inner(pc, cps, loc, patch_id);
+    const auto attributes = AttributesOf{}(s);
+    ClipVertex<std::tuple_size_v<decltype(attributes)>> out;
     out.position = clip_position(view_projection, z_bias, s.position);
-    out.attributes = {s.normal.x, s.normal.y, s.normal.z};
+    out.attributes = attributes;
     return out;
   }
 };
+
+// A SurfaceSample's normal, the 3 attributes of the plain renders.
+struct NormalAttributes {
+  std::array<float, 3> operator()(const SurfaceSample& s) const { return {s.normal.x, s.normal.y, s.normal.z}; }
+};
+template <class Inner>
+using ProjectDS = ProjectingDS<Inner, NormalAttributes>;
 
 // Clay shading with a headlight (the light comes from the camera direction): ambient plus diffuse on
 // a unit normal (zero shades as ambient only).
