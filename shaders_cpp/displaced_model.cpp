@@ -28,7 +28,9 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   if (!std::isfinite(o.scale) || !std::isfinite(o.bias))
     throw DisplacementMapError(o.map + ": displacement scale and bias must be finite");
   Displacement d;
-  d.map = DisplacementMap::load(o.map, o.channel, 0);
+  // One decode of the file serves the displacement and, with "auto", the normal map beside it.
+  const DisplacementImage image = DisplacementImage::read(o.map);
+  d.map = image.select(o.channel, 0);
   const bool vector = d.map->channels() == 3;
   d.kind = !vector ? DisplacementKind::scalar
                    : o.space == DisplacementSpace::object ? DisplacementKind::vector_object : DisplacementKind::vector_tangent;
@@ -55,9 +57,9 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   }
 
   if (o.normal_map == "auto") {
-    const auto& names = d.map->file_channels();
-    const bool has_rgb = names.size() >= 4 && std::none_of(d.map->selected().begin(), d.map->selected().end(), is_rgb_name);
-    if (!vector && has_rgb) d.normal_map = DisplacementMap::load(o.map, "R,G,B", 3);
+    const bool has_rgb = image.channel_names().size() >= 4 &&
+                         std::none_of(d.map->selected().begin(), d.map->selected().end(), is_rgb_name);
+    if (!vector && has_rgb) d.normal_map = image.select("R,G,B", 3);
   } else if (o.normal_map != "derived") {
     d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
   }

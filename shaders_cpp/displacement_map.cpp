@@ -103,30 +103,40 @@ std::vector<int> select_channels(const std::string& path, const std::vector<std:
 
 }  // namespace
 
-DisplacementMap DisplacementMap::load(const std::string& path, std::string_view spec, int count) {
+DisplacementImage DisplacementImage::read(const std::string& path) {
   auto in = open(path);
   const OIIO::ImageSpec s = in->spec();
-  const std::vector<std::string> names = names_of(s);
-  const std::vector<int> chosen = select_channels(path, names, spec, count);
   if (s.width < 1 || s.height < 1 || s.width > kMaxTextureSize || s.height > kMaxTextureSize)
     fail(path, "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1.." +
                    std::to_string(kMaxTextureSize));
   if (s.depth > 1) fail(path, "is a volume image; a displacement map is 2D");
-  const std::size_t pixels = std::size_t(s.width) * std::size_t(s.height);
-  std::vector<float> all(pixels * std::size_t(s.nchannels));
-  if (!in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
+  DisplacementImage image;
+  image.path_ = path;
+  image.width_ = s.width, image.height_ = s.height;
+  image.names_ = names_of(s);
+  image.texels_.resize(std::size_t(s.width) * std::size_t(s.height) * std::size_t(s.nchannels));
+  if (!in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, image.texels_.data()))
     fail(path, "cannot read pixels (" + one_line(in->geterror()) + ")");
   in->close();
+  return image;
+}
+
+DisplacementMap DisplacementImage::select(std::string_view spec, int count) const {
+  const std::vector<int> chosen = select_channels(path_, names_, spec, count);
+  const std::size_t pixels = std::size_t(width_) * std::size_t(height_), stride = names_.size();
   std::vector<float> texels(pixels * chosen.size());
   for (std::size_t p = 0; p < pixels; ++p)
-    for (std::size_t k = 0; k < chosen.size(); ++k)
-      texels[p * chosen.size() + k] = all[p * std::size_t(s.nchannels) + std::size_t(chosen[k])];
+    for (std::size_t k = 0; k < chosen.size(); ++k) texels[p * chosen.size() + k] = texels_[p * stride + std::size_t(chosen[k])];
   std::string error;
-  auto t = Texture2D::create(s.width, s.height, int(chosen.size()), std::move(texels), true, &error);
-  if (!t) fail(path, error);
+  auto t = Texture2D::create(width_, height_, int(chosen.size()), std::move(texels), true, &error);
+  if (!t) fail(path_, error);
   std::vector<std::string> selected;
-  for (int c : chosen) selected.push_back(names[std::size_t(c)]);
-  return DisplacementMap(std::move(*t), path, std::move(selected), names);
+  for (int c : chosen) selected.push_back(names_[std::size_t(c)]);
+  return DisplacementMap(std::move(*t), path_, std::move(selected));
+}
+
+DisplacementMap DisplacementMap::load(const std::string& path, std::string_view spec, int count) {
+  return DisplacementImage::read(path).select(spec, count);
 }
 
 }  // namespace tessera

@@ -34,6 +34,7 @@ struct DisplacementMapError : std::runtime_error {
 
 class DisplacementMap {
  public:
+  // DisplacementImage::read(path).select(spec, count).
   static DisplacementMap load(const std::string& path, std::string_view spec = {}, int count = 0);
 
   const Texture2D& texture() const { return texture_; }
@@ -44,21 +45,32 @@ class DisplacementMap {
   int levels() const { return texture_.levels(); }
   // The file's names of the selected channels, in texture order.
   const std::vector<std::string>& selected() const { return selected_; }
-  // Every channel name of the file, in order (the selected ones and the others).
-  const std::vector<std::string>& file_channels() const { return file_channels_; }
   // Bytes of texel storage, all mip levels.
   std::size_t bytes() const { return texture_.bytes(); }
 
  private:
-  DisplacementMap(Texture2D t, std::string path, std::vector<std::string> selected, std::vector<std::string> file_channels)
-      : texture_(std::move(t)),
-        path_(std::move(path)),
-        selected_(std::move(selected)),
-        file_channels_(std::move(file_channels)) {}
+  friend class DisplacementImage;
+  DisplacementMap(Texture2D t, std::string path, std::vector<std::string> selected)
+      : texture_(std::move(t)), path_(std::move(path)), selected_(std::move(selected)) {}
   Texture2D texture_;
   std::string path_;
   std::vector<std::string> selected_;
-  std::vector<std::string> file_channels_;
+};
+
+// An image file's pixels, every channel as float, read once: maps of different channels of one file
+// (the frog's height in A and its normal map in RGB) are selected from one decode.
+class DisplacementImage {
+ public:
+  static DisplacementImage read(const std::string& path);  // throws DisplacementMapError as load()
+  DisplacementMap select(std::string_view spec = {}, int count = 0) const;
+  // Every channel name of the file, in order.
+  const std::vector<std::string>& channel_names() const { return names_; }
+
+ private:
+  std::string path_;
+  int width_ = 0, height_ = 0;
+  std::vector<std::string> names_;
+  std::vector<float> texels_;  // names_.size() per pixel, row by row
 };
 
 }  // namespace tessera
