@@ -191,6 +191,14 @@ TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads an
       CHECK(r.report.statistics == reference_stats);
     }
   }
+  // A device keeps its chunk slots from draw to draw: after a draw that filled them with other
+  // primitives, the same bytes again.
+  Device device(DeviceOptions{2});
+  auto other = make_target(w, h), fb = make_target(w, h);
+  REQUIRE(device.draw(scenes::make_torus_draw(scene, 23.0f, ts::Partitioning::integer, w, h), other).ok());
+  REQUIRE(device.draw(draw, fb).ok());
+  CHECK(image_hash(fb) == reference);
+  CHECK(image_hash(other) != reference);
 }
 
 // The torus's shaders have SIMD forms (a quad pixel shader and a batch domain shader) that must give
@@ -280,8 +288,10 @@ TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for
 TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {
   const int w = 256, h = 144;
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  Device device(DeviceOptions{2});
   auto peak = [&](float factor) {
+    // A device per factor: a device keeps its chunk slots' storage from draw to draw, so a second
+    // draw's report would include what the first one grew.
+    Device device(DeviceOptions{2});
     auto fb = make_target(w, h);
     const DrawResult r = device.draw(scenes::make_torus_draw(scene, factor, ts::Partitioning::integer, w, h), fb);
     REQUIRE(r.ok());
