@@ -66,11 +66,11 @@ struct ScreenPrimitive {
   PrimitiveKind kind = PrimitiveKind::triangle;
   bool front_face = true;
   bool edges32 = false;
-  // Triangles whose box holds at most 2x2 pixel centres (most of them at high factors): bit k is set
-  // when pixel (min_x + (k & 1), min_y + (k >> 1)) lies in the box and is covered, as setup found when
-  // it tested those centres; the rasterizer shades these pixels without walking edges. 0 otherwise
-  // (setup drops a small-box triangle that covers nothing).
-  std::uint8_t box_coverage = 0;
+  // Triangles whose box holds at most 4x4 pixel centres (nearly all of them from factor 16 up): bit
+  // dx + 4 * dy is set when pixel (min_x + dx, min_y + dy) lies in the box and is covered, as setup
+  // found when it tested those centres; the rasterizer shades these pixels without walking edges. 0
+  // otherwise (setup drops a small-box triangle that covers nothing).
+  std::uint16_t box_coverage = 0;
 };
 
 // The largest vertex box extent (16.8 units, either axis) of a triangle whose edge functions the
@@ -78,6 +78,10 @@ struct ScreenPrimitive {
 // outside the box (a quad's lane beside the first or last covered centre), so
 // |edge| <= ext_y * (ext_x + 256) + ext_x * (ext_y + 256) + 1 < 2^31.
 inline constexpr std::int32_t kEdges32MaxExtent = 32767 - 256;
+
+// The largest pixel box (either side) whose covered centres setup finds and keeps in the record
+// (ScreenPrimitive::box_coverage).
+inline constexpr std::int32_t kSmallBoxPixels = 4;
 
 // Screen tiles: the unit of parallel rasterization.
 struct TileGrid {
@@ -413,7 +417,7 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
   std::uint32_t edge_ref[4] = {}, edge_sx[4] = {}, edge_sy[4] = {};
   std::int16_t edge_d[8] = {};  // dx of edges 0..3, then dy
 #endif
-  const bool small_box = max_x - min_x <= 1 && max_y - min_y <= 1;
+  const bool small_box = max_x - min_x <= kSmallBoxPixels - 1 && max_y - min_y <= kSmallBoxPixels - 1;
   bool covers = true;
   unsigned box_coverage = 0;  // for a small box: its covered centres (ScreenPrimitive::box_coverage)
   if (edges32) {
@@ -439,19 +443,33 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
     edge_ref_lanes = ref;
     edge_d_lanes = _mm_packs_epi32(dx, dy);  // exact: |d| <= kEdges32MaxExtent
     if (small_box) {
-      // A box of at most 2x2 pixel centres: the edges at (min_x + (k & 1), min_y + (k >> 1)) in lane k.
-      const __m128i right = _mm_setr_epi32(0, -1, 0, -1), down = _mm_setr_epi32(0, 0, -1, -1);
-      const auto edge_at = [&](auto lane) {  // edge `lane` at the four centres
+      // A box of at most 4x4 pixel centres: each edge at the four centres (min_x + dx, min_y + dy) of
+      // a row in lanes dx, one row after the other; the covered centres of a row are the lanes where
+      // no edge is negative.
+      const __m128i from1 = _mm_setr_epi32(0, -1, -1, -1), from2 = _mm_setr_epi32(0, 0, -1, -1);
+      const __m128i from3 = _mm_setr_epi32(0, 0, 0, -1);
+      __m128i row[3], down[3];
+      const auto edge = [&](int i, auto lane) {  // edge `lane` at the first row's centres
         constexpr int k = decltype(lane)::value, broadcast = _MM_SHUFFLE(k, k, k, k);
-        return _mm_add_epi32(_mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), _mm_and_si128(_mm_shuffle_epi32(sx, broadcast), right)),
-                             _mm_and_si128(_mm_shuffle_epi32(sy, broadcast), down));
+        const __m128i step = _mm_shuffle_epi32(sx, broadcast);
+        const __m128i times_dx =
+            _mm_add_epi32(_mm_add_epi32(_mm_and_si128(step, from1), _mm_and_si128(step, from2)), _mm_and_si128(step, from3));
+        row[i] = _mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), times_dx);
+        down[i] = _mm_shuffle_epi32(sy, broadcast);
       };
-      const __m128i any_negative =
-          _mm_or_si128(_mm_or_si128(edge_at(std::integral_constant<int, 0>{}), edge_at(std::integral_constant<int, 1>{})),
-                       edge_at(std::integral_constant<int, 2>{}));
-      const unsigned inside = ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu;
-      const unsigned in_box = (max_x > min_x ? 0xFu : 0x5u) & (max_y > min_y ? 0xFu : 0x3u);
-      box_coverage = inside & in_box;
+      edge(0, std::integral_constant<int, 0>{});
+      edge(1, std::integral_constant<int, 1>{});
+      edge(2, std::integral_constant<int, 2>{});
+      // All four rows, without a branch on the box's height; centres outside the box are masked off.
+      unsigned found = 0;
+      for (int r = 0; r < kSmallBoxPixels; ++r) {
+        const __m128i any_negative = _mm_or_si128(_mm_or_si128(row[0], row[1]), row[2]);
+        found |= (~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu) << (4 * r);
+        for (int i = 0; i < 3; ++i) row[i] = _mm_add_epi32(row[i], down[i]);
+      }
+      const unsigned columns = ((2u << (max_x - min_x)) - 1u) * 0x1111u;
+      const unsigned rows = (2u << (4 * (max_y - min_y) + 3)) - 1u;
+      box_coverage = found & columns & rows;
       covers = box_coverage != 0;
     }
 #else
@@ -469,7 +487,7 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
         for (std::int32_t px = 0; px <= max_x - min_x; ++px) {
           std::uint32_t all = 0;
           for (int i = 0; i < 3; ++i) all |= edge_ref[i] + edge_sx[i] * std::uint32_t(px) + edge_sy[i] * std::uint32_t(py);
-          if (std::int32_t(all) >= 0) box_coverage |= 1u << (px + 2 * py);
+          if (std::int32_t(all) >= 0) box_coverage |= 1u << (px + 4 * py);
         }
       covers = box_coverage != 0;
     }
@@ -508,7 +526,7 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
     }
   }
   p.edges32 = edges32;
-  p.box_coverage = std::uint8_t(box_coverage);
+  p.box_coverage = std::uint16_t(box_coverage);
   // Plane equations from the snapped positions, in pixels.
   const float inv_sub = 1.0f / float(kSubpixelOne);
   const float x1 = float(vx[1] - vx[0]) * inv_sub, y1 = float(vy[1] - vy[0]) * inv_sub;

@@ -248,24 +248,23 @@ std::uint64_t walk_quads(Edges edges, int qx0, int qy0, int x_begin, int x_end, 
   return invocations;
 }
 
-// For a triangle with box_coverage (its box at most 2x2 pixels, whose covered pixels setup found):
-// entry [ox + 2 * oy][coverage] holds, in four bits per quad, the lanes of the up to 2x2 quads the box
-// touches when the box starts at an odd column (ox = 1) or row (oy = 1): quad (dx, dy) in bits
-// 4 * (dx + 2 * dy) .. + 3, lane (x & 1) + 2 * (y & 1) as in a quad.
-inline constexpr auto kBoxQuads = [] {
-  std::array<std::array<std::uint16_t, 16>, 4> table{};
-  for (int o = 0; o < 4; ++o)
-    for (unsigned m = 0; m < 16; ++m) {
-      unsigned packed = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (!((m >> k) & 1u)) continue;
-        const int x = (o & 1) + (k & 1), y = (o >> 1) + (k >> 1);  // pixel within the quads' 4x4 block
-        packed |= 1u << (4 * ((x >> 1) + 2 * (y >> 1)) + (x & 1) + 2 * (y & 1));
-      }
-      table[std::size_t(o)][m] = std::uint16_t(packed);
-    }
-  return table;
-}();
+// The quads of a triangle with box_coverage (setup found which of the at most 4x4 pixel centres of its
+// box it covers), for a walk in the walker's order. The box's rows are placed in a grid of 8-bit rows
+// whose origin is the quad-aligned corner (min_x & ~1, min_y & ~1); quad (i, j) of the up to 3x3 quads
+// the box touches is then two bits of grid row 2j and two of row 2j + 1.
+struct BoxQuads {
+  std::uint64_t grid = 0;
+  BoxQuads(std::uint16_t coverage, int min_x, int min_y) {
+    const std::uint64_t m = coverage;
+    const std::uint64_t rows = (m & 0xFu) | ((m & 0xF0u) << 4) | ((m & 0xF00u) << 8) | ((m & 0xF000u) << 12);
+    grid = rows << ((min_x & 1) + 8 * (min_y & 1));
+  }
+  // Lanes of quad (i, j): bit k = pixel (2i + (k & 1), 2j + (k >> 1)) of the grid.
+  unsigned quad(int i, int j) const {
+    const std::uint64_t pair = grid >> (16 * j + 2 * i);
+    return unsigned(pair & 3u) | unsigned((pair >> 6) & 0xCu);
+  }
+};
 
 // Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
 // The depth function is a template argument so the per-pixel test compiles to one comparison.
@@ -283,12 +282,17 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
   if (p.box_coverage) {
     // Setup tested the box's centres with these edge functions: shade its covered pixels' quads in the
     // walker's order (rows of quads), those in this tile (tiles are aligned to quads).
-    const unsigned packed = kBoxQuads[std::size_t((p.min_x & 1) + 2 * (p.min_y & 1))][p.box_coverage];
+    const BoxQuads box(p.box_coverage, p.min_x, p.min_y);
     std::uint64_t invocations = 0;
-    for (int q = 0; q < 4; ++q) {
-      const unsigned covered = (packed >> (4 * q)) & 0xFu;
-      const int qx = (p.min_x & ~1) + 2 * (q & 1), qy = (p.min_y & ~1) + 2 * (q >> 1);
-      if (covered && qx >= tx0 && qx < tx1 && qy >= ty0 && qy < ty1) invocations += shade(qx, qy, covered);
+    const int columns = (p.max_x >> 1) - (p.min_x >> 1), rows = (p.max_y >> 1) - (p.min_y >> 1);  // quads - 1
+    for (int j = 0; j <= rows; ++j) {
+      const int qy = (p.min_y & ~1) + 2 * j;
+      if (qy < ty0 || qy >= ty1) continue;
+      for (int i = 0; i <= columns; ++i) {
+        const int qx = (p.min_x & ~1) + 2 * i;
+        const unsigned covered = box.quad(i, j);
+        if (covered && qx >= tx0 && qx < tx1) invocations += shade(qx, qy, covered);
+      }
     }
     return invocations;
   }

@@ -443,9 +443,9 @@ TEST_CASE("raster: Device::clear writes the bytes Framebuffer::clear writes", "[
 }
 
 TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge test", "[raster]") {
-  // Triangles of 0.2..3 pixels, one per 8x8 cell of a 256x256 target, at random sub-pixel positions: setup
-  // tests boxes of at most 2x2 centres itself (dropping triangles that cover none) and sets the edges of
-  // the rest up for the rasterizer (a triangle with a box of at most 2x2 centres carries the centres it
+  // Triangles of 0.2..7 pixels, one per 8x8 cell of a 256x256 target, at random sub-pixel positions: setup
+  // tests boxes of at most 4x4 centres itself (dropping triangles that cover none) and sets the edges of
+  // the rest up for the rasterizer (a triangle with a box of at most 4x4 centres carries the centres it
   // covers, and the rasterizer shades their quads without walking edges); every pixel must be lit
   // exactly when the one-centre test says so. Second run: the triangles straddle the 8-pixel tiles.
   constexpr int kSize = 256, kCell = 8, kCells = kSize / kCell;
@@ -454,10 +454,10 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   Rng rng(11);
   Grid g;
   std::vector<int> expected(std::size_t(kSize) * kSize, 0);
-  int lit = 0, empty = 0;
+  int lit = 0, empty = 0, small_box = 0, large_box = 0;
   for (int cy = 0; cy < kCells; ++cy)
     for (int cx = 0; cx < kCells; ++cx) {
-      const double extent = rng.uniform(0.2, 3.0);
+      const double extent = rng.uniform(0.2, 7.0);
       const double ox = cx * kCell + offset + rng.uniform(0, 2), oy = cy * kCell + offset + rng.uniform(0, 2);
       std::int32_t sx[3], sy[3];  // 16.8
       for (int k = 0; k < 3; ++k) {
@@ -466,6 +466,12 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
         g.indices.push_back(std::uint32_t(g.vertices.size()));
         g.vertices.push_back(snapped_vertex(sx[k], sy[k], kSize));
       }
+      // Pixel centres in the vertex box along each axis (detail:: as setup finds them).
+      const auto centres = [](const std::int32_t(&c)[3]) {
+        return detail::last_pixel_at_or_before(std::max({c[0], c[1], c[2]})) -
+               detail::first_pixel_at_or_after(std::min({c[0], c[1], c[2]})) + 1;
+      };
+      (std::max(centres(sx), centres(sy)) <= kSmallBoxPixels ? small_box : large_box) += 1;
       // After the vertices are drawn: it may reorder sx, sy to a positive area.
       (add_exact_coverage(sx, sy, kSize, expected) ? lit : empty) += 1;
     }
@@ -475,4 +481,6 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   CHECK(counts == expected);
   CHECK(lit > 100);   // both kinds occur
   CHECK(empty > 50);
+  CHECK(small_box > 300);  // and both paths of the rasterizer
+  CHECK(large_box > 50);
 }
