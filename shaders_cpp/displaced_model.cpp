@@ -32,6 +32,10 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   const DisplacementImage image = DisplacementImage::read(o.map);
   d.map = image.select(o.channel, 0);
   const bool vector = d.map->channels() == 3;
+  // A height moves along the normal only: an object-space request would be silently meaningless.
+  if (!vector && o.space == DisplacementSpace::object)
+    throw DisplacementMapError(o.map + ": object-space displacement needs a vector map (three channels, e.g. R,G,B); the "
+                               "selected channel is a scalar height");
   d.kind = !vector ? DisplacementKind::scalar
                    : o.space == DisplacementSpace::object ? DisplacementKind::vector_object : DisplacementKind::vector_tangent;
   d.scale = o.scale, d.bias = o.bias;

@@ -352,7 +352,9 @@ TEST_CASE("tessera with --displacement: watertight frog, render, and one-line er
                        Bad{"--displacement " + kFrogMap + " --displacement-channel Q", kFrogMap},
                        Bad{"--displacement " + kFrogMap, kFrogMap},  // RGBA: which channel?
                        Bad{"--displacement " + two, two},            // two channels: neither scalar nor vector
-                       Bad{"--displacement " + kFrogMap + " --displacement-channel R,G", kFrogMap}}) {
+                       Bad{"--displacement " + kFrogMap + " --displacement-channel R,G", kFrogMap},
+                       // A height has no object-space direction.
+                       Bad{"--displacement " + kFrogMap + " --displacement-channel A --displacement-space object", kFrogMap}}) {
     INFO(b.args);
     const auto e = run_cli("tessellate " + kFrog + " --scheme exact --check-watertight " + b.args);
     CHECK(e.exit_code != 0);
