@@ -294,7 +294,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
     };
 
     front.run(
-        report, [&]() -> PatternCache& { return scratch.local().patterns; },
+        report,
         [&] {
           backend.run(
               front.chunk_count(),

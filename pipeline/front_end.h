@@ -133,8 +133,8 @@ inline void add_pattern_cache(MemoryStats& memory, const PatternCache& cache) {
 
 // The hull-shader phase of one window of patches: for each patch the control-point phase, the
 // patch-constant phase, factor processing, and the pattern's primitive count (the cost that chunks
-// are cut by). Parallel over patches; the results are stored by patch, so they do not depend on the
-// thread count.
+// are cut by; ts::primitive_count, from the processed factors, without tessellating). Parallel over
+// patches; the results are stored by patch, so they do not depend on the thread count.
 template <class VsOut, class ControlPoint, class PatchConstants>
 struct HullPhase {
   std::vector<ControlPoint> control_points;  // kOut per patch
@@ -142,17 +142,16 @@ struct HullPhase {
   std::vector<ts::ProcessedFactors> processed;
   std::vector<std::uint32_t> cost;           // primitives; 0 when culled
 
-  // cache_of() and times_of() return the calling thread's PatternCache and StageTimes.
-  template <class Hs, class CacheOf, class TimesOf>
+  // times_of() returns the calling thread's StageTimes.
+  template <class Hs, class TimesOf>
   void run(const Hs& hs, const std::vector<VsOut>& vs_out, const VertexCache& vcache, std::size_t n, std::size_t n_in,
-           std::size_t first, const TessellatorState& tstate, CacheOf&& cache_of, TimesOf&& times_of) {
+           std::size_t first, const TessellatorState& tstate, TimesOf&& times_of) {
     constexpr int kOut = Hs::kOutputControlPoints;
     control_points.resize(n * kOut);
     constants.resize(n);
     processed.resize(n);
     cost.resize(n);
     detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
-      PatternCache& cache = cache_of();
       StageTimes& times = times_of();
       std::array<VsOut, 32> inputs;
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
@@ -164,15 +163,9 @@ struct HullPhase {
         for (int i = 0; i < kOut; ++i) out[i] = hs.control_point(in, i, patch_id);
         constants[p] = hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
         processed[p] = ts::process_factors(tstate.partitioning, factor_set(tstate.domain, constants[p].factors));
-        const auto hs_done = Clock::now();
-        times.hs += std::chrono::duration<double>(hs_done - start).count();
-        if (processed[p].culled) {
-          cost[p] = 0;
-          continue;
-        }
-        bool hit = false;
-        cost[p] = static_cast<std::uint32_t>(cache.get(processed[p], tstate.output, hit).primitive_count());
-        if (!hit) times.tessellator += seconds_since(hs_done);
+        times.hs += seconds_since(start);
+        // Counted, not tessellated: the pattern is made once, when the DS needs it.
+        cost[p] = static_cast<std::uint32_t>(ts::primitive_count(processed[p], tstate.output));
       }
     });
   }
@@ -216,17 +209,16 @@ class PatchFrontEnd {
         chunk_primitives_(chunk_primitives) {}
 
   // Runs the front end window by window; after each window's HS phase, on_window() handles its
-  // chunk_count() chunks (with for_each_patch). cache_of() returns the calling thread's PatternCache.
-  template <class CacheOf, class OnWindow>
-  void run(DrawReport& report, CacheOf&& cache_of, OnWindow&& on_window) {
+  // chunk_count() chunks (with for_each_patch).
+  template <class OnWindow>
+  void run(DrawReport& report, OnWindow&& on_window) {
     tbb::enumerable_thread_specific<StageTimes> front_times;
     const std::size_t patch_count = indices_.size() / n_in_;
     for (first_ = 0; first_ < patch_count; first_ += window_) {
       const std::size_t n = std::min(window_, patch_count - first_);
       assemble_and_shade_vertices(vs_, vertices_, indices_.subspan(first_ * n_in_, n * n_in_), n, vcache_, vs_out_,
                                   report);
-      hull_.run(hs_, vs_out_, vcache_, n, n_in_, first_, tstate_, cache_of,
-                [&]() -> StageTimes& { return front_times.local(); });
+      hull_.run(hs_, vs_out_, vcache_, n, n_in_, first_, tstate_, [&]() -> StageTimes& { return front_times.local(); });
       report.statistics.HSInvocations += n;
       cut_chunks(hull_.cost, chunk_primitives_, 256, chunks_);
       on_window();

@@ -137,7 +137,7 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
         report.memory.chunks += used;
       }
     };
-    front.run(report, [&]() -> PatternCache& { return patterns.local(); }, stream_window);
+    front.run(report, stream_window);
     for (const auto& c : patterns) detail::add_pattern_cache(report.memory, c);
     report.memory.geometry_peak_bytes = front.window_bytes_peak() + slot_bytes_peak;
   });

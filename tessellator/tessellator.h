@@ -124,6 +124,10 @@ struct Pattern {
 // Generates the pattern for already-processed factors into `out` (its storage is reused).
 void generate(const ProcessedFactors& processed, OutputPrimitive output, Pattern& out);
 
+// The number of primitives generate(processed, output, out) makes (out.primitive_count()), computed
+// from the factors without generating anything; 0 for a culled patch.
+std::size_t primitive_count(const ProcessedFactors& processed, OutputPrimitive output);
+
 // process + generate in one call.
 void tessellate_quad(Partitioning partitioning, OutputPrimitive output, const QuadFactors& f, Pattern& out);
 void tessellate_tri(Partitioning partitioning, OutputPrimitive output, const TriFactors& f, Pattern& out);

@@ -424,3 +424,53 @@ TEST_CASE("processed factors decide the pattern (pattern caches are sound)", "[t
     REQUIRE(A.indices == B.indices);
   }
 }
+
+TEST_CASE("primitive_count() is the generated pattern's primitive count", "[tessellator][properties]") {
+  // Every small integer factor set of each domain (all parities, ring counts, minimal and culled
+  // cases), then random real factors up to past the clamp, with NaN and infinities mixed in.
+  const std::array<ts::OutputPrimitive, 4> outputs = {ts::OutputPrimitive::point, ts::OutputPrimitive::line,
+                                                      ts::OutputPrimitive::triangle_cw, ts::OutputPrimitive::triangle_ccw};
+  std::size_t checked = 0, culled = 0, largest = 0;
+  ts::Pattern pattern;
+  const auto check = [&](ts::Partitioning p, const ts::FactorSet& f) {
+    const ts::ProcessedFactors processed = ts::process_factors(p, f);
+    for (ts::OutputPrimitive o : outputs) {
+      ts::generate(processed, o, pattern);
+      const std::size_t count = ts::primitive_count(processed, o);
+      if (count != pattern.primitive_count()) {
+        INFO("domain " << ts::to_string(f.domain) << ", " << ts::to_string(p) << ", " << ts::to_string(o) << ", factors "
+                       << f.values[0] << " " << f.values[1] << " " << f.values[2] << " " << f.values[3] << " "
+                       << f.values[4] << " " << f.values[5]);
+        REQUIRE(count == pattern.primitive_count());
+      }
+      ++checked;
+      culled += processed.culled ? 1 : 0;
+      largest = std::max(largest, count);
+    }
+  };
+  for (ts::Partitioning p : kAllPartitionings) {
+    for (int a = 0; a < 5 * 5 * 5 * 5 * 5 * 5; ++a) {  // quad: 1..5 on all six factors
+      ts::FactorSet f{ts::Domain::quad, {}};
+      for (int k = 0, r = a; k < 6; ++k, r /= 5) f.values[std::size_t(k)] = float(1 + r % 5);
+      check(p, f);
+    }
+    for (int a = 0; a < 9 * 9 * 9 * 9; ++a) {  // tri: 1..9 on all four
+      ts::FactorSet f{ts::Domain::tri, {}};
+      for (int k = 0, r = a; k < 4; ++k, r /= 9) f.values[std::size_t(k)] = float(1 + r % 9);
+      check(p, f);
+    }
+    for (int a = 0; a < 70 * 70; a += 7) check(p, ts::FactorSet{ts::Domain::isoline, {float(a % 70), float(a / 70)}});
+  }
+  Rng rng(31);
+  const std::array<float, 6> special = {kNan, kInf, -kInf, -1.0f, 0.0f, 1e30f};
+  for (int i = 0; i < 6000; ++i) {
+    const ts::Domain d = i % 3 == 0 ? ts::Domain::quad : i % 3 == 1 ? ts::Domain::tri : ts::Domain::isoline;
+    ts::FactorSet f = random_factors(rng, d, 0.5, 70.0);
+    if (rng.chance(0.02)) f.values[std::size_t(rng.integer(0, 5))] = special[std::size_t(rng.integer(0, 5))];
+    check(kAllPartitionings[std::size_t(rng.integer(0, 3))], f);
+  }
+  for (ts::Partitioning p : kAllPartitionings) check(p, ts::FactorSet{ts::Domain::quad, {64, 64, 64, 64, 64, 64}});
+  CHECK(checked > 380000);
+  CHECK(culled > 0);
+  CHECK(largest == 64u * 64u * 2u);  // quad, every factor 64: 8192 triangles
+}
