@@ -446,20 +446,22 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
       // A box of at most 4x4 pixel centres: each edge at the four centres (min_x + dx, min_y + dy) of
       // a row in lanes dx, one row after the other; the covered centres of a row are the lanes where
       // no edge is negative.
+      // The x step times dx = 0..3 as masked adds (SSE2 has no 32-bit lane multiply; simd::mullo32
+      // emulates one with twice the instructions).
       const __m128i from1 = _mm_setr_epi32(0, -1, -1, -1), from2 = _mm_setr_epi32(0, 0, -1, -1);
       const __m128i from3 = _mm_setr_epi32(0, 0, 0, -1);
       __m128i row[3], down[3];
-      const auto edge = [&](int i, auto lane) {  // edge `lane` at the first row's centres
+      const auto edge = [&](auto lane) {  // edge `lane` at the first row's centres
         constexpr int k = decltype(lane)::value, broadcast = _MM_SHUFFLE(k, k, k, k);
         const __m128i step = _mm_shuffle_epi32(sx, broadcast);
         const __m128i times_dx =
             _mm_add_epi32(_mm_add_epi32(_mm_and_si128(step, from1), _mm_and_si128(step, from2)), _mm_and_si128(step, from3));
-        row[i] = _mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), times_dx);
-        down[i] = _mm_shuffle_epi32(sy, broadcast);
+        row[k] = _mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), times_dx);
+        down[k] = _mm_shuffle_epi32(sy, broadcast);
       };
-      edge(0, std::integral_constant<int, 0>{});
-      edge(1, std::integral_constant<int, 1>{});
-      edge(2, std::integral_constant<int, 2>{});
+      edge(std::integral_constant<int, 0>{});
+      edge(std::integral_constant<int, 1>{});
+      edge(std::integral_constant<int, 2>{});
       // All four rows, without a branch on the box's height; centres outside the box are masked off.
       unsigned found = 0;
       for (int r = 0; r < kSmallBoxPixels; ++r) {

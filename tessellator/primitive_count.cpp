@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 
+#include "domains.h"
 #include "tessellator.h"
 
 namespace tessera::ts {
@@ -36,7 +37,7 @@ std::size_t quad_points(const ProcessedFactors& p) {
 std::size_t quad_triangles(const ProcessedFactors& p) {
   if (p.minimal) return 2;
   const std::array<int, 2> n = {p.inside[0].num_points, p.inside[1].num_points};
-  const int rings = std::min((n[0] + 1) >> 1, (n[1] + 1) >> 1);
+  const int rings = detail::quad_rings(p);
   std::size_t count = 0;
   for (int ring = 1; ring < rings; ++ring)
     for (int edge = 0; edge < 4; ++edge) {
@@ -44,12 +45,7 @@ std::size_t quad_triangles(const ProcessedFactors& p) {
       if (ring == 1) count += transition_triangles(p.inside[std::size_t(along)], p.outside[std::size_t(edge)]);
       else count += std::size_t(2 * (n[std::size_t(along)] - 2 * ring));  // a trapezoid: 2 per inside point
     }
-  // The middle strip of quads an odd narrower axis leaves.
-  if (n[0] > n[1] && p.inside[1].parity == Parity::odd)
-    count += std::size_t(2 * ((((n[0] >> 1) - (n[1] >> 1)) << 1) + (p.inside[0].parity == Parity::even ? 2 : 1)));
-  else if (n[1] >= n[0] && p.inside[0].parity == Parity::odd)
-    count += std::size_t(2 * ((((n[1] >> 1) - (n[0] >> 1)) << 1) + (p.inside[1].parity == Parity::even ? 2 : 1)));
-  return count;
+  return count + std::size_t(2 * detail::quad_middle_strip(p).quads);
 }
 
 std::size_t tri_points(const ProcessedFactors& p) {

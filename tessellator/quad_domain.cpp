@@ -61,7 +61,7 @@ void quad_generate_connectivity(const ProcessedFactors& p, bool ccw, std::vector
   TriangleWriter out(indices, ccw);
   const std::array<int, 2> n = {p.inside[U].num_points, p.inside[V].num_points};
   const std::array<int, 2> rows_to_centre = {(n[U] + 1) >> 1, (n[V] + 1) >> 1};  // even: centre row included
-  const int rings = std::min(rows_to_centre[U], rows_to_centre[V]);
+  const int rings = quad_rings(p);
   // The ring whose inner side is an even centre row, per axis of that row (-1: none). Walking
   // around such a ring, the return trip along the row runs backwards through the points.
   const std::array<int, 2> centre_row_ring = {p.inside[V].parity == Parity::even ? rows_to_centre[V] - 1 : -1,
@@ -105,13 +105,13 @@ void quad_generate_connectivity(const ProcessedFactors& p, bool ccw, std::vector
   // Odd parity on the narrower axis leaves a strip of quads in the middle (the spec's "Z").
   // outside_base is now the first point of the innermost ring, two points wide.
   const int o = outside_base;
-  if (n[U] > n[V] && p.inside[V].parity == Parity::odd) {
-    const int quads = (((n[U] >> 1) - (n[V] >> 1)) << 1) + (p.inside[U].parity == Parity::even ? 2 : 1);
+  const QuadMiddleStrip strip = quad_middle_strip(p);
+  const int quads = strip.quads;
+  if (quads > 0 && strip.along_u) {
     // The inside row is the ring's far side, walked back from its end; it starts at the ring's first point.
     const Row inside{o + 2 * quads + 2, -1, 0, o};
     stitch_regular(out, false, Diagonals::inside_to_outside, quads + 1, inside, Row{o + 1});
-  } else if (n[V] >= n[U] && p.inside[U].parity == Parity::odd) {
-    const int quads = (((n[V] >> 1) - (n[U] >> 1)) << 1) + (p.inside[V].parity == Parity::even ? 2 : 1);
+  } else if (quads > 0) {
     const Diagonals d = p.inside[V].parity == Parity::even ? Diagonals::inside_to_outside : Diagonals::inside_to_outside_except_middle;
     stitch_regular(out, false, d, quads + 1, Row{o + 2 * quads + 1, -1}, Row{o});
   }

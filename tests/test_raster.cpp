@@ -452,6 +452,11 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   const auto [offset, tile_size] = GENERATE(std::pair{2, 64}, std::pair{6, 8});
   CAPTURE(offset, tile_size);
   Rng rng(11);
+  // Pixel centres in a triangle's vertex box along one axis (detail:: as setup finds them).
+  const auto centres = [](const std::int32_t(&c)[3]) {
+    return detail::last_pixel_at_or_before(std::max({c[0], c[1], c[2]})) -
+           detail::first_pixel_at_or_after(std::min({c[0], c[1], c[2]})) + 1;
+  };
   Grid g;
   std::vector<int> expected(std::size_t(kSize) * kSize, 0);
   int lit = 0, empty = 0, small_box = 0, large_box = 0;
@@ -466,11 +471,6 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
         g.indices.push_back(std::uint32_t(g.vertices.size()));
         g.vertices.push_back(snapped_vertex(sx[k], sy[k], kSize));
       }
-      // Pixel centres in the vertex box along each axis (detail:: as setup finds them).
-      const auto centres = [](const std::int32_t(&c)[3]) {
-        return detail::last_pixel_at_or_before(std::max({c[0], c[1], c[2]})) -
-               detail::first_pixel_at_or_after(std::min({c[0], c[1], c[2]})) + 1;
-      };
       (std::max(centres(sx), centres(sy)) <= kSmallBoxPixels ? small_box : large_box) += 1;
       // After the vertices are drawn: it may reorder sx, sy to a positive area.
       (add_exact_coverage(sx, sy, kSize, expected) ? lit : empty) += 1;
