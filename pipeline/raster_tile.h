@@ -248,10 +248,11 @@ std::uint64_t walk_quads(Edges edges, int qx0, int qy0, int x_begin, int x_end, 
   return invocations;
 }
 
-// The quads of a triangle with box_coverage (setup found which of the at most 4x4 pixel centres of its
-// box it covers), for a walk in the walker's order. The box's rows are placed in a grid of 8-bit rows
-// whose origin is the quad-aligned corner (min_x & ~1, min_y & ~1); quad (i, j) of the up to 3x3 quads
-// the box touches is then two bits of grid row 2j and two of row 2j + 1.
+// The covered pixels of a triangle with box_coverage (setup found which of the at most 4x4 pixel centres
+// of its box it covers), on a grid of 8-bit rows whose origin is the quad-aligned corner
+// (min_x & ~1, min_y & ~1): pixel (origin_x + c, origin_y + r) is bit 8r + c. The box then spans at
+// most 5 rows and columns, so its pixels lie in the grid's 3x3 quads; quad (i, j) is bits 2i, 2i + 1
+// of rows 2j and 2j + 1.
 struct BoxQuads {
   std::uint64_t grid = 0;
   BoxQuads(std::uint16_t coverage, int min_x, int min_y) {
@@ -259,10 +260,29 @@ struct BoxQuads {
     const std::uint64_t rows = (m & 0xFu) | ((m & 0xF0u) << 4) | ((m & 0xF00u) << 8) | ((m & 0xF000u) << 12);
     grid = rows << ((min_x & 1) + 8 * (min_y & 1));
   }
-  // Lanes of quad (i, j): bit k = pixel (2i + (k & 1), 2j + (k >> 1)) of the grid.
-  unsigned quad(int i, int j) const {
-    const std::uint64_t pair = grid >> (16 * j + 2 * i);
-    return unsigned(pair & 3u) | unsigned((pair >> 6) & 0xCu);
+  // Keeps the pixels of columns [c0, c1) and rows [r0, r1) of the grid (each bound clamped to 0..8).
+  void keep(int c0, int c1, int r0, int r1) {
+    const auto span = [](int lo, int hi) {
+      lo = std::clamp(lo, 0, 8), hi = std::clamp(hi, 0, 8);
+      return lo < hi ? ((1u << hi) - 1u) & ~((1u << lo) - 1u) : 0u;
+    };
+    const unsigned columns = span(c0, c1), rows = span(r0, r1);
+    std::uint64_t row_bytes = 0;  // 0xFF in each kept row
+    for (int r = 0; r < 8; ++r)
+      if (rows & (1u << r)) row_bytes |= std::uint64_t(0xFF) << (8 * r);
+    grid &= row_bytes & (std::uint64_t(columns) * 0x0101010101010101u);
+  }
+  // Takes the quad of the lowest remaining pixel: its (i, j) and lanes (bit k = pixel (2i + (k & 1),
+  // 2j + (k >> 1))), removing its pixels from the grid. False when none is left.
+  bool next(int& i, int& j, unsigned& lanes) {
+    if (!grid) return false;
+    const int bit = __builtin_ctzll(grid);
+    i = (bit & 7) >> 1, j = bit >> 4;
+    const int shift = 16 * j + 2 * i;
+    const std::uint64_t pair = grid >> shift;
+    lanes = unsigned(pair & 3u) | unsigned((pair >> 6) & 0xCu);
+    grid &= ~(std::uint64_t(0x0303) << shift);
+    return true;
   }
 };
 
@@ -280,20 +300,16 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
     return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
   };
   if (p.box_coverage) {
-    // Setup tested the box's centres with these edge functions: shade its covered pixels' quads in the
-    // walker's order (rows of quads), those in this tile (tiles are aligned to quads).
-    const BoxQuads box(p.box_coverage, p.min_x, p.min_y);
+    // Setup tested the box's centres with these edge functions: shade the quads of its covered pixels
+    // in this tile (tiles are aligned to quads). A triangle's quads do not overlap, so their order does
+    // not change the image.
+    BoxQuads box(p.box_coverage, p.min_x, p.min_y);
+    const int ox = p.min_x & ~1, oy = p.min_y & ~1;
+    if (ox < tx0 || oy < ty0 || ox + 6 > tx1 || oy + 6 > ty1) box.keep(tx0 - ox, tx1 - ox, ty0 - oy, ty1 - oy);
     std::uint64_t invocations = 0;
-    const int columns = (p.max_x >> 1) - (p.min_x >> 1), rows = (p.max_y >> 1) - (p.min_y >> 1);  // quads - 1
-    for (int j = 0; j <= rows; ++j) {
-      const int qy = (p.min_y & ~1) + 2 * j;
-      if (qy < ty0 || qy >= ty1) continue;
-      for (int i = 0; i <= columns; ++i) {
-        const int qx = (p.min_x & ~1) + 2 * i;
-        const unsigned covered = box.quad(i, j);
-        if (covered && qx >= tx0 && qx < tx1) invocations += shade(qx, qy, covered);
-      }
-    }
+    int i = 0, j = 0;
+    unsigned covered = 0;
+    while (box.next(i, j, covered)) invocations += shade(ox + 2 * i, oy + 2 * j, covered);
     return invocations;
   }
 #if defined(__SSE2__)
