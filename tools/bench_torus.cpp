@@ -151,7 +151,7 @@ int run_bench_torus(const TorusOptions& o) {
   if (o.json) {
     std::ostringstream j;
     j << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"partitioning\": \"" << o.partitioning
-      << "\", \"resolution\": \"" << w << "x" << h << "\", \"threads\": " << device.threads()
+      << "\", \"resolution\": \"" << w << "x" << h << "\", \"isa\": \"" << kBuildIsa << "\", \"threads\": " << device.threads()
       << ", \"frames\": " << o.frames << ", \"triangles\": " << triangles << ", \"median_s\": " << median
       << ", \"min_s\": " << minimum << ", \"triangles_per_s\": " << double(triangles) / median
       << ", \"geometry_peak_bytes\": " << report.memory.geometry_peak_bytes
@@ -167,9 +167,9 @@ int run_bench_torus(const TorusOptions& o) {
   } else {
     char line[512];
     std::snprintf(line, sizeof line,
-                  "torus factor %s %s %dx%d threads %d: triangles %llu median_s %.4f min_s %.4f (%.1f M triangles/s), "
+                  "torus factor %s %s %dx%d %s threads %d: triangles %llu median_s %.4f min_s %.4f (%.1f M triangles/s), "
                   "geometry peak %.1f MB, framebuffer %.1f MB, peak RSS %.1f MB\n",
-                  float_text(o.factor).c_str(), o.partitioning.c_str(), w, h, device.threads(),
+                  float_text(o.factor).c_str(), o.partitioning.c_str(), w, h, kBuildIsa, device.threads(),
                   static_cast<unsigned long long>(triangles), median, minimum, double(triangles) / median / 1e6,
                   double(report.memory.geometry_peak_bytes) / 1e6, double(report.memory.framebuffer_bytes) / 1e6,
                   double(rss) / 1e6);

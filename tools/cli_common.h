@@ -15,6 +15,15 @@
 
 namespace tessera::cli {
 
+// The instruction set this build was compiled for (TESSERA_ISA in CMakeLists.txt): benchmark reports
+// name it, since timings depend on it (the images do not).
+inline constexpr const char* kBuildIsa =
+#if defined(__AVX2__)
+    "x86-64-v3";
+#else
+    "baseline";
+#endif
+
 // Exit codes: 0 ok, 1 bad input or failed check, 2 usage error.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   bool quiet = false, verbose = false;
   app.add_flag("-q,--quiet", quiet, "only errors on stderr");
   app.add_flag("-v,--verbose", verbose, "more detail on stderr");
-  app.set_version_flag("--version", "tessera 0.1.0");
+  app.set_version_flag("--version", std::string("tessera 0.1.0 (") + kBuildIsa + ")");
   std::map<std::string, Runner> runners;
   runners["pattern"] = add_pattern_command(app);
   runners["oracle-compare"] = add_oracle_command(app);
