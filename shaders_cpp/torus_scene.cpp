@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "simd8.h"
+
 namespace tessera::scenes {
 
 TorusScene make_torus_scene(int width, int height) {
@@ -101,30 +103,33 @@ ClipVertex<3> DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::spa
 
 namespace {
 
-using simd::F4;
+using simd::F8;
+
+// Eight domain points per step: with AVX one instruction per operation, otherwise two SSE ones (simd8.h).
+constexpr std::size_t kLanes = 8;
 
 struct V3 {
-  F4 x, y, z;
+  F8 x, y, z;
 };
 V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator*(F4 s, const V3& v) { return {s * v.x, s * v.y, s * v.z}; }
-V3 splat(const glm::vec3& v) { return {F4::splat(v.x), F4::splat(v.y), F4::splat(v.z)}; }
+V3 operator*(F8 s, const V3& v) { return {s * v.x, s * v.y, s * v.z}; }
+V3 splat(const glm::vec3& v) { return {F8::splat(v.x), F8::splat(v.y), F8::splat(v.z)}; }
 
 // bspline_basis() in lanes, with its exact expression trees (left to right, as C++ groups them).
-struct Basis4 {
-  F4 b[4], d[4];
+struct BasisLanes {
+  F8 b[4], d[4];
 };
-Basis4 basis4(F4 t) {
-  const F4 one = F4::splat(1.0f), three = F4::splat(3.0f), six = F4::splat(6.0f), half = F4::splat(0.5f);
-  const F4 s = one - t;
-  Basis4 r;
+BasisLanes basis_lanes(F8 t) {
+  const F8 one = F8::splat(1.0f), three = F8::splat(3.0f), six = F8::splat(6.0f), half = F8::splat(0.5f);
+  const F8 s = one - t;
+  BasisLanes r;
   r.b[0] = ((s * s) * s) / six;
-  r.b[1] = ((((three * t) * t) * t - (six * t) * t) + F4::splat(4.0f)) / six;
-  r.b[2] = ((((F4::splat(-3.0f) * t) * t) * t + (three * t) * t + three * t) + one) / six;
+  r.b[1] = ((((three * t) * t) * t - (six * t) * t) + F8::splat(4.0f)) / six;
+  r.b[2] = ((((F8::splat(-3.0f) * t) * t) * t + (three * t) * t + three * t) + one) / six;
   r.b[3] = ((t * t) * t) / six;
   r.d[0] = ((-s) * s) * half;
-  r.d[1] = ((three * t) * t - F4::splat(4.0f) * t) * half;
-  r.d[2] = ((((F4::splat(-3.0f) * t) * t) + F4::splat(2.0f) * t) + one) * half;
+  r.d[1] = ((three * t) * t - F8::splat(4.0f) * t) * half;
+  r.d[2] = ((((F8::splat(-3.0f) * t) * t) + F8::splat(2.0f) * t) + one) * half;
   r.d[3] = (t * t) * half;
   return r;
 }
@@ -134,21 +139,22 @@ Basis4 basis4(F4 t) {
 void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp,
                                     std::span<const DomainLocation> locations, std::uint32_t patch_id,
                                     std::span<ClipVertex<3>> out) const {
+  using Lanes = std::array<float, kLanes>;
   const int pi = int(patch_id) / kTorusRows, pj = int(patch_id) % kTorusRows;
   V3 rows[16];
   for (std::size_t k = 0; k < 16; ++k) rows[k] = splat(cp[k]);
-  const F4 zero = F4::splat(0.0f);
-  for (std::size_t first = 0; first < locations.size(); first += 4) {
+  const F8 zero = F8::splat(0.0f);
+  for (std::size_t first = 0; first < locations.size(); first += kLanes) {
     // A short last group repeats its last point; the extra lanes are computed and dropped.
-    const std::size_t count = std::min<std::size_t>(4, locations.size() - first);
-    std::array<float, 4> u{}, v{};
-    for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t count = std::min<std::size_t>(kLanes, locations.size() - first);
+    Lanes u{}, v{};
+    for (std::size_t k = 0; k < kLanes; ++k) {
       const DomainLocation& l = locations[first + std::min(k, count - 1)];
       u[k] = l.u;
       v[k] = l.v;
     }
-    const F4 fu = F4::load(u), fv = F4::load(v);
-    const Basis4 bu = basis4(fu), bv = basis4(fv);
+    const F8 fu = F8::load(u), fv = F8::load(v);
+    const BasisLanes bu = basis_lanes(fu), bv = basis_lanes(fv);
     V3 p{zero, zero, zero}, pu = p, pv = p;
     for (int r = 0; r < 4; ++r) {
       const V3* row = &rows[r * 4];
@@ -160,24 +166,27 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     }
     // glm::normalize(glm::cross(pu, pv)): cross in glm's order, then n * (1 / sqrt(dot(n, n))).
     const V3 cr{pu.y * pv.z - pv.y * pu.z, pu.z * pv.x - pv.z * pu.x, pu.x * pv.y - pv.x * pu.y};
-    const F4 inv_len = F4::splat(1.0f) / simd::sqrt((cr.x * cr.x + cr.y * cr.y) + cr.z * cr.z);
+    const F8 inv_len = F8::splat(1.0f) / simd::sqrt((cr.x * cr.x + cr.y * cr.y) + cr.z * cr.z);
     const V3 n{cr.x * inv_len, cr.y * inv_len, cr.z * inv_len};
-    std::array<glm::vec2, 4> st;
-    for (std::size_t k = 0; k < 4; ++k)
-      st[k] = glm::vec2((float(pi) + u[k]) / float(kTorusColumns), (float(pj) + v[k]) / float(kTorusRows));
-    std::array<glm::vec4, 4> texels;
-    height->sample_level4(sampler, st, 0.0f, texels);
-    std::array<float, 4> h{};
-    for (std::size_t k = 0; k < 4; ++k) h[k] = texels[k].x;
+    // The height texels, four lanes per texture call.
+    Lanes h{};
+    for (std::size_t half = 0; half < kLanes; half += 4) {
+      std::array<glm::vec2, 4> st;
+      for (std::size_t k = 0; k < 4; ++k)
+        st[k] = glm::vec2((float(pi) + u[half + k]) / float(kTorusColumns), (float(pj) + v[half + k]) / float(kTorusRows));
+      std::array<glm::vec4, 4> texels;
+      height->sample_level4(sampler, st, 0.0f, texels);
+      for (std::size_t k = 0; k < 4; ++k) h[half + k] = texels[k].x;
+    }
     // p += n * scale * (h - 0.5f), grouped as glm does: (n * scale) * (h - 0.5f).
-    const F4 dh = F4::load(h) - F4::splat(0.5f), sc = F4::splat(scale);
+    const F8 dh = F8::load(h) - F8::splat(0.5f), sc = F8::splat(scale);
     p = p + V3{(n.x * sc) * dh, (n.y * sc) * dh, (n.z * sc) * dh};
     // view_projection * vec4(p, 1), in glm's order: (m0 x + m1 y) + (m2 z + m3 * 1).
     const glm::mat4& m = view_projection;
-    std::array<float, 4> clip[4], nx, ny, nz;
+    Lanes clip[4], nx, ny, nz;
     for (int row = 0; row < 4; ++row) {
-      const F4 m0 = F4::splat(m[0][row]), m1 = F4::splat(m[1][row]), m2 = F4::splat(m[2][row]);
-      const F4 m3 = F4::splat(m[3][row]) * F4::splat(1.0f);
+      const F8 m0 = F8::splat(m[0][row]), m1 = F8::splat(m[1][row]), m2 = F8::splat(m[2][row]);
+      const F8 m3 = F8::splat(m[3][row]) * F8::splat(1.0f);
       ((m0 * p.x + m1 * p.y) + (m2 * p.z + m3)).store(clip[row]);
     }
     n.x.store(nx);
