@@ -15,6 +15,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #include <xmmintrin.h>
+#if defined(__SSE4_1__)
+#include <smmintrin.h>
+#endif
 #else
 #include <cmath>
 #endif
@@ -47,12 +50,16 @@ struct F4 {
   friend F4 operator-(F4 a) { return {_mm_xor_ps(a.v, _mm_set1_ps(-0.0f))}; }  // flips the sign bit, as -x
 };
 inline F4 sqrt(F4 a) { return {_mm_sqrt_ps(a.v)}; }
-// Lane-wise a * b modulo 2^32 (SSE4.1's pmulld, from SSE2's 32x32->64-bit unsigned multiplies: the low
-// 32 bits of a product do not depend on signedness).
+// Lane-wise a * b modulo 2^32: SSE4.1's pmulld where the build has it (a host build), else from SSE2's
+// 32x32->64-bit unsigned multiplies (the low 32 bits of a product do not depend on signedness).
 inline __m128i mullo32(__m128i a, __m128i b) {
+#if defined(__SSE4_1__)
+  return _mm_mullo_epi32(a, b);
+#else
   const __m128i even = _mm_mul_epu32(a, b);
   const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
   return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)), _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
+#endif
 }
 // std::max(a, b) is (a < b) ? b : a; maxps(b, a) is (b > a) ? b : a: the same for every input.
 inline F4 max(F4 a, F4 b) { return {_mm_max_ps(b.v, a.v)}; }

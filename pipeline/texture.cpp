@@ -338,6 +338,57 @@ glm::vec4 Texture2D::sample_level(const Sampler& s, glm::vec2 uv, float lod) con
   return sample_at_lod(s, uv, clamp_lod(s, lod + s.mip_lod_bias));
 }
 
+namespace {
+
+// sample_level4's taps when, in every lane, both taps of each axis lie inside the level (no address
+// mode applies): the coordinate, its floor and its fraction in lanes, each the scalar expression of
+// linear_taps (truncate, then one less where the coordinate is below it; the fraction by subtraction).
+// False, with nothing written, when any lane needs linear_taps' far-coordinate or addressing paths.
+template <class Level>
+bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& level, const float* base, std::size_t stride,
+                           std::array<float, 4>& t00, std::array<float, 4>& t01, std::array<float, 4>& t10,
+                           std::array<float, 4>& t11, std::array<float, 4>& fu, std::array<float, 4>& fv) {
+#if defined(__SSE2__)
+  const __m128 x = _mm_sub_ps(_mm_mul_ps(_mm_setr_ps(uv[0].x, uv[1].x, uv[2].x, uv[3].x), _mm_set1_ps(level.fwidth)),
+                              _mm_set1_ps(0.5f));
+  const __m128 y = _mm_sub_ps(_mm_mul_ps(_mm_setr_ps(uv[0].y, uv[1].y, uv[2].y, uv[3].y), _mm_set1_ps(level.fheight)),
+                              _mm_set1_ps(0.5f));
+  const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)), far = _mm_set1_ps(kFarCoordinate);
+  // NaN compares false, so it fails here as in linear_taps.
+  const __m128 near = _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(x, magnitude), far), _mm_cmplt_ps(_mm_and_ps(y, magnitude), far));
+  if (_mm_movemask_ps(near) != 0xF) return false;
+  const auto floor_lanes = [](__m128 a) {
+    const __m128i t = _mm_cvttps_epi32(a);
+    return _mm_add_epi32(t, _mm_castps_si128(_mm_cmplt_ps(a, _mm_cvtepi32_ps(t))));  // the mask is -1 where a < t
+  };
+  const __m128i iu = floor_lanes(x), iv = floor_lanes(y);
+  // Both taps inside: 0 <= i and i + 1 <= n - 1.
+  const auto inside = [](__m128i i, int n) {
+    return _mm_and_si128(_mm_cmpgt_epi32(i, _mm_set1_epi32(-1)), _mm_cmplt_epi32(i, _mm_set1_epi32(n - 1)));
+  };
+  if (_mm_movemask_ps(_mm_castsi128_ps(_mm_and_si128(inside(iu, level.width), inside(iv, level.height)))) != 0xF)
+    return false;
+  _mm_storeu_ps(fu.data(), _mm_sub_ps(x, _mm_cvtepi32_ps(iu)));
+  _mm_storeu_ps(fv.data(), _mm_sub_ps(y, _mm_cvtepi32_ps(iv)));
+  alignas(16) std::int32_t column[4], row[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(column), iu);
+  _mm_store_si128(reinterpret_cast<__m128i*>(row), iv);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const float* row0 = base + static_cast<std::size_t>(row[k]) * stride + static_cast<std::size_t>(column[k]);
+    t00[k] = row0[0];
+    t01[k] = row0[1];
+    t10[k] = row0[stride];
+    t11[k] = row0[stride + 1];
+  }
+  return true;
+#else
+  (void)uv, (void)level, (void)base, (void)stride, (void)t00, (void)t01, (void)t10, (void)t11, (void)fu, (void)fv;
+  return false;
+#endif
+}
+
+}  // namespace
+
 void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod,
                               std::array<glm::vec4, 4>& out) const {
   const float l = clamp_lod(s, lod + s.mip_lod_bias);
@@ -352,18 +403,19 @@ void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& 
   const float* base = texels_.data() + level.offset;
   const std::size_t stride = static_cast<std::size_t>(level.width);
   std::array<float, 4> t00, t01, t10, t11, fu, fv;
-  for (std::size_t k = 0; k < 4; ++k) {
-    const LinearTaps tu = linear_taps(uv[k].x * level.fwidth - 0.5f, level.width, s.address_u);
-    const LinearTaps tv = linear_taps(uv[k].y * level.fheight - 0.5f, level.height, s.address_v);
-    const float* row0 = base + static_cast<std::size_t>(tv.i0) * stride;
-    const float* row1 = base + static_cast<std::size_t>(tv.i1) * stride;
-    t00[k] = row0[tu.i0];
-    t01[k] = row0[tu.i1];
-    t10[k] = row1[tu.i0];
-    t11[k] = row1[tu.i1];
-    fu[k] = tu.frac;
-    fv[k] = tv.frac;
-  }
+  if (!bilinear_taps_inside4(uv, level, base, stride, t00, t01, t10, t11, fu, fv))
+    for (std::size_t k = 0; k < 4; ++k) {
+      const LinearTaps tu = linear_taps(uv[k].x * level.fwidth - 0.5f, level.width, s.address_u);
+      const LinearTaps tv = linear_taps(uv[k].y * level.fheight - 0.5f, level.height, s.address_v);
+      const float* row0 = base + static_cast<std::size_t>(tv.i0) * stride;
+      const float* row1 = base + static_cast<std::size_t>(tv.i1) * stride;
+      t00[k] = row0[tu.i0];
+      t01[k] = row0[tu.i1];
+      t10[k] = row1[tu.i0];
+      t11[k] = row1[tu.i1];
+      fu[k] = tu.frac;
+      fv[k] = tv.frac;
+    }
   const F4 one = F4::splat(1.0f), u1 = F4::load(fu), v1 = F4::load(fv);
   const F4 u0 = one - u1, v0 = one - v1;
   const F4 top = F4::load(t00) * u0 + F4::load(t01) * u1;
