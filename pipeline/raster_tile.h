@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 
 #if defined(__SSE2__)
@@ -276,7 +277,7 @@ struct BoxQuads {
   // 2j + (k >> 1))), removing its pixels from the grid. False when none is left.
   bool next(int& i, int& j, unsigned& lanes) {
     if (!grid) return false;
-    const int bit = __builtin_ctzll(grid);
+    const int bit = std::countr_zero(grid);
     i = (bit & 7) >> 1, j = bit >> 4;
     const int shift = 16 * j + 2 * i;
     const std::uint64_t pair = grid >> shift;
