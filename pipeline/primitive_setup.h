@@ -446,8 +446,9 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
       // A box of at most 4x4 pixel centres: each edge at the four centres (min_x + dx, min_y + dy) of
       // a row in lanes dx, one row after the other; the covered centres of a row are the lanes where
       // no edge is negative.
-      // The x step times dx = 0..3 as masked adds (SSE2 has no 32-bit lane multiply; simd::mullo32
-      // emulates one with twice the instructions).
+      // The x step times dx = 0..3 as masked adds: SSE2 has no 32-bit lane multiply (simd::mullo32
+      // emulates one there with twice the instructions); a host build, which has pmulld, runs the same
+      // code, so both builds take one tested path.
       const __m128i from1 = _mm_setr_epi32(0, -1, -1, -1), from2 = _mm_setr_epi32(0, 0, -1, -1);
       const __m128i from3 = _mm_setr_epi32(0, 0, 0, -1);
       __m128i row[3], down[3];
@@ -499,9 +500,9 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
     for (std::int32_t py = min_y; py <= max_y && !covers; ++py)
       for (std::int32_t px = min_x; px <= max_x && !covers; ++px) covers = covers_centre(vx, vy, px, py);
   }
-  // A box of at most 2x2 pixel centres (nearly every triangle at high factors) whose centres the
-  // triangle does not cover (tested exactly, as the rasterizer will) is dropped before its planes are
-  // built and it is binned. The image and the PS invocations cannot change; only the work does.
+  // A box of at most 4x4 pixel centres (kSmallBoxPixels; nearly every triangle at high factors) whose
+  // centres the triangle does not cover (tested exactly, as the rasterizer will) is dropped before its
+  // planes are built and it is binned. The image and the PS invocations cannot change; only the work does.
   if (!covers) return;
   // Built in place; every field the rasterizer reads of a triangle is written.
   ScreenPrimitive<N>& p = chunk.append_primitive();
