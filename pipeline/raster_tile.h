@@ -133,20 +133,15 @@ unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsign
   // float(qx + 1) + 0.5f is float(qx) + 1.5f: both exact for any pixel coordinate.
   (F4::splat(float(qx)) + F4::lanes(0.5f, 1.5f, 0.5f, 1.5f)).store(q.x);
   (F4::splat(float(qy)) + F4::lanes(0.5f, 0.5f, 1.5f, 1.5f)).store(q.y);
-  std::array<float, N> ddx, ddy;
-  for (std::size_t a = 0; a < N; ++a) {
-    ddx[a] = q.attributes[a][1] - q.attributes[a][0];
-    ddy[a] = q.attributes[a][2] - q.attributes[a][0];
-  }
   QuadColor color;
   if constexpr (QuadPixelShader<Ps, N>) {
-    q.ddx_attributes = &ddx;
-    q.ddy_attributes = &ddy;
     q.front_face = p.front_face;
     q.primitive_id = p.primitive_id;
     q.mask = passed;
     ps.shade_quad(static_cast<const QuadInput<N>&>(q), color);
   } else {
+    std::array<float, N> ddx, ddy;
+    for (std::size_t a = 0; a < N; ++a) ddx[a] = q.ddx(a), ddy[a] = q.ddy(a);
     PixelInput<N> in;
     in.front_face = p.front_face;
     in.primitive_id = p.primitive_id;

@@ -78,11 +78,14 @@ template <std::size_t N>
 struct QuadInput {
   std::array<float, 4> x{}, y{}, z{}, inv_w{};  // SV_Position per lane
   std::array<std::array<float, 4>, N> attributes{};  // attributes[a][k]: attribute a at lane k
-  const std::array<float, N>* ddx_attributes = nullptr;
-  const std::array<float, N>* ddy_attributes = nullptr;
   bool front_face = true;
   std::uint32_t primitive_id = 0;
   unsigned mask = 0;  // bit k: lane k is written
+
+  // The quad's derivatives of attribute a (coarse, the same for its four pixels, and what the per-pixel
+  // form's PixelInput::ddx/ddy return): computed when asked, since most shaders never ask.
+  float ddx(std::size_t a) const { return attributes[a][1] - attributes[a][0]; }
+  float ddy(std::size_t a) const { return attributes[a][2] - attributes[a][0]; }
 };
 
 // A quad's colours: c[channel][lane].
