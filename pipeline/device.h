@@ -146,13 +146,13 @@ class Backend {
         const auto start = Clock::now();
         const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
         const int tx1 = std::min(tx0 + g.tile_size, fb_.width()), ty1 = std::min(ty0 + g.tile_size, fb_.height());
-        std::uint64_t invocations = 0;
-        for (std::size_t s = 0; s < used; ++s) {
-          const auto& chunk = slots_[s];
-          for (std::uint32_t i : chunk.bin(t))
-            invocations += rasterize<N>(chunk.primitives[i], tx0, ty0, tx1, ty1, ps_, rc_, fb_);
-        }
-        mine.first += invocations;
+        const auto for_each_primitive = [&](const auto& visit) {
+          for (std::size_t s = 0; s < used; ++s) {
+            const auto& chunk = slots_[s];
+            for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
+          }
+        };
+        mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
         mine.second += seconds_since(start);
       }
     });

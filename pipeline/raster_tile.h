@@ -18,6 +18,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -283,7 +284,6 @@ struct BoxQuads {
 };
 
 // Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
-// The depth function is a template argument so the per-pixel test compiles to one comparison.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
                                       const RasterContext& rc, Framebuffer& fb) {
@@ -336,26 +336,6 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
 }
 
 }  // namespace detail
-
-template <std::size_t N, class Ps>
-std::uint64_t rasterize_triangle(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
-                                 const RasterContext& rc, Framebuffer& fb) {
-  switch (rc.depth.func) {
-    case CompareFunc::never: return detail::rasterize_triangle_with<N, Ps, CompareFunc::never>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::less: return detail::rasterize_triangle_with<N, Ps, CompareFunc::less>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::equal: return detail::rasterize_triangle_with<N, Ps, CompareFunc::equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::less_equal:
-      return detail::rasterize_triangle_with<N, Ps, CompareFunc::less_equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::greater:
-      return detail::rasterize_triangle_with<N, Ps, CompareFunc::greater>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::not_equal:
-      return detail::rasterize_triangle_with<N, Ps, CompareFunc::not_equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::greater_equal:
-      return detail::rasterize_triangle_with<N, Ps, CompareFunc::greater_equal>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case CompareFunc::always: return detail::rasterize_triangle_with<N, Ps, CompareFunc::always>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-  }
-  return 0;
-}
 
 template <std::size_t N, class Ps>
 std::uint64_t rasterize_line(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
@@ -414,15 +394,55 @@ std::uint64_t rasterize_point(const ScreenPrimitive<N>& p, int tx0, int ty0, int
   return 1;
 }
 
+namespace detail {
+
+template <std::size_t N, class Ps, CompareFunc kDepthFunc, class ForEach>
+std::uint64_t rasterize_tile_with(const ForEach& for_each_primitive, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                                  const RasterContext& rc, Framebuffer& fb) {
+  std::uint64_t invocations = 0;
+  for_each_primitive([&](const ScreenPrimitive<N>& p) {
+    switch (p.kind) {
+      case PrimitiveKind::triangle:
+        invocations += rasterize_triangle_with<N, Ps, kDepthFunc>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+        break;
+      case PrimitiveKind::line: invocations += rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb); break;
+      case PrimitiveKind::point: invocations += rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb); break;
+    }
+  });
+  return invocations;
+}
+
+}  // namespace detail
+
+// Rasterizes primitives, in draw order, inside the tile [tx0, tx1) x [ty0, ty1), which only this thread
+// writes: for_each_primitive(visit) calls visit(const ScreenPrimitive<N>&) for each of them. Returns
+// the pixel shader invocations. The depth function is chosen once per tile, as a template argument,
+// so the per-pixel test compiles to one comparison.
+template <std::size_t N, class Ps, class ForEach>
+std::uint64_t rasterize_tile(const ForEach& for_each_primitive, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                             const RasterContext& rc, Framebuffer& fb) {
+  const auto with = [&](auto func) {
+    return detail::rasterize_tile_with<N, Ps, decltype(func)::value>(for_each_primitive, tx0, ty0, tx1, ty1, ps, rc, fb);
+  };
+  using F = CompareFunc;
+  switch (rc.depth.func) {
+    case F::never: return with(std::integral_constant<F, F::never>{});
+    case F::less: return with(std::integral_constant<F, F::less>{});
+    case F::equal: return with(std::integral_constant<F, F::equal>{});
+    case F::less_equal: return with(std::integral_constant<F, F::less_equal>{});
+    case F::greater: return with(std::integral_constant<F, F::greater>{});
+    case F::not_equal: return with(std::integral_constant<F, F::not_equal>{});
+    case F::greater_equal: return with(std::integral_constant<F, F::greater_equal>{});
+    case F::always: return with(std::integral_constant<F, F::always>{});
+  }
+  return 0;
+}
+
+// One primitive inside the tile.
 template <std::size_t N, class Ps>
 std::uint64_t rasterize(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
                         const RasterContext& rc, Framebuffer& fb) {
-  switch (p.kind) {
-    case PrimitiveKind::triangle: return rasterize_triangle<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case PrimitiveKind::line: return rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-    case PrimitiveKind::point: return rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-  }
-  return 0;
+  return rasterize_tile<N>([&](const auto& visit) { visit(p); }, tx0, ty0, tx1, ty1, ps, rc, fb);
 }
 
 }  // namespace tessera
