@@ -206,12 +206,17 @@ inline bool covers_centre(const std::int32_t (&x)[3], const std::int32_t (&y)[3]
 }
 
 // Enters the chunk's last appended primitive in the bins of the tiles its box touches.
+// Inlined into setup: it runs for every primitive, and nearly every one lies in a single tile.
 template <std::size_t N>
-void bin_last(const SetupContext& c, ChunkBuffer<N>& chunk) {
+[[gnu::always_inline]] inline void bin_last(const SetupContext& c, ChunkBuffer<N>& chunk) {
   const auto index = static_cast<std::uint32_t>(chunk.primitive_count - 1);
   const ScreenPrimitive<N>& p = chunk.primitives[index];
   const TileGrid& g = c.tiles;
   const int tx0 = g.tile_of(p.min_x), tx1 = g.tile_of(p.max_x), ty0 = g.tile_of(p.min_y), ty1 = g.tile_of(p.max_y);
+  if (tx0 == tx1 && ty0 == ty1) {
+    chunk.entries.emplace_back(std::uint32_t(ty0 * g.columns + tx0), index);
+    return;
+  }
   for (int ty = ty0; ty <= ty1; ++ty)
     for (int tx = tx0; tx <= tx1; ++tx) chunk.entries.emplace_back(std::uint32_t(ty * g.columns + tx), index);
 }
@@ -387,7 +392,7 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
 // A triangle whose three vertices are snapped: culling, bounding box, binning. `a`, `b`, `c3` are in
 // the primitive's order.
 template <std::size_t N>
-void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
+[[gnu::always_inline]] inline void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
                             const SetupVertex<N>& b, const SetupVertex<N>& d, std::uint32_t primitive_id) {
   const std::int64_t area = std::int64_t(b.x - a.x) * (d.y - a.y) - std::int64_t(d.x - a.x) * (b.y - a.y);
   if (area == 0) return;  // degenerate after snapping: covers nothing
@@ -570,20 +575,14 @@ void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const 
 
 }  // namespace detail
 
-// Triangle: counts one CInvocation and a CPrimitive per emitted triangle; appends to `chunk`.
+namespace detail {
+
+// setup_triangle's path for a triangle that needs clipping (or is drawn as wireframe): clipped to a
+// fan, each piece set up as setup_snapped_triangle does.
 template <std::size_t N>
-void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& v0, const SetupVertex<N>& v1,
-                    const SetupVertex<N>& v2, std::uint32_t primitive_id) {
-  ++chunk.statistics.CInvocations;
-  // D3D11 discards primitives with a NaN or infinite position coordinate.
-  if (!v0.finite || !v1.finite || !v2.finite) return;
-  if (v0.view_code & v1.view_code & v2.view_code) return;  // wholly outside one plane of the view volume
-  const unsigned needs = v0.clip_code | v1.clip_code | v2.clip_code;
-  if (needs == 0 && c.fill == FillMode::solid) {
-    ++chunk.statistics.CPrimitives;
-    detail::setup_snapped_triangle(c, chunk, v0, v1, v2, primitive_id);
-    return;
-  }
+[[gnu::noinline]] void setup_clipped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& v0,
+                                              const SetupVertex<N>& v1, const SetupVertex<N>& v2, unsigned needs,
+                                              std::uint32_t primitive_id) {
   ClipPolygon<N> poly;
   poly.v[0] = v0.clip, poly.v[1] = v1.clip, poly.v[2] = v2.clip;
   poly.count = 3;
@@ -597,12 +596,33 @@ void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVer
       const SetupVertex<N>* t[3] = {&s[0], &s[k], &s[k + 1]};
       for (int e = 0; e < 3; ++e) {
         const bool inner = (e == 0 && k > 1) || (e == 2 && k + 2 < poly.count);
-        if (!inner) detail::setup_line_window(c, chunk, *t[e], *t[(e + 1) % 3], primitive_id);
+        if (!inner) setup_line_window(c, chunk, *t[e], *t[(e + 1) % 3], primitive_id);
       }
       continue;
     }
-    detail::setup_snapped_triangle(c, chunk, s[0], s[k], s[k + 1], primitive_id);
+    setup_snapped_triangle(c, chunk, s[0], s[k], s[k + 1], primitive_id);
   }
+}
+
+}  // namespace detail
+
+// Triangle: counts one CInvocation and a CPrimitive per emitted triangle; appends to `chunk`. Inlined
+// into the caller's loop over a pattern's triangles; the rare clipping path is a call.
+template <std::size_t N>
+[[gnu::always_inline]] inline void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& v0,
+                                                  const SetupVertex<N>& v1, const SetupVertex<N>& v2,
+                                                  std::uint32_t primitive_id) {
+  ++chunk.statistics.CInvocations;
+  // D3D11 discards primitives with a NaN or infinite position coordinate.
+  if (!v0.finite || !v1.finite || !v2.finite) return;
+  if (v0.view_code & v1.view_code & v2.view_code) return;  // wholly outside one plane of the view volume
+  const unsigned needs = v0.clip_code | v1.clip_code | v2.clip_code;
+  if (needs == 0 && c.fill == FillMode::solid) {
+    ++chunk.statistics.CPrimitives;
+    detail::setup_snapped_triangle(c, chunk, v0, v1, v2, primitive_id);
+    return;
+  }
+  detail::setup_clipped_triangle(c, chunk, v0, v1, v2, needs, primitive_id);
 }
 
 template <std::size_t N>
