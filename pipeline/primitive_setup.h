@@ -67,10 +67,11 @@ struct ScreenPrimitive {
   bool front_face = true;
   bool edges32 = false;
   // Triangles whose box holds at most 4x4 pixel centres (nearly all of them from factor 16 up): bit
-  // dx + 4 * dy is set when pixel (min_x + dx, min_y + dy) lies in the box and is covered, as setup
+  // dx + 8 * dy is set when pixel (min_x + dx, min_y + dy) lies in the box and is covered, as setup
   // found when it tested those centres; the rasterizer shades these pixels without walking edges. 0
-  // otherwise (setup drops a small-box triangle that covers nothing).
-  std::uint16_t box_coverage = 0;
+  // otherwise (setup drops a small-box triangle that covers nothing). Rows are 8 bits apart, as the
+  // rasterizer's quad grid (BoxQuads) lays them out, so it only shifts them into place.
+  std::uint32_t box_coverage = 0;
 };
 
 // The largest vertex box extent (16.8 units, either axis) of a triangle whose edge functions the
@@ -472,11 +473,11 @@ template <std::size_t N>
       unsigned found = 0;
       for (int r = 0; r < kSmallBoxPixels; ++r) {
         const __m128i any_negative = _mm_or_si128(_mm_or_si128(row[0], row[1]), row[2]);
-        found |= (~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu) << (4 * r);
+        found |= (~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu) << (8 * r);
         for (int i = 0; i < 3; ++i) row[i] = _mm_add_epi32(row[i], down[i]);
       }
-      const unsigned columns = ((2u << (max_x - min_x)) - 1u) * 0x1111u;
-      const unsigned rows = (2u << (4 * (max_y - min_y) + 3)) - 1u;
+      const unsigned columns = ((2u << (max_x - min_x)) - 1u) * 0x01010101u;
+      const unsigned rows = 0xFFFFFFFFu >> (8 * (kSmallBoxPixels - 1 - (max_y - min_y)));
       box_coverage = found & columns & rows;
       covers = box_coverage != 0;
     }
@@ -495,7 +496,7 @@ template <std::size_t N>
         for (std::int32_t px = 0; px <= max_x - min_x; ++px) {
           std::uint32_t all = 0;
           for (int i = 0; i < 3; ++i) all |= edge_ref[i] + edge_sx[i] * std::uint32_t(px) + edge_sy[i] * std::uint32_t(py);
-          if (std::int32_t(all) >= 0) box_coverage |= 1u << (px + 4 * py);
+          if (std::int32_t(all) >= 0) box_coverage |= 1u << (px + 8 * py);
         }
       covers = box_coverage != 0;
     }
@@ -534,7 +535,7 @@ template <std::size_t N>
     }
   }
   p.edges32 = edges32;
-  p.box_coverage = std::uint16_t(box_coverage);
+  p.box_coverage = box_coverage;
   // Plane equations from the snapped positions, in pixels.
   const float inv_sub = 1.0f / float(kSubpixelOne);
   const float x1 = float(vx[1] - vx[0]) * inv_sub, y1 = float(vy[1] - vy[0]) * inv_sub;

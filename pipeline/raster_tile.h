@@ -252,11 +252,7 @@ std::uint64_t walk_quads(Edges edges, int qx0, int qy0, int x_begin, int x_end, 
 // of rows 2j and 2j + 1.
 struct BoxQuads {
   std::uint64_t grid = 0;
-  BoxQuads(std::uint16_t coverage, int min_x, int min_y) {
-    const std::uint64_t m = coverage;
-    const std::uint64_t rows = (m & 0xFu) | ((m & 0xF0u) << 4) | ((m & 0xF00u) << 8) | ((m & 0xF000u) << 12);
-    grid = rows << ((min_x & 1) + 8 * (min_y & 1));
-  }
+  BoxQuads(std::uint32_t coverage, int min_x, int min_y) : grid(std::uint64_t(coverage) << ((min_x & 1) + 8 * (min_y & 1))) {}
   // Keeps the pixels of columns [c0, c1) and rows [r0, r1) of the grid (each bound clamped to 0..8).
   void keep(int c0, int c1, int r0, int r1) {
     const auto span = [](int lo, int hi) {
