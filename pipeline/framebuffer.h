@@ -97,8 +97,7 @@ class Framebuffer {
         std::uint8_t* r1 = &color_[index(x, y + 1) * 4];
         __m128i out = px;
         if (mask != 0xFu) {
-          const __m128i m = _mm_setr_epi32(-int(mask & 1u), -int((mask >> 1) & 1u), -int((mask >> 2) & 1u),
-                                           -int((mask >> 3) & 1u));
+          const __m128i m = simd::lane_mask(mask);
           const __m128i old = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r0)),
                                                  _mm_loadl_epi64(reinterpret_cast<const __m128i*>(r1)));
           out = _mm_or_si128(_mm_and_si128(m, px), _mm_andnot_si128(m, old));
