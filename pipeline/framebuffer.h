@@ -71,57 +71,51 @@ class Framebuffer {
   // The 2x2 quad whose top-left pixel is (x, y) lies wholly inside the target: the quad forms below
   // then read and write its two row pairs directly.
   bool quad_inside(int x, int y) const { return x + 1 < width_ && y + 1 < height_; }
+  // Such a quad, addressed once (its depth test and its colour and depth writes share the address):
+  // the indices of its top-left pixel and of the pixel below that.
+  struct QuadSite {
+    std::size_t top = 0, bottom = 0;
+  };
+  QuadSite quad_site(int x, int y) const {
+    const std::size_t i = index(x, y);
+    return {i, i + std::size_t(width_)};
+  }
   // Depth of the quad's pixels in lanes k = 0 (x, y), 1 (x + 1, y), 2 (x, y + 1), 3 (x + 1, y + 1).
-  simd::F4 depth_quad(int x, int y) const { return simd::F4::load_pairs(&depth_[index(x, y)], &depth_[index(x, y + 1)]); }
-  void set_depth_quad(int x, int y, simd::F4 d) { d.store_pairs(&depth_[index(x, y)], &depth_[index(x, y + 1)]); }
+  simd::F4 depth_quad(QuadSite q) const { return simd::F4::load_pairs(&depth_[q.top], &depth_[q.bottom]); }
+  void set_depth_quad(QuadSite q, simd::F4 d) { d.store_pairs(&depth_[q.top], &depth_[q.bottom]); }
+  simd::F4 depth_quad(int x, int y) const { return depth_quad(quad_site(x, y)); }
+  void set_depth_quad(int x, int y, simd::F4 d) { set_depth_quad(quad_site(x, y), d); }
 
-  // The output merger for one 2x2 quad whose top-left pixel is (x, y): pixel (x + (k & 1), y + (k >> 1))
-  // gets colour c[.][k] where bit k of `mask` is set (only those pixels need to exist). The format is
-  // checked once per quad and the 16 conversions are one packed sequence.
-  [[gnu::always_inline]] void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
-    if (format_ == ColorFormat::rgba8_unorm) {
+  // The output merger for one 2x2 quad: pixel k (as in depth_quad) gets colour c[.][k] where bit k of
+  // `mask` is set. The format is checked once per quad and the 16 conversions to RGBA8 are one packed
+  // sequence. This form takes a quad inside the target; the (x, y) form below any quad whose masked
+  // pixels exist.
+  [[gnu::always_inline]] void write_quad(QuadSite q, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
 #if defined(__SSE2__)
-      // float_to_unorm8 on 16 values: max(x, 0) and min(., 1) with std::max/std::min's NaN behaviour
-      // (maxps returns its second operand for NaN), scale and add 0.5, then (after a transpose to
-      // pixel order, which moves bits only) truncation, as the scalar cast does. The results are in
-      // 0..255, so the saturating packs to 16 and 8 bits keep them unchanged.
-      const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
-      __m128 v[4];
-      for (std::size_t ch = 0; ch < 4; ++ch)
-        v[ch] = _mm_add_ps(_mm_mul_ps(_mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero)), scale), half);
-      _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);  // v[k]: pixel k's r, g, b, a
-      const __m128i px = _mm_packus_epi16(_mm_packs_epi32(_mm_cvttps_epi32(v[0]), _mm_cvttps_epi32(v[1])),
-                                          _mm_packs_epi32(_mm_cvttps_epi32(v[2]), _mm_cvttps_epi32(v[3])));
-      if (quad_inside(x, y)) {
-        std::uint8_t* r0 = &color_[index(x, y) * 4];
-        std::uint8_t* r1 = &color_[index(x, y + 1) * 4];
-        __m128i out = px;
-        if (mask != 0xFu) {
-          const __m128i m = simd::lane_mask(mask);
-          const __m128i old = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r0)),
-                                                 _mm_loadl_epi64(reinterpret_cast<const __m128i*>(r1)));
-          out = _mm_or_si128(_mm_and_si128(m, px), _mm_andnot_si128(m, old));
-        }
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(r0), out);
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(r1), _mm_srli_si128(out, 8));
-        return;
+    if (format_ == ColorFormat::rgba8_unorm) {
+      std::uint8_t* r0 = &color_[q.top * 4];
+      std::uint8_t* r1 = &color_[q.bottom * 4];
+      const __m128i px = quad_to_rgba8(c);
+      __m128i out = px;
+      if (mask != 0xFu) {
+        const __m128i m = simd::lane_mask(mask);
+        const __m128i old = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r0)),
+                                               _mm_loadl_epi64(reinterpret_cast<const __m128i*>(r1)));
+        out = _mm_or_si128(_mm_and_si128(m, px), _mm_andnot_si128(m, old));
       }
-      alignas(16) std::uint8_t bytes[4][4];  // [pixel][channel]
-      _mm_store_si128(reinterpret_cast<__m128i*>(bytes), px);
-#else
-      std::uint8_t bytes[4][4];  // [pixel][channel]
-      for (int ch = 0; ch < 4; ++ch)
-        for (int k = 0; k < 4; ++k) bytes[k][ch] = float_to_unorm8(c[std::size_t(ch)][std::size_t(k)]);
-#endif
-      for (int k = 0; k < 4; ++k)
-        if (mask & (1u << k)) std::memcpy(&color_[index(x + (k & 1), y + (k >> 1)) * 4], bytes[k], 4);
-    } else {
-      for (int k = 0; k < 4; ++k)
-        if (mask & (1u << k)) {
-          const float px[4] = {c[0][std::size_t(k)], c[1][std::size_t(k)], c[2][std::size_t(k)], c[3][std::size_t(k)]};
-          std::memcpy(&color_[index(x + (k & 1), y + (k >> 1)) * 16], px, 16);
-        }
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(r0), out);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(r1), _mm_srli_si128(out, 8));
+      return;
     }
+#endif
+    const std::size_t pixel[4] = {q.top, q.top + 1, q.bottom, q.bottom + 1};
+    write_pixels(pixel, mask, c);
+  }
+  [[gnu::always_inline]] void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
+    if (quad_inside(x, y)) return write_quad(quad_site(x, y), mask, c);
+    // Pixels past the last row or column do not exist, and are not in `mask`.
+    const std::size_t pixel[4] = {index(x, y), index(x, y) + 1, index(x, y + 1), index(x, y + 1) + 1};
+    write_pixels(pixel, mask, c);
   }
 
   // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
@@ -138,6 +132,43 @@ class Framebuffer {
  private:
   Framebuffer(int w, int h, ColorFormat f);
   std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
+
+#if defined(__SSE2__)
+  // float_to_unorm8 on a quad's 16 values, as RGBA8 bytes in pixel order: max(x, 0) and min(., 1) with
+  // std::max/std::min's NaN behaviour (maxps returns its second operand for NaN), scale and add 0.5,
+  // then (after a transpose to pixel order, which moves bits only) truncation, as the scalar cast does.
+  // The results are in 0..255, so the saturating packs to 16 and 8 bits keep them unchanged.
+  [[gnu::always_inline]] static __m128i quad_to_rgba8(const std::array<std::array<float, 4>, 4>& c) {
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
+    __m128 v[4];
+    for (std::size_t ch = 0; ch < 4; ++ch)
+      v[ch] = _mm_add_ps(_mm_mul_ps(_mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero)), scale), half);
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);  // v[k]: pixel k's r, g, b, a
+    return _mm_packus_epi16(_mm_packs_epi32(_mm_cvttps_epi32(v[0]), _mm_cvttps_epi32(v[1])),
+                            _mm_packs_epi32(_mm_cvttps_epi32(v[2]), _mm_cvttps_epi32(v[3])));
+  }
+#endif
+  // Pixel k of a quad (at index pixel[k]) gets colour c[.][k] where bit k of `mask` is set.
+  void write_pixels(const std::size_t (&pixel)[4], unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
+    if (format_ == ColorFormat::rgba8_unorm) {
+#if defined(__SSE2__)
+      alignas(16) std::uint8_t bytes[4][4];  // [pixel][channel]
+      _mm_store_si128(reinterpret_cast<__m128i*>(bytes), quad_to_rgba8(c));
+#else
+      std::uint8_t bytes[4][4];  // [pixel][channel]
+      for (int ch = 0; ch < 4; ++ch)
+        for (int k = 0; k < 4; ++k) bytes[k][ch] = float_to_unorm8(c[std::size_t(ch)][std::size_t(k)]);
+#endif
+      for (int k = 0; k < 4; ++k)
+        if (mask & (1u << k)) std::memcpy(&color_[pixel[k] * 4], bytes[k], 4);
+    } else {
+      for (int k = 0; k < 4; ++k)
+        if (mask & (1u << k)) {
+          const float px[4] = {c[0][std::size_t(k)], c[1][std::size_t(k)], c[2][std::size_t(k)], c[3][std::size_t(k)]};
+          std::memcpy(&color_[pixel[k] * 16], px, 16);
+        }
+    }
+  }
 
   int width_ = 0, height_ = 0;
   ColorFormat format_ = ColorFormat::rgba8_unorm;

@@ -153,7 +153,7 @@ struct alignas(128) ChunkBuffer {
     tile_start[0] = 0;
   }
   // The next primitive's slot, holding whatever an earlier chunk left there.
-  ScreenPrimitive<N>& append_primitive() {
+  [[gnu::always_inline]] ScreenPrimitive<N>& append_primitive() {
     if (primitive_count == primitives.size()) primitives.resize(std::max<std::size_t>(16, 2 * primitives.size()));
     return primitives[primitive_count++];
   }

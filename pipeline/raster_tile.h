@@ -106,12 +106,13 @@ unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsign
   // four depths at once (its other lanes are in the same tile, so owned by this thread); one that
   // hangs over the target's last row or column reads only its covered pixels.
   const bool inside = fb.quad_inside(qx, qy);
+  const Framebuffer::QuadSite site = inside ? fb.quad_site(qx, qy) : Framebuffer::QuadSite{};
   unsigned passed = covered;
   F4 stored = F4::splat(0.0f);
   if (rc.depth.test) {
     unsigned pass_bits = 0;
     if (inside) {
-      stored = fb.depth_quad(qx, qy);
+      stored = fb.depth_quad(site);
       pass_bits = depth_pass_mask<kDepthFunc>(z, stored);
     } else {
       for (int k = 0; k < 4; ++k) {
@@ -156,10 +157,13 @@ unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsign
       for (int ch = 0; ch < 4; ++ch) color.c[std::size_t(ch)][k] = c[ch];
     }
   }
-  fb.write_quad(qx, qy, passed, color.c);
+  if (inside)
+    fb.write_quad(site, passed, color.c);
+  else
+    fb.write_quad(qx, qy, passed, color.c);
   if (rc.depth.test && rc.depth.write) {
     if (inside) {
-      fb.set_depth_quad(qx, qy, simd::select(passed, stored, z));
+      fb.set_depth_quad(site, simd::select(passed, stored, z));
     } else {
       for (int k = 0; k < 4; ++k)
         if (passed & (1u << k)) fb.set_depth(qx + (k & 1), qy + (k >> 1), q.z[k]);
