@@ -16,6 +16,10 @@
 #include <type_traits>
 #include <vector>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include "clipper.h"
 #include "simd4.h"
 #include "pipeline_state.h"
@@ -450,11 +454,40 @@ template <std::size_t N>
     edge_d_lanes = _mm_packs_epi32(dx, dy);  // exact: |d| <= kEdges32MaxExtent
     if (small_box) {
       // A box of at most 4x4 pixel centres: each edge at the four centres (min_x + dx, min_y + dy) of
-      // a row in lanes dx, one row after the other; the covered centres of a row are the lanes where
-      // no edge is negative.
+      // a row in lanes dx; the covered centres of a row are the lanes where no edge is negative. All
+      // four rows, without a branch on the box's height; centres outside the box are masked off below.
+      // Every value is the exact edge function modulo 2^32 whichever way it is summed, so both forms
+      // give the same bits.
+      unsigned found = 0;  // bit dx + 8 * dy
+#if defined(__AVX2__)
+      // Rows 0 and 1 in the two halves of a 256-bit vector, then rows 2 and 3 (two steps down).
+      const __m256i dx_lanes = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
+      const __m256i second_row = _mm256_setr_epi32(0, 0, 0, 0, -1, -1, -1, -1);
+      __m256i row[3], down2[3];
+      for (int k = 0; k < 3; ++k) {
+        const __m256i lane = _mm256_set1_epi32(k);
+        const __m256i step_x = _mm256_permutevar8x32_epi32(_mm256_castsi128_si256(sx), lane);
+        const __m256i step_y = _mm256_permutevar8x32_epi32(_mm256_castsi128_si256(sy), lane);
+        row[k] = _mm256_add_epi32(_mm256_add_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(ref), lane),
+                                                   _mm256_mullo_epi32(step_x, dx_lanes)),
+                                  _mm256_and_si256(step_y, second_row));
+        down2[k] = _mm256_add_epi32(step_y, step_y);
+      }
+      const auto covered_lanes = [&] {  // 8 bits: the lanes where no edge is negative
+        const __m256i any_negative = _mm256_or_si256(_mm256_or_si256(row[0], row[1]), row[2]);
+        return ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(any_negative))) & 0xFFu;
+      };
+      const unsigned rows01 = covered_lanes();
+      for (int k = 0; k < 3; ++k) row[k] = _mm256_add_epi32(row[k], down2[k]);
+      const unsigned rows0123 = rows01 | (covered_lanes() << 8);  // bit dx + 4 * dy
+#if defined(__BMI2__)
+      found = _pdep_u32(rows0123, 0x0F0F0F0Fu);  // each 4-bit row to its byte
+#else
+      found = (rows0123 & 0xFu) | ((rows0123 & 0xF0u) << 4) | ((rows0123 & 0xF00u) << 8) | ((rows0123 & 0xF000u) << 12);
+#endif
+#else
       // The x step times dx = 0..3 as masked adds: SSE2 has no 32-bit lane multiply (simd::mullo32
-      // emulates one there with twice the instructions); a host build, which has pmulld, runs the same
-      // code, so both builds take one tested path.
+      // emulates one there with twice the instructions).
       const __m128i from1 = _mm_setr_epi32(0, -1, -1, -1), from2 = _mm_setr_epi32(0, 0, -1, -1);
       const __m128i from3 = _mm_setr_epi32(0, 0, 0, -1);
       __m128i row[3], down[3];
@@ -469,13 +502,12 @@ template <std::size_t N>
       edge(std::integral_constant<int, 0>{});
       edge(std::integral_constant<int, 1>{});
       edge(std::integral_constant<int, 2>{});
-      // All four rows, without a branch on the box's height; centres outside the box are masked off.
-      unsigned found = 0;
       for (int r = 0; r < kSmallBoxPixels; ++r) {
         const __m128i any_negative = _mm_or_si128(_mm_or_si128(row[0], row[1]), row[2]);
         found |= (~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu) << (8 * r);
         for (int i = 0; i < 3; ++i) row[i] = _mm_add_epi32(row[i], down[i]);
       }
+#endif
       const unsigned columns = ((2u << (max_x - min_x)) - 1u) * 0x01010101u;
       const unsigned rows = 0xFFFFFFFFu >> (8 * (kSmallBoxPixels - 1 - (max_y - min_y)));
       box_coverage = found & columns & rows;
