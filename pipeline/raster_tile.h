@@ -89,9 +89,13 @@ unsigned depth_pass_mask(simd::F4 z, simd::F4 stored) {
 // One 2x2 quad of triangle `p` at (qx, qy) whose lanes `covered` (bit k = pixel (qx + (k & 1),
 // qy + (k >> 1))) are inside the triangle and the tile: early depth, perspective-correct attributes,
 // the pixel shader, the output merger. Returns the pixel shader invocations.
+//
+// Inlined into the loop over a small box's quads, which shades nearly every quad at high factors (an
+// out-of-line call there made the loop save and restore its registers around every quad); the edge
+// walks call shade_triangle_quad_call.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
-unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsigned covered, const Ps& ps,
-                             const RasterContext& rc, Framebuffer& fb) {
+[[gnu::always_inline]] inline unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsigned covered,
+                                                           const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
   // Planes evaluated at the four pixel centres, four lanes at once (simd4.h: the same bits as scalar).
   using simd::F4;
   const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
@@ -170,6 +174,12 @@ unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsign
     }
   }
   return kQuadLanes[passed];
+}
+
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+[[gnu::noinline]] unsigned shade_triangle_quad_call(const ScreenPrimitive<N>& p, int qx, int qy, unsigned covered,
+                                                    const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
+  return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
 }
 
 // The three edge functions of a triangle at the four pixels of a quad, stepped quad by quad. Edge i
@@ -283,31 +293,15 @@ struct BoxQuads {
   }
 };
 
-// Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
+// Triangles without box_coverage (larger boxes): the quads of [x_begin, x_end] x [y_begin, y_end] found
+// by walking the edge functions. Out of line: few triangles take it at high factors.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
-std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
-                                      const RasterContext& rc, Framebuffer& fb) {
-  const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
-  const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
-  if (x_begin > x_end || y_begin > y_end) return 0;
+[[gnu::noinline]] std::uint64_t rasterize_triangle_walk(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin,
+                                                        int y_end, const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
   const int qx0 = x_begin & ~1, qy0 = y_begin & ~1;  // 2x2 quads are aligned to even pixels
-
   auto shade = [&](int qx, int qy, unsigned covered) {
-    return shade_triangle_quad<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
+    return shade_triangle_quad_call<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
   };
-  if (p.box_coverage) {
-    // Setup tested the box's centres with these edge functions: shade the quads of its covered pixels
-    // in this tile (tiles are aligned to quads). A triangle's quads do not overlap, so their order does
-    // not change the image.
-    BoxQuads box(p.box_coverage, p.min_x, p.min_y);
-    const int ox = p.min_x & ~1, oy = p.min_y & ~1;
-    if (ox < tx0 || oy < ty0 || ox + 6 > tx1 || oy + 6 > ty1) box.keep(tx0 - ox, tx1 - ox, ty0 - oy, ty1 - oy);
-    std::uint64_t invocations = 0;
-    int i = 0, j = 0;
-    unsigned covered = 0;
-    while (box.next(i, j, covered)) invocations += shade(ox + 2 * i, oy + 2 * j, covered);
-    return invocations;
-  }
 #if defined(__SSE2__)
   if (p.edges32) {
     // Setup's edge functions moved from (min_x, min_y) to the first quad, modulo 2^32 (exact: the
@@ -333,6 +327,28 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
     e0[i] = e.value, sx[i] = e.step_x, sy[i] = e.step_y;
   }
   return walk_quads(Edges64(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
+}
+
+// Rasterizes triangle `p` inside the tile [tx0, tx1) x [ty0, ty1); returns pixel shader invocations.
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
+                                      const RasterContext& rc, Framebuffer& fb) {
+  const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
+  const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
+  if (x_begin > x_end || y_begin > y_end) return 0;
+  if (!p.box_coverage) return rasterize_triangle_walk<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
+  // Setup tested the box's centres with these edge functions: shade the quads of its covered pixels
+  // in this tile (tiles are aligned to quads). A triangle's quads do not overlap, so their order does
+  // not change the image.
+  BoxQuads box(p.box_coverage, p.min_x, p.min_y);
+  const int ox = p.min_x & ~1, oy = p.min_y & ~1;
+  if (ox < tx0 || oy < ty0 || ox + 6 > tx1 || oy + 6 > ty1) box.keep(tx0 - ox, tx1 - ox, ty0 - oy, ty1 - oy);
+  std::uint64_t invocations = 0;
+  int i = 0, j = 0;
+  unsigned covered = 0;
+  while (box.next(i, j, covered))
+    invocations += shade_triangle_quad<N, Ps, kDepthFunc>(p, ox + 2 * i, oy + 2 * j, covered, ps, rc, fb);
+  return invocations;
 }
 
 }  // namespace detail
