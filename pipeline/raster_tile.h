@@ -146,8 +146,13 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
     q.mask = passed;
     ps.shade_quad(static_cast<const QuadInput<N>&>(q), color);
   } else {
+    // Coarse derivatives: along the quad's top row and down its left column (QuadInput::ddx/ddy
+    // compute the same for quad shaders; a test compares the two forms).
     std::array<float, N> ddx, ddy;
-    for (std::size_t a = 0; a < N; ++a) ddx[a] = q.ddx(a), ddy[a] = q.ddy(a);
+    for (std::size_t a = 0; a < N; ++a) {
+      ddx[a] = q.attributes[a][1] - q.attributes[a][0];
+      ddy[a] = q.attributes[a][2] - q.attributes[a][0];
+    }
     PixelInput<N> in;
     in.front_face = p.front_face;
     in.primitive_id = p.primitive_id;

@@ -4,7 +4,9 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <set>
 
 #include "pipeline_support.h"
 #include "torus_scene.h"
@@ -245,6 +247,59 @@ TEST_CASE("pipeline: SIMD quad pixel shader and batch domain shader match their 
     CHECK(a.color_bytes() == b.color_bytes());
     CHECK(a.depth_values() == b.depth_values());
   }
+}
+
+// Colour from the coarse derivatives of the normal attributes, in both forms: QuadInput computes them
+// from its lanes when asked, PixelInput is handed them.
+struct DerivativePixelPS {
+  static float channel(float d) { return 0.5f + 8.0f * d; }
+  glm::vec4 operator()(const PixelInput<3>& in) const {
+    return {channel(in.ddx(0)), channel(in.ddy(1)), channel(in.ddx(2) - in.ddy(2)), 1.0f};
+  }
+};
+struct DerivativeQuadPS : DerivativePixelPS {
+  void shade_quad(const QuadInput<3>& q, QuadColor& out) const {
+    for (std::size_t k = 0; k < 4; ++k) {
+      out.c[0][k] = channel(q.ddx(0));
+      out.c[1][k] = channel(q.ddy(1));
+      out.c[2][k] = channel(q.ddx(2) - q.ddy(2));
+      out.c[3][k] = 1.0f;
+    }
+  }
+};
+
+TEST_CASE("pipeline: a quad shader's derivatives are the per-pixel form's", "[pipeline][simd]") {
+  const int w = 320, h = 180;
+  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  const auto torus = scenes::make_torus_draw(scene, 6.0f, ts::Partitioning::integer, w, h);
+  const auto with_ps = [&](auto ps) {
+    PatchDraw<glm::vec3, scenes::PassThroughVS, scenes::UniformFactorHS, scenes::DisplacedBsplineDS, decltype(ps)> d;
+    d.vertices = torus.vertices;
+    d.indices = torus.indices;
+    d.control_points = torus.control_points;
+    d.hs = torus.hs;
+    d.ds = torus.ds;
+    d.ps = ps;
+    d.tessellator = torus.tessellator;
+    d.rasterizer = torus.rasterizer;
+    d.depth = torus.depth;
+    d.viewport = torus.viewport;
+    return d;
+  };
+  static_assert(QuadPixelShader<DerivativeQuadPS, 3> && !QuadPixelShader<DerivativePixelPS, 3>);
+  Device device(DeviceOptions{2});
+  auto quad = make_target(w, h), pixel = make_target(w, h);
+  REQUIRE(device.draw(with_ps(DerivativeQuadPS{}), quad).ok());
+  REQUIRE(device.draw(with_ps(DerivativePixelPS{}), pixel).ok());
+  CHECK(quad.color_bytes() == pixel.color_bytes());
+  // The derivatives are not all zero: the image has more than a few colours.
+  std::set<std::uint32_t> colours;
+  for (std::size_t i = 0; i + 3 < quad.color_bytes().size(); i += 4) {
+    std::uint32_t c = 0;
+    std::memcpy(&c, &quad.color_bytes()[i], 4);
+    colours.insert(c);
+  }
+  CHECK(colours.size() > 100);
 }
 
 TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for vertices it rejects", "[pipeline][simd]") {
