@@ -108,14 +108,15 @@ class Framebuffer {
       return;
     }
 #endif
-    const std::size_t pixel[4] = {q.top, q.top + 1, q.bottom, q.bottom + 1};
-    write_pixels(pixel, mask, c);
+    write_pixels(q, mask, c);
   }
   [[gnu::always_inline]] void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
-    if (quad_inside(x, y)) return write_quad(quad_site(x, y), mask, c);
-    // Pixels past the last row or column do not exist, and are not in `mask`.
-    const std::size_t pixel[4] = {index(x, y), index(x, y) + 1, index(x, y + 1), index(x, y + 1) + 1};
-    write_pixels(pixel, mask, c);
+    // Past the last row or column the site's pixels do not exist, and are not in `mask`.
+    const QuadSite q = quad_site(x, y);
+    if (quad_inside(x, y))
+      write_quad(q, mask, c);
+    else
+      write_pixels(q, mask, c);
   }
 
   // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
@@ -148,8 +149,9 @@ class Framebuffer {
                             _mm_packs_epi32(_mm_cvttps_epi32(v[2]), _mm_cvttps_epi32(v[3])));
   }
 #endif
-  // Pixel k of a quad (at index pixel[k]) gets colour c[.][k] where bit k of `mask` is set.
-  void write_pixels(const std::size_t (&pixel)[4], unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
+  // Pixel k of the quad at `q` gets colour c[.][k] where bit k of `mask` is set, pixel by pixel.
+  void write_pixels(QuadSite q, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
+    const std::size_t pixel[4] = {q.top, q.top + 1, q.bottom, q.bottom + 1};
     if (format_ == ColorFormat::rgba8_unorm) {
 #if defined(__SSE2__)
       alignas(16) std::uint8_t bytes[4][4];  // [pixel][channel]

@@ -394,7 +394,7 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
   bin(c, chunk, p);
 }
 
-// A triangle whose three vertices are snapped: culling, bounding box, binning. `a`, `b`, `c3` are in
+// A triangle whose three vertices are snapped: culling, bounding box, binning. `a`, `b`, `d` are in
 // the primitive's order.
 template <std::size_t N>
 [[gnu::always_inline]] inline void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
@@ -605,10 +605,6 @@ template <std::size_t N>
   p.primitive_id = primitive_id;
   bin_last(c, chunk);
 }
-
-}  // namespace detail
-
-namespace detail {
 
 // setup_triangle's path for a triangle that needs clipping (or is drawn as wireframe): clipped to a
 // fan, each piece set up as setup_snapped_triangle does.

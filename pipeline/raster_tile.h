@@ -459,11 +459,4 @@ std::uint64_t rasterize_tile(const ForEach& for_each_primitive, int tx0, int ty0
   return 0;
 }
 
-// One primitive inside the tile.
-template <std::size_t N, class Ps>
-std::uint64_t rasterize(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
-                        const RasterContext& rc, Framebuffer& fb) {
-  return rasterize_tile<N>([&](const auto& visit) { visit(p); }, tx0, ty0, tx1, ty1, ps, rc, fb);
-}
-
 }  // namespace tessera
