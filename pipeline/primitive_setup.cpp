@@ -29,8 +29,7 @@ SetupContext make_setup_context(const Viewport& vp, const RasterizerState& rs, i
   c.cull = rs.cull;
   c.front_ccw = rs.front_counter_clockwise;
   c.fill = rs.fill;
-  c.tiles.tile_size = tile_size;
-  c.tiles.reciprocal = (std::uint64_t(1) << 40) / std::uint64_t(tile_size) + 1;
+  c.tiles.set_tile_size(tile_size);
   c.tiles.columns = (target_width + tile_size - 1) / tile_size;
   c.tiles.rows = (target_height + tile_size - 1) / tile_size;
   return c;

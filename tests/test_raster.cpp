@@ -484,3 +484,18 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   CHECK(small_box > 300);  // and both paths of the rasterizer
   CHECK(large_box > 50);
 }
+
+TEST_CASE("raster: TileGrid::tile_of is exact division for every tile size and pixel", "[raster]") {
+  // Setup bins with a 32-bit multiply and shift in place of p / tile_size; the bound in TileGrid's
+  // comment must hold for every size a Device accepts (even, 8..1024) and every pixel of the largest
+  // render target.
+  int wrong = 0, first_wrong_size = 0, first_wrong_pixel = 0;
+  for (int size = 8; size <= 1024; size += 2) {
+    TileGrid g;
+    g.set_tile_size(size);
+    for (std::int32_t p = 0; p < kMaxRenderTargetSize; ++p)
+      if (g.tile_of(p) != p / size && wrong++ == 0) first_wrong_size = size, first_wrong_pixel = p;
+  }
+  INFO("first wrong: tile size " << first_wrong_size << ", pixel " << first_wrong_pixel);
+  CHECK(wrong == 0);
+}
