@@ -42,6 +42,7 @@
 #include "raster_tile.h"
 #include "stage_io.h"
 #include "statistics.h"
+#include "triangle_list_setup.h"
 
 namespace tessera {
 
@@ -279,8 +280,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
       switch (pattern.output) {
         case ts::OutputPrimitive::triangle_cw:
         case ts::OutputPrimitive::triangle_ccw:
-          for (std::size_t i = 0; i + 2 < idx.size(); i += 3)
-            setup_triangle<N>(setup, chunk, outs[idx[i]], outs[idx[i + 1]], outs[idx[i + 2]], w.patch_id);
+          setup_triangle_list<N>(setup, chunk, outs.data(), outs.size(), idx.data(), idx.size() / 3, w.patch_id, 0);
           break;
         case ts::OutputPrimitive::line:
           for (std::size_t i = 0; i + 1 < idx.size(); i += 2)
@@ -357,12 +357,10 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
           chunks.size(),
           [&](std::size_t c, ChunkBuffer<N>& chunk) {
             const auto start = detail::Clock::now();
-            for (std::uint32_t t = chunks[c].first; t < chunks[c].second; ++t) {
-              const std::size_t i = std::size_t(t) * 3;
-              setup_triangle<N>(backend.setup(), chunk, setup_vertices[vcache.slots[i]],
-                                setup_vertices[vcache.slots[i + 1]], setup_vertices[vcache.slots[i + 2]],
-                                static_cast<std::uint32_t>(first + t));
-            }
+            const auto [begin, end] = chunks[c];
+            setup_triangle_list<N>(backend.setup(), chunk, setup_vertices.data(), setup_vertices.size(),
+                                   vcache.slots.data() + std::size_t(begin) * 3, end - begin,
+                                   static_cast<std::uint32_t>(first + begin), 1);
             chunk.times.setup += detail::seconds_since(start);
           },
           report);

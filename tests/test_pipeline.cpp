@@ -9,6 +9,7 @@
 #include <set>
 
 #include "pipeline_support.h"
+#include "triangle_list_setup.h"
 #include "torus_scene.h"
 
 using namespace tessera;
@@ -341,6 +342,101 @@ TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for
   CHECK(projected > 100);
   CHECK(rejected > 100);
   CHECK(non_finite > 50);
+}
+
+TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records, bins and statistics", "[pipeline][simd]") {
+  // setup_triangle_list sets up eight triangles at a time in SIMD lanes (AVX2 builds) and hands groups
+  // with a clipped, non-finite or large triangle to setup_triangle; either way the chunk must get what
+  // setup_triangle gives it one triangle at a time. Triangles of 0..14 pixels around a jittered grid that
+  // reaches past the viewport, scissor and tile edges, in both windings, some degenerate; a quarter of
+  // the groups of eight hold one triangle with a vertex behind the near plane, past the guard band, at
+  // NaN, or far away (too large for 32-bit edges).
+  const auto [cull, front_ccw, scissor, tile_size, id_step] =
+      GENERATE(std::tuple{CullMode::none, false, false, 64, 0u}, std::tuple{CullMode::back, false, true, 8, 1u},
+               std::tuple{CullMode::front, true, false, 16, 1u}, std::tuple{CullMode::back, true, true, 64, 0u});
+  CAPTURE(int(cull), front_ccw, scissor, tile_size, id_step);
+  RasterizerState rs;
+  rs.cull = cull;
+  rs.front_counter_clockwise = front_ccw;
+  if (scissor) rs.scissor = ScissorRect{37, 21, 201, 150};
+  const SetupContext c = make_setup_context(Viewport{3.25f, 5.5f, 240, 170, 0, 1}, rs, 256, 192, tile_size);
+  Rng rng(17);
+  constexpr int kCols = 160, kRows = 120;
+  std::vector<ClipVertex<3>> clip;
+  for (int j = 0; j < kRows; ++j)
+    for (int i = 0; i < kCols; ++i) {
+      // NDC from -1.1 to 1.1: the grid reaches past the viewport on every side; points about 1.6 pixels apart.
+      const float x = -1.1f + 2.2f * (float(i) + float(rng.uniform(-0.4, 0.4))) / float(kCols - 1);
+      const float y = -1.1f + 2.2f * (float(j) + float(rng.uniform(-0.4, 0.4))) / float(kRows - 1);
+      const float w = float(rng.uniform(0.8, 1.3));
+      clip.push_back(ClipVertex<3>{glm::vec4(x * w, y * w, float(rng.uniform(0.05, 0.95)) * w, w),
+                                   {float(rng.uniform(-1, 1)), float(rng.uniform(0, 2)), float(rng.uniform(-3, 3))}});
+    }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::uint32_t grid_count = std::uint32_t(clip.size());
+  const glm::vec4 specials[] = {{0.1f, 0.1f, -0.5f, 1.0f}, {40.0f, 0.2f, 0.5f, 1.0f}, {0.3f, nan, 0.5f, 1.0f}, {0.9f, -0.95f, 0.5f, 1.0f}};
+  for (const glm::vec4& p : specials) clip.push_back(ClipVertex<3>{p, {0.5f, 0.5f, 0.5f}});
+  std::vector<SetupVertex<3>> vertices(clip.size());
+  make_setup_vertices<3>(c, clip, vertices);
+  std::vector<std::uint32_t> indices;
+  const auto near_vertex = [&](std::uint32_t v, int reach) {
+    const int i = std::clamp(int(v % kCols) + int(std::floor(rng.uniform(-reach, reach + 1))), 0, kCols - 1);
+    const int j = std::clamp(int(v / kCols) + int(std::floor(rng.uniform(-reach, reach + 1))), 0, kRows - 1);
+    return std::uint32_t(j * kCols + i);
+  };
+  for (int group = 0; group < 600; ++group) {
+    const int special_lane = rng.uniform(0, 1) < 0.25 ? int(rng.uniform(0, 8)) : -1;
+    for (int k = 0; k < 8; ++k) {
+      const std::uint32_t a = std::uint32_t(rng.uniform(0, grid_count)) % grid_count;
+      const int reach = rng.uniform(0, 1) < 0.8 ? 1 : 4;  // most 1..3 pixels, some up to 12
+      std::uint32_t t[3] = {a, near_vertex(a, reach), near_vertex(a, reach)};
+      if (k == special_lane) t[std::size_t(rng.uniform(0, 3)) % 3] = grid_count + std::uint32_t(rng.uniform(0, 4)) % 4;
+      indices.insert(indices.end(), t, t + 3);
+    }
+  }
+  indices.insert(indices.end(), {0, 1, kCols, 1, kCols + 1, kCols});  // a tail of two triangles
+  const std::size_t count = indices.size() / 3;
+
+  ChunkBuffer<3> lanes, one_by_one;
+  lanes.reset(c.tiles.count());
+  one_by_one.reset(c.tiles.count());
+  setup_triangle_list<3>(c, lanes, vertices.data(), vertices.size(), indices.data(), count, 1000, id_step);
+  for (std::size_t t = 0; t < count; ++t)
+    setup_triangle<3>(c, one_by_one, vertices[indices[3 * t]], vertices[indices[3 * t + 1]], vertices[indices[3 * t + 2]],
+                      1000 + std::uint32_t(t) * id_step);
+
+  CHECK(lanes.statistics.CInvocations == one_by_one.statistics.CInvocations);
+  CHECK(lanes.statistics.CPrimitives == one_by_one.statistics.CPrimitives);
+  REQUIRE(lanes.primitive_count == one_by_one.primitive_count);
+  CHECK(lanes.entries == one_by_one.entries);
+  const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+  int mismatched = 0, small_boxes = 0, edges32 = 0;
+  for (std::size_t i = 0; i < lanes.primitive_count; ++i) {
+    const ScreenPrimitive<3>& a = lanes.primitives[i];
+    const ScreenPrimitive<3>& b = one_by_one.primitives[i];
+    bool same = a.kind == b.kind && a.front_face == b.front_face && a.edges32 == b.edges32 && a.min_x == b.min_x &&
+                a.min_y == b.min_y && a.max_x == b.max_x && a.max_y == b.max_y && a.primitive_id == b.primitive_id &&
+                a.box_coverage == b.box_coverage && bits(a.origin_x) == bits(b.origin_x) && bits(a.origin_y) == bits(b.origin_y);
+    for (int k = 0; k < 3; ++k) {
+      same = same && bits(a.z[k]) == bits(b.z[k]) && bits(a.inv_w[k]) == bits(b.inv_w[k]);
+      for (int m = 0; m < 3; ++m) same = same && bits(a.attributes[k][m]) == bits(b.attributes[k][m]);
+      // The union holds edges (small triangles) or vertices; [3] of dx and dy is unused.
+      if (b.edges32)
+        same = same && a.edges.dx[k] == b.edges.dx[k] && a.edges.dy[k] == b.edges.dy[k] && a.edges.ref[k] == b.edges.ref[k];
+      else
+        same = same && a.xy.x[k] == b.xy.x[k] && a.xy.y[k] == b.xy.y[k];
+    }
+    if (!same && mismatched++ < 5) INFO("record " << i << " of primitive " << b.primitive_id << " differs");
+    small_boxes += b.box_coverage != 0;
+    edges32 += b.edges32;
+  }
+  CHECK(mismatched == 0);
+  INFO(lanes.primitive_count << " records of " << count << " triangles, " << small_boxes << " with small boxes, " << edges32 << " with 32-bit edges");
+  // The draw must have exercised what it is meant to: kept small and larger triangles, and rejections.
+  CHECK(small_boxes > 300);
+  CHECK(lanes.primitive_count - std::size_t(small_boxes) > 100);
+  CHECK(lanes.primitive_count < count);
+  CHECK(std::size_t(edges32) < lanes.primitive_count);  // some large triangles went through setup_triangle
 }
 
 TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {

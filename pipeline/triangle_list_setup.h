@@ -1,0 +1,296 @@
+// Setup of a triangle list, eight triangles at a time in AVX2 lanes (one triangle per lane).
+//
+// setup_triangle (primitive_setup.h) handles one triangle; at high tessellation factors it runs once per
+// pixel or so and was half of a frame's instructions, most of them moving one triangle's few values
+// between scalar registers. Here each step of setup_snapped_triangle (signed area, culling, the pixel box,
+// edge functions, the covered centres of a small box, the plane equations, the tile of the box) is one
+// vector operation for eight triangles, each lane computing the scalar expression on the same operands
+// in the same order, integer arithmetic modulo 2^32 where the scalar path's values fit: every record, bin
+// entry and statistic has the bits the scalar path gives (a test compares the two on triangles of every
+// kind).
+//
+// Lanes run the common case only: all three vertices finite and inside the clipping volume (clip code 0)
+// and a vertex box small enough for 32-bit edge functions (kEdges32MaxExtent). A group of eight with any
+// other triangle goes through setup_triangle one triangle at a time, so the chunk keeps draw order. Builds
+// without AVX2, and wireframe fill, use setup_triangle throughout.
+#pragma once
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+#include "primitive_setup.h"
+
+namespace tessera {
+
+namespace detail {
+
+#if defined(__AVX2__)
+
+// r[i] holds field i of eight lanes; afterwards r[k] holds lane k's eight fields.
+[[gnu::always_inline]] inline void transpose8x8(__m256i (&r)[8]) {
+  const __m256i t0 = _mm256_unpacklo_epi32(r[0], r[1]), t1 = _mm256_unpackhi_epi32(r[0], r[1]);
+  const __m256i t2 = _mm256_unpacklo_epi32(r[2], r[3]), t3 = _mm256_unpackhi_epi32(r[2], r[3]);
+  const __m256i t4 = _mm256_unpacklo_epi32(r[4], r[5]), t5 = _mm256_unpackhi_epi32(r[4], r[5]);
+  const __m256i t6 = _mm256_unpacklo_epi32(r[6], r[7]), t7 = _mm256_unpackhi_epi32(r[6], r[7]);
+  const __m256i u0 = _mm256_unpacklo_epi64(t0, t2), u1 = _mm256_unpackhi_epi64(t0, t2);
+  const __m256i u2 = _mm256_unpacklo_epi64(t1, t3), u3 = _mm256_unpackhi_epi64(t1, t3);
+  const __m256i u4 = _mm256_unpacklo_epi64(t4, t6), u5 = _mm256_unpackhi_epi64(t4, t6);
+  const __m256i u6 = _mm256_unpacklo_epi64(t5, t7), u7 = _mm256_unpackhi_epi64(t5, t7);
+  r[0] = _mm256_permute2x128_si256(u0, u4, 0x20), r[4] = _mm256_permute2x128_si256(u0, u4, 0x31);
+  r[1] = _mm256_permute2x128_si256(u1, u5, 0x20), r[5] = _mm256_permute2x128_si256(u1, u5, 0x31);
+  r[2] = _mm256_permute2x128_si256(u2, u6, 0x20), r[6] = _mm256_permute2x128_si256(u2, u6, 0x31);
+  r[3] = _mm256_permute2x128_si256(u3, u7, 0x20), r[7] = _mm256_permute2x128_si256(u3, u7, 0x31);
+}
+
+// A triangle's ScreenPrimitive as 4-byte fields, in memory order; the lanes write records whole.
+template <std::size_t N>
+struct TriangleRecordLayout {
+  using P = ScreenPrimitive<N>;
+  static constexpr std::size_t kFields = sizeof(P) / 4;
+  static constexpr std::size_t kEdgeDx = offsetof(P, edges) / 4, kEdgeDy = kEdgeDx + 2, kEdgeRef = kEdgeDx + 4;
+  static constexpr std::size_t kZ = offsetof(P, z) / 4, kInvW = offsetof(P, inv_w) / 4;
+  static constexpr std::size_t kAttributes = offsetof(P, attributes) / 4, kOrigin = offsetof(P, origin_x) / 4;
+  static constexpr std::size_t kBox = offsetof(P, min_x) / 4, kPrimitiveId = offsetof(P, primitive_id) / 4;
+  static constexpr std::size_t kFlags = offsetof(P, kind) / 4, kCoverage = offsetof(P, box_coverage) / 4;
+  static_assert(sizeof(P) % 4 == 0 && offsetof(P, edges) == 0);
+  static_assert(offsetof(SmallTriangleEdges, dy) == 8 && offsetof(SmallTriangleEdges, ref) == 16);
+  static_assert(kInvW == kZ + 3 && kAttributes == kInvW + 3 && kOrigin == kAttributes + 3 * N);
+  static_assert(offsetof(P, origin_y) == 4 * kOrigin + 4 && offsetof(P, min_y) == 4 * kBox + 4);
+  static_assert(offsetof(P, max_x) == 4 * kBox + 8 && offsetof(P, max_y) == 4 * kBox + 12);
+  // kind, front_face and edges32 are the low three bytes of one field (little-endian x86).
+  static_assert(offsetof(P, kind) % 4 == 0 && offsetof(P, front_face) == offsetof(P, kind) + 1 &&
+                offsetof(P, edges32) == offsetof(P, kind) + 2 && kCoverage == kFlags + 1);
+  static_assert(sizeof(PrimitiveKind) == 1 && std::uint8_t(PrimitiveKind::triangle) == 0);
+  static constexpr std::size_t kBlocks = (kFields + 7) / 8;
+};
+
+#endif
+
+}  // namespace detail
+
+// Sets up `count` triangles of a list: triangle t has vertices vertices[indices[3t]], [3t + 1] and
+// [3t + 2] (each below vertex_count) and primitive id first_id + t * id_step. The chunk gets what
+// calling setup_triangle on each triangle in order gives it: the same records, bin entries and
+// statistics.
+template <std::size_t N>
+void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>* vertices,
+                         std::size_t vertex_count, const std::uint32_t* indices, std::size_t count,
+                         std::uint32_t first_id, std::uint32_t id_step) {
+  std::size_t t = 0;
+#if defined(__AVX2__)
+  using L = detail::TriangleRecordLayout<N>;
+  using V = SetupVertex<N>;
+  static_assert(sizeof(V) >= offsetof(V, finite) + 4 && sizeof(V) % 4 == 0);
+  // Gathers address vertices by byte offsets in signed 32-bit lanes.
+  const bool lanes = c.fill == FillMode::solid && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
+  const char* const base = reinterpret_cast<const char*>(vertices);
+  const auto gather = [&](std::size_t field, __m256i offsets) {
+    return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + field), offsets, 1);
+  };
+  const auto gather_ps = [&](std::size_t field, __m256i offsets) {
+    return _mm256_i32gather_ps(reinterpret_cast<const float*>(base + field), offsets, 1);
+  };
+  const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
+  const __m256i lane_times3 = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  const __m256i vertex_bytes = _mm256_set1_epi32(int(sizeof(V)));
+  const __m256i id_lanes = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(int(id_step)));
+  const __m128i tile_shift = _mm_cvtsi32_si128(c.tiles.shift);
+  const auto tile_of = [&](__m256i p) {  // TileGrid::tile_of in each lane
+    return _mm256_srl_epi32(_mm256_mullo_epi32(p, _mm256_set1_epi32(int(c.tiles.reciprocal))), tile_shift);
+  };
+  const auto cmple = [](__m256i a, __m256i b) { return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1)); };
+  for (; lanes && t + 8 <= count; t += 8) {
+    const int* idx = reinterpret_cast<const int*>(indices + 3 * t);
+    const __m256i off0 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx, lane_times3, 4), vertex_bytes);
+    const __m256i off1 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx + 1, lane_times3, 4), vertex_bytes);
+    const __m256i off2 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx + 2, lane_times3, 4), vertex_bytes);
+    // setup_triangle's tests. `finite` is a bool; the gather reads it with the padding after it.
+    const __m256i clip_or = _mm256_or_si256(_mm256_or_si256(gather(offsetof(V, clip_code), off0), gather(offsetof(V, clip_code), off1)),
+                                            gather(offsetof(V, clip_code), off2));
+    const __m256i finite = _mm256_and_si256(
+        _mm256_and_si256(_mm256_and_si256(gather(offsetof(V, finite), off0), gather(offsetof(V, finite), off1)),
+                         gather(offsetof(V, finite), off2)),
+        _mm256_set1_epi32(0xFF));
+    const __m256i x0 = gather(offsetof(V, x), off0), y0 = gather(offsetof(V, y), off0);
+    const __m256i xb = gather(offsetof(V, x), off1), yb = gather(offsetof(V, y), off1);
+    const __m256i xd = gather(offsetof(V, x), off2), yd = gather(offsetof(V, y), off2);
+    const __m256i lx = _mm256_min_epi32(_mm256_min_epi32(x0, xb), xd), hx = _mm256_max_epi32(_mm256_max_epi32(x0, xb), xd);
+    const __m256i ly = _mm256_min_epi32(_mm256_min_epi32(y0, yb), yd), hy = _mm256_max_epi32(_mm256_max_epi32(y0, yb), yd);
+    const __m256i max_extent = _mm256_set1_epi32(kEdges32MaxExtent);
+    // Lanes for setup_triangle: clipped, not finite, or too large for 32-bit edges.
+    const __m256i scalar = _mm256_or_si256(
+        _mm256_or_si256(_mm256_xor_si256(_mm256_cmpeq_epi32(clip_or, zero), ones), _mm256_cmpeq_epi32(finite, zero)),
+        _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_sub_epi32(hx, lx), max_extent),
+                        _mm256_cmpgt_epi32(_mm256_sub_epi32(hy, ly), max_extent)));
+    if (!_mm256_testz_si256(scalar, scalar)) {
+      for (std::size_t k = t; k < t + 8; ++k)
+        setup_triangle<N>(c, chunk, vertices[indices[3 * k]], vertices[indices[3 * k + 1]], vertices[indices[3 * k + 2]],
+                          first_id + std::uint32_t(k) * id_step);
+      continue;
+    }
+    const __m256i view_and =
+        _mm256_and_si256(_mm256_and_si256(gather(offsetof(V, view_code), off0), gather(offsetof(V, view_code), off1)),
+                         gather(offsetof(V, view_code), off2));
+    const __m256i inside = _mm256_cmpeq_epi32(view_and, zero);  // not wholly outside one view-volume plane
+    chunk.statistics.CInvocations += 8;
+    chunk.statistics.CPrimitives += unsigned(std::popcount(unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(inside)))));
+    // setup_snapped_triangle, lane by lane. The area fits in 32 bits: every extent is at most kEdges32MaxExtent.
+    const __m256i area = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(xb, x0), _mm256_sub_epi32(yd, y0)),
+                                          _mm256_mullo_epi32(_mm256_sub_epi32(xd, x0), _mm256_sub_epi32(yb, y0)));
+    const __m256i positive = _mm256_cmpgt_epi32(area, zero);
+    const __m256i front = c.front_ccw ? _mm256_xor_si256(positive, ones) : positive;
+    __m256i keep = _mm256_andnot_si256(_mm256_cmpeq_epi32(area, zero), inside);
+    if (c.cull == CullMode::back) keep = _mm256_and_si256(keep, front);
+    if (c.cull == CullMode::front) keep = _mm256_andnot_si256(front, keep);
+    const __m256i half_less_one = _mm256_set1_epi32(kSubpixelOne / 2 - 1), half = _mm256_set1_epi32(kSubpixelOne / 2);
+    const __m256i min_x = _mm256_max_epi32(_mm256_srai_epi32(_mm256_add_epi32(lx, half_less_one), kSubpixelBits),
+                                           _mm256_set1_epi32(c.clip_min_x));
+    const __m256i max_x = _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hx, half), kSubpixelBits),
+                                           _mm256_set1_epi32(c.clip_max_x));
+    const __m256i min_y = _mm256_max_epi32(_mm256_srai_epi32(_mm256_add_epi32(ly, half_less_one), kSubpixelBits),
+                                           _mm256_set1_epi32(c.clip_min_y));
+    const __m256i max_y = _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hy, half), kSubpixelBits),
+                                           _mm256_set1_epi32(c.clip_max_y));
+    keep = _mm256_and_si256(keep, _mm256_and_si256(cmple(min_x, max_x), cmple(min_y, max_y)));
+    if (_mm256_testz_si256(keep, keep)) continue;
+    // Stored with positive area: vertices 1 and 2 swap places in lanes with negative area.
+    const __m256i x1 = _mm256_blendv_epi8(xd, xb, positive), x2 = _mm256_blendv_epi8(xb, xd, positive);
+    const __m256i y1 = _mm256_blendv_epi8(yd, yb, positive), y2 = _mm256_blendv_epi8(yb, yd, positive);
+    const __m256i o1 = _mm256_blendv_epi8(off2, off1, positive), o2 = _mm256_blendv_epi8(off1, off2, positive);
+    // Edge i from vertex i to vertex i + 1, at the centre of pixel (min_x, min_y), with its top-left bias.
+    const __m256i cx = _mm256_add_epi32(_mm256_slli_epi32(min_x, kSubpixelBits), half);
+    const __m256i cy = _mm256_add_epi32(_mm256_slli_epi32(min_y, kSubpixelBits), half);
+    const __m256i ex[3] = {x0, x1, x2}, ey[3] = {y0, y1, y2};
+    __m256i dx[3], dy[3], ref[3];
+    for (int i = 0; i < 3; ++i) {
+      const int j = i == 2 ? 0 : i + 1;
+      dx[i] = _mm256_sub_epi32(ex[j], ex[i]);
+      dy[i] = _mm256_sub_epi32(ey[j], ey[i]);
+      const __m256i top_left = _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy[i]),
+                                               _mm256_and_si256(_mm256_cmpeq_epi32(dy[i], zero), _mm256_cmpgt_epi32(dx[i], zero)));
+      ref[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(dy[i], _mm256_sub_epi32(ex[i], cx)),
+                                                 _mm256_mullo_epi32(dx[i], _mm256_sub_epi32(cy, ey[i]))),
+                                _mm256_xor_si256(top_left, ones));
+    }
+    // The covered centres of a box of at most 4x4 (ScreenPrimitive::box_coverage): each centre tested in
+    // all lanes; other lanes' results are masked off.
+    const __m256i three = _mm256_set1_epi32(kSmallBoxPixels - 1);
+    const __m256i width_less_one = _mm256_sub_epi32(max_x, min_x), height_less_one = _mm256_sub_epi32(max_y, min_y);
+    const __m256i small_box = _mm256_and_si256(cmple(width_less_one, three), cmple(height_less_one, three));
+    __m256i coverage = zero;
+    if (!_mm256_testz_si256(small_box, keep)) {
+      __m256i step_x[3], step_y[3], row[3];
+      for (int i = 0; i < 3; ++i) {
+        step_x[i] = _mm256_slli_epi32(_mm256_sub_epi32(zero, dy[i]), kSubpixelBits);
+        step_y[i] = _mm256_slli_epi32(dx[i], kSubpixelBits);
+        row[i] = ref[i];
+      }
+      __m256i found = zero;
+      for (int py = 0; py < kSmallBoxPixels; ++py) {
+        __m256i e[3] = {row[0], row[1], row[2]};
+        for (int px = 0; px < kSmallBoxPixels; ++px) {
+          const __m256i any_negative = _mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31);
+          found = _mm256_or_si256(found, _mm256_andnot_si256(any_negative, _mm256_set1_epi32(int(1u << (px + 8 * py)))));
+          for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], step_x[i]);
+        }
+        for (int i = 0; i < 3; ++i) row[i] = _mm256_add_epi32(row[i], step_y[i]);
+      }
+      // setup_snapped_triangle's column and row masks; srlv gives 0 for the counts of larger boxes.
+      const __m256i columns = _mm256_mullo_epi32(
+          _mm256_sub_epi32(_mm256_sllv_epi32(_mm256_set1_epi32(2), width_less_one), _mm256_set1_epi32(1)),
+          _mm256_set1_epi32(0x01010101));
+      const __m256i rows = _mm256_srlv_epi32(ones, _mm256_slli_epi32(_mm256_sub_epi32(three, height_less_one), 3));
+      coverage = _mm256_and_si256(_mm256_and_si256(found, small_box), _mm256_and_si256(columns, rows));
+      keep = _mm256_andnot_si256(_mm256_and_si256(small_box, _mm256_cmpeq_epi32(coverage, zero)), keep);
+    }
+    const unsigned kept = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(keep)));
+    if (kept == 0) continue;
+    // Plane equations from the snapped positions, in pixels (setup_snapped_triangle's expressions).
+    __m256i f[L::kBlocks * 8];
+    {
+      const __m256 inv_sub = _mm256_set1_ps(1.0f / float(kSubpixelOne));
+      const auto pixels = [&](__m256i v) { return _mm256_mul_ps(_mm256_cvtepi32_ps(v), inv_sub); };
+      const __m256 fx1 = pixels(_mm256_sub_epi32(x1, x0)), fy1 = pixels(_mm256_sub_epi32(y1, y0));
+      const __m256 fx2 = pixels(_mm256_sub_epi32(x2, x0)), fy2 = pixels(_mm256_sub_epi32(y2, y0));
+      const __m256 inv_area =
+          _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sub_ps(_mm256_mul_ps(fx1, fy2), _mm256_mul_ps(fx2, fy1)));
+      const auto plane = [&](std::size_t value, std::size_t at0, std::size_t at_x, std::size_t at_y) {
+        const std::size_t field = offsetof(V, plane_values) + 4 * value;
+        const __m256 a0 = gather_ps(field, off0), a1 = gather_ps(field, o1), a2 = gather_ps(field, o2);
+        const __m256 d1 = _mm256_sub_ps(a1, a0), d2 = _mm256_sub_ps(a2, a0);
+        f[at0] = _mm256_castps_si256(a0);
+        f[at_x] = _mm256_castps_si256(
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(d1, fy2), _mm256_mul_ps(d2, fy1)), inv_area));
+        f[at_y] = _mm256_castps_si256(
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(d2, fx1), _mm256_mul_ps(d1, fx2)), inv_area));
+      };
+      plane(0, L::kZ, L::kZ + 1, L::kZ + 2);
+      plane(1, L::kInvW, L::kInvW + 1, L::kInvW + 2);
+      for (std::size_t a = 0; a < N; ++a) plane(2 + a, L::kAttributes + a, L::kAttributes + N + a, L::kAttributes + 2 * N + a);
+      f[L::kOrigin] = _mm256_castps_si256(pixels(x0));
+      f[L::kOrigin + 1] = _mm256_castps_si256(pixels(y0));
+    }
+    // The edges as setup_snapped_triangle stores them: dx and dy in 16 bits (exact), [3] repeating [2].
+    const __m256i low16 = _mm256_set1_epi32(0xFFFF);
+    const auto pack16 = [&](__m256i lo, __m256i hi) { return _mm256_or_si256(_mm256_and_si256(lo, low16), _mm256_slli_epi32(hi, 16)); };
+    f[L::kEdgeDx] = pack16(dx[0], dx[1]), f[L::kEdgeDx + 1] = pack16(dx[2], dx[2]);
+    f[L::kEdgeDy] = pack16(dy[0], dy[1]), f[L::kEdgeDy + 1] = pack16(dy[2], dy[2]);
+    for (int i = 0; i < 3; ++i) f[L::kEdgeRef + std::size_t(i)] = ref[i];
+    f[L::kBox] = min_x, f[L::kBox + 1] = min_y, f[L::kBox + 2] = max_x, f[L::kBox + 3] = max_y;
+    f[L::kPrimitiveId] = _mm256_add_epi32(_mm256_set1_epi32(int(first_id + std::uint32_t(t) * id_step)), id_lanes);
+    // kind = triangle (0), front_face, edges32 = true.
+    f[L::kFlags] = _mm256_or_si256(_mm256_and_si256(front, _mm256_set1_epi32(1 << 8)), _mm256_set1_epi32(1 << 16));
+    f[L::kCoverage] = coverage;
+    for (std::size_t k = L::kFields; k < L::kBlocks * 8; ++k) f[k] = zero;
+    // Each lane's record whole: kept lanes to consecutive new slots, the others to the slot after them
+    // (storage past primitive_count, overwritten later). Blocks are stored last first: the last block's
+    // 32 bytes may run past the record into the next slot's first field, which the first block then
+    // writes. Room for the eight slots, the spare one and that overrun is made first.
+    const std::size_t first = chunk.primitive_count, kept_count = std::size_t(std::popcount(kept));
+    if (chunk.primitives.size() < first + 10) chunk.primitives.resize(std::max<std::size_t>(2 * chunk.primitives.size(), first + 10));
+    char* slot[8];
+    for (unsigned k = 0; k < 8; ++k) {
+      const bool kept_k = (kept >> k) & 1u;
+      const std::size_t index = kept_k ? first + std::size_t(std::popcount(kept & ((1u << k) - 1u))) : first + kept_count;
+      slot[k] = reinterpret_cast<char*>(&chunk.primitives[index]);
+    }
+    for (std::size_t b = L::kBlocks; b-- > 0;) {
+      __m256i r[8];
+      for (int k = 0; k < 8; ++k) r[k] = f[8 * b + std::size_t(k)];
+      detail::transpose8x8(r);
+      for (int k = 0; k < 8; ++k) _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot[k] + 32 * b), r[k]);
+    }
+    chunk.primitive_count = first + kept_count;
+    // bin_last for each kept lane, in lane order.
+    const TileGrid& g = c.tiles;
+    const __m256i tx0 = tile_of(min_x), tx1 = tile_of(max_x), ty0 = tile_of(min_y), ty1 = tile_of(max_y);
+    alignas(32) std::int32_t tiles[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(tiles),
+                       _mm256_add_epi32(_mm256_mullo_epi32(ty0, _mm256_set1_epi32(g.columns)), tx0));
+    const unsigned one_tile = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(
+        _mm256_and_si256(_mm256_cmpeq_epi32(tx0, tx1), _mm256_cmpeq_epi32(ty0, ty1)))));
+    std::uint32_t index = std::uint32_t(first);
+    for (unsigned rest = kept; rest != 0; rest &= rest - 1, ++index) {
+      const int k = std::countr_zero(rest);
+      if ((one_tile >> k) & 1u) {
+        chunk.entries.emplace_back(std::uint32_t(tiles[k]), index);
+        continue;
+      }
+      const ScreenPrimitive<N>& p = chunk.primitives[index];
+      for (int ty = g.tile_of(p.min_y); ty <= g.tile_of(p.max_y); ++ty)
+        for (int tx = g.tile_of(p.min_x); tx <= g.tile_of(p.max_x); ++tx)
+          chunk.entries.emplace_back(std::uint32_t(ty * g.columns + tx), index);
+    }
+  }
+#endif
+  for (; t < count; ++t)
+    setup_triangle<N>(c, chunk, vertices[indices[3 * t]], vertices[indices[3 * t + 1]], vertices[indices[3 * t + 2]],
+                      first_id + std::uint32_t(t) * id_step);
+}
+
+}  // namespace tessera
