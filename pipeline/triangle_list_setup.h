@@ -79,7 +79,7 @@ struct TriangleRecordLayout {
 // statistics.
 template <std::size_t N>
 void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>* vertices,
-                         std::size_t vertex_count, const std::uint32_t* indices, std::size_t count,
+                         [[maybe_unused]] std::size_t vertex_count, const std::uint32_t* indices, std::size_t count,
                          std::uint32_t first_id, std::uint32_t id_step) {
   std::size_t t = 0;
 #if defined(__AVX2__)
