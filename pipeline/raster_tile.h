@@ -264,25 +264,25 @@ std::uint64_t walk_quads(Edges edges, int qx0, int qy0, int x_begin, int x_end, 
   return invocations;
 }
 
-// The covered pixels of a triangle with box_coverage (setup found which of the at most 4x4 pixel centres
-// of its box it covers), on a grid of 8-bit rows whose origin is the quad-aligned corner
-// (min_x & ~1, min_y & ~1): pixel (origin_x + c, origin_y + r) is bit 8r + c. The box then spans at
-// most 5 rows and columns, so its pixels lie in the grid's 3x3 quads; quad (i, j) is bits 2i, 2i + 1
-// of rows 2j and 2j + 1.
+// The covered pixels of a triangle in a box of at most 8x8 pixels from its quad-aligned corner
+// (origin_x, origin_y) = (min_x & ~1, min_y & ~1), on a grid of 8-bit rows: pixel (origin_x + c, origin_y + r)
+// is bit 8r + c, and quad (i, j) is bits 2i, 2i + 1 of rows 2j and 2j + 1.
 struct BoxQuads {
   std::uint64_t grid = 0;
+  explicit BoxQuads(std::uint64_t g) : grid(g) {}
+  // From box_coverage (setup found which of the at most 4x4 pixel centres of the box the triangle
+  // covers): shifted by the box's offset from the corner, so its pixels lie in the grid's 3x3 quads.
   BoxQuads(std::uint32_t coverage, int min_x, int min_y) : grid(std::uint64_t(coverage) << ((min_x & 1) + 8 * (min_y & 1))) {}
   // Keeps the pixels of columns [c0, c1) and rows [r0, r1) of the grid (each bound clamped to 0..8).
   void keep(int c0, int c1, int r0, int r1) {
-    const auto span = [](int lo, int hi) {
-      lo = std::clamp(lo, 0, 8), hi = std::clamp(hi, 0, 8);
-      return lo < hi ? ((1u << hi) - 1u) & ~((1u << lo) - 1u) : 0u;
-    };
-    const unsigned columns = span(c0, c1), rows = span(r0, r1);
-    std::uint64_t row_bytes = 0;  // 0xFF in each kept row
-    for (int r = 0; r < 8; ++r)
-      if (rows & (1u << r)) row_bytes |= std::uint64_t(0xFF) << (8 * r);
-    grid &= row_bytes & (std::uint64_t(columns) * 0x0101010101010101u);
+    c0 = std::clamp(c0, 0, 8), c1 = std::clamp(c1, 0, 8), r0 = std::clamp(r0, 0, 8), r1 = std::clamp(r1, 0, 8);
+    if (c0 >= c1 || r0 >= r1) {
+      grid = 0;
+      return;
+    }
+    const std::uint64_t columns = ((1u << c1) - 1u) & ~((1u << c0) - 1u);
+    const std::uint64_t below_r1 = r1 == 8 ? ~std::uint64_t(0) : (std::uint64_t(1) << (8 * r1)) - 1u;
+    grid &= below_r1 & ~((std::uint64_t(1) << (8 * r0)) - 1u) & (columns * 0x0101010101010101u);
   }
   // Takes the quad of the lowest remaining pixel: its (i, j) and lanes (bit k = pixel (2i + (k & 1),
   // 2j + (k >> 1))), removing its pixels from the grid. False when none is left.
@@ -297,6 +297,32 @@ struct BoxQuads {
     return true;
   }
 };
+
+#if defined(__AVX2__)
+// The centres covered by a triangle with edges32 among the grid's first `rows` rows (BoxQuads' layout,
+// corner (origin_x, origin_y)): each edge at a row's eight centres in the lanes of one vector, the
+// rows stepped down by adds. Centres up to eight pixels past the box may wrap modulo 2^32; the caller
+// keeps only the box's pixels, whose values are exact (kEdges32MaxExtent).
+inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x_from_min, int origin_y_from_min, int rows) {
+  const __m256i columns = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  __m256i e[3], down[3];
+  for (int i = 0; i < 3; ++i) {
+    const std::uint32_t sx = std::uint32_t(-std::int32_t(edges.dy[i]) * kSubpixelOne);
+    const std::uint32_t sy = std::uint32_t(std::int32_t(edges.dx[i]) * kSubpixelOne);
+    const std::uint32_t corner =
+        std::uint32_t(edges.ref[i]) + sx * std::uint32_t(origin_x_from_min) + sy * std::uint32_t(origin_y_from_min);
+    e[i] = _mm256_add_epi32(_mm256_set1_epi32(int(corner)), _mm256_mullo_epi32(_mm256_set1_epi32(int(sx)), columns));
+    down[i] = _mm256_set1_epi32(int(sy));
+  }
+  std::uint64_t grid = 0;
+  for (int r = 0; r < rows; ++r) {
+    const __m256i any_negative = _mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]);
+    grid |= std::uint64_t(~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(any_negative))) & 0xFFu) << (8 * r);
+    for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], down[i]);
+  }
+  return grid;
+}
+#endif
 
 // Triangles without box_coverage (larger boxes): the quads of [x_begin, x_end] x [y_begin, y_end] found
 // by walking the edge functions. Out of line: few triangles take it at high factors.
@@ -341,13 +367,27 @@ std::uint64_t rasterize_triangle_with(const ScreenPrimitive<N>& p, int tx0, int 
   const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
   const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
   if (x_begin > x_end || y_begin > y_end) return 0;
-  if (!p.box_coverage) return rasterize_triangle_walk<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
-  // Setup tested the box's centres with these edge functions: shade the quads of its covered pixels
-  // in this tile (tiles are aligned to quads). A triangle's quads do not overlap, so their order does
-  // not change the image.
-  BoxQuads box(p.box_coverage, p.min_x, p.min_y);
+  // The covered pixels as a grid of quads (BoxQuads) where that is cheap, shaded quad by quad below: the
+  // centres setup found in a small box, or (AVX2) the centres of a box of at most 8x8 pixels from its
+  // quad-aligned corner, evaluated here eight at a time (about one triangle in eight at factor 16).
+  // Other triangles walk their edges quad by quad. A triangle's quads do not overlap, so their order
+  // does not change the image; tiles are aligned to quads.
   const int ox = p.min_x & ~1, oy = p.min_y & ~1;
-  if (ox < tx0 || oy < ty0 || ox + 6 > tx1 || oy + 6 > ty1) box.keep(tx0 - ox, tx1 - ox, ty0 - oy, ty1 - oy);
+  const bool clipped_by_tile = x_begin != p.min_x || x_end != p.max_x || y_begin != p.min_y || y_end != p.max_y;
+  BoxQuads box(0);
+  if (p.box_coverage) {
+    box = BoxQuads(p.box_coverage, p.min_x, p.min_y);
+    if (clipped_by_tile) box.keep(x_begin - ox, x_end + 1 - ox, y_begin - oy, y_end + 1 - oy);
+  }
+#if defined(__AVX2__)
+  else if (p.edges32 && p.max_x - ox < 8 && p.max_y - oy < 8) {
+    box = BoxQuads(grid_coverage(p.edges, ox - p.min_x, oy - p.min_y, p.max_y - oy + 1));
+    box.keep(x_begin - ox, x_end + 1 - ox, y_begin - oy, y_end + 1 - oy);
+  }
+#endif
+  else {
+    return rasterize_triangle_walk<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
+  }
   std::uint64_t invocations = 0;
   int i = 0, j = 0;
   unsigned covered = 0;
