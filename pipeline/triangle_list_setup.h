@@ -103,6 +103,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   const auto tile_of = [&](__m256i p) {  // TileGrid::tile_of in each lane
     return _mm256_srl_epi32(_mm256_mullo_epi32(p, _mm256_set1_epi32(int(c.tiles.reciprocal))), tile_shift);
   };
+  constexpr std::size_t kSlack = 10;  // eight lanes' slots, a spare slot, and the last block's overrun
   const auto cmple = [](__m256i a, __m256i b) { return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1)); };
   for (; lanes && t + 8 <= count; t += 8) {
     const int* idx = reinterpret_cast<const int*>(indices + 3 * t);
@@ -127,7 +128,10 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
         _mm256_or_si256(_mm256_xor_si256(_mm256_cmpeq_epi32(clip_or, zero), ones), _mm256_cmpeq_epi32(finite, zero)),
         _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_sub_epi32(hx, lx), max_extent),
                         _mm256_cmpgt_epi32(_mm256_sub_epi32(hy, ly), max_extent)));
-    if (!_mm256_testz_si256(scalar, scalar)) {
+    // A group also goes one triangle at a time when the chunk's storage has no room for the lanes'
+    // records (below): append_primitive() then grows it as setup_triangle alone would, so the chunk
+    // holds no more storage than the scalar path needs.
+    if (!_mm256_testz_si256(scalar, scalar) || chunk.primitives.size() < chunk.primitive_count + kSlack) {
       for (std::size_t k = t; k < t + 8; ++k)
         setup_triangle<N>(c, chunk, vertices[indices[3 * k]], vertices[indices[3 * k + 1]], vertices[indices[3 * k + 2]],
                           first_id + std::uint32_t(k) * id_step);
@@ -250,9 +254,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     // Each lane's record whole: kept lanes to consecutive new slots, the others to the slot after them
     // (storage past primitive_count, overwritten later). Blocks are stored last first: the last block's
     // 32 bytes may run past the record into the next slot's first field, which the first block then
-    // writes. Room for the eight slots, the spare one and that overrun is made first.
+    // writes. The storage has room for the eight slots, the spare one and that overrun (kSlack).
     const std::size_t first = chunk.primitive_count, kept_count = std::size_t(std::popcount(kept));
-    if (chunk.primitives.size() < first + 10) chunk.primitives.resize(std::max<std::size_t>(2 * chunk.primitives.size(), first + 10));
     char* slot[8];
     for (unsigned k = 0; k < 8; ++k) {
       const bool kept_k = (kept >> k) & 1u;
