@@ -154,7 +154,7 @@ TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cl
 TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli][pipeline]") {
   for (const char* args : {"--resolution 0x10", "--resolution 100000x100000", "--resolution big", "--partitioning bogus",
                            "--factor nan", "--frames 0", "--threads -3", "--tile-size 7", "--tile-size 2048",
-                           "--chunk-primitives 0"}) {
+                           "--chunk-primitives 0", "--rounds 0", "--rounds 101"}) {
     INFO(args);
     const auto r = run_cli(std::string("bench torus --frames 1 ") + args);
     CHECK(r.exit_code == 2);
@@ -164,6 +164,37 @@ TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli]
   const auto r = run_cli("bench torus --factor 2 --resolution 32x32 --frames 1 --llvmpipe /nonexistent/tessbench");
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("/nonexistent/tessbench"));
+}
+
+TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports the median ratio", "[cli][pipeline]") {
+  // A stand-in for the llvmpipe harness (same arguments, same output line, a black PPM image): each
+  // round runs it once, and the speed-up is the median of the rounds' ratios.
+  const fs::path dir = temp_dir();
+  const fs::path harness = dir / "fake-tessbench.sh", calls = dir / "calls.txt";
+  {
+    std::ofstream f(harness);
+    f << "#!/bin/sh\n"
+         "echo \"$*\" >> '" << calls.string() << "'\n"
+         "{ printf 'P6\\n%d %d\\n255\\n' \"$2\" \"$3\"; head -c $(($2 * $3 * 3)) /dev/zero; } > \"$6\"\n"
+         "echo \"triangles 12288 median_s 0.5 min_s 0.25\"\n";
+  }
+  fs::permissions(harness, fs::perms::owner_all);
+  const auto r = run_cli("bench torus --factor 2 --resolution 48x32 --frames 2 --rounds 3 --threads 2 --json --llvmpipe " +
+                         harness.string());
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["rounds"] == 3);
+  CHECK(lines(slurp(calls)) == 3);
+  const auto& lp = j["llvmpipe"];
+  CHECK(lp["median_s"] == 0.5);
+  CHECK(lp["min_s"] == 0.25);
+  std::vector<double> ratios = lp["round_speedups"].get<std::vector<double>>();
+  REQUIRE(ratios.size() == 3);
+  std::sort(ratios.begin(), ratios.end());
+  CHECK(lp["speedup"].get<double>() == Approx(ratios[1]).epsilon(1e-5));  // printed with 6 digits
+  // Each ratio is 0.5 s over one round's median frame, which is no shorter than the fastest frame.
+  for (double q : ratios) CHECK(q <= 0.5 / j["min_s"].get<double>() * (1 + 1e-9));
+  CHECK(lp["pixels_over_2"].get<int>() > 0);  // the torus against a black image
 }
 
 TEST_CASE("tessera analyze --json describes the monster frog", "[cli][cage]") {

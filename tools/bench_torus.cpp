@@ -1,7 +1,9 @@
 // `tessera bench torus`: the benchmark scene of ../shared/bench/tessbench.cpp rendered through the whole
 // pipeline, timed per frame (median and minimum over --frames after one warm-up frame). With
 // --llvmpipe PATH it also runs that harness with the same arguments in the same run, and reports the
-// speed ratio and how many pixels of the two images differ by more than 2/255.
+// speed ratio and how many pixels of the two images differ by more than 2/255. With --rounds R the two
+// take turns R times: on a shared machine whose speed drifts between runs, each round's ratio compares
+// measurements taken moments apart, and the reported ratio is the median of the rounds' ratios.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -11,6 +13,8 @@
 #include <memory>
 #include <regex>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -26,6 +30,7 @@ struct TorusOptions {
   std::string partitioning = "integer";
   std::string resolution = "1920x1080";
   int frames = 5;
+  int rounds = 1;
   int threads = 0;
   std::string output;
   std::string stats;
@@ -86,6 +91,7 @@ int run_bench_torus(const TorusOptions& o) {
   if (!partitioning) throw UsageError("--partitioning: expected integer, pow2, fractional_odd or fractional_even");
   if (!std::isfinite(o.factor)) throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
+  if (o.rounds < 1 || o.rounds > 100) throw UsageError("--rounds: must be in 1..100");
   // The device would clamp these silently; a benchmark must run what it was asked to.
   if (o.tile_size < 8 || o.tile_size > 1024 || o.tile_size % 2 != 0)
     throw UsageError("--tile-size: " + std::to_string(o.tile_size) + " is not an even size in 8..1024");
@@ -105,21 +111,33 @@ int run_bench_torus(const TorusOptions& o) {
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
   const auto draw = scenes::make_torus_draw(scene, o.factor, *partitioning, w, h);
 
-  std::vector<double> times;
+  const auto median_of = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::vector<double> times, round_speedups;
+  std::vector<LlvmpipeRun> llvmpipe_rounds;
   DrawReport report;
-  for (int frame = 0; frame <= o.frames; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
-    DrawResult r = device.draw(draw, *fb);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!r.ok()) throw InputError(r.error);
-    if (frame > 0) times.push_back(s);  // frame 0 warms caches and allocations, as the harness does
-    report = r.report;
-    log_info("frame " + std::to_string(frame) + ": " + std::to_string(s) + " s");
+  for (int round = 0; round < o.rounds; ++round) {
+    std::vector<double> round_times;
+    for (int frame = 0; frame <= o.frames; ++frame) {
+      const auto start = std::chrono::steady_clock::now();
+      device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
+      DrawResult r = device.draw(draw, *fb);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!r.ok()) throw InputError(r.error);
+      if (frame > 0) round_times.push_back(s);  // frame 0 warms caches and allocations, as the harness does
+      report = r.report;
+      log_info("round " + std::to_string(round) + " frame " + std::to_string(frame) + ": " + std::to_string(s) + " s");
+    }
+    times.insert(times.end(), round_times.begin(), round_times.end());
+    if (!o.llvmpipe.empty()) {
+      if (!llvmpipe_rounds.empty()) std::filesystem::remove(llvmpipe_rounds.back().image);  // only the last is compared
+      llvmpipe_rounds.push_back(run_llvmpipe(o, *partitioning, w, h, device.threads()));
+      round_speedups.push_back(llvmpipe_rounds.back().median_s / median_of(round_times));
+    }
   }
-  std::vector<double> sorted = times;
-  std::sort(sorted.begin(), sorted.end());
-  const double median = sorted[sorted.size() / 2], minimum = sorted.front();
+  const double median = median_of(times), minimum = *std::min_element(times.begin(), times.end());
   const std::uint64_t triangles = report.statistics.CInvocations;
   const std::uint64_t rss = peak_rss_bytes();
 
@@ -136,8 +154,14 @@ int run_bench_torus(const TorusOptions& o) {
 
   std::optional<LlvmpipeRun> lp;
   std::optional<ImageDiff> diff;
+  double speedup = 0;
   if (!o.llvmpipe.empty()) {
-    lp = run_llvmpipe(o, *partitioning, w, h, device.threads());
+    // Over the rounds: the median of the harness's medians, its minimum, the median of the ratios.
+    lp = llvmpipe_rounds.back();
+    std::vector<double> medians;
+    for (const LlvmpipeRun& r : llvmpipe_rounds) medians.push_back(r.median_s), lp->min_s = std::min(lp->min_s, r.min_s);
+    lp->median_s = median_of(medians);
+    speedup = median_of(round_speedups);
     const std::string ours = o.output.empty()
                                  ? (std::filesystem::temp_directory_path() / ("tessera-torus-" + std::to_string(::getpid()) + ".png")).string()
                                  : o.output;
@@ -152,14 +176,15 @@ int run_bench_torus(const TorusOptions& o) {
     std::ostringstream j;
     j << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"partitioning\": \"" << o.partitioning
       << "\", \"resolution\": \"" << w << "x" << h << "\", \"isa\": \"" << kBuildIsa << "\", \"threads\": " << device.threads()
-      << ", \"frames\": " << o.frames << ", \"triangles\": " << triangles << ", \"median_s\": " << median
+      << ", \"frames\": " << o.frames << ", \"rounds\": " << o.rounds << ", \"triangles\": " << triangles << ", \"median_s\": " << median
       << ", \"min_s\": " << minimum << ", \"triangles_per_s\": " << double(triangles) / median
       << ", \"geometry_peak_bytes\": " << report.memory.geometry_peak_bytes
       << ", \"framebuffer_bytes\": " << report.memory.framebuffer_bytes << ", \"peak_rss_bytes\": " << rss
       << ", \"times\": " << to_json(report.times);
     if (lp)
       j << ", \"llvmpipe\": {\"median_s\": " << lp->median_s << ", \"min_s\": " << lp->min_s
-        << ", \"triangles\": " << lp->triangles << ", \"speedup\": " << lp->median_s / median
+        << ", \"triangles\": " << lp->triangles << ", \"speedup\": " << speedup << ", \"round_speedups\": "
+        << nlohmann::json(round_speedups).dump()
         << ", \"pixels_over_2\": " << diff->over_threshold << ", \"share_over_2\": " << diff->share()
         << ", \"max_difference\": " << diff->max_difference << "}";
     j << "}\n";
@@ -178,7 +203,7 @@ int run_bench_torus(const TorusOptions& o) {
       std::snprintf(line, sizeof line,
                     "llvmpipe: triangles %llu median_s %.4f min_s %.4f; speedup %.2fx; pixels differing by more than "
                     "2/255: %llu of %llu (%.4f%%), max difference %d\n",
-                    static_cast<unsigned long long>(lp->triangles), lp->median_s, lp->min_s, lp->median_s / median,
+                    static_cast<unsigned long long>(lp->triangles), lp->median_s, lp->min_s, speedup,
                     static_cast<unsigned long long>(diff->over_threshold), static_cast<unsigned long long>(diff->pixels),
                     100.0 * diff->share(), diff->max_difference);
       std::cout << line;
@@ -196,6 +221,9 @@ Runner add_bench_torus_command(CLI::App& bench) {
   cmd->add_option("--partitioning", o->partitioning, "integer, pow2, fractional_odd or fractional_even")->capture_default_str();
   cmd->add_option("--resolution", o->resolution, "WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up frame)")->capture_default_str();
+  cmd->add_option("--rounds", o->rounds,
+                  "measure this many times, taking turns with --llvmpipe; its speedup is the median of the rounds' ratios")
+      ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads, 0 = all")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times and memory as JSON");
