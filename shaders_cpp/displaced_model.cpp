@@ -29,7 +29,7 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     throw DisplacementMapError(o.map + ": displacement scale and bias must be finite");
   Displacement d;
   // One decode of the file serves the displacement and, with "auto", the normal map beside it.
-  const DisplacementImage image = DisplacementImage::read(o.map);
+  const DisplacementImage image = DisplacementImage::read(o.map, DisplacementImage::Selection{o.channel, 0});
   d.map = image.select(o.channel, 0);
   const bool vector = d.map->channels() == 3;
   // A height moves along the normal only: an object-space request would be silently meaningless.

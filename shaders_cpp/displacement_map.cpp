@@ -103,7 +103,7 @@ std::vector<int> select_channels(const std::string& path, const std::vector<std:
 
 }  // namespace
 
-DisplacementImage DisplacementImage::read(const std::string& path) {
+DisplacementImage DisplacementImage::read(const std::string& path, std::optional<Selection> check) {
   auto in = open(path);
   const OIIO::ImageSpec s = in->spec();
   if (s.width < 1 || s.height < 1 || s.width > kMaxTextureSize || s.height > kMaxTextureSize)
@@ -114,6 +114,7 @@ DisplacementImage DisplacementImage::read(const std::string& path) {
   image.path_ = path;
   image.width_ = s.width, image.height_ = s.height;
   image.names_ = names_of(s);
+  if (check) select_channels(path, image.names_, check->spec, check->count);  // throws on a wrong choice
   image.texels_.resize(std::size_t(s.width) * std::size_t(s.height) * std::size_t(s.nchannels));
   if (!in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, image.texels_.data()))
     fail(path, "cannot read pixels (" + one_line(in->geterror()) + ")");
@@ -136,7 +137,7 @@ DisplacementMap DisplacementImage::select(std::string_view spec, int count) cons
 }
 
 DisplacementMap DisplacementMap::load(const std::string& path, std::string_view spec, int count) {
-  return DisplacementImage::read(path).select(spec, count);
+  return DisplacementImage::read(path, DisplacementImage::Selection{spec, count}).select(spec, count);
 }
 
 }  // namespace tessera

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,7 +62,15 @@ class DisplacementMap {
 // (the frog's height in A and its normal map in RGB) are selected from one decode.
 class DisplacementImage {
  public:
-  static DisplacementImage read(const std::string& path);  // throws DisplacementMapError as load()
+  // A channel selection as select() takes it.
+  struct Selection {
+    std::string_view spec;
+    int count = 0;
+  };
+  // Throws DisplacementMapError as load(). With `check`, the selection is tested against the file's
+  // channel names before the pixels are decoded: a wrong channel fails at once, not after a large
+  // image has been read.
+  static DisplacementImage read(const std::string& path, std::optional<Selection> check = std::nullopt);
   DisplacementMap select(std::string_view spec = {}, int count = 0) const;
   // Every channel name of the file, in order.
   const std::vector<std::string>& channel_names() const { return names_; }

@@ -198,7 +198,16 @@ TEST_CASE("Displacement maps load from EXR, TIFF, PNG 8 and 16 bit with channel 
     std::ofstream(text) << "hello\n";
     const std::string unreadable = message([&] { DisplacementMap::load(text); });
     CHECK(unreadable.rfind(text + ": ", 0) == 0);
-    for (const auto& m : {none, bad, count, missing, unreadable}) CHECK(m.find('\n') == std::string::npos);
+    // A wrong channel is reported from the header, before the pixels are decoded: here they are cut
+    // off, so a decode first would report that instead.
+    const std::string big = write_image("big.exr", 512, 512, 2, OIIO::TypeDesc::FLOAT, ramp(512 * 512 * 2, 1.0f), {"U", "V"});
+    fs::resize_file(big, fs::file_size(big) / 2);
+    const std::string early = message([&] { DisplacementMap::load(big, "Q"); });
+    CHECK(early.find("no channel 'Q'") != std::string::npos);
+    const std::string truncated = message([&] { DisplacementMap::load(big, "U"); });
+    CHECK(truncated.rfind(big + ": ", 0) == 0);
+    CHECK(truncated.find("no channel") == std::string::npos);
+    for (const auto& m : {none, bad, count, missing, unreadable, early, truncated}) CHECK(m.find('\n') == std::string::npos);
   }
 }
 
