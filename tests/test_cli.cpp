@@ -260,6 +260,21 @@ TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and 
   CHECK(header.find("property int face\nproperty float u\nproperty float v\n") != std::string::npos);
   // 9 floats/ints per vertex, 1 + 3 * 4 bytes per triangle.
   CHECK(text.size() == header.size() + j["vertices"].get<std::size_t>() * 36 + j["triangles"].get<std::size_t>() * 13);
+  // Every face record is a count of 3 and three indices of written vertices, and every vertex is used.
+  const std::size_t vertices = j["vertices"].get<std::size_t>(), faces_at = header.size() + vertices * 36;
+  std::vector<bool> used(vertices, false);
+  int bad_faces = 0;
+  for (std::size_t f = faces_at; f + 13 <= text.size(); f += 13) {
+    bad_faces += text[f] != 3;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t index = 0;  // little-endian
+      for (int b = 3; b >= 0; --b) index = index << 8 | std::uint8_t(text[f + 1 + std::size_t(4 * k + b)]);
+      if (index < vertices) used[index] = true;
+      else ++bad_faces;
+    }
+  }
+  CHECK(bad_faces == 0);
+  CHECK(std::count(used.begin(), used.end(), false) == 0);
 }
 
 TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a non-zero exit", "[cli]") {

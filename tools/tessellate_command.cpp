@@ -31,14 +31,16 @@ struct TessellateOptions {
   DisplacementCli displacement;
 };
 
-// One PLY value, little-endian as the header says, whatever the host's byte order.
+// One PLY value appended to a patch's records, little-endian as the header says, whatever the host's
+// byte order. A patch's records go to the file in one write: a stream write per value took as long
+// as the tessellation itself.
 template <class T>
-void put(std::ofstream& out, const T& v) {
+void put(std::string& out, const T& v) {
   static_assert(std::is_trivially_copyable_v<T>);
   std::array<char, sizeof(T)> bytes;
   std::memcpy(bytes.data(), &v, sizeof v);
   if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
-  out.write(bytes.data(), bytes.size());
+  out.append(bytes.data(), bytes.size());
 }
 
 int run_tessellate(const TessellateOptions& o) {
@@ -59,26 +61,30 @@ int run_tessellate(const TessellateOptions& o) {
   WeldChecker weld;
   std::uint64_t vertices = 0, triangles = 0;
   DrawResult result;
+  std::string vbuf, fbuf;  // one patch's vertex and face records
   auto tessellate = [&](std::ofstream* vout, std::ofstream* fout) {
     auto sink = [&](const auto& p, const PatchGroup&) {
       const std::uint64_t base = vertices;
+      vbuf.clear(), fbuf.clear();
       if (vout)
         for (const auto& s : p.points) {
-          put(*vout, s.position.x), put(*vout, s.position.y), put(*vout, s.position.z);
-          put(*vout, s.normal.x), put(*vout, s.normal.y), put(*vout, s.normal.z);
-          put(*vout, std::int32_t(s.face));
-          put(*vout, s.u), put(*vout, s.v);
+          put(vbuf, s.position.x), put(vbuf, s.position.y), put(vbuf, s.position.z);
+          put(vbuf, s.normal.x), put(vbuf, s.normal.y), put(vbuf, s.normal.z);
+          put(vbuf, std::int32_t(s.face));
+          put(vbuf, s.u), put(vbuf, s.v);
         }
       for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3) {
         if (fout) {
-          put(*fout, std::uint8_t(3));
-          for (int k = 0; k < 3; ++k) put(*fout, std::int32_t(base + p.indices[i + std::size_t(k)]));
+          put(fbuf, std::uint8_t(3));
+          for (int k = 0; k < 3; ++k) put(fbuf, std::int32_t(base + p.indices[i + std::size_t(k)]));
         }
         if (o.check)
           weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
                             p.points[p.indices[i + 2]].position);
         ++triangles;
       }
+      if (vout) vout->write(vbuf.data(), std::streamsize(vbuf.size()));
+      if (fout) fout->write(fbuf.data(), std::streamsize(fbuf.size()));
       vertices += p.points.size();
     };
     result = displacement ? stream_displaced(device, model, *displacement, factors, partitioning, sink)
