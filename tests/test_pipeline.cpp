@@ -350,7 +350,8 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
   // setup_triangle gives it one triangle at a time. Triangles of 0..14 pixels around a jittered grid that
   // reaches past the viewport, scissor and tile edges, in both windings, some degenerate; a quarter of
   // the groups of eight hold one triangle with a vertex behind the near plane, past the guard band, at
-  // NaN, or far away (too large for 32-bit edges).
+  // NaN, or far away (too large for 32-bit edges). (Without AVX2, setup_triangle_list is the plain loop
+  // over setup_triangle, and this checks only its indexing and primitive ids.)
   const auto [cull, front_ccw, scissor, tile_size, id_step] =
       GENERATE(std::tuple{CullMode::none, false, false, 64, 0u}, std::tuple{CullMode::back, false, true, 8, 1u},
                std::tuple{CullMode::front, true, false, 16, 1u}, std::tuple{CullMode::back, true, true, 64, 0u});
