@@ -16,10 +16,6 @@
 #include <type_traits>
 #include <vector>
 
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
-
 #include "clipper.h"
 #include "simd4.h"
 #include "pipeline_state.h"
@@ -54,6 +50,14 @@ struct VertexPositions {
 struct SmallTriangleEdges {
   std::array<std::int16_t, 4> dx, dy;  // [3] unused: dx and dy are one 16-byte store from setup's lanes
   std::array<std::int32_t, 3> ref;
+  // Edge i's steps for one pixel right and one pixel down, and its value at the centre of pixel
+  // (min_x + ox, min_y + oy), modulo 2^32: exact wherever the rasterizer evaluates it.
+  std::int32_t step_x(int i) const { return -std::int32_t(dy[std::size_t(i)]) * kSubpixelOne; }
+  std::int32_t step_y(int i) const { return std::int32_t(dx[std::size_t(i)]) * kSubpixelOne; }
+  std::int32_t value_at(int i, int ox, int oy) const {
+    return std::int32_t(std::uint32_t(ref[std::size_t(i)]) + std::uint32_t(step_x(i)) * std::uint32_t(ox) +
+                        std::uint32_t(step_y(i)) * std::uint32_t(oy));
+  }
 };
 template <std::size_t N>
 struct ScreenPrimitive {
@@ -218,11 +222,10 @@ inline bool covers_centre(const std::int32_t (&x)[3], const std::int32_t (&y)[3]
   return all >= 0;
 }
 
-// Enters the chunk's last appended primitive in the bins of the tiles its box touches.
+// Enters the chunk's primitive `index` in the bins of the tiles its box touches.
 // Inlined into setup: it runs for every primitive, and nearly every one lies in a single tile.
 template <std::size_t N>
-[[gnu::always_inline]] inline void bin_last(const SetupContext& c, ChunkBuffer<N>& chunk) {
-  const auto index = static_cast<std::uint32_t>(chunk.primitive_count - 1);
+[[gnu::always_inline]] inline void bin_primitive(const SetupContext& c, ChunkBuffer<N>& chunk, std::uint32_t index) {
   const ScreenPrimitive<N>& p = chunk.primitives[index];
   const TileGrid& g = c.tiles;
   const int tx0 = g.tile_of(p.min_x), tx1 = g.tile_of(p.max_x), ty0 = g.tile_of(p.min_y), ty1 = g.tile_of(p.max_y);
@@ -232,6 +235,10 @@ template <std::size_t N>
   }
   for (int ty = ty0; ty <= ty1; ++ty)
     for (int tx = tx0; tx <= tx1; ++tx) chunk.entries.emplace_back(std::uint32_t(ty * g.columns + tx), index);
+}
+template <std::size_t N>
+[[gnu::always_inline]] inline void bin_last(const SetupContext& c, ChunkBuffer<N>& chunk) {
+  bin_primitive(c, chunk, static_cast<std::uint32_t>(chunk.primitive_count - 1));
 }
 template <std::size_t N>
 void bin(const SetupContext& c, ChunkBuffer<N>& chunk, const ScreenPrimitive<N>& p) {
@@ -464,36 +471,8 @@ template <std::size_t N>
       // A box of at most 4x4 pixel centres: each edge at the four centres (min_x + dx, min_y + dy) of
       // a row in lanes dx; the covered centres of a row are the lanes where no edge is negative. All
       // four rows, without a branch on the box's height; centres outside the box are masked off below.
-      // Every value is the exact edge function modulo 2^32 whichever way it is summed, so both forms
-      // give the same bits.
+      // (AVX2 builds set up most triangles in triangle_list_setup.h; this form serves the rest.)
       unsigned found = 0;  // bit dx + 8 * dy
-#if defined(__AVX2__)
-      // Rows 0 and 1 in the two halves of a 256-bit vector, then rows 2 and 3 (two steps down).
-      const __m256i dx_lanes = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
-      const __m256i second_row = _mm256_setr_epi32(0, 0, 0, 0, -1, -1, -1, -1);
-      __m256i row[3], down2[3];
-      for (int k = 0; k < 3; ++k) {
-        const __m256i lane = _mm256_set1_epi32(k);
-        const __m256i step_x = _mm256_permutevar8x32_epi32(_mm256_castsi128_si256(sx), lane);
-        const __m256i step_y = _mm256_permutevar8x32_epi32(_mm256_castsi128_si256(sy), lane);
-        row[k] = _mm256_add_epi32(_mm256_add_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(ref), lane),
-                                                   _mm256_mullo_epi32(step_x, dx_lanes)),
-                                  _mm256_and_si256(step_y, second_row));
-        down2[k] = _mm256_add_epi32(step_y, step_y);
-      }
-      const auto covered_lanes = [&] {  // 8 bits: the lanes where no edge is negative
-        const __m256i any_negative = _mm256_or_si256(_mm256_or_si256(row[0], row[1]), row[2]);
-        return ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(any_negative))) & 0xFFu;
-      };
-      const unsigned rows01 = covered_lanes();
-      for (int k = 0; k < 3; ++k) row[k] = _mm256_add_epi32(row[k], down2[k]);
-      const unsigned rows0123 = rows01 | (covered_lanes() << 8);  // bit dx + 4 * dy
-#if defined(__BMI2__)
-      found = _pdep_u32(rows0123, 0x0F0F0F0Fu);  // each 4-bit row to its byte
-#else
-      found = (rows0123 & 0xFu) | ((rows0123 & 0xF0u) << 4) | ((rows0123 & 0xF00u) << 8) | ((rows0123 & 0xF000u) << 12);
-#endif
-#else
       // The x step times dx = 0..3 as masked adds: SSE2 has no 32-bit lane multiply (simd::mullo32
       // emulates one there with twice the instructions).
       const __m128i from1 = _mm_setr_epi32(0, -1, -1, -1), from2 = _mm_setr_epi32(0, 0, -1, -1);
@@ -515,7 +494,6 @@ template <std::size_t N>
         found |= (~unsigned(_mm_movemask_ps(_mm_castsi128_ps(any_negative))) & 0xFu) << (8 * r);
         for (int i = 0; i < 3; ++i) row[i] = _mm_add_epi32(row[i], down[i]);
       }
-#endif
       const unsigned columns = ((2u << (max_x - min_x)) - 1u) * 0x01010101u;
       const unsigned rows = 0xFFFFFFFFu >> (8 * (kSmallBoxPixels - 1 - (max_y - min_y)));
       box_coverage = found & columns & rows;

@@ -307,12 +307,9 @@ inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x
   const __m256i columns = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i e[3], down[3];
   for (int i = 0; i < 3; ++i) {
-    const std::uint32_t sx = std::uint32_t(-std::int32_t(edges.dy[i]) * kSubpixelOne);
-    const std::uint32_t sy = std::uint32_t(std::int32_t(edges.dx[i]) * kSubpixelOne);
-    const std::uint32_t corner =
-        std::uint32_t(edges.ref[i]) + sx * std::uint32_t(origin_x_from_min) + sy * std::uint32_t(origin_y_from_min);
-    e[i] = _mm256_add_epi32(_mm256_set1_epi32(int(corner)), _mm256_mullo_epi32(_mm256_set1_epi32(int(sx)), columns));
-    down[i] = _mm256_set1_epi32(int(sy));
+    e[i] = _mm256_add_epi32(_mm256_set1_epi32(edges.value_at(i, origin_x_from_min, origin_y_from_min)),
+                            _mm256_mullo_epi32(_mm256_set1_epi32(edges.step_x(i)), columns));
+    down[i] = _mm256_set1_epi32(edges.step_y(i));
   }
   std::uint64_t grid = 0;
   for (int r = 0; r < rows; ++r) {
@@ -324,8 +321,9 @@ inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x
 }
 #endif
 
-// Triangles without box_coverage (larger boxes): the quads of [x_begin, x_end] x [y_begin, y_end] found
-// by walking the edge functions. Out of line: few triangles take it at high factors.
+// Triangles that rasterize_triangle_with cannot take as a grid (boxes past 8x8 pixels, edges in 64 bits,
+// or past 4x4 in builds without AVX2): the quads of [x_begin, x_end] x [y_begin, y_end] found by walking
+// the edge functions. Out of line: few triangles take it at high factors.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 [[gnu::noinline]] std::uint64_t rasterize_triangle_walk(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin,
                                                         int y_end, const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
@@ -337,13 +335,9 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   if (p.edges32) {
     // Setup's edge functions moved from (min_x, min_y) to the first quad, modulo 2^32 (exact: the
     // value fits, primitive_setup.h).
-    const auto ox = std::uint32_t(qx0 - p.min_x), oy = std::uint32_t(qy0 - p.min_y);
     std::int32_t e0[3], sx[3], sy[3];
-    for (int i = 0; i < 3; ++i) {
-      sx[i] = -std::int32_t(p.edges.dy[i]) * kSubpixelOne;
-      sy[i] = std::int32_t(p.edges.dx[i]) * kSubpixelOne;
-      e0[i] = std::int32_t(std::uint32_t(p.edges.ref[i]) + std::uint32_t(sx[i]) * ox + std::uint32_t(sy[i]) * oy);
-    }
+    for (int i = 0; i < 3; ++i)
+      sx[i] = p.edges.step_x(i), sy[i] = p.edges.step_y(i), e0[i] = p.edges.value_at(i, qx0 - p.min_x, qy0 - p.min_y);
     return walk_quads(Edges32(e0, sx, sy), qx0, qy0, x_begin, x_end, y_begin, y_end, shade);
   }
 #endif

@@ -81,6 +81,10 @@ template <std::size_t N>
 void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>* vertices,
                          [[maybe_unused]] std::size_t vertex_count, const std::uint32_t* indices, std::size_t count,
                          std::uint32_t first_id, std::uint32_t id_step) {
+  const auto one_by_one = [&](std::size_t k) {
+    setup_triangle<N>(c, chunk, vertices[indices[3 * k]], vertices[indices[3 * k + 1]], vertices[indices[3 * k + 2]],
+                      first_id + std::uint32_t(k) * id_step);
+  };
   std::size_t t = 0;
 #if defined(__AVX2__)
   using L = detail::TriangleRecordLayout<N>;
@@ -132,9 +136,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     // records (below): append_primitive() then grows it as setup_triangle alone would, so the chunk
     // holds no more storage than the scalar path needs.
     if (!_mm256_testz_si256(scalar, scalar) || chunk.primitives.size() < chunk.primitive_count + kSlack) {
-      for (std::size_t k = t; k < t + 8; ++k)
-        setup_triangle<N>(c, chunk, vertices[indices[3 * k]], vertices[indices[3 * k + 1]], vertices[indices[3 * k + 2]],
-                          first_id + std::uint32_t(k) * id_step);
+      for (std::size_t k = t; k < t + 8; ++k) one_by_one(k);
       continue;
     }
     const __m256i view_and =
@@ -269,7 +271,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       for (int k = 0; k < 8; ++k) _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot[k] + 32 * b), r[k]);
     }
     chunk.primitive_count = first + kept_count;
-    // bin_last for each kept lane, in lane order.
+    // bin_primitive for each kept lane, in lane order; one-tile lanes straight from the lanes.
     const TileGrid& g = c.tiles;
     const __m256i tx0 = tile_of(min_x), tx1 = tile_of(max_x), ty0 = tile_of(min_y), ty1 = tile_of(max_y);
     alignas(32) std::int32_t tiles[8];
@@ -280,20 +282,14 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     std::uint32_t index = std::uint32_t(first);
     for (unsigned rest = kept; rest != 0; rest &= rest - 1, ++index) {
       const int k = std::countr_zero(rest);
-      if ((one_tile >> k) & 1u) {
+      if ((one_tile >> k) & 1u)
         chunk.entries.emplace_back(std::uint32_t(tiles[k]), index);
-        continue;
-      }
-      const ScreenPrimitive<N>& p = chunk.primitives[index];
-      for (int ty = g.tile_of(p.min_y); ty <= g.tile_of(p.max_y); ++ty)
-        for (int tx = g.tile_of(p.min_x); tx <= g.tile_of(p.max_x); ++tx)
-          chunk.entries.emplace_back(std::uint32_t(ty * g.columns + tx), index);
+      else
+        detail::bin_primitive(c, chunk, index);
     }
   }
 #endif
-  for (; t < count; ++t)
-    setup_triangle<N>(c, chunk, vertices[indices[3 * t]], vertices[indices[3 * t + 1]], vertices[indices[3 * t + 2]],
-                      first_id + std::uint32_t(t) * id_step);
+  for (; t < count; ++t) one_by_one(t);
 }
 
 }  // namespace tessera

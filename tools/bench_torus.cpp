@@ -132,7 +132,6 @@ int run_bench_torus(const TorusOptions& o) {
     }
     times.insert(times.end(), round_times.begin(), round_times.end());
     if (!o.llvmpipe.empty()) {
-      if (!llvmpipe_rounds.empty()) std::filesystem::remove(llvmpipe_rounds.back().image);  // only the last is compared
       llvmpipe_rounds.push_back(run_llvmpipe(o, *partitioning, w, h, device.threads()));
       round_speedups.push_back(llvmpipe_rounds.back().median_s / median_of(round_times));
     }
