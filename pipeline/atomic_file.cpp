@@ -1,4 +1,4 @@
-#include "atomic_file.h"
+#include "pipeline/atomic_file.h"
 
 #include <unistd.h>
 

@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "stage_io.h"
+#include "pipeline/stage_io.h"
 
 namespace tessera {
 

@@ -1,4 +1,4 @@
-#include "device.h"
+#include "pipeline/device.h"
 
 #include <thread>
 

@@ -33,16 +33,16 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
-#include "framebuffer.h"
-#include "front_end.h"
-#include "parallel.h"
-#include "pattern_cache.h"
-#include "pipeline_state.h"
-#include "primitive_setup.h"
-#include "raster_tile.h"
-#include "stage_io.h"
-#include "statistics.h"
-#include "triangle_list_setup.h"
+#include "pipeline/framebuffer.h"
+#include "pipeline/front_end.h"
+#include "pipeline/parallel.h"
+#include "pipeline/pattern_cache.h"
+#include "pipeline/pipeline_state.h"
+#include "pipeline/primitive_setup.h"
+#include "pipeline/raster_tile.h"
+#include "pipeline/stage_io.h"
+#include "pipeline/statistics.h"
+#include "pipeline/triangle_list_setup.h"
 
 namespace tessera {
 

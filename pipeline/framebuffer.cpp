@@ -1,4 +1,4 @@
-#include "framebuffer.h"
+#include "pipeline/framebuffer.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "atomic_file.h"
+#include "pipeline/atomic_file.h"
 
 namespace tessera {
 

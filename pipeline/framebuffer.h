@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "simd4.h"
+#include "pipeline/simd4.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>

@@ -22,11 +22,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 
-#include "parallel.h"
-#include "pattern_cache.h"
-#include "pipeline_state.h"
-#include "stage_io.h"
-#include "statistics.h"
+#include "pipeline/parallel.h"
+#include "pipeline/pattern_cache.h"
+#include "pipeline/pipeline_state.h"
+#include "pipeline/stage_io.h"
+#include "pipeline/statistics.h"
 
 namespace tessera::detail {
 

@@ -1,4 +1,4 @@
-#include "pattern_cache.h"
+#include "pipeline/pattern_cache.h"
 
 namespace tessera {
 

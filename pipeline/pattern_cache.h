@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera {
 

@@ -1,4 +1,4 @@
-#include "pipeline_state.h"
+#include "pipeline/pipeline_state.h"
 
 #include <array>
 #include <utility>

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string_view>
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera {
 

@@ -24,9 +24,9 @@
 #include <emmintrin.h>
 #endif
 
-#include "framebuffer.h"
-#include "primitive_setup.h"
-#include "simd4.h"
+#include "pipeline/framebuffer.h"
+#include "pipeline/primitive_setup.h"
+#include "pipeline/simd4.h"
 
 namespace tessera {
 

@@ -13,7 +13,7 @@
 #include <immintrin.h>
 #endif
 
-#include "simd4.h"
+#include "pipeline/simd4.h"
 
 namespace tessera::simd {
 

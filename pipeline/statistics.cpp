@@ -1,6 +1,5 @@
-#include "statistics.h"
+#include "pipeline/statistics.h"
 
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -29,34 +28,6 @@ StageTimes& StageTimes::operator+=(const StageTimes& o) {
   raster += o.raster;
   wall += o.wall;
   return *this;
-}
-
-std::string to_json(const PipelineStatistics& s) {
-  std::ostringstream o;
-  o << "{\"IAVertices\": " << s.IAVertices << ", \"IAPrimitives\": " << s.IAPrimitives
-    << ", \"VSInvocations\": " << s.VSInvocations << ", \"GSInvocations\": " << s.GSInvocations
-    << ", \"GSPrimitives\": " << s.GSPrimitives << ", \"CInvocations\": " << s.CInvocations
-    << ", \"CPrimitives\": " << s.CPrimitives << ", \"PSInvocations\": " << s.PSInvocations
-    << ", \"HSInvocations\": " << s.HSInvocations << ", \"DSInvocations\": " << s.DSInvocations << "}";
-  return o.str();
-}
-
-std::string to_json(const StageTimes& t) {
-  char buf[384];
-  std::snprintf(buf, sizeof buf,
-                "{\"ia_vs_s\": %.6f, \"hs_s\": %.6f, \"tessellator_s\": %.6f, \"ds_s\": %.6f, \"setup_s\": %.6f, "
-                "\"raster_s\": %.6f, \"wall_s\": %.6f}",
-                t.ia_vs, t.hs, t.tessellator, t.ds, t.setup, t.raster, t.wall);
-  return buf;
-}
-
-std::string to_json(const MemoryStats& m) {
-  std::ostringstream o;
-  o << "{\"geometry_peak_bytes\": " << m.geometry_peak_bytes << ", \"framebuffer_bytes\": " << m.framebuffer_bytes
-    << ", \"pattern_cache_bytes\": " << m.pattern_cache_bytes << ", \"chunks\": " << m.chunks
-    << ", \"pattern_cache_hits\": " << m.pattern_cache_hits << ", \"pattern_cache_misses\": " << m.pattern_cache_misses
-    << "}";
-  return o.str();
 }
 
 std::uint64_t peak_rss_bytes() {

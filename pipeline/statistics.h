@@ -65,11 +65,6 @@ struct DrawReport {
   MemoryStats memory;
 };
 
-// JSON objects with D3D11's field names, for `--stats`.
-std::string to_json(const PipelineStatistics& s);
-std::string to_json(const StageTimes& t);
-std::string to_json(const MemoryStats& m);
-
 // Peak resident set size of this process, in bytes (from /proc/self/status VmHWM); 0 if unknown.
 std::uint64_t peak_rss_bytes();
 

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "device.h"
+#include "pipeline/device.h"
 
 namespace tessera {
 

@@ -1,6 +1,6 @@
-#include "texture.h"
+#include "pipeline/texture.h"
 
-#include "simd4.h"
+#include "pipeline/simd4.h"
 
 #include <cmath>
 #include <cstdint>

@@ -23,7 +23,7 @@
 #include <immintrin.h>
 #endif
 
-#include "primitive_setup.h"
+#include "pipeline/primitive_setup.h"
 
 namespace tessera {
 
@@ -285,7 +285,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       if ((one_tile >> k) & 1u)
         chunk.entries.emplace_back(std::uint32_t(tiles[k]), index);
       else
-        detail::bin_primitive(c, chunk, index);
+        detail::bin_primitive(c.tiles, chunk, index);
     }
   }
 #endif

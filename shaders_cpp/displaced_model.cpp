@@ -1,4 +1,4 @@
-#include "displaced_model.h"
+#include "shaders_cpp/displaced_model.h"
 
 #include <algorithm>
 #include <cmath>

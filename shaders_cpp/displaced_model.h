@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "displaced_shaders.h"
-#include "displacement_map.h"
-#include "subd_model.h"
+#include "shaders_cpp/displaced_shaders.h"
+#include "shaders_cpp/displacement/displacement_map.h"
+#include "shaders_cpp/subd_model.h"
 
 namespace tessera {
 

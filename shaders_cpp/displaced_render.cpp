@@ -1,4 +1,4 @@
-#include "displaced_render.h"
+#include "shaders_cpp/displaced_render.h"
 
 namespace tessera {
 DrawResult render_displaced(Device& device, const SubdModel& model, const Displacement& displacement,

@@ -2,8 +2,8 @@
 // wire-on-shaded views of subd_render.h, through the displaced shaders.
 #pragma once
 
-#include "displaced_model.h"
-#include "subd_render.h"
+#include "shaders_cpp/displaced_model.h"
+#include "shaders_cpp/subd_render.h"
 
 namespace tessera {
 

@@ -33,11 +33,11 @@
 
 #include <glm/glm.hpp>
 
-#include "displacement_frames.h"
-#include "patch_eval.h"
-#include "subd_shaders.h"
-#include "texture.h"
-#include "watertight_uv.h"
+#include "shaders_cpp/displacement/displacement_frames.h"
+#include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/subd_shaders.h"
+#include "pipeline/texture.h"
+#include "shaders_cpp/displacement/watertight_uv.h"
 
 namespace tessera {
 

@@ -1,9 +1,9 @@
-#include "subd_model.h"
+#include "shaders_cpp/subd_model.h"
 
 #include <algorithm>
 
-#include "cage_obj.h"
-#include "pn_patch.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/subdiv/pn_patch.h"
 
 namespace tessera {
 namespace {

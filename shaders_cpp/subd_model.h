@@ -10,12 +10,12 @@
 #include <memory>
 #include <string>
 
-#include "cage.h"
-#include "limit_surface.h"
-#include "stream_output.h"
-#include "subd_patches.h"
-#include "subd_shaders.h"
-#include "topology.h"
+#include "shaders_cpp/cage/cage.h"
+#include "shaders_cpp/subdiv/limit_surface.h"
+#include "pipeline/stream_output.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
+#include "shaders_cpp/subd_shaders.h"
+#include "shaders_cpp/cage/topology.h"
 
 namespace tessera {
 

@@ -1,4 +1,4 @@
-#include "subd_render.h"
+#include "shaders_cpp/subd_render.h"
 
 #include <cmath>
 

@@ -4,8 +4,8 @@
 
 #include <optional>
 
-#include "framebuffer.h"
-#include "subd_model.h"
+#include "pipeline/framebuffer.h"
+#include "shaders_cpp/subd_model.h"
 
 namespace tessera {
 

@@ -20,11 +20,11 @@
 
 #include <glm/glm.hpp>
 
-#include "limit_surface.h"
-#include "patch_eval.h"
-#include "pn_patch.h"
-#include "stage_io.h"
-#include "subd_patches.h"
+#include "shaders_cpp/subdiv/limit_surface.h"
+#include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/subdiv/pn_patch.h"
+#include "pipeline/stage_io.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
 
 namespace tessera {
 

@@ -1,11 +1,11 @@
-#include "torus_scene.h"
+#include "shaders_cpp/torus_scene.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 
-#include "simd8.h"
+#include "pipeline/simd8.h"
 
 namespace tessera::scenes {
 

@@ -15,9 +15,9 @@
 
 #include <glm/glm.hpp>
 
-#include "device.h"
-#include "simd4.h"
-#include "texture.h"
+#include "pipeline/device.h"
+#include "pipeline/simd4.h"
+#include "pipeline/texture.h"
 
 namespace tessera::scenes {
 

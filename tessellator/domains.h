@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::ts::detail {
 

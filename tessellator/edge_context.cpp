@@ -1,4 +1,4 @@
-#include "edge_context.h"
+#include "tessellator/edge_context.h"
 
 #include <bit>
 

@@ -7,7 +7,7 @@
 // function so that splits happen in a stable order) slides from its parent as the fraction grows.
 #pragma once
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::ts::detail {
 

@@ -1,9 +1,9 @@
-#include "hlsl_helpers.h"
+#include "tessellator/hlsl_helpers.h"
 
 #include <bit>
 #include <cmath>
 
-#include "d3d_float.h"
+#include "tessellator/d3d_float.h"
 
 namespace tessera::ts::hlsl {
 namespace {

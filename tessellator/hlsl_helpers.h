@@ -15,7 +15,7 @@
 // reference's GetUnRoundedComputedTessFactors returns).
 #pragma once
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::ts::hlsl {
 

@@ -1,8 +1,8 @@
 // Isoline domain: `density` lines at v = place(k) for k < lines (never at v = 1), each with the
 // same u points from the detail factor. Output line gives each line's segments; anything else
 // gives the points.
-#include "domains.h"
-#include "edge_context.h"
+#include "tessellator/domains.h"
+#include "tessellator/edge_context.h"
 
 namespace tessera::ts::detail {
 

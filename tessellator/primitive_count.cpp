@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 
-#include "domains.h"
-#include "tessellator.h"
+#include "tessellator/domains.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::ts {
 namespace {

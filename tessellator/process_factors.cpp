@@ -2,9 +2,9 @@
 // case (D3D11.3 §11.7.10-11.7.12). Afterwards everything is integer arithmetic.
 #include <cmath>
 
-#include "d3d_float.h"
-#include "edge_context.h"
-#include "tessellator.h"
+#include "tessellator/d3d_float.h"
+#include "tessellator/edge_context.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::ts {
 namespace {

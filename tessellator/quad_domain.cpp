@@ -7,9 +7,9 @@
 //   (0,1) <---- Veq1 ---- (1,1)        (the degenerate innermost ring).
 #include <algorithm>
 
-#include "domains.h"
-#include "edge_context.h"
-#include "stitch.h"
+#include "tessellator/domains.h"
+#include "tessellator/edge_context.h"
+#include "tessellator/stitch.h"
 
 namespace tessera::ts::detail {
 namespace {

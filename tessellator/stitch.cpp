@@ -1,4 +1,4 @@
-#include "stitch.h"
+#include "tessellator/stitch.h"
 
 #include <array>
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::ts::detail {
 

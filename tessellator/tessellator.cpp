@@ -1,9 +1,9 @@
 // Dispatch from processed factors to the domains, the minimal cases, names and hashing.
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
-#include "domains.h"
-#include "fnv1a.h"
-#include "stitch.h"
+#include "tessellator/domains.h"
+#include "tessellator/fnv1a.h"
+#include "tessellator/stitch.h"
 
 namespace tessera::ts {
 

@@ -31,7 +31,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixed_point.h"
+#include "tessellator/fixed_point.h"
 
 namespace tessera::ts {
 

@@ -5,9 +5,9 @@
 // centre point (0x5555, 0x5555); odd parity ends with one centre triangle. Because the inner
 // points are rounded in (u, v) with w implicit, they are not exactly symmetric under permutation
 // of (u, v, w): that 1-ulp asymmetry is part of the reference and is reproduced here.
-#include "domains.h"
-#include "edge_context.h"
-#include "stitch.h"
+#include "tessellator/domains.h"
+#include "tessellator/edge_context.h"
+#include "tessellator/stitch.h"
 
 namespace tessera::ts::detail {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "device.h"
+#include "pipeline/device.h"
 #include "test_support.h"
 
 namespace tessera::test {

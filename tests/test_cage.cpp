@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "test_data.h"
-#include "cage_obj.h"
+#include "shaders_cpp/cage/cage_obj.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;

@@ -7,9 +7,9 @@
 #include <fstream>
 
 #include "test_data.h"
-#include "cli_common.h"
+#include "tools/cli_common.h"
 #include "cli_runner.h"
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;

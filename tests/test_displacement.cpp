@@ -12,9 +12,9 @@
 
 #include "test_data.h"
 #include "cli_runner.h"
-#include "displaced_model.h"
-#include "displaced_render.h"
-#include "weld_check.h"
+#include "shaders_cpp/displaced_model.h"
+#include "shaders_cpp/displaced_render.h"
+#include "tools/verify/weld_check.h"
 #include "weld_support.h"
 
 namespace fs = std::filesystem;
@@ -51,13 +51,13 @@ std::vector<float> ramp(int n, float scale) {
   return v;
 }
 
-cli::WeldReport weld_displaced(const SubdModel& m, const Displacement& d, float factor, float vary, ts::Partitioning p,
+verify::WeldReport weld_displaced(const SubdModel& m, const Displacement& d, float factor, float vary, ts::Partitioning p,
                                int threads = 2, std::uint64_t* digest = nullptr) {
   DeviceOptions o;
   o.threads = threads;
   o.chunk_primitives = threads == 1 ? 16384 : 777;
   Device device(o);
-  cli::WeldChecker w;
+  verify::WeldChecker w;
   SubdFactors f;
   f.factor = factor;
   f.vary = vary;

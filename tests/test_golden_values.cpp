@@ -2,7 +2,7 @@
 // reference code (shared/reference/tessellator.md §2.12, §2.11, property 21). Exact.
 #include <catch2/catch.hpp>
 
-#include "fixed_point.h"
+#include "tessellator/fixed_point.h"
 #include "test_support.h"
 
 using namespace tessera;

@@ -3,7 +3,7 @@
 
 #include <limits>
 
-#include "hlsl_helpers.h"
+#include "tessellator/hlsl_helpers.h"
 
 using namespace tessera::ts;
 using namespace tessera::ts::hlsl;

@@ -23,11 +23,11 @@
 #include <vector>
 
 #include "test_data.h"
-#include "limit_accuracy.h"
-#include "limit_surface.h"
-#include "cage_obj.h"
-#include "osd_refiner.h"
-#include "topology.h"
+#include "tools/measure/limit_accuracy.h"
+#include "shaders_cpp/subdiv/limit_surface.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/subdiv/osd_refiner.h"
+#include "shaders_cpp/cage/topology.h"
 
 using namespace tessera;
 using tessera::test::data;

@@ -7,11 +7,11 @@
 #include <glm/geometric.hpp>
 
 #include "test_data.h"
-#include "cage_generators.h"
-#include "cage_obj.h"
-#include "memory_model.h"
-#include "subd_patches.h"
-#include "topology.h"
+#include "shaders_cpp/cage/cage_generators.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "tools/measure/memory_model.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
+#include "shaders_cpp/cage/topology.h"
 
 using namespace tessera;
 using tessera::test::data;

@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "oracle.h"
+#include "tools/verify/oracle.h"
 
 using namespace tessera;
 

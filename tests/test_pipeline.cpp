@@ -9,8 +9,8 @@
 #include <set>
 
 #include "pipeline_support.h"
-#include "triangle_list_setup.h"
-#include "torus_scene.h"
+#include "pipeline/triangle_list_setup.h"
+#include "shaders_cpp/torus_scene.h"
 
 using namespace tessera;
 using namespace tessera::test;

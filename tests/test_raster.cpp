@@ -10,7 +10,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "pipeline_support.h"
-#include "texture.h"
+#include "pipeline/texture.h"
 
 using namespace tessera;
 using namespace tessera::test;

@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "test_data.h"
-#include "cage_obj.h"
-#include "patch_eval.h"
-#include "pn_patch.h"
-#include "subd_model.h"
-#include "topology_combinations.h"
-#include "weld_check.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/subdiv/pn_patch.h"
+#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/cage/topology_combinations.h"
+#include "tools/verify/weld_check.h"
 #include "weld_support.h"
 
 using namespace tessera;
@@ -32,7 +32,7 @@ namespace {
 
 
 struct Weld {
-  cli::WeldReport report;
+  verify::WeldReport report;
   // With normals tracked: points whose position bits an earlier point had, and those of them whose
   // normal bits differ from that point's.
   std::uint64_t shared_points = 0, normal_mismatches = 0;
@@ -44,7 +44,7 @@ Weld weld_model(const SubdModel& m, const SubdFactors& f, ts::Partitioning p, bo
   DeviceOptions o;
   o.threads = 2;
   Device device(o);
-  cli::WeldChecker w;
+  verify::WeldChecker w;
   Weld out;
   using Bits = std::array<std::uint32_t, 3>;
   std::map<Bits, Bits> normal_at;  // position bits -> the first normal bits seen there
@@ -65,10 +65,10 @@ Weld weld_model(const SubdModel& m, const SubdFactors& f, ts::Partitioning p, bo
   return out;
 }
 
-cli::WeldReport weld(const SubdModel& m, const SubdFactors& f, ts::Partitioning p) {
+verify::WeldReport weld(const SubdModel& m, const SubdFactors& f, ts::Partitioning p) {
   return weld_model(m, f, p, false).report;
 }
-cli::WeldReport weld(const SubdModel& m, float factor, float vary, ts::Partitioning p) {
+verify::WeldReport weld(const SubdModel& m, float factor, float vary, ts::Partitioning p) {
   SubdFactors f;
   f.factor = factor;
   f.vary = vary;
@@ -439,7 +439,7 @@ TEST_CASE("On open cages with n-gons the only open edges are the cage's boundary
           expected += std::uint64_t(std::ceil(f.edge(cage_edge_key(m.topology->origin(h), m.topology->destination(h)))));
         }
       REQUIRE(expected > 0);
-      const cli::WeldReport r = weld(m, f, ts::Partitioning::integer);
+      const verify::WeldReport r = weld(m, f, ts::Partitioning::integer);
       CHECK(r.boundary_edges == expected);
       CHECK(r.nonmanifold_edges == 0);
       CHECK(r.degenerate_triangles == 0);
@@ -460,7 +460,7 @@ TEST_CASE("On an open cage the only open edges are the cage's boundary, factor s
 }
 
 TEST_CASE("The weld check sees a crack: one vertex moved by one ulp opens its edges", "[subd]") {
-  cli::WeldChecker ok, cracked;
+  verify::WeldChecker ok, cracked;
   const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
   // A tetrahedron, consistently oriented.
   for (auto* w : {&ok, &cracked}) {

@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::test {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "texture.h"
+#include "pipeline/texture.h"
 
 using namespace tessera;
 

@@ -10,9 +10,9 @@
 #include <set>
 
 #include "test_data.h"
-#include "cage_obj.h"
-#include "topology.h"
-#include "topology_combinations.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/cage/topology_combinations.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;

@@ -6,8 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "tessellator.h"
-#include "weld_check.h"
+#include "tessellator/tessellator.h"
+#include "tools/verify/weld_check.h"
 
 namespace tessera::test {
 
@@ -22,7 +22,7 @@ inline constexpr std::array<VaryingFactors, 3> kVaryingFactors = {VaryingFactors
                                                                  VaryingFactors{ts::Partitioning::fractional_even, 2.6f, 1.3f}};
 
 // Welded on exact bits, every edge is used twice, once each way, and no triangle collapsed.
-inline void check_watertight(const cli::WeldReport& r) {
+inline void check_watertight(const verify::WeldReport& r) {
   CHECK(r.closed_manifold());
   CHECK(r.boundary_edges == 0);
   CHECK(r.nonmanifold_edges == 0);

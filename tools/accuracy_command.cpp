@@ -8,10 +8,11 @@
 #include <numbers>
 #include <sstream>
 
-#include "cli_common.h"
-#include "commands.h"
-#include "subd_model.h"
-#include "tessellate_options.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "shaders_cpp/subd_model.h"
+#include "tools/tessellate_options.h"
 
 namespace tessera::cli {
 namespace {
@@ -74,12 +75,19 @@ int run_accuracy(const AccuracyOptions& o) {
   const double rms = samples ? std::sqrt(sum_d2 / double(samples)) : 0.0;
   const double rel_max = max_d / diagonal, rel_rms = rms / diagonal;
   if (o.json) {
-    std::cout << "{\"cage\": " << json_quoted(o.cage) << ", \"scheme\": \"" << to_string(scheme) << "\", \"factor\": " << o.factor
-              << ", \"samples\": " << samples << ", \"diagonal\": " << diagonal << ", \"max_distance\": " << max_d
-              << ", \"rms_distance\": " << rms << ", \"max_relative\": " << rel_max << ", \"rms_relative\": " << rel_rms
-              << ", \"max_normal_degrees\": " << max_angle
-              << ", \"mean_normal_degrees\": " << (samples ? sum_angle / double(samples) : 0.0)
-              << ", \"fallback_faces\": " << model.patches.fallback_faces << "}\n";
+    const Json j = {{"cage", o.cage},
+                    {"scheme", to_string(scheme)},
+                    {"factor", json_float(o.factor)},
+                    {"samples", samples},
+                    {"diagonal", diagonal},
+                    {"max_distance", max_d},
+                    {"rms_distance", rms},
+                    {"max_relative", rel_max},
+                    {"rms_relative", rel_rms},
+                    {"max_normal_degrees", max_angle},
+                    {"mean_normal_degrees", samples ? sum_angle / double(samples) : 0.0},
+                    {"fallback_faces", model.patches.fallback_faces}};
+    std::cout << json_text(j) << "\n";
   } else {
     char line[256];
     std::snprintf(line, sizeof line,

@@ -12,12 +12,12 @@
 #include <memory>
 #include <optional>
 
-#include "analyze_memory.h"
-#include "cage_obj.h"
-#include "cli_common.h"
-#include "commands.h"
-#include "topology.h"
-#include "topology_combinations.h"
+#include "tools/analyze_memory.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/cage/topology_combinations.h"
 
 namespace tessera::cli {
 namespace {

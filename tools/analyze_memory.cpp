@@ -1,4 +1,4 @@
-#include "analyze_memory.h"
+#include "tools/analyze_memory.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -13,11 +13,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "cli_common.h"
-#include "displaced_model.h"
-#include "displacement_map.h"
-#include "subd_patches.h"
-#include "tessellate_options.h"
+#include "tools/cli_common.h"
+#include "shaders_cpp/displaced_model.h"
+#include "shaders_cpp/displacement/displacement_map.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
+#include "tools/tessellate_options.h"
 
 extern char** environ;
 

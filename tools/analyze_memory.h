@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "cage.h"
-#include "memory_model.h"
-#include "topology.h"
+#include "shaders_cpp/cage/cage.h"
+#include "tools/measure/memory_model.h"
+#include "shaders_cpp/cage/topology.h"
 
 namespace tessera::cli {
 

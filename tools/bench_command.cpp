@@ -7,9 +7,10 @@
 #include <random>
 #include <sstream>
 
-#include "cli_common.h"
-#include "commands.h"
-#include "tessellator.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::cli {
 namespace {
@@ -49,8 +50,7 @@ int run_bench_tessellator(const BenchOptions& o) {
 
   const double per_load = o.seconds / double(loads.size());
   ts::Pattern pattern;
-  std::ostringstream json;
-  json << "{\"benchmark\": \"tessellator\", \"threads\": 1, \"workloads\": [";
+  Json json = {{"benchmark", "tessellator"}, {"threads", 1}, {"workloads", Json::array()}};
   double total_points = 0, total_tris = 0, total_time = 0;
   for (std::size_t li = 0; li < loads.size(); ++li) {
     const auto& w = loads[li];
@@ -74,11 +74,12 @@ int run_bench_tessellator(const BenchOptions& o) {
                     reps * w.patches.size());
       std::cout << line;
     }
-    json << (li ? ", " : "") << "{\"name\": \"" << w.name << "\", \"points_per_s\": " << double(points) / elapsed
-         << ", \"triangles_per_s\": " << double(tris) / elapsed << "}";
+    json["workloads"].push_back(
+        {{"name", w.name}, {"points_per_s", double(points) / elapsed}, {"triangles_per_s", double(tris) / elapsed}});
   }
-  json << "], \"points_per_s\": " << total_points / total_time << ", \"triangles_per_s\": " << total_tris / total_time << "}\n";
-  if (o.json) std::cout << json.str();
+  json["points_per_s"] = total_points / total_time;
+  json["triangles_per_s"] = total_tris / total_time;
+  if (o.json) std::cout << json_text(json) << "\n";
   else {
     char line[160];
     std::snprintf(line, sizeof line, "overall: %.1f M points/s, %.1f M triangles/s on one thread\n", total_points / total_time / 1e6,

@@ -6,17 +6,18 @@
 #include <iostream>
 #include <sstream>
 
-#include "cli_common.h"
-#include "commands.h"
-#include "displaced_render.h"
-#include "subd_render.h"
-#include "tessellate_options.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "shaders_cpp/displaced_render.h"
+#include "shaders_cpp/subd_render.h"
+#include "tools/tessellate_options.h"
 
 namespace tessera::cli {
 namespace {
 
 struct BenchSubdOptions {
-  std::string cage = std::string(TESSERA_SOURCE_DIR) + "/tests/data/sdk-cages/monsterfrog_mapped_00.obj";
+  std::string cage;  // empty: the monster frog shipped beside the binary (shared_data_file)
   std::string scheme = "gregory", partitioning = "integer", factors_file, resolution = "1920x1080", output;
   float factor = 16.0f, vary = 0.0f;
   int threads = 0, frames = 5;
@@ -30,7 +31,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   const auto [w, h] = parse_resolution(o.resolution);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
-  const SubdModel model = load_model(o.cage, scheme);
+  const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj") : o.cage;
+  const SubdModel model = load_model(cage, scheme);
   const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   Device device(device_options(o.threads));
   std::string error;
@@ -47,7 +49,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
     const DrawResult r =
         displacement ? render_displaced(device, model, *displacement, factors, partitioning, SubdView::shaded, camera, *fb)
                      : render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
-    if (!r.ok()) throw InputError(o.cage + ": " + r.error);
+    if (!r.ok()) throw InputError(cage + ": " + r.error);
     if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     last = r.report;
   }
@@ -67,20 +69,29 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const double hs_rate = double(s.report.statistics.HSInvocations) / std::max(1e-9, s.report.times.hs);
   const double ds_rate = double(s.report.statistics.DSInvocations) / std::max(1e-9, s.report.times.ds);
   if (o.json) {
-    std::cout << "{\"scene\": \"subd\", \"cage\": " << json_quoted(o.cage) << ", \"scheme\": \"" << to_string(scheme)
-              << "\", \"displacement\": " << json_quoted(displacement ? o.displacement.map : std::string())
-              << ", \"factor\": " << o.factor << ", \"resolution\": \"" << w << "x" << h << "\", \"threads\": "
-              << device.threads() << ", \"frames\": " << o.frames << ", \"triangles\": " << st.CInvocations
-              << ", \"median_s\": " << median << ", \"min_s\": " << frame_s.front()
-              << ", \"triangles_per_s\": " << double(st.CInvocations) / median << ", \"stream_s\": " << stream_s
-              << ", \"hs_patches_per_thread_s\": " << hs_rate << ", \"ds_points_per_thread_s\": " << ds_rate
-              << ", \"times\": " << to_json(last.times) << "}\n";
+    const Json j = {{"scene", "subd"},
+                    {"cage", cage},
+                    {"scheme", to_string(scheme)},
+                    {"displacement", displacement ? o.displacement.map : std::string()},
+                    {"factor", json_float(o.factor)},
+                    {"resolution", std::to_string(w) + "x" + std::to_string(h)},
+                    {"threads", device.threads()},
+                    {"frames", o.frames},
+                    {"triangles", st.CInvocations},
+                    {"median_s", median},
+                    {"min_s", frame_s.front()},
+                    {"triangles_per_s", double(st.CInvocations) / median},
+                    {"stream_s", stream_s},
+                    {"hs_patches_per_thread_s", hs_rate},
+                    {"ds_points_per_thread_s", ds_rate},
+                    {"times", to_json(last.times)}};
+    std::cout << json_text(j) << "\n";
   } else {
     char line[400];
     std::snprintf(line, sizeof line,
                   "%s, %s%s, factor %g, %dx%d, %d threads: median %.4f s (min %.4f), %llu triangles, %.1f M triangles/s\n"
                   "front end alone (stream output): %.4f s; HS %.2f M patches/thread-s, DS %.1f M points/thread-s\n",
-                  o.cage.c_str(), to_string(scheme), displacement ? " displaced" : "", double(o.factor), w, h, device.threads(), median, frame_s.front(),
+                  cage.c_str(), to_string(scheme), displacement ? " displaced" : "", double(o.factor), w, h, device.threads(), median, frame_s.front(),
                   (unsigned long long)st.CInvocations, double(st.CInvocations) / median / 1e6, stream_s, hs_rate / 1e6,
                   ds_rate / 1e6);
     std::cout << line;
@@ -93,7 +104,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
 Runner add_bench_subd_command(CLI::App& bench) {
   auto o = std::make_shared<BenchSubdOptions>();
   CLI::App* cmd = bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
-  cmd->add_option("--cage", o->cage, "the cage")->capture_default_str();
+  cmd->add_option("--cage", o->cage, "the cage (default: the monster frog shipped with tessera)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
   cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();

@@ -14,13 +14,13 @@
 #include <regex>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
-#include "cli_common.h"
-#include "commands.h"
-#include "device.h"
-#include "image_compare.h"
-#include "torus_scene.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "pipeline/device.h"
+#include "tools/json_output.h"
+#include "tools/verify/image_compare.h"
+#include "tools/verify/oracle.h"
+#include "shaders_cpp/torus_scene.h"
 
 namespace tessera::cli {
 namespace {
@@ -40,16 +40,6 @@ struct TorusOptions {
   bool json = false;
 };
 
-const char* gl_spacing(ts::Partitioning p) {
-  switch (p) {
-    case ts::Partitioning::integer: return "equal_spacing";
-    case ts::Partitioning::fractional_odd: return "fractional_odd_spacing";
-    case ts::Partitioning::fractional_even: return "fractional_even_spacing";
-    case ts::Partitioning::pow2: return nullptr;
-  }
-  return nullptr;
-}
-
 struct LlvmpipeRun {
   double median_s = 0, min_s = 0;
   std::uint64_t triangles = 0;
@@ -58,12 +48,13 @@ struct LlvmpipeRun {
 
 // Checked before rendering, so a bad --llvmpipe fails at once.
 void check_llvmpipe(const TorusOptions& o, ts::Partitioning p) {
-  if (!gl_spacing(p)) throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
+  // The torus hull shader would round pow2 factors that the harness cannot.
+  if (p == ts::Partitioning::pow2) throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
   if (!std::filesystem::exists(o.llvmpipe)) throw InputError(o.llvmpipe + ": no such llvmpipe harness (build tessbench.cpp)");
 }
 
 LlvmpipeRun run_llvmpipe(const TorusOptions& o, ts::Partitioning p, int w, int h, int threads) {
-  const char* spacing = gl_spacing(p);
+  const char* spacing = oracle::gl_spacing(p);
   LlvmpipeRun r;
   r.image = (std::filesystem::temp_directory_path() / ("tessera-llvmpipe-" + std::to_string(::getpid()) + ".ppm")).string();
   char cmd[2048];
@@ -144,15 +135,18 @@ int run_bench_torus(const TorusOptions& o) {
     if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   }
   if (!o.stats.empty()) {
-    std::ostringstream s;
-    s << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"threads\": " << device.threads()
-      << ", \"statistics\": " << to_json(report.statistics) << ", \"times\": " << to_json(report.times)
-      << ", \"memory\": " << to_json(report.memory) << ", \"peak_rss_bytes\": " << rss << "}\n";
-    write_text_atomically(o.stats, s.str());
+    const Json s = {{"scene", "torus"},
+                    {"factor", json_float(o.factor)},
+                    {"threads", device.threads()},
+                    {"statistics", to_json(report.statistics)},
+                    {"times", to_json(report.times)},
+                    {"memory", to_json(report.memory)},
+                    {"peak_rss_bytes", rss}};
+    write_text_atomically(o.stats, json_text(s) + "\n");
   }
 
   std::optional<LlvmpipeRun> lp;
-  std::optional<ImageDiff> diff;
+  std::optional<verify::ImageDiff> diff;
   double speedup = 0;
   if (!o.llvmpipe.empty()) {
     // Over the rounds: the median of the harness's medians, its minimum, the median of the ratios.
@@ -166,28 +160,34 @@ int run_bench_torus(const TorusOptions& o) {
                                  : o.output;
     if (o.output.empty())
       if (auto e = fb->write_color(ours); !e.empty()) throw InputError(e);
-    diff = compare_images(ours, lp->image, 2);
+    diff = verify::compare_images(ours, lp->image, 2);
     std::filesystem::remove(lp->image);
     if (o.output.empty()) std::filesystem::remove(ours);
   }
 
   if (o.json) {
-    std::ostringstream j;
-    j << "{\"scene\": \"torus\", \"factor\": " << float_text(o.factor) << ", \"partitioning\": \"" << o.partitioning
-      << "\", \"resolution\": \"" << w << "x" << h << "\", \"isa\": \"" << kBuildIsa << "\", \"threads\": " << device.threads()
-      << ", \"frames\": " << o.frames << ", \"rounds\": " << o.rounds << ", \"triangles\": " << triangles << ", \"median_s\": " << median
-      << ", \"min_s\": " << minimum << ", \"triangles_per_s\": " << double(triangles) / median
-      << ", \"geometry_peak_bytes\": " << report.memory.geometry_peak_bytes
-      << ", \"framebuffer_bytes\": " << report.memory.framebuffer_bytes << ", \"peak_rss_bytes\": " << rss
-      << ", \"times\": " << to_json(report.times);
+    Json j = {{"scene", "torus"},
+              {"factor", json_float(o.factor)},
+              {"partitioning", o.partitioning},
+              {"resolution", std::to_string(w) + "x" + std::to_string(h)},
+              {"isa", kBuildIsa},
+              {"threads", device.threads()},
+              {"frames", o.frames},
+              {"rounds", o.rounds},
+              {"triangles", triangles},
+              {"median_s", median},
+              {"min_s", minimum},
+              {"triangles_per_s", double(triangles) / median},
+              {"geometry_peak_bytes", report.memory.geometry_peak_bytes},
+              {"framebuffer_bytes", report.memory.framebuffer_bytes},
+              {"peak_rss_bytes", rss},
+              {"times", to_json(report.times)}};
     if (lp)
-      j << ", \"llvmpipe\": {\"median_s\": " << lp->median_s << ", \"min_s\": " << lp->min_s
-        << ", \"triangles\": " << lp->triangles << ", \"speedup\": " << speedup << ", \"round_speedups\": "
-        << nlohmann::json(round_speedups).dump()
-        << ", \"pixels_over_2\": " << diff->over_threshold << ", \"share_over_2\": " << diff->share()
-        << ", \"max_difference\": " << diff->max_difference << "}";
-    j << "}\n";
-    std::cout << j.str();
+      j["llvmpipe"] = {{"median_s", lp->median_s},           {"min_s", lp->min_s},
+                       {"triangles", lp->triangles},         {"speedup", speedup},
+                       {"round_speedups", round_speedups},   {"pixels_over_2", diff->over_threshold},
+                       {"share_over_2", diff->share()},      {"max_difference", diff->max_difference}};
+    std::cout << json_text(j) << "\n";
   } else {
     char line[512];
     std::snprintf(line, sizeof line,

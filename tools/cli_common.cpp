@@ -1,12 +1,12 @@
-#include "cli_common.h"
+#include "tools/cli_common.h"
 
-#include "atomic_file.h"
-#include "framebuffer.h"
-
-#include <nlohmann/json.hpp>
+#include "pipeline/atomic_file.h"
+#include "pipeline/framebuffer.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <regex>
 #include <cstdio>
 #include <cstdlib>
@@ -81,8 +81,6 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   });
 }
 
-std::string json_quoted(const std::string& text) { return nlohmann::json(text).dump(); }
-
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi) {
   const std::regex re(R"((\d{1,6})x(\d{1,6}))");
   std::smatch m;
@@ -91,6 +89,15 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& what,
   if (a < lo || b < lo || a > hi || b > hi)
     throw UsageError(what + ": " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi) + " per side");
   return {a, b};
+}
+
+std::string shared_data_file(const std::string& name) {
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  const std::filesystem::path path = exe.parent_path().parent_path() / "share" / "tessera" / name;
+  if (error || !std::filesystem::is_regular_file(path, error))
+    throw InputError(path.string() + ": shipped data file missing (reinstall tessera, or name the file)");
+  return path.string();
 }
 
 std::pair<int, int> parse_resolution(const std::string& text) {
@@ -107,12 +114,9 @@ DeviceOptions device_options(int threads) {
 std::string float_text(float x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[32];
-  for (int digits = 1; digits <= 9; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, double(x));
-    if (std::strtof(buf, nullptr) == x) break;
-  }
-  return buf;
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);  // shortest that reads back exactly
+  return std::string(buffer, r.ptr);
 }
 
 }  // namespace tessera::cli

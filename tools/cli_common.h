@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "device.h"
+#include "pipeline/device.h"
 
 namespace tessera::cli {
 
@@ -57,8 +57,9 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 // write_file_atomically for a text that is already complete in memory.
 void write_text_atomically(const std::string& path, const std::string& text);
 
-// `text` as a JSON string literal, quotes and escapes included (paths in --json output).
-std::string json_quoted(const std::string& text);
+// A data file shipped with tessera (the default cage of `bench frog`): share/tessera/<name> beside
+// the binary's directory, in the build tree as in an installed tree. Throws InputError when absent.
+std::string shared_data_file(const std::string& name);
 
 // "AxB" for option `what`, each side in lo..hi; throws UsageError naming the option.
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi);
@@ -68,7 +69,8 @@ std::pair<int, int> parse_resolution(const std::string& text);
 // Device options for --threads N (0 = all hardware threads; 0..1024, else UsageError).
 DeviceOptions device_options(int threads);
 
-// Shortest decimal text that parses back to the identical float (at most 9 significant digits).
+// Shortest decimal text that parses back to the identical float (std::to_chars: 100, 0.1, 3e-05;
+// "nan", "inf", "-inf" as parse_float reads them).
 std::string float_text(float x);
 
 }  // namespace tessera::cli

@@ -6,8 +6,8 @@
 #include <iostream>
 #include <map>
 
-#include "cli_common.h"
-#include "commands.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
 
 int main(int argc, char** argv) {
   using namespace tessera::cli;

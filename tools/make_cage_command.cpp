@@ -4,10 +4,10 @@
 #include <memory>
 #include <stdexcept>
 
-#include "cage_generators.h"
-#include "cage_obj.h"
-#include "cli_common.h"
-#include "commands.h"
+#include "shaders_cpp/cage/cage_generators.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
 
 namespace tessera::cli {
 namespace {

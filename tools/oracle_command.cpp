@@ -4,9 +4,10 @@
 #include <iostream>
 #include <memory>
 
-#include "cli_common.h"
-#include "commands.h"
-#include "oracle.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "tools/verify/oracle.h"
 
 namespace tessera::cli {
 namespace {
@@ -47,7 +48,7 @@ int run_oracle(const OracleOptions& o) {
     log_info("wrote " + std::to_string(golden.size()) + " golden digests to " + o.write_golden);
   }
   if (o.json)
-    std::cout << "{\"cases\": " << captures.size() << ", \"set_match\": " << set_match << ", \"order_match\": " << order_match << "}\n";
+    std::cout << json_text(Json{{"cases", captures.size()}, {"set_match", set_match}, {"order_match", order_match}}) << "\n";
   else
     std::cout << captures.size() << " cases: " << set_match << " match as primitive sets, " << order_match
               << " also in the same order\n";

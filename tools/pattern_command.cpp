@@ -1,12 +1,12 @@
 // `tessera pattern`: one patch through the fixed-function tessellator, as JSON and/or a picture.
 #include <iostream>
 #include <memory>
-#include <sstream>
 
-#include "cli_common.h"
-#include "commands.h"
-#include "pattern_image.h"
-#include "tessellator.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "tools/pattern_image.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::cli {
 namespace {
@@ -19,18 +19,17 @@ struct PatternOptions {
   int image_size = 1024;
 };
 
-void write_json(std::ostream& out, const ts::Pattern& p) {
-  out << "{\"culled\": " << (p.culled ? "true" : "false") << ", \"points\": [";
-  for (std::size_t i = 0; i < p.points.size(); ++i)
-    out << (i ? ", " : "") << "[" << float_text(p.points[i].u) << ", " << float_text(p.points[i].v) << "]";
-  out << "], \"primitives\": [";
+// Float32 JSON: each coordinate prints as the shortest text that reads back to the same float.
+FloatJson pattern_json(const ts::Pattern& p) {
+  FloatJson points = FloatJson::array(), primitives = FloatJson::array();
+  for (const auto& point : p.points) points.push_back({point.u, point.v});
   const auto per = std::size_t(p.vertices_per_primitive());
   for (std::size_t i = 0; i + per <= p.indices.size(); i += per) {
-    out << (i ? ", " : "") << "[";
-    for (std::size_t k = 0; k < per; ++k) out << (k ? ", " : "") << p.indices[i + k];
-    out << "]";
+    FloatJson primitive = FloatJson::array();
+    for (std::size_t k = 0; k < per; ++k) primitive.push_back(p.indices[i + k]);
+    primitives.push_back(std::move(primitive));
   }
-  out << "]}\n";
+  return {{"culled", p.culled}, {"points", std::move(points)}, {"primitives", std::move(primitives)}};
 }
 
 int run_pattern(const PatternOptions& o) {
@@ -76,9 +75,7 @@ int run_pattern(const PatternOptions& o) {
     log_info("wrote " + o.image);
   }
   if (o.json) {
-    std::ostringstream s;
-    write_json(s, pattern);
-    std::cout << s.str();
+    std::cout << json_text(pattern_json(pattern)) << "\n";
   } else if (o.image.empty()) {
     std::cout << (pattern.culled ? "culled" : std::to_string(pattern.points.size()) + " points, " + std::to_string(pattern.primitive_count()) +
                                                   " primitives")

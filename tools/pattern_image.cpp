@@ -1,4 +1,4 @@
-#include "pattern_image.h"
+#include "tools/pattern_image.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "cli_common.h"
+#include "tools/cli_common.h"
 
 namespace tessera::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include <array>
 #include <string>
 
-#include "tessellator.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::cli {
 

@@ -5,11 +5,12 @@
 #include <sstream>
 
 
-#include "cli_common.h"
-#include "commands.h"
-#include "displaced_render.h"
-#include "subd_render.h"
-#include "tessellate_options.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "shaders_cpp/displaced_render.h"
+#include "shaders_cpp/subd_render.h"
+#include "tools/tessellate_options.h"
 
 namespace tessera::cli {
 namespace {
@@ -62,10 +63,11 @@ int run_render(const RenderOptions& o) {
   const DrawReport& total = result.report;
   if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   if (!o.stats.empty()) {
-    std::ostringstream s;
-    s << "{\"statistics\": " << to_json(total.statistics) << ", \"times\": " << to_json(total.times)
-      << ", \"memory\": " << to_json(total.memory) << ", \"peak_rss_bytes\": " << peak_rss_bytes() << "}\n";
-    write_text_atomically(o.stats, s.str());
+    const Json s = {{"statistics", to_json(total.statistics)},
+                    {"times", to_json(total.times)},
+                    {"memory", to_json(total.memory)},
+                    {"peak_rss_bytes", peak_rss_bytes()}};
+    write_text_atomically(o.stats, json_text(s) + "\n");
   }
   std::cout << o.output << ": " << w << "x" << h << ", scheme " << to_string(scheme) << ", "
             << total.statistics.CInvocations << " triangles, " << total.statistics.PSInvocations << " pixels shaded\n";

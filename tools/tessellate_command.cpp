@@ -3,22 +3,19 @@
 // merged across patches), so crack-freedom can be checked from outside by welding on exact float bits;
 // `--check-watertight` does that here too.
 #include <algorithm>
-#include <array>
-#include <bit>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
-#include <type_traits>
 
-#include "cli_common.h"
-#include "commands.h"
-#include "subd_model.h"
-#include "tessellate_options.h"
-#include "weld_check.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "tools/ply_writer.h"
+#include "shaders_cpp/subd_model.h"
+#include "tools/tessellate_options.h"
+#include "tools/verify/weld_check.h"
 
 namespace tessera::cli {
 namespace {
@@ -30,18 +27,6 @@ struct TessellateOptions {
   bool check = false, json = false;
   DisplacementCli displacement;
 };
-
-// One PLY value appended to a patch's records, little-endian as the header says, whatever the host's
-// byte order. A patch's records go to the file in one write: a stream write per value took as long
-// as the tessellation itself.
-template <class T>
-void put(std::string& out, const T& v) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  std::array<char, sizeof(T)> bytes;
-  std::memcpy(bytes.data(), &v, sizeof v);
-  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
-  out.append(bytes.data(), bytes.size());
-}
 
 int run_tessellate(const TessellateOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
@@ -58,33 +43,34 @@ int run_tessellate(const TessellateOptions& o) {
             std::to_string(model.patches.tables.size()) + " stencil tables");
 
   Device device(device_options(o.threads));
-  WeldChecker weld;
+  verify::WeldChecker weld;
   std::uint64_t vertices = 0, triangles = 0;
   DrawResult result;
   std::string vbuf, fbuf;  // one patch's vertex and face records
-  auto tessellate = [&](std::ofstream* vout, std::ofstream* fout) {
+  auto tessellate = [&](PlyStreamWriter* ply) {
     auto sink = [&](const auto& p, const PatchGroup&) {
       const std::uint64_t base = vertices;
       vbuf.clear(), fbuf.clear();
-      if (vout)
+      if (ply)
         for (const auto& s : p.points) {
-          put(vbuf, s.position.x), put(vbuf, s.position.y), put(vbuf, s.position.z);
-          put(vbuf, s.normal.x), put(vbuf, s.normal.y), put(vbuf, s.normal.z);
-          put(vbuf, std::int32_t(s.face));
-          put(vbuf, s.u), put(vbuf, s.v);
+          PlyStreamWriter::put(vbuf, s.position.x), PlyStreamWriter::put(vbuf, s.position.y);
+          PlyStreamWriter::put(vbuf, s.position.z);
+          PlyStreamWriter::put(vbuf, s.normal.x), PlyStreamWriter::put(vbuf, s.normal.y);
+          PlyStreamWriter::put(vbuf, s.normal.z);
+          PlyStreamWriter::put(vbuf, std::int32_t(s.face));
+          PlyStreamWriter::put(vbuf, s.u), PlyStreamWriter::put(vbuf, s.v);
         }
-      for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3) {
-        if (fout) {
-          put(fbuf, std::uint8_t(3));
-          for (int k = 0; k < 3; ++k) put(fbuf, std::int32_t(base + p.indices[i + std::size_t(k)]));
-        }
+      std::uint64_t faces = 0;
+      for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3, ++faces) {
+        if (ply)
+          PlyStreamWriter::put_triangle(fbuf, std::int32_t(base + p.indices[i]), std::int32_t(base + p.indices[i + 1]),
+                                        std::int32_t(base + p.indices[i + 2]));
         if (o.check)
           weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
                             p.points[p.indices[i + 2]].position);
-        ++triangles;
       }
-      if (vout) vout->write(vbuf.data(), std::streamsize(vbuf.size()));
-      if (fout) fout->write(fbuf.data(), std::streamsize(fbuf.size()));
+      if (ply) ply->append(vbuf, p.points.size(), fbuf, faces);
+      triangles += faces;
       vertices += p.points.size();
     };
     result = displacement ? stream_displaced(device, model, *displacement, factors, partitioning, sink)
@@ -94,41 +80,18 @@ int run_tessellate(const TessellateOptions& o) {
 
   if (!o.output.empty()) {
     write_file_atomically(o.output, [&](const std::string& temp) {
-      // Vertex and face records stream to two side files; the PLY is the header plus both.
-      const std::string vpath = temp + ".vertices", fpath = temp + ".faces";
-      struct Cleanup {
-        std::string a, b;
-        ~Cleanup() {
-          std::error_code ignored;
-          std::filesystem::remove(a, ignored);
-          std::filesystem::remove(b, ignored);
-        }
-      } cleanup{vpath, fpath};
-      {
-        std::ofstream vout(vpath, std::ios::binary), fout(fpath, std::ios::binary);
-        if (!vout || !fout) throw InputError(o.output + ": cannot write");
-        tessellate(&vout, &fout);
-        if (!vout.flush() || !fout.flush()) throw InputError(o.output + ": write failed");
-      }
-      std::ofstream out(temp, std::ios::binary);
-      out << "ply\nformat binary_little_endian 1.0\ncomment tessera tessellate " << std::filesystem::path(o.cage).filename().string()
-           << " scheme " << to_string(scheme)
-          << (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string() : std::string())
-          << " factor " << float_text(o.factor) << " partitioning " << o.partitioning
-          << "\ncomment each patch writes its own vertices; face = base face, u v = domain location\nelement vertex "
-          << vertices
-          << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-             "property int face\nproperty float u\nproperty float v\nelement face "
-          << triangles << "\nproperty list uchar int vertex_indices\nend_header\n";
-      for (const std::string& part : {vpath, fpath}) {
-        std::ifstream in(part, std::ios::binary);
-        out << in.rdbuf();
-      }
-      out.close();
-      if (!out) throw InputError(o.output + ": write failed");
+      PlyStreamWriter ply(temp, o.output,
+                          {{"float", "x"}, {"float", "y"}, {"float", "z"}, {"float", "nx"}, {"float", "ny"},
+                           {"float", "nz"}, {"int", "face"}, {"float", "u"}, {"float", "v"}});
+      tessellate(&ply);
+      const std::string made_by =
+          "tessera tessellate " + std::filesystem::path(o.cage).filename().string() + " scheme " + to_string(scheme) +
+          (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string() : std::string()) +
+          " factor " + float_text(o.factor) + " partitioning " + o.partitioning;
+      ply.finish({made_by, "each patch writes its own vertices; face = base face, u v = domain location"});
     });
   } else {
-    tessellate(nullptr, nullptr);
+    tessellate(nullptr);
   }
 
   const auto& st = result.report.statistics;
@@ -136,16 +99,21 @@ int run_tessellate(const TessellateOptions& o) {
   text << o.cage << ": scheme " << to_string(scheme) << ", " << model.patches.quads.size() + model.patches.tris.size()
        << " patches, " << model.patches.tables.size() << " stencil tables, " << st.DSInvocations << " domain points, "
        << triangles << " triangles";
-  WeldReport w;
+  verify::WeldReport w;
   if (o.check) w = weld.report();
   if (o.json) {
-    std::cout << "{\"cage\": " << json_quoted(o.cage) << ", \"scheme\": \"" << to_string(scheme) << "\", \"patches\": "
-              << model.patches.quads.size() + model.patches.tris.size() << ", \"stencil_tables\": " << model.patches.tables.size()
-              << ", \"fallback_faces\": " << model.patches.fallback_faces << ", \"vertices\": " << vertices
-              << ", \"triangles\": " << triangles << ", \"hs_invocations\": " << st.HSInvocations
-              << ", \"ds_invocations\": " << st.DSInvocations << ", \"seconds\": " << result.report.times.wall;
-    if (o.check) std::cout << ", \"watertight\": " << w.to_json();
-    std::cout << "}\n";
+    Json j = {{"cage", o.cage},
+              {"scheme", to_string(scheme)},
+              {"patches", model.patches.quads.size() + model.patches.tris.size()},
+              {"stencil_tables", model.patches.tables.size()},
+              {"fallback_faces", model.patches.fallback_faces},
+              {"vertices", vertices},
+              {"triangles", triangles},
+              {"hs_invocations", st.HSInvocations},
+              {"ds_invocations", st.DSInvocations},
+              {"seconds", result.report.times.wall}};
+    if (o.check) j["watertight"] = to_json(w);
+    std::cout << json_text(j) << "\n";
   } else {
     std::cout << text.str() << "\n";
     if (o.check) std::cout << w.summary() << "\n";

@@ -1,11 +1,11 @@
-#include "tessellate_options.h"
+#include "tools/tessellate_options.h"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
 
-#include "cli_common.h"
+#include "tools/cli_common.h"
 
 namespace tessera::cli {
 

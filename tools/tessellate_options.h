@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "displaced_model.h"
-#include "subd_model.h"
-#include "subd_patches.h"
-#include "subd_shaders.h"
-#include "tessellator.h"
+#include "shaders_cpp/displaced_model.h"
+#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
+#include "shaders_cpp/subd_shaders.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera::cli {
 

@@ -1,0 +1,18 @@
+// Synthetic control cages for scaling measurements (memory, speed) where a real asset of the wanted
+// size does not exist: cages built from a formula, with UVs, closed and all-quad.
+//
+// Contract: the result passes validate_cage (topology.h); sizes outside the stated ranges throw
+// std::invalid_argument.
+#pragma once
+
+#include "shaders_cpp/cage/cage.h"
+
+namespace tessera {
+
+// A torus of `around` x `across` quads (each 3..4096): major radius `major`, tube radius `minor`
+// (0 < minor < major), counter-clockwise seen from outside, every vertex of valence 4. UVs run
+// u = i / around, v = j / across over [0, 1]^2, so the cage has one UV seam loop in each direction
+// (around + across seam edges), as a real unwrapped asset has seams.
+Cage torus_cage(int around, int across, float major, float minor);
+
+}  // namespace tessera

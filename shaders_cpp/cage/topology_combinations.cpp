@@ -1,0 +1,162 @@
+// Combination keys: per corner a self-delimiting word sequence (its length follows from the face count
+// it records), the smallest rotation chosen by comparing the concatenations, and a hash map from key
+// to combination so each face costs its 1-ring.
+#include "shaders_cpp/cage/topology_combinations.h"
+
+#include <algorithm>
+#include <bit>
+#include <map>
+#include <unordered_map>
+
+namespace tessera {
+namespace {
+
+struct KeyHash {
+  std::size_t operator()(const std::vector<std::int32_t>& k) const {
+    std::size_t h = 1469598103934665603ull;
+    for (std::int32_t w : k) h = (h ^ std::uint32_t(w)) * 1099511628211ull;
+    return h;
+  }
+};
+
+// Where each half-edge sits in its origin's ring.
+std::vector<int> ring_positions(const Topology& t) {
+  std::vector<int> pos(std::size_t(t.half_edge_count()), 0);
+  for (int v = 0; v < t.vertex_count(); ++v) {
+    const auto r = t.ring(v);
+    for (std::size_t i = 0; i < r.size(); ++i) pos[r[i]] = int(i);
+  }
+  return pos;
+}
+
+// The fan of the corner at half-edge h, in key order: from h for an interior vertex, from the boundary
+// for a boundary one (the ring's own order).
+struct Fan {
+  int vertex, start, count;
+  bool boundary;
+};
+Fan fan_of(const Topology& t, int h, int pos_in_ring) {
+  const int v = t.origin(h);
+  const bool b = t.is_boundary_vertex(v);
+  return {v, b ? 0 : pos_in_ring, t.vertex_face_count(v), b};
+}
+
+void corner_words(const Topology& t, int h, int pos_in_ring, std::vector<std::int32_t>& out) {
+  const Fan fan = fan_of(t, h, pos_in_ring);
+  const auto ring = t.ring(fan.vertex);
+  out.push_back(fan.boundary);
+  out.push_back(fan.count);
+  out.push_back(fan.boundary ? pos_in_ring : 0);
+  for (int j = 0; j < fan.count; ++j) out.push_back(t.face_size(t.face(ring[(fan.start + j) % fan.count])));
+  out.push_back(std::bit_cast<std::int32_t>(t.corner_sharpness(fan.vertex)));
+  for (int j = 0; j < fan.count; ++j) out.push_back(std::bit_cast<std::int32_t>(t.edge_sharpness(t.edge(ring[(fan.start + j) % fan.count]))));
+  if (fan.boundary) out.push_back(std::bit_cast<std::int32_t>(t.edge_sharpness(t.edge(t.prev(ring[fan.count - 1])))));
+}
+
+PatchClass classify(const Topology& t, int f) {
+  if (t.is_hole(f)) return PatchClass::hole;
+  const int n = t.face_size(f);
+  bool boundary = false, all_quads = true, sharp = false, regular_corners = true, regular_boundary_corners = true;
+  for (int k = 0; k < n; ++k) {
+    const int v = t.origin(t.face_half_edge(f) + k);
+    const bool b = t.is_boundary_vertex(v);
+    const int val = t.valence(v);
+    boundary |= b;
+    sharp |= t.has_sharpness_at(v);
+    for (int h : t.ring(v)) all_quads &= t.face_size(t.face(h)) == 4;
+    regular_corners &= !b && val == 4;
+    regular_boundary_corners &= b ? (val == 3 || val == 2) : val == 4;
+  }
+  const bool plain = n == 4 && all_quads && !sharp;
+  if (!boundary) return plain && regular_corners ? PatchClass::regular : PatchClass::irregular;
+  return plain && regular_boundary_corners ? PatchClass::regular_boundary : PatchClass::boundary;
+}
+
+}  // namespace
+
+TopologyCombinations analyze_combinations(const Topology& t) {
+  TopologyCombinations out;
+  const int nf = t.face_count();
+  out.face_combination.assign(std::size_t(nf), -1);
+  out.face_rotation.assign(std::size_t(nf), 0);
+  out.face_class.assign(std::size_t(nf), PatchClass::hole);
+  const std::vector<int> pos = ring_positions(t);
+  std::unordered_map<std::vector<std::int32_t>, int, KeyHash> index;
+  std::vector<std::vector<std::int32_t>> corners;
+  std::vector<std::int32_t> best, candidate;
+  for (int f = 0; f < nf; ++f) {
+    const PatchClass cls = classify(t, f);
+    out.face_class[f] = cls;
+    if (cls == PatchClass::hole) continue;
+    const int n = t.face_size(f), h0 = t.face_half_edge(f);
+    corners.resize(std::size_t(n));
+    for (int k = 0; k < n; ++k) {
+      corners[k].clear();
+      corner_words(t, h0 + k, pos[h0 + k], corners[k]);
+    }
+    int rotation = 0;
+    for (int r = 0; r < n; ++r) {
+      candidate.assign(1, n);
+      for (int i = 0; i < n; ++i) candidate.insert(candidate.end(), corners[(r + i) % n].begin(), corners[(r + i) % n].end());
+      if (r == 0 || candidate < best) {
+        best.swap(candidate);
+        rotation = r;
+      }
+    }
+    auto [it, fresh] = index.try_emplace(best, int(out.combinations.size()));
+    if (fresh) {
+      Combination c;
+      c.key = best;
+      c.text = combination_text(t, f, rotation);
+      c.face_size = n;
+      c.patch_class = cls;
+      c.boundary = cls == PatchClass::boundary || cls == PatchClass::regular_boundary;
+      out.combinations.push_back(std::move(c));
+    }
+    Combination& c = out.combinations[it->second];
+    ++c.count;
+    c.faces.push_back(f);
+    out.face_combination[f] = it->second;
+    out.face_rotation[f] = rotation;
+
+    CombinationStats& s = out.stats;
+    ++s.patches;
+    if (n == 3) ++s.triangles;
+    else if (n == 4) ++s.quads;
+    else ++s.polygons;
+    if (cls == PatchClass::regular) ++s.regular;
+    if (cls == PatchClass::boundary || cls == PatchClass::regular_boundary) ++s.boundary;
+    if (cls == PatchClass::regular_boundary) ++s.regular_boundary;
+  }
+  return out;
+}
+
+std::string combination_text(const Topology& t, int f, int rotation) {
+  const int n = t.face_size(f), h0 = t.face_half_edge(f);
+  std::string s = n == 3 ? "0" : "";
+  for (int i = 0; i < n; ++i) {
+    const int h = h0 + (rotation + i) % n;
+    const int v = t.origin(h);
+    const auto ring = t.ring(v);
+    const int count = int(ring.size());
+    const bool b = t.is_boundary_vertex(v);
+    const int start = b ? 0 : int(std::find(ring.begin(), ring.end(), h) - ring.begin());
+    if (!s.empty()) s += ' ';
+    s += std::to_string(t.valence(v));
+    if (b) s += 'b';
+    if (t.has_sharpness_at(v)) s += '*';
+    bool quads = true;
+    for (int j = 0; j < count; ++j) quads &= t.face_size(t.face(ring[j])) == 4;
+    if (!quads) {
+      s += '(';
+      for (int j = 0; j < count; ++j) {
+        if (j) s += ' ';
+        s += std::to_string(t.face_size(t.face(ring[(start + j) % count])));
+      }
+      s += ')';
+    }
+  }
+  return s;
+}
+
+}  // namespace tessera

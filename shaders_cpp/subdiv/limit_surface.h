@@ -1,0 +1,132 @@
+// The exact Catmull-Clark limit surface of a Cage, evaluated through OpenSubdiv (Bfr). It is the
+// domain-shader evaluator of the `exact` scheme and the reference for accuracy measurements.
+//
+// Contract
+// - Domains follow D3D11 patches.
+//   * Quad face: corners 0,1,2,3 <-> (u,v) = (0,0),(1,0),(1,1),(0,1); sub_patch must be 0.
+//   * Any other face of n vertices (triangles included) is, in OpenSubdiv's own parameterization, n
+//     quad sub-patches: sub-patch k has corners (vertex k, midpoint of edge k->k+1, face centre,
+//     midpoint of edge k-1->k) <-> (0,0),(1,0),(1,1),(0,1). Derivatives are with respect to the
+//     sub-patch's own (u,v). `evaluate` and `sample_reference` take this domain.
+//   * Triangle face, barycentric: `evaluate_triangle(face, u, v, w)` with w = (1-u)-v; corner 0 <-> w=1,
+//     corner 1 <-> u=1, corner 2 <-> v=1. Derivatives are d/du and d/dv with w = 1-u-v. Inside, the
+//     point is mapped to the quad sub-patch of the nearest corner (the largest barycentric) by the
+//     inverse of that sub-patch's bilinear map; the surface is the same, only the parameterization
+//     differs from the sub-patch one.
+//   * Fan triangle k of a face of n != 4 vertices (how faces of more than four sides are drawn):
+//     `evaluate_fan(face, k, u, v, w)`, vertex k <-> w=1, vertex k+1 <-> u=1, face centre <-> v=1, so
+//     its v = 0 edge is the whole cage edge k -> k+1 at parameter u. The map into the sub-patches is
+//     piecewise affine (fan_location): with x = 2u + v, the half x <= 1 (vertex k, midpoint of edge k,
+//     centre) is sub-patch k at (x, v); the half x > 1 is sub-patch k+1 at (v, 2 - x). The spokes
+//     (centre, vertex k) are the diagonals of sub-patch k, reached at the same (s, t) from both
+//     triangles that share them. Derivatives are d/du and d/dv of the triangle; the normal is the
+//     sub-patch's (the same bits from both sides of a spoke).
+// - Normals are normalize(du x dv), pointing outward for counter-clockwise faces (flipped when the
+//   cage is tagged left-handed, so they point outward there too).
+// - Watertight, bitwise: the position and the normal of a point exactly on a cage vertex, on a cage
+//   edge, or on an edge between two sub-patches of one face are computed once, by the element's owner,
+//   so every face (and sub-patch) that shares the point gets the same bits. Owners: a cage vertex's
+//   limit is taken from the lowest-index face with a surface that uses it; a cage edge belongs to the
+//   lowest-index face with a surface that uses it (its first occurrence there), evaluated at the same
+//   point of the edge (t <-> 1-t where the faces run the edge opposite ways, exact for tessellator
+//   parameters, which are multiples of 2^-16); a face centre belongs to sub-patch 0 at (1,1); the edge
+//   between sub-patches k and k+1 belongs to sub-patch k (its u = 1 side). A fan spoke needs no owner:
+//   both triangles evaluate the same sub-patch at the same (s, t), bit for bit (tessellator parameters
+//   are multiples of 2^-16, so 2 - (2u + v) = v exactly when u = 1 - v). du and dv are always this
+//   face's own derivatives (they are not shared: the two faces parameterize the edge differently).
+// - Thread-safe and allocation-free after create(): everything per face is precomputed; evaluation
+//   only reads. Internally double precision; results are rounded to float once.
+// - Faces without a limit surface (holes; boundary faces under boundary interpolation "none") have
+//   0 sub-patches; evaluating them, or a face/sub-patch index out of range, or a coordinate outside
+//   [0,1] (or NaN) throws std::out_of_range with a one-line message. create() validates the cage as
+//   the topology does (validate_cage, topology.h) and then checks OpenSubdiv's own limits (face size,
+//   valence); both throw a one-line CageError.
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <glm/vec2.hpp>
+#include <glm/ext/vector_double3.hpp>
+
+#include <memory>
+
+#include "shaders_cpp/cage/cage.h"
+
+namespace tessera {
+
+struct SurfacePoint {
+  glm::vec3 position{0.0f};
+  glm::vec3 du{0.0f}, dv{0.0f};  // this face's own parametric derivatives
+  glm::vec3 normal{0.0f};        // unit, outward
+};
+
+// The accuracy command's reference sample: the same point in double precision, without rounding.
+struct ReferenceSample {
+  glm::dvec3 position{0.0};
+  glm::dvec3 normal{0.0};
+};
+
+class LimitSurface {
+ public:
+  // Bfr represents the surface exactly (B-spline patches) except within 2^-level (in face
+  // parameter) of extraordinary vertices and semi-sharp features, where it closes with Gregory
+  // patches. At 10, OpenSubdiv's maximum, every point farther than 1/1024 from such a vertex is
+  // exact to double round-off; closer points carry a small error (measured in ARCHITECTURE.md,
+  // "Exact limit surface").
+  static constexpr int kDefaultApproxLevel = 10;
+  static constexpr int kMaxApproxLevel = 10;  // OpenSubdiv 3.5 crashes above 10
+
+  // Throws CageError (one line) for cages that fail validate_cage or exceed OpenSubdiv's limits, or
+  // whose limit is not finite; std::invalid_argument for a level outside 1..kMaxApproxLevel.
+  static LimitSurface create(const Cage& cage, int approx_level = kDefaultApproxLevel);
+
+  LimitSurface(LimitSurface&&) noexcept;
+  LimitSurface& operator=(LimitSurface&&) noexcept;
+  ~LimitSurface();
+
+  int face_count() const;
+  int face_size(int face) const;
+  bool has_surface(int face) const;
+  // 1 for a quad, n for any other n-gon, 0 for a face without a surface.
+  int sub_patch_count(int face) const;
+  int approx_level() const;
+
+  // Quad-domain evaluation (quads: sub_patch 0; other faces: sub-patch k), with ownership.
+  SurfacePoint evaluate(int face, int sub_patch, float u, float v) const;
+  // Barycentric evaluation of a triangle face, with ownership. w must be (1-u)-v.
+  SurfacePoint evaluate_triangle(int face, float u, float v, float w) const;
+  // Fan triangle `triangle` (0..n-1) of a face of n != 4 vertices, with ownership. w must be (1-u)-v.
+  SurfacePoint evaluate_fan(int face, int triangle, float u, float v, float w) const;
+
+  // Where point (u, v) of fan triangle k of an n-gon lies in the face's quad sub-patches (the map in the
+  // contract above). Exact for tessellator parameters on the spokes; no range checks.
+  struct SubPatchLocation {
+    int sub;
+    double s, t;
+  };
+  static SubPatchLocation fan_location(int n, int k, double u, double v);
+
+  // Plain per-face evaluation, without ownership: what Bfr gives for this face alone. Not watertight
+  // bitwise (it exists to measure exactly that); same checks as evaluate().
+  SurfacePoint evaluate_unowned(int face, int sub_patch, float u, float v) const;
+
+  // Double-precision point and normal for accuracy measurements (no ownership needed: the two sides
+  // of an edge agree to ~1e-15).
+  ReferenceSample sample_reference(int face, int sub_patch, double u, double v) const;
+
+  // Axis-aligned bounds of the limit surface, sampled on a 9x9 grid of every sub-patch at create();
+  // errors are reported relative to the diagonal.
+  glm::dvec3 bounds_min() const;
+  glm::dvec3 bounds_max() const;
+  double bounding_box_diagonal() const;
+
+  // Bytes held by the precomputed per-face data (patch points, surfaces, ownership tables); Bfr's
+  // shared irregular-patch trees are not included.
+  std::size_t memory_bytes() const;
+
+ private:
+  struct Impl;
+  explicit LimitSurface(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tessera

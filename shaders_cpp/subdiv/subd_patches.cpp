@@ -1,0 +1,242 @@
+#include "shaders_cpp/subdiv/subd_patches.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <span>
+#include <string>
+
+#include "shaders_cpp/cage/corner_ring.h"
+#include "shaders_cpp/subdiv/patch_stencils.h"
+#include "shaders_cpp/cage/topology_combinations.h"
+
+namespace tessera {
+
+const char* to_string(Scheme s) {
+  switch (s) {
+    case Scheme::flat: return "flat";
+    case Scheme::bspline: return "bspline";
+    case Scheme::acc: return "acc";
+    case Scheme::gregory: return "gregory";
+    case Scheme::exact: return "exact";
+    case Scheme::pn: return "pn";
+  }
+  return "?";
+}
+
+std::optional<Scheme> parse_scheme(std::string_view name) {
+  for (Scheme s : {Scheme::flat, Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn})
+    if (name == to_string(s)) return s;
+  return std::nullopt;
+}
+
+namespace {
+
+std::string where(const Cage& cage, int face) { return cage.name + ": face " + std::to_string(face); }
+
+bool is_regular_face(const Topology& t, const std::array<CornerRing, 4>& rings) {
+  for (const auto& r : rings)
+    if (r.boundary || r.sharp_corner || r.valence() != 4 || !r.all_quads() || t.has_sharpness_at(r.center))
+      return false;
+  return true;
+}
+
+class Builder {
+ public:
+  Builder(const Cage& cage, SubdPatches& out) : cage_(cage), out_(out) {}
+
+  // Adds a patch whose control points are `stencils` over the gathered ring.
+  void add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
+           const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0) {
+    if (ring.size() > std::size_t(kMaxPatchControlPoints))
+      throw CageError(where(cage_, face) + ": its 1-ring has " + std::to_string(ring.size()) +
+                      " vertices, more than the 32 control points of a patch (use --scheme exact)");
+    std::map<int, int> position;
+    for (std::size_t i = 0; i < ring.size(); ++i) position.emplace(ring[i], int(i));
+    StencilTable table;
+    table.rows = int(stencils.size());
+    table.ring = int(ring.size());
+    table.weights.assign(std::size_t(table.rows) * ring.size(), 0.0f);
+    for (std::size_t r = 0; r < stencils.size(); ++r)
+      for (const auto& [v, w] : stencils[r].terms) {
+        const auto it = position.find(v);
+        if (it == position.end())
+          throw CageError(where(cage_, face) + ": internal error, a stencil reaches vertex " + std::to_string(v) +
+                          " outside the face's 1-ring");
+        table.weights[r * ring.size() + std::size_t(it->second)] = static_cast<float>(w);
+      }
+    SubdPatch p;
+    p.face = face;
+    p.sub = sub;
+    p.kind = kind;
+    p.ring_size = int(ring.size());
+    // Patches evaluated without control points (exact) need no table.
+    p.table = stencils.empty() ? -1 : intern(std::move(table));
+    std::vector<int> order(ring.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return ring[std::size_t(a)] < ring[std::size_t(b)]; });
+    for (std::size_t i = 0; i < order.size(); ++i) p.order[i] = std::uint8_t(order[i]);
+    p.edge_keys = edges;
+    p.rotation = std::uint8_t(rotation);
+    group.patches.push_back(p);
+    rings_.push_back(ring);
+    groups_.push_back(&group);
+  }
+
+  // Fills each group's index buffer once every patch is known (the control point count is the
+  // group's largest ring).
+  void finish() {
+    for (PatchGroup* g : {&out_.quads, &out_.tris}) {
+      g->control_points = 1;
+      for (const auto& p : g->patches) g->control_points = std::max(g->control_points, p.ring_size);
+    }
+    for (std::size_t i = 0; i < rings_.size(); ++i) {
+      PatchGroup& g = *groups_[i];
+      const auto& ring = rings_[i];
+      for (int k = 0; k < g.control_points; ++k)
+        g.indices.push_back(std::uint32_t(ring[std::size_t(k) < ring.size() ? std::size_t(k) : 0]));
+    }
+  }
+
+ private:
+  int intern(StencilTable&& table) {
+    std::string key(reinterpret_cast<const char*>(table.weights.data()), table.weights.size() * sizeof(float));
+    key += std::to_string(table.rows) + ":" + std::to_string(table.ring);
+    const auto [it, added] = interned_.emplace(std::move(key), int(out_.tables.size()));
+    if (added) out_.tables.push_back(std::move(table));
+    return it->second;
+  }
+
+  const Cage& cage_;
+  SubdPatches& out_;
+  std::map<std::string, int> interned_;
+  std::vector<std::vector<int>> rings_;
+  std::vector<PatchGroup*> groups_;
+};
+
+// The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
+// neighbours and far vertices, counter-clockwise from the face).
+std::vector<int> gather_ring(std::span<const CornerRing> rings) {
+  std::vector<int> ring;
+  auto push = [&](int v) {
+    if (std::find(ring.begin(), ring.end(), v) == ring.end()) ring.push_back(v);
+  };
+  for (const CornerRing& r : rings) push(r.center);
+  for (const CornerRing& r : rings) {
+    for (int j = 0; j < r.valence(); ++j) {
+      push(r.edges[std::size_t(j)]);
+      if (j < r.face_count())
+        for (int v : r.face_others[std::size_t(j)]) push(v);
+    }
+  }
+  return ring;
+}
+
+}  // namespace
+
+SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
+  SubdPatches out;
+  out.scheme = scheme;
+  out.quads.domain = ts::Domain::quad;
+  out.tris.domain = ts::Domain::tri;
+  Builder builder(cage, out);
+  const bool stencil_scheme = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
+  // Stencil schemes start each patch at its face's canonical corner, so faces of one topology
+  // combination share one stencil table (the talk's reordering of faces).
+  const std::vector<int> rotation =
+      stencil_scheme ? analyze_combinations(t).face_rotation : std::vector<int>(std::size_t(t.face_count()), 0);
+  for (int f = 0; f < t.face_count(); ++f) {
+    if (t.is_hole(f)) {
+      ++out.holes;
+      continue;
+    }
+    const int n = t.face_size(f);
+    const int rot = rotation[std::size_t(f)];
+    // Patch corner k is face corner k + rot.
+    auto corner = [&](int k) { return cage.face_vertex(f, (((k + rot) % n) + n) % n); };
+    // The face's corners from patch corner `first` on: the IA patch of a patch made of the face alone.
+    auto corners_from = [&](int first) {
+      std::vector<int> ring;
+      for (int k = 0; k < n; ++k) ring.push_back(corner(first + k));
+      return ring;
+    };
+    // Edge keys in SV_TessFactor order: patch edge k (corner k -> k+1) is factor (k + 1) % n.
+    std::array<EdgeFactorKey, 4> edges{};
+    if (n <= 4)
+      for (int k = 0; k < n; ++k) edges[std::size_t((k + 1) % n)] = {cage_edge_key(corner(k), corner(k + 1)), -1};
+
+    if (scheme == Scheme::pn) {
+      // The IA patch is the face; the hull shader builds the PN points from its corners (pn_patch.h).
+      if (n > 4)
+        throw CageError(where(cage, f) + " has " + std::to_string(n) +
+                        " sides; --scheme pn handles triangles and quads only (use --scheme exact or flat)");
+      builder.add(n == 3 ? out.tris : out.quads, f, 0, n == 3 ? PatchKind::pn_triangle : PatchKind::pn_quad,
+                  corners_from(0), {}, edges);
+      continue;
+    }
+    if (!stencil_scheme) {
+      // flat and exact: the IA patch is the face itself.
+      if (n > kMaxPatchControlPoints)
+        throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
+                        " draws faces of up to " + std::to_string(kMaxPatchControlPoints) +
+                        " (the face is the patch's control points)");
+      const PatchKind tri_kind = scheme == Scheme::exact ? PatchKind::exact : PatchKind::linear;
+      if (n == 3 || n == 4) {
+        std::vector<Stencil> corners;
+        if (scheme == Scheme::flat)
+          for (int k = 0; k < n; ++k) corners.push_back(Stencil::vertex(corner(k)));
+        const PatchKind kind = n == 3 ? tri_kind : scheme == Scheme::exact ? PatchKind::exact : PatchKind::bilinear;
+        builder.add(n == 3 ? out.tris : out.quads, f, 0, kind, corners_from(0), corners, edges);
+        continue;
+      }
+      // Larger faces: the fan of n triangles k = (corner k, corner k+1, centre). The ring starts at corner
+      // k, so every fan triangle of every n-gon shares one flat table; the centre is summed in vertex
+      // order (SubdPatch::order), so the n triangles compute the same bits for it.
+      Stencil centre;
+      for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
+      for (int k = 0; k < n; ++k) {
+        const std::int64_t before = cage_edge_key(corner(k - 1), corner(k)), outer = cage_edge_key(corner(k), corner(k + 1)),
+                           after = cage_edge_key(corner(k + 1), corner(k + 2));
+        const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
+                                                     EdgeFactorKey{outer, after}, EdgeFactorKey{}};
+        std::vector<Stencil> points;
+        if (scheme == Scheme::flat) points = {Stencil::vertex(corner(k)), Stencil::vertex(corner(k + 1)), centre};
+        builder.add(out.tris, f, k, tri_kind, corners_from(k), points, fan_edges);
+      }
+      continue;
+    }
+    // acc: quads whose corner rings are all quads. gregory and bspline: quads and triangles; faces of
+    // other sizes in a corner ring act through their virtual quad point (limit_masks.h).
+    if (n != 4 && (n != 3 || scheme == Scheme::acc))
+      throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
+                      (scheme == Scheme::acc ? " handles quads only" : " handles triangles and quads only") +
+                      " (use --scheme exact or flat)");
+    if (n == 3) {
+      std::array<CornerRing, 3> corners;
+      for (int k = 0; k < 3; ++k) corners[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rot) % 3);
+      if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
+      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), gregory_triangle_stencils(corners),
+                  edges, rot);
+      continue;
+    }
+    std::array<CornerRing, 4> corners;
+    for (int k = 0; k < 4; ++k) {
+      corners[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rot) % 4);
+      if (scheme == Scheme::acc && !corners[std::size_t(k)].all_quads())
+        throw CageError(where(cage, f) + ": vertex " + std::to_string(corners[std::size_t(k)].center) +
+                        " touches a face that is not a quad; --scheme acc needs quads around every corner (use "
+                        "--scheme gregory, exact or flat)");
+    }
+    const std::vector<int> ring = gather_ring(corners);
+    if (scheme == Scheme::acc) {
+      builder.add(out.quads, f, 0, PatchKind::acc, ring, acc_quad_stencils(corners), edges, rot);
+    } else {
+      if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
+      builder.add(out.quads, f, 0, PatchKind::gregory, ring, gregory_quad_stencils(corners), edges, rot);
+    }
+  }
+  builder.finish();
+  return out;
+}
+
+}  // namespace tessera

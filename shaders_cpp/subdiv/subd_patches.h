@@ -1,0 +1,108 @@
+// Turns a cage into patch draws for one subdivision scheme: per face its IA patch (the face with its
+// 1-ring, at most 32 control points), and per topology combination one stencil table that the hull
+// shader (subd_shaders.h) applies to that 1-ring.
+//
+// Contract
+// - Every non-hole face becomes patches in face order within each domain: a quad one quad-domain patch;
+//   a triangle one tri-domain patch (every scheme but `acc`); and, for `flat` and `exact`, a face of
+//   n > 4 sides n tri-domain patches, its fan: triangle k = (vertex k, vertex k+1, centre) with u = 1 at
+//   vertex k+1 and v = 1 at the centre (limit_surface.h states how `exact` maps it onto the face's
+//   surface). The fan's outer edge is the whole cage edge, so every cage edge is tessellated as one edge
+//   on both of its sides.
+// - Tables are deduplicated by content: faces whose 1-rings have the same structure share one table
+//   (the talk's topology combinations); `tables.size()` is how many distinct ones the cage needs.
+// - A patch's `order` lists its ring positions sorted by cage vertex index: the hull shader sums in
+//   that order, so shared control points come out bit-identical on both patches (stencil.h).
+// - Faces a scheme cannot handle give a CageError naming the face and why (a triangle for acc, an
+//   n-gon for gregory or pn, a 1-ring of more than 32 vertices, ...). `bspline` draws faces that are not
+//   regular as Gregory patches (triangles as triangular Gregory patches) and counts them in
+//   `fallback_faces`.
+// - `pn` patches are the face's corners only (no table): the hull shader builds the PN points from
+//   the corners' positions and the per-vertex normals SubdVS passes along (pn_patch.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shaders_cpp/cage/cage.h"
+#include "tessellator/tessellator.h"
+#include "shaders_cpp/cage/topology.h"
+
+namespace tessera {
+
+class LimitSurface;
+
+enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact, pn };
+std::optional<Scheme> parse_scheme(std::string_view name);
+const char* to_string(Scheme s);
+
+// How the domain shader evaluates a patch.
+enum class PatchKind : std::uint8_t {
+  bilinear,  // 4 corners (flat quads)
+  linear,    // 3 corners (flat triangles and the fan triangles of n-gons)
+  acc,       // 16 Bezier points + tangent patches (control points carry du/dv)
+  gregory,   // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
+  gregory_triangle,  // 15 triangular Gregory points (quartic, cubic boundaries) on the tri domain
+  pn_triangle,       // PN triangle: 10 cubic Bezier points, 6 normal coefficients, from the corners
+  pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
+  exact,     // the limit surface (limit_surface.h), evaluated per domain point
+};
+
+inline constexpr int kMaxPatchControlPoints = 32;
+
+// Key of the cage edge between vertices a and b (either order), so both faces on it compute the same.
+inline std::int64_t cage_edge_key(int a, int b) {
+  const std::int64_t lo = a < b ? a : b, hi = a < b ? b : a;
+  return (lo << 31 | hi) << 1;
+}
+
+// Where a domain edge's tessellation factor comes from, named by cage edge keys so that the two patches
+// on an edge compute the same factor: a cage edge names itself (`b` = -1); a spoke of an n-gon's fan
+// (centre to vertex v) names the face's two cage edges at v, previous edge first, and takes the mean of
+// their factors (the same sum on both fan triangles that share the spoke). `a` = -1: the base factor.
+struct EdgeFactorKey {
+  std::int64_t a = -1, b = -1;
+  friend bool operator==(const EdgeFactorKey&, const EdgeFactorKey&) = default;
+};
+
+struct StencilTable {
+  int rows = 0, ring = 0;
+  std::vector<float> weights;  // rows x ring, row-major
+};
+
+struct SubdPatch {
+  int face = 0;
+  int sub = 0;                 // fan triangle k of a face of more than four sides (0 otherwise)
+  int table = -1;              // into SubdPatches::tables, -1 for exact
+  PatchKind kind = PatchKind::gregory;
+  int ring_size = 0;
+  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % (3 or 4)
+  std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
+  // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan
+  // triangle's Veq0 is its cage edge, Ueq0 the spoke to vertex k, Weq0 the spoke to vertex k+1.
+  std::array<EdgeFactorKey, 4> edge_keys{};
+};
+
+struct PatchGroup {
+  ts::Domain domain = ts::Domain::quad;
+  int control_points = 0;              // per patch in `indices` (the largest ring, padded)
+  std::vector<std::uint32_t> indices;  // control_points per patch: the ring, then repeats of ring[0]
+  std::vector<SubdPatch> patches;
+  std::size_t size() const { return patches.size(); }
+};
+
+struct SubdPatches {
+  Scheme scheme = Scheme::gregory;
+  std::vector<StencilTable> tables;
+  PatchGroup quads, tris;
+  int fallback_faces = 0;
+  int holes = 0;  // faces that draw nothing: hole tags (and, for exact, faces without a limit surface)
+};
+
+SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme);
+
+}  // namespace tessera

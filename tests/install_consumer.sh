@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the build tree with `cmake --install` into a temporary prefix, builds
+# tests/install_consumer against it with find_package(Tessera), runs it, and checks its answer:
+# 6 Gregory patches of a cube at factor 4 make 6 * 2 * 4 * 4 = 192 triangles, welded watertight.
+#   install_consumer.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1 src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+for f in bin/tessera include/tessera/tessellator/tessellator.h lib/cmake/Tessera/TesseraConfig.cmake share/tessera/monsterfrog_mapped_00.obj; do
+  [ -e "$work/prefix/$f" ] || { echo "install_consumer: $f was not installed" >&2; exit 1; }
+done
+if [ -e "$work/prefix/include/tessera/tessellator/domains.h" ]; then
+  echo "install_consumer: a private header (tessellator/domains.h) was installed" >&2; exit 1
+fi
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+cmake -S "$src/tests/install_consumer" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/build" >/dev/null
+answer=$("$work/build/consumer")
+echo "consumer: $answer"
+[ "$answer" = "6 192 watertight" ] || { echo "install_consumer: expected '6 192 watertight'" >&2; exit 1; }
+# The installed binary finds its shipped data beside itself, not in the source tree.
+"$work/prefix/bin/tessera" bench frog --factor 2 --frames 1 --resolution 64x64 >/dev/null

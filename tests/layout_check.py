@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""Checks the layout rules of ARCHITECTURE.md on the source tree:
+
+1. dependencies point one way: a folder includes project headers only from the folders its layer
+   may use (tessellator <- pipeline <- shaders_cpp <- tools), and
+2. a library's own headers are its own: a header not listed in its folder's
+   tessera_public_headers(...) call is included from that folder only (tests excepted: they test
+   internals).
+
+Usage: layout_check.py SOURCE_DIR. Prints each violation as FILE:LINE: message; exit 1 if any.
+"""
+import os
+import re
+import sys
+
+# folder -> folders whose headers it may include (itself always)
+ALLOWED = {
+    "tessellator": [],
+    "pipeline": ["tessellator"],
+    "shaders_cpp/cage": [],
+    "shaders_cpp/subdiv": ["tessellator", "shaders_cpp/cage"],
+    "shaders_cpp/displacement": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
+    "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement"],
+    "tools/verify": ["tessellator"],
+    "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
+    "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
+              "shaders_cpp", "tools/verify", "tools/measure"],
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+PUBLIC = re.compile(r"tessera_public_headers\(\s*\S+\s+([^)]*)\)", re.S)
+
+
+def public_headers(root, folder):
+    path = os.path.join(root, folder, "CMakeLists.txt")
+    if not os.path.exists(path):
+        return set()
+    text = open(path).read()
+    names = set()
+    for m in PUBLIC.finditer(text):
+        for token in m.group(1).split():
+            if token.startswith("${"):  # a glob of every header: all public
+                return {h for h in os.listdir(os.path.join(root, folder)) if h.endswith(".h")}
+            names.add(token)
+    return names
+
+
+def main():
+    root = sys.argv[1]
+    public = {f: public_headers(root, f) for f in ALLOWED}
+    errors = []
+    for folder in list(ALLOWED) + ["tests"]:
+        directory = os.path.join(root, folder)
+        for name in sorted(os.listdir(directory)):
+            if not name.endswith((".h", ".cpp")):
+                continue
+            path = os.path.join(directory, name)
+            for number, line in enumerate(open(path, encoding="utf-8"), 1):
+                m = INCLUDE.match(line)
+                if not m:
+                    continue
+                target = m.group(1)
+                where = f"{folder}/{name}:{number}"
+                target_folder = os.path.dirname(target)
+                if not target_folder:
+                    if folder != "tests" and not os.path.exists(os.path.join(directory, target)):
+                        errors.append(f"{where}: \"{target}\" is not in {folder}/")
+                    elif folder != "tests":
+                        errors.append(f"{where}: include \"{folder}/{target}\" with its folder")
+                    continue
+                if target_folder not in ALLOWED:
+                    errors.append(f"{where}: \"{target}\" is in no library folder")
+                    continue
+                if not os.path.exists(os.path.join(root, target)):
+                    errors.append(f"{where}: \"{target}\" does not exist")
+                    continue
+                if folder == "tests" or target_folder == folder:
+                    continue
+                if target_folder not in ALLOWED[folder]:
+                    errors.append(f"{where}: {folder} may not depend on {target_folder} (\"{target}\")")
+                elif os.path.basename(target) not in public[target_folder]:
+                    errors.append(f"{where}: \"{target}\" is private to {target_folder}")
+    for e in errors:
+        print(e)
+    print(f"layout_check: {len(errors)} violation(s)", file=sys.stderr)
+    return 1 if errors else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
