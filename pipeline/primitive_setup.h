@@ -228,6 +228,20 @@ template <std::size_t N>
 #endif
 }
 
+// A plane equation's x and y slopes from its values at the three vertices, vertex 1 and 2 lying at
+// (x1, y1) and (x2, y2) pixels from vertex 0. One template for every lane type, so both setups run
+// the same expression: F is simd::F4 for four values of one triangle (set_triangle_planes) and
+// simd::F8 for one value of eight triangles (setup_triangle_list).
+template <class F>
+struct PlaneSlopes {
+  F x, y;
+};
+template <class F>
+[[gnu::always_inline]] inline PlaneSlopes<F> plane_slopes(F a0, F a1, F a2, F x1, F y1, F x2, F y2, F inv_area) {
+  const F d1 = a1 - a0, d2 = a2 - a0;
+  return {(d1 * y2 - d2 * y1) * inv_area, (d2 * x1 - d1 * x2) * inv_area};
+}
+
 // Plane equations from the snapped positions, in pixels: z, 1/w and each attribute / w at vertex 0
 // and their x and y slopes (ScreenPrimitive's planes).
 template <std::size_t N>
@@ -251,9 +265,9 @@ template <std::size_t N>
     const F4 fia = F4::splat(inv_area);
     for (std::size_t g = 0; g < kGroups; ++g) {
       const F4 a0 = F4::load_at(&value[0][4 * g]), a1 = F4::load_at(&value[1][4 * g]), a2 = F4::load_at(&value[2][4 * g]);
-      const F4 d1 = a1 - a0, d2 = a2 - a0;
-      ((d1 * fy2 - d2 * fy1) * fia).store_at(&slope_x[4 * g]);
-      ((d2 * fx1 - d1 * fx2) * fia).store_at(&slope_y[4 * g]);
+      const PlaneSlopes<F4> s = plane_slopes(a0, a1, a2, fx1, fy1, fx2, fy2, fia);
+      s.x.store_at(&slope_x[4 * g]);
+      s.y.store_at(&slope_y[4 * g]);
     }
   }
   p.origin_x = float(vx[0]) * inv_sub;

@@ -24,6 +24,7 @@
 #endif
 
 #include "pipeline/primitive_setup.h"
+#include "pipeline/simd8.h"
 
 namespace tessera {
 
@@ -228,12 +229,11 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       const auto plane = [&](std::size_t value, std::size_t at0, std::size_t at_x, std::size_t at_y) {
         const std::size_t field = offsetof(V, plane_values) + 4 * value;
         const __m256 a0 = gather_ps(field, off0), a1 = gather_ps(field, o1), a2 = gather_ps(field, o2);
-        const __m256 d1 = _mm256_sub_ps(a1, a0), d2 = _mm256_sub_ps(a2, a0);
+        using simd::F8;
+        const detail::PlaneSlopes<F8> s = detail::plane_slopes(F8{a0}, F8{a1}, F8{a2}, F8{fx1}, F8{fy1}, F8{fx2}, F8{fy2}, F8{inv_area});
         f[at0] = _mm256_castps_si256(a0);
-        f[at_x] = _mm256_castps_si256(
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(d1, fy2), _mm256_mul_ps(d2, fy1)), inv_area));
-        f[at_y] = _mm256_castps_si256(
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(d2, fx1), _mm256_mul_ps(d1, fx2)), inv_area));
+        f[at_x] = _mm256_castps_si256(s.x.v);
+        f[at_y] = _mm256_castps_si256(s.y.v);
       };
       plane(0, L::kZ, L::kZ + 1, L::kZ + 2);
       plane(1, L::kInvW, L::kInvW + 1, L::kInvW + 2);
