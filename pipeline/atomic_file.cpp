@@ -12,7 +12,10 @@ std::string write_atomically(const std::string& path, const std::function<std::s
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(dir)) return path + ": directory '" + dir.string() + "' does not exist";
   std::string name = ".";
-  name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid())).append(target.extension().string());
+  name.append(target.stem().string())
+      .append(".tmp")
+      .append(std::to_string(::getpid()))
+      .append(target.extension().string());
   const fs::path temp = dir / name;
   std::error_code ec;
   if (std::string error = write(temp.string()); !error.empty()) {

@@ -12,6 +12,7 @@ namespace tessera {
 // temporary is ".STEM.tmpPID.EXT" beside the target: it keeps the extension, from which image writers
 // pick the format. Returns "" or one line naming `path` (a missing directory, the writer's error, a
 // failed rename); the temporary is removed on every failure.
-std::string write_atomically(const std::string& path, const std::function<std::string(const std::string& temporary)>& write);
+std::string write_atomically(const std::string& path,
+                             const std::function<std::string(const std::string& temporary)>& write);
 
 }  // namespace tessera

@@ -33,13 +33,20 @@ struct GuardBand {
 
 inline float clip_distance(int plane, const glm::vec4& p, GuardBand g) {
   switch (plane) {
-    case kNear: return p.z;
-    case kFar: return p.w - p.z;
-    case kLeft: return g.gx * p.w + p.x;
-    case kRight: return g.gx * p.w - p.x;
-    case kBottom: return g.gy * p.w + p.y;
-    case kTop: return g.gy * p.w - p.y;
-    default: return p.w - kMinClipW;
+    case kNear:
+      return p.z;
+    case kFar:
+      return p.w - p.z;
+    case kLeft:
+      return g.gx * p.w + p.x;
+    case kRight:
+      return g.gx * p.w - p.x;
+    case kBottom:
+      return g.gy * p.w + p.y;
+    case kTop:
+      return g.gy * p.w - p.y;
+    default:
+      return p.w - kMinClipW;
   }
 }
 
@@ -48,8 +55,8 @@ inline unsigned clip_outcode(const glm::vec4& p, GuardBand g) {
   // The same tests as clip_distance(i, p, g) < 0, written out so they compile without branches.
   const float gx = g.gx * p.w, gy = g.gy * p.w;
   return unsigned(p.z < 0.0f) << kNear | unsigned(p.w - p.z < 0.0f) << kFar | unsigned(gx + p.x < 0.0f) << kLeft |
-         unsigned(gx - p.x < 0.0f) << kRight | unsigned(gy + p.y < 0.0f) << kBottom | unsigned(gy - p.y < 0.0f) << kTop |
-         unsigned(p.w - kMinClipW < 0.0f) << kW;
+         unsigned(gx - p.x < 0.0f) << kRight | unsigned(gy + p.y < 0.0f) << kBottom |
+         unsigned(gy - p.y < 0.0f) << kTop | unsigned(p.w - kMinClipW < 0.0f) << kW;
 }
 
 // Bit i set: the point is outside the view volume's plane i (the viewport itself, not the guard band),
@@ -114,8 +121,10 @@ bool clip_segment(ClipVertex<N>& a, ClipVertex<N>& b, unsigned planes, GuardBand
     if (!(planes & (1u << plane))) continue;
     const float da = clip_distance(plane, a.position, g), db = clip_distance(plane, b.position, g);
     if (da < 0.0f && db < 0.0f) return false;
-    if (da < 0.0f) a = clip_intersection(b, db, a, da);
-    else if (db < 0.0f) b = clip_intersection(a, da, b, db);
+    if (da < 0.0f)
+      a = clip_intersection(b, db, a, da);
+    else if (db < 0.0f)
+      b = clip_intersection(a, da, b, db);
   }
   return true;
 }

@@ -16,16 +16,16 @@ Device::Device(DeviceOptions options) : options_(options) {
   // machine) raises the cap while it lives. Active controls combine by their minimum, so two such
   // devices alive at once share the smaller raise; results do not depend on the worker count.
   if (threads_ > int(tbb::this_task_arena::max_concurrency()))
-    worker_limit_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads_));
+    worker_limit_ =
+        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads_));
   arena_ = std::make_unique<tbb::task_arena>(threads_);
 }
 
 void Device::clear(Framebuffer& fb, glm::vec4 color, float depth) {
   constexpr int kRows = 32;  // rows per task: large enough to amortize a task, small enough to balance
   detail::arena_execute(*arena_, [&] {
-    detail::parallel_for(tbb::blocked_range<int>(0, (fb.height() + kRows - 1) / kRows, 1), [&](const auto& r) {
-      fb.clear_rows(r.begin() * kRows, r.end() * kRows, color, depth);
-    });
+    detail::parallel_for(tbb::blocked_range<int>(0, (fb.height() + kRows - 1) / kRows, 1),
+                         [&](const auto& r) { fb.clear_rows(r.begin() * kRows, r.end() * kRows, color, depth); });
   });
 }
 
@@ -51,7 +51,8 @@ std::string validate_patch_draw(std::size_t index_count, int control_points, con
   if (index_count % std::size_t(control_points) != 0)
     return "index count " + std::to_string(index_count) + " is not a multiple of " + std::to_string(control_points) +
            " control points";
-  const bool triangles = ts.output == ts::OutputPrimitive::triangle_cw || ts.output == ts::OutputPrimitive::triangle_ccw;
+  const bool triangles =
+      ts.output == ts::OutputPrimitive::triangle_cw || ts.output == ts::OutputPrimitive::triangle_ccw;
   if (ts.domain == ts::Domain::isoline && triangles) return "the isoline domain outputs lines or points, not triangles";
   return {};
 }

@@ -175,8 +175,8 @@ template <std::size_t N>
 struct PatchScratch {
   PatternCache patterns;
   std::vector<SetupVertex<N>> domain_outputs;
-  std::vector<DomainLocation> locations;     // for a batch domain shader
-  std::vector<ClipVertex<N>> clip_outputs;   // its results, before setup
+  std::vector<DomainLocation> locations;    // for a batch domain shader
+  std::vector<ClipVertex<N>> clip_outputs;  // its results, before setup
   std::size_t bytes() const {
     return patterns.bytes() + domain_outputs.capacity() * sizeof(SetupVertex<N>) +
            locations.capacity() * sizeof(DomainLocation) + clip_outputs.capacity() * sizeof(ClipVertex<N>);
@@ -218,9 +218,9 @@ class Device {
 
   DeviceOptions options_;
   int threads_ = 1;
-  std::mutex draw_mutex_;                                   // one draw at a time: they share the slots
+  std::mutex draw_mutex_;                                     // one draw at a time: they share the slots
   std::map<std::size_t, std::shared_ptr<void>> chunk_slots_;  // by attribute count N
-  std::unique_ptr<tbb::global_control> worker_limit_;  // only when threads_ exceeds the default limit
+  std::unique_ptr<tbb::global_control> worker_limit_;         // only when threads_ exceeds the default limit
   std::unique_ptr<tbb::task_arena> arena_;
 };
 
@@ -243,7 +243,8 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
 
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
   detail::arena_execute(*arena_, [&] {
-    const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
+    const SetupContext setup =
+        make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
@@ -270,8 +271,9 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
         make_setup_vertices<N>(setup, std::span<const ClipVertex<N>>(clips), std::span<SetupVertex<N>>(outs));
       } else {
         for (std::size_t i = 0; i < pattern.points.size(); ++i)
-          outs[i] = make_setup_vertex<N>(
-              setup, d.ds(w.constants, w.control_points, detail::domain_location(pattern.points[i], tstate.domain), w.patch_id));
+          outs[i] =
+              make_setup_vertex<N>(setup, d.ds(w.constants, w.control_points,
+                                               detail::domain_location(pattern.points[i], tstate.domain), w.patch_id));
       }
       chunk.statistics.DSInvocations += pattern.points.size();
       const auto ds_done = detail::Clock::now();
@@ -293,21 +295,19 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
       chunk.times.setup += detail::seconds_since(ds_done);
     };
 
-    front.run(
-        report,
-        [&] {
-          backend.run(
-              front.chunk_count(),
-              [&](std::size_t c, ChunkBuffer<N>& chunk) {
-                auto& local = scratch.local();
-                front.for_each_patch(c, local.patterns, chunk.times.tessellator,
-                                     [&](const typename FrontEnd::Work& w) { patch_to_chunk(w, local, chunk); });
-              },
-              report);
-          std::size_t bytes = 0;
-          for (const auto& s : scratch) bytes += s.bytes();
-          scratch_bytes_peak = std::max(scratch_bytes_peak, bytes);
-        });
+    front.run(report, [&] {
+      backend.run(
+          front.chunk_count(),
+          [&](std::size_t c, ChunkBuffer<N>& chunk) {
+            auto& local = scratch.local();
+            front.for_each_patch(c, local.patterns, chunk.times.tessellator,
+                                 [&](const typename FrontEnd::Work& w) { patch_to_chunk(w, local, chunk); });
+          },
+          report);
+      std::size_t bytes = 0;
+      for (const auto& s : scratch) bytes += s.bytes();
+      scratch_bytes_peak = std::max(scratch_bytes_peak, bytes);
+    });
     for (const auto& s : scratch) detail::add_pattern_cache(report.memory, s.patterns);
     report.memory.geometry_peak_bytes = front.window_bytes_peak() + scratch_bytes_peak + backend.chunk_bytes_peak();
   });
@@ -332,7 +332,8 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
 
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
   detail::arena_execute(*arena_, [&] {
-    const SetupContext setup = make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
+    const SetupContext setup =
+        make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;

@@ -140,7 +140,8 @@ class Framebuffer {
   // then (after a transpose to pixel order, which moves bits only) truncation, as the scalar cast does.
   // The results are in 0..255, so the saturating packs to 16 and 8 bits keep them unchanged.
   [[gnu::always_inline]] static __m128i quad_to_rgba8(const std::array<std::array<float, 4>, 4>& c) {
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f),
+                 half = _mm_set1_ps(0.5f);
     __m128 v[4];
     for (std::size_t ch = 0; ch < 4; ++ch)
       v[ch] = _mm_add_ps(_mm_mul_ps(_mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero)), scale), half);
@@ -177,7 +178,6 @@ class Framebuffer {
   std::vector<std::uint8_t> color_;
   std::vector<float> depth_;
 };
-
 
 // Writes an image through OpenImageIO atomically (temporary + rename). `pixels` are `channels`
 // interleaved values per pixel, row 0 at the top; `is_float` selects float32 data, else uint8.

@@ -68,7 +68,8 @@ struct VertexCache {
 };
 
 template <class Vertex, class Vs, class Out>
-void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const VertexCache& cache, std::vector<Out>& out) {
+void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const VertexCache& cache,
+                       std::vector<Out>& out) {
   out.resize(cache.unique.size());
   detail::parallel_for(tbb::blocked_range<std::size_t>(0, cache.unique.size(), 256), [&](const auto& r) {
     const Vertex zero{};
@@ -82,7 +83,8 @@ void run_vertex_shader(const Vs& vs, std::span<const Vertex> vertices, const Ver
 // IA and VS for one window of indices: vertex caching by index, then the VS once per unique vertex.
 template <class Vertex, class Vs, class Out>
 void assemble_and_shade_vertices(const Vs& vs, std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
-                                 std::size_t primitives, VertexCache& cache, std::vector<Out>& out, DrawReport& report) {
+                                 std::size_t primitives, VertexCache& cache, std::vector<Out>& out,
+                                 DrawReport& report) {
   const auto start = Clock::now();
   cache.build(indices, vertices.size());
   run_vertex_shader(vs, vertices, cache, out);
@@ -140,7 +142,7 @@ struct HullPhase {
   std::vector<ControlPoint> control_points;  // kOut per patch
   std::vector<PatchConstants> constants;
   std::vector<ts::ProcessedFactors> processed;
-  std::vector<std::uint32_t> cost;           // primitives; 0 when culled
+  std::vector<std::uint32_t> cost;  // primitives; 0 when culled
 
   // times_of() returns the calling thread's StageTimes.
   template <class Hs, class TimesOf>

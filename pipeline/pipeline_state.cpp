@@ -8,14 +8,15 @@ namespace {
 
 constexpr std::array<std::pair<CullMode, std::string_view>, 3> kCull{
     {{CullMode::none, "none"}, {CullMode::front, "front"}, {CullMode::back, "back"}}};
-constexpr std::array<std::pair<CompareFunc, std::string_view>, 8> kCompare{{{CompareFunc::never, "never"},
-                                                                             {CompareFunc::less, "less"},
-                                                                             {CompareFunc::equal, "equal"},
-                                                                             {CompareFunc::less_equal, "less_equal"},
-                                                                             {CompareFunc::greater, "greater"},
-                                                                             {CompareFunc::not_equal, "not_equal"},
-                                                                             {CompareFunc::greater_equal, "greater_equal"},
-                                                                             {CompareFunc::always, "always"}}};
+constexpr std::array<std::pair<CompareFunc, std::string_view>, 8> kCompare{
+    {{CompareFunc::never, "never"},
+     {CompareFunc::less, "less"},
+     {CompareFunc::equal, "equal"},
+     {CompareFunc::less_equal, "less_equal"},
+     {CompareFunc::greater, "greater"},
+     {CompareFunc::not_equal, "not_equal"},
+     {CompareFunc::greater_equal, "greater_equal"},
+     {CompareFunc::always, "always"}}};
 
 template <class E, std::size_t K>
 std::string_view name_of(const std::array<std::pair<E, std::string_view>, K>& table, E e) {

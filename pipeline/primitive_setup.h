@@ -41,7 +41,8 @@ inline std::int32_t last_pixel_at_or_before(std::int32_t hi) {
 struct EdgeFunction {
   std::int64_t value, step_x, step_y;
 };
-inline EdgeFunction edge_function(const std::int32_t* x, const std::int32_t* y, int i, std::int64_t cx, std::int64_t cy) {
+inline EdgeFunction edge_function(const std::int32_t* x, const std::int32_t* y, int i, std::int64_t cx,
+                                  std::int64_t cy) {
   const int j = i == 2 ? 0 : i + 1;
   const std::int64_t dx = x[j] - x[i], dy = y[j] - y[i];
   const bool top_left = dy < 0 || (dy == 0 && dx > 0);
@@ -127,8 +128,9 @@ struct SetupEdges32 {
 // (unsigned arithmetic wraps, defined), which gives the exact values because every value used fits
 // (kEdges32MaxExtent; the reference centre lies inside the vertex box).
 template <std::size_t N>
-[[gnu::always_inline]] inline SetupEdges32 setup_edges32(const SetupVertex<N>* const (&v)[3], const std::int32_t (&vx)[3],
-                                                    const std::int32_t (&vy)[3], const PixelBox& box, bool small_box) {
+[[gnu::always_inline]] inline SetupEdges32 setup_edges32(const SetupVertex<N>* const (&v)[3],
+                                                         const std::int32_t (&vx)[3], const std::int32_t (&vy)[3],
+                                                         const PixelBox& box, bool small_box) {
   SetupEdges32 e;
   const std::int32_t min_x = box.min_x, max_x = box.max_x, min_y = box.min_y, max_y = box.max_y;
   unsigned box_coverage = 0;
@@ -146,7 +148,8 @@ template <std::size_t N>
   const __m128i dx = _mm_sub_epi32(_mm_shuffle_epi32(x, _MM_SHUFFLE(0, 0, 2, 1)), x);
   const __m128i dy = _mm_sub_epi32(_mm_shuffle_epi32(y, _MM_SHUFFLE(0, 0, 2, 1)), y);
   const __m128i zero = _mm_setzero_si128();
-  const __m128i top_left = _mm_or_si128(_mm_cmplt_epi32(dy, zero), _mm_and_si128(_mm_cmpeq_epi32(dy, zero), _mm_cmpgt_epi32(dx, zero)));
+  const __m128i top_left =
+      _mm_or_si128(_mm_cmplt_epi32(dy, zero), _mm_and_si128(_mm_cmpeq_epi32(dy, zero), _mm_cmpgt_epi32(dx, zero)));
   const __m128i bias = _mm_xor_si128(top_left, _mm_set1_epi32(-1));  // 0 on a top or left edge, else -1
   const __m128i ref = _mm_add_epi32(_mm_add_epi32(simd::mullo32(dy, _mm_sub_epi32(x, _mm_set1_epi32(cx))),
                                                   simd::mullo32(dx, _mm_sub_epi32(_mm_set1_epi32(cy), y))),
@@ -168,8 +171,8 @@ template <std::size_t N>
     const auto edge = [&](auto lane) {  // edge `lane` at the first row's centres
       constexpr int k = decltype(lane)::value, broadcast = _MM_SHUFFLE(k, k, k, k);
       const __m128i step = _mm_shuffle_epi32(sx, broadcast);
-      const __m128i times_dx =
-          _mm_add_epi32(_mm_add_epi32(_mm_and_si128(step, from1), _mm_and_si128(step, from2)), _mm_and_si128(step, from3));
+      const __m128i times_dx = _mm_add_epi32(_mm_add_epi32(_mm_and_si128(step, from1), _mm_and_si128(step, from2)),
+                                             _mm_and_si128(step, from3));
       row[k] = _mm_add_epi32(_mm_shuffle_epi32(ref, broadcast), times_dx);
       down[k] = _mm_shuffle_epi32(sy, broadcast);
     };
@@ -264,7 +267,8 @@ template <std::size_t N>
     const F4 fx1 = F4::splat(x1), fy1 = F4::splat(y1), fx2 = F4::splat(x2), fy2 = F4::splat(y2);
     const F4 fia = F4::splat(inv_area);
     for (std::size_t g = 0; g < kGroups; ++g) {
-      const F4 a0 = F4::load_at(&value[0][4 * g]), a1 = F4::load_at(&value[1][4 * g]), a2 = F4::load_at(&value[2][4 * g]);
+      const F4 a0 = F4::load_at(&value[0][4 * g]), a1 = F4::load_at(&value[1][4 * g]),
+               a2 = F4::load_at(&value[2][4 * g]);
       const PlaneSlopes<F4> s = plane_slopes(a0, a1, a2, fx1, fy1, fx2, fy2, fia);
       s.x.store_at(&slope_x[4 * g]);
       s.y.store_at(&slope_y[4 * g]);
@@ -284,8 +288,9 @@ template <std::size_t N>
 // A triangle whose three vertices are snapped: culling, bounding box, edges and coverage, planes,
 // binning. `a`, `b`, `d` are in the primitive's order.
 template <std::size_t N>
-[[gnu::always_inline]] inline void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
-                            const SetupVertex<N>& b, const SetupVertex<N>& d, std::uint32_t primitive_id) {
+[[gnu::always_inline]] inline void setup_snapped_triangle(const SetupContext& c, ChunkBuffer<N>& chunk,
+                                                          const SetupVertex<N>& a, const SetupVertex<N>& b,
+                                                          const SetupVertex<N>& d, std::uint32_t primitive_id) {
   const std::int64_t area = std::int64_t(b.x - a.x) * (d.y - a.y) - std::int64_t(d.x - a.x) * (b.y - a.y);
   if (area == 0) return;  // degenerate after snapping: covers nothing
   // Positive area is clockwise on screen (y down).
@@ -367,9 +372,9 @@ template <std::size_t N>
 // Triangle: counts one CInvocation and a CPrimitive per emitted triangle; appends to `chunk`. Inlined
 // into the caller's loop over a pattern's triangles; the rare clipping path is a call.
 template <std::size_t N>
-[[gnu::always_inline]] inline void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& v0,
-                                                  const SetupVertex<N>& v1, const SetupVertex<N>& v2,
-                                                  std::uint32_t primitive_id) {
+[[gnu::always_inline]] inline void setup_triangle(const SetupContext& c, ChunkBuffer<N>& chunk,
+                                                  const SetupVertex<N>& v0, const SetupVertex<N>& v1,
+                                                  const SetupVertex<N>& v2, std::uint32_t primitive_id) {
   ++chunk.statistics.CInvocations;
   // D3D11 discards primitives with a NaN or infinite position coordinate.
   if (!v0.finite || !v1.finite || !v2.finite) return;

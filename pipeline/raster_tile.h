@@ -74,14 +74,22 @@ inline constexpr std::uint8_t kQuadLanes[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2,
 template <CompareFunc kDepthFunc>
 unsigned depth_pass_mask(simd::F4 z, simd::F4 stored) {
   switch (kDepthFunc) {
-    case CompareFunc::never: return 0;
-    case CompareFunc::less: return simd::less_mask(z, stored);
-    case CompareFunc::equal: return simd::equal_mask(z, stored);
-    case CompareFunc::less_equal: return simd::less_equal_mask(z, stored);
-    case CompareFunc::greater: return simd::less_mask(stored, z);
-    case CompareFunc::not_equal: return simd::not_equal_mask(z, stored);
-    case CompareFunc::greater_equal: return simd::less_equal_mask(stored, z);
-    case CompareFunc::always: return 0xF;
+    case CompareFunc::never:
+      return 0;
+    case CompareFunc::less:
+      return simd::less_mask(z, stored);
+    case CompareFunc::equal:
+      return simd::equal_mask(z, stored);
+    case CompareFunc::less_equal:
+      return simd::less_equal_mask(z, stored);
+    case CompareFunc::greater:
+      return simd::less_mask(stored, z);
+    case CompareFunc::not_equal:
+      return simd::not_equal_mask(z, stored);
+    case CompareFunc::greater_equal:
+      return simd::less_equal_mask(stored, z);
+    case CompareFunc::always:
+      return 0xF;
   }
   return 0;
 }
@@ -94,13 +102,15 @@ unsigned depth_pass_mask(simd::F4 z, simd::F4 stored) {
 // out-of-line call there made the loop save and restore its registers around every quad); the edge
 // walks call shade_triangle_quad_call.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
-[[gnu::always_inline]] inline unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy, unsigned covered,
-                                                           const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
+[[gnu::always_inline]] inline unsigned shade_triangle_quad(const ScreenPrimitive<N>& p, int qx, int qy,
+                                                           unsigned covered, const Ps& ps, const RasterContext& rc,
+                                                           Framebuffer& fb) {
   // Planes evaluated at the four pixel centres, four lanes at once (simd4.h: the same bits as scalar).
   using simd::F4;
   const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
   // fx + 0 is fx (a difference is never -0), so one add with constant lanes gives fx and fx + 1.0f.
-  const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f), dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
+  const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
+           dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
   QuadInput<N> q;
   const F4 zq = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
   const F4 z = simd::min(simd::max(zq, F4::splat(rc.min_depth)), F4::splat(rc.max_depth));
@@ -223,7 +233,8 @@ struct Edges32 {
   Edges32(const std::int32_t (&e0)[3], const std::int32_t (&sx)[3], const std::int32_t (&sy)[3]) {
     for (int i = 0; i < 3; ++i) {
       const std::int32_t x = sx[i], y = sy[i];
-      row[i] = _mm_add_epi32(_mm_set1_epi32(e0[i]), _mm_setr_epi32(0, x, y, std::int32_t(std::uint32_t(x) + std::uint32_t(y))));
+      row[i] = _mm_add_epi32(_mm_set1_epi32(e0[i]),
+                             _mm_setr_epi32(0, x, y, std::int32_t(std::uint32_t(x) + std::uint32_t(y))));
       e[i] = row[i];
       step_x2[i] = _mm_set1_epi32(2 * x);
       step_y2[i] = _mm_set1_epi32(2 * y);
@@ -272,7 +283,8 @@ struct BoxQuads {
   explicit BoxQuads(std::uint64_t g) : grid(g) {}
   // From box_coverage (setup found which of the at most 4x4 pixel centres of the box the triangle
   // covers): shifted by the box's offset from the corner, so its pixels lie in the grid's 3x3 quads.
-  BoxQuads(std::uint32_t coverage, int min_x, int min_y) : grid(std::uint64_t(coverage) << ((min_x & 1) + 8 * (min_y & 1))) {}
+  BoxQuads(std::uint32_t coverage, int min_x, int min_y)
+      : grid(std::uint64_t(coverage) << ((min_x & 1) + 8 * (min_y & 1))) {}
   // Keeps the pixels of columns [c0, c1) and rows [r0, r1) of the grid (each bound clamped to 0..8).
   void keep(int c0, int c1, int r0, int r1) {
     c0 = std::clamp(c0, 0, 8), c1 = std::clamp(c1, 0, 8), r0 = std::clamp(r0, 0, 8), r1 = std::clamp(r1, 0, 8);
@@ -303,7 +315,8 @@ struct BoxQuads {
 // corner (origin_x, origin_y)): each edge at a row's eight centres in the lanes of one vector, the
 // rows stepped down by adds. Centres up to eight pixels past the box may wrap modulo 2^32; the caller
 // keeps only the box's pixels, whose values are exact (kEdges32MaxExtent).
-inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x_from_min, int origin_y_from_min, int rows) {
+inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x_from_min, int origin_y_from_min,
+                                   int rows) {
   const __m256i columns = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i e[3], down[3];
   for (int i = 0; i < 3; ++i) {
@@ -325,8 +338,9 @@ inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x
 // or past 4x4 in builds without AVX2): the quads of [x_begin, x_end] x [y_begin, y_end] found by walking
 // the edge functions. Out of line: few triangles take it at high factors.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
-[[gnu::noinline]] std::uint64_t rasterize_triangle_walk(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin,
-                                                        int y_end, const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
+[[gnu::noinline]] std::uint64_t rasterize_triangle_walk(const ScreenPrimitive<N>& p, int x_begin, int x_end,
+                                                        int y_begin, int y_end, const Ps& ps, const RasterContext& rc,
+                                                        Framebuffer& fb) {
   const int qx0 = x_begin & ~1, qy0 = y_begin & ~1;  // 2x2 quads are aligned to even pixels
   auto shade = [&](int qx, int qy, unsigned covered) {
     return shade_triangle_quad_call<N, Ps, kDepthFunc>(p, qx, qy, covered, ps, rc, fb);
@@ -460,8 +474,12 @@ std::uint64_t rasterize_tile_with(const ForEach& for_each_primitive, int tx0, in
       case PrimitiveKind::triangle:
         invocations += rasterize_triangle_with<N, Ps, kDepthFunc>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
         break;
-      case PrimitiveKind::line: invocations += rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb); break;
-      case PrimitiveKind::point: invocations += rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb); break;
+      case PrimitiveKind::line:
+        invocations += rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+        break;
+      case PrimitiveKind::point:
+        invocations += rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
+        break;
     }
   });
   return invocations;
@@ -477,18 +495,27 @@ template <std::size_t N, class Ps, class ForEach>
 std::uint64_t rasterize_tile(const ForEach& for_each_primitive, int tx0, int ty0, int tx1, int ty1, const Ps& ps,
                              const RasterContext& rc, Framebuffer& fb) {
   const auto with = [&](auto func) {
-    return detail::rasterize_tile_with<N, Ps, decltype(func)::value>(for_each_primitive, tx0, ty0, tx1, ty1, ps, rc, fb);
+    return detail::rasterize_tile_with<N, Ps, decltype(func)::value>(for_each_primitive, tx0, ty0, tx1, ty1, ps, rc,
+                                                                     fb);
   };
   using F = CompareFunc;
   switch (rc.depth.func) {
-    case F::never: return with(std::integral_constant<F, F::never>{});
-    case F::less: return with(std::integral_constant<F, F::less>{});
-    case F::equal: return with(std::integral_constant<F, F::equal>{});
-    case F::less_equal: return with(std::integral_constant<F, F::less_equal>{});
-    case F::greater: return with(std::integral_constant<F, F::greater>{});
-    case F::not_equal: return with(std::integral_constant<F, F::not_equal>{});
-    case F::greater_equal: return with(std::integral_constant<F, F::greater_equal>{});
-    case F::always: return with(std::integral_constant<F, F::always>{});
+    case F::never:
+      return with(std::integral_constant<F, F::never>{});
+    case F::less:
+      return with(std::integral_constant<F, F::less>{});
+    case F::equal:
+      return with(std::integral_constant<F, F::equal>{});
+    case F::less_equal:
+      return with(std::integral_constant<F, F::less_equal>{});
+    case F::greater:
+      return with(std::integral_constant<F, F::greater>{});
+    case F::not_equal:
+      return with(std::integral_constant<F, F::not_equal>{});
+    case F::greater_equal:
+      return with(std::integral_constant<F, F::greater_equal>{});
+    case F::always:
+      return with(std::integral_constant<F, F::always>{});
   }
   return 0;
 }

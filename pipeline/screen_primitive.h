@@ -52,10 +52,10 @@ struct ScreenPrimitive {
     VertexPositions xy{};      // lines, points, triangles without edges32
     SmallTriangleEdges edges;  // triangles with edges32
   };
-  std::array<float, 3> z{};              // window depth (viewport-mapped), or its plane
-  std::array<float, 3> inv_w{};          // 1/w, or its plane
+  std::array<float, 3> z{};                          // window depth (viewport-mapped), or its plane
+  std::array<float, 3> inv_w{};                      // 1/w, or its plane
   std::array<std::array<float, N>, 3> attributes{};  // per vertex, or planes: attributes[j][a] = coefficient j of a
-  float origin_x = 0, origin_y = 0;      // triangles: where the planes are anchored (vertex 0), in pixels
+  float origin_x = 0, origin_y = 0;                  // triangles: where the planes are anchored (vertex 0), in pixels
   std::int32_t min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // covered pixel box, inclusive
   std::uint32_t primitive_id = 0;
   PrimitiveKind kind = PrimitiveKind::triangle;

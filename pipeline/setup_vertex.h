@@ -37,8 +37,8 @@ struct SetupVertex {
   // What a triangle's plane equations interpolate, computed once per vertex and laid out for SIMD loads
   // (setup_snapped_triangle): z, 1/w, each attribute times 1/w, then zeros to a multiple of 4.
   std::array<float, 4 * ((N + 5) / 4)> plane_values{};
-  unsigned view_code = 0;     // outside which view-volume planes
-  unsigned clip_code = 0;     // outside which clipping planes (near, far, guard band)
+  unsigned view_code = 0;  // outside which view-volume planes
+  unsigned clip_code = 0;  // outside which clipping planes (near, far, guard band)
   bool finite = true;
 };
 
@@ -82,7 +82,9 @@ void make_setup_vertices(const SetupContext& c, std::span<const ClipVertex<N>> i
 #if defined(__SSE2__)
   const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f);
   const __m128i exponent = _mm_set1_epi32(0x7f800000);
-  const auto bit = [](__m128 mask, unsigned b) { return _mm_and_si128(_mm_castps_si128(mask), _mm_set1_epi32(int(1u << b))); };
+  const auto bit = [](__m128 mask, unsigned b) {
+    return _mm_and_si128(_mm_castps_si128(mask), _mm_set1_epi32(int(1u << b)));
+  };
   for (; i + 4 <= in.size(); i += 4) {
     __m128 x = _mm_loadu_ps(&in[i].position.x), y = _mm_loadu_ps(&in[i + 1].position.x);
     __m128 z = _mm_loadu_ps(&in[i + 2].position.x), w = _mm_loadu_ps(&in[i + 3].position.x);
@@ -141,8 +143,10 @@ void make_setup_vertices(const SetupContext& c, std::span<const ClipVertex<N>> i
       s.y = snapped ? ys[k] : 0;
       s.z = snapped ? zs[k] : 0.0f;
       s.inv_w = snapped ? inv_ws[k] : 0.0f;
-      if (snapped) set_plane_values(s);
-      else s.plane_values.fill(0.0f);
+      if (snapped)
+        set_plane_values(s);
+      else
+        s.plane_values.fill(0.0f);
     }
   }
 #endif

@@ -59,7 +59,8 @@ inline __m128i mullo32(__m128i a, __m128i b) {
 #else
   const __m128i even = _mm_mul_epu32(a, b);
   const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
-  return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)), _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
+  return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
+                            _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
 #endif
 }
 // std::max(a, b) is (a < b) ? b : a; maxps(b, a) is (b > a) ? b : a: the same for every input.
@@ -75,9 +76,12 @@ inline unsigned not_equal_mask(F4 a, F4 b) { return unsigned(_mm_movemask_ps(_mm
 // All ones in lane k where bit k of `mask` (0..15) is set: one load from a table, where building the
 // lanes from the bits took a dozen instructions per quad.
 alignas(64) inline constexpr std::int32_t kLaneMasks[16][4] = {
-    {0, 0, 0, 0},  {-1, 0, 0, 0},  {0, -1, 0, 0},  {-1, -1, 0, 0},  {0, 0, -1, 0},  {-1, 0, -1, 0},  {0, -1, -1, 0},  {-1, -1, -1, 0},
-    {0, 0, 0, -1}, {-1, 0, 0, -1}, {0, -1, 0, -1}, {-1, -1, 0, -1}, {0, 0, -1, -1}, {-1, 0, -1, -1}, {0, -1, -1, -1}, {-1, -1, -1, -1}};
-inline __m128i lane_mask(unsigned mask) { return _mm_load_si128(reinterpret_cast<const __m128i*>(kLaneMasks[mask & 0xFu])); }
+    {0, 0, 0, 0},   {-1, 0, 0, 0},   {0, -1, 0, 0},   {-1, -1, 0, 0},  {0, 0, -1, 0},  {-1, 0, -1, 0},
+    {0, -1, -1, 0}, {-1, -1, -1, 0}, {0, 0, 0, -1},   {-1, 0, 0, -1},  {0, -1, 0, -1}, {-1, -1, 0, -1},
+    {0, 0, -1, -1}, {-1, 0, -1, -1}, {0, -1, -1, -1}, {-1, -1, -1, -1}};
+inline __m128i lane_mask(unsigned mask) {
+  return _mm_load_si128(reinterpret_cast<const __m128i*>(kLaneMasks[mask & 0xFu]));
+}
 // Lane k of the result is b's where bit k of `mask` is set, else a's.
 inline F4 select(unsigned mask, F4 a, F4 b) {
   const __m128 m = _mm_castsi128_ps(lane_mask(mask));
@@ -97,19 +101,25 @@ struct F4 {
     for (int k = 0; k < 4; ++k) p[k] = v[k];
   }
   static F4 load_pairs(const float* r0, const float* r1) { return {{r0[0], r0[1], r1[0], r1[1]}}; }
-  void store_pairs(float* r0, float* r1) const {
-    r0[0] = v[0], r0[1] = v[1], r1[0] = v[2], r1[1] = v[3];
-  }
+  void store_pairs(float* r0, float* r1) const { r0[0] = v[0], r0[1] = v[1], r1[0] = v[2], r1[1] = v[3]; }
   template <class Op>
   static F4 map(F4 a, F4 b, Op op) {
     F4 r;
     for (int k = 0; k < 4; ++k) r.v[k] = op(a.v[k], b.v[k]);
     return r;
   }
-  friend F4 operator+(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x + y; }); }
-  friend F4 operator-(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x - y; }); }
-  friend F4 operator*(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x * y; }); }
-  friend F4 operator/(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x / y; }); }
+  friend F4 operator+(F4 a, F4 b) {
+    return map(a, b, [](float x, float y) { return x + y; });
+  }
+  friend F4 operator-(F4 a, F4 b) {
+    return map(a, b, [](float x, float y) { return x - y; });
+  }
+  friend F4 operator*(F4 a, F4 b) {
+    return map(a, b, [](float x, float y) { return x * y; });
+  }
+  friend F4 operator/(F4 a, F4 b) {
+    return map(a, b, [](float x, float y) { return x / y; });
+  }
   friend F4 operator-(F4 a) {
     for (auto& x : a.v) x = -x;
     return a;
@@ -119,18 +129,30 @@ inline F4 sqrt(F4 a) {
   for (auto& x : a.v) x = std::sqrt(x);
   return a;
 }
-inline F4 max(F4 a, F4 b) { return F4::map(a, b, [](float x, float y) { return x < y ? y : x; }); }
-inline F4 min(F4 a, F4 b) { return F4::map(a, b, [](float x, float y) { return y < x ? y : x; }); }
+inline F4 max(F4 a, F4 b) {
+  return F4::map(a, b, [](float x, float y) { return x < y ? y : x; });
+}
+inline F4 min(F4 a, F4 b) {
+  return F4::map(a, b, [](float x, float y) { return y < x ? y : x; });
+}
 template <class Op>
 unsigned compare_mask(F4 a, F4 b, Op op) {
   unsigned m = 0;
   for (int k = 0; k < 4; ++k) m |= unsigned(op(a.v[k], b.v[k])) << k;
   return m;
 }
-inline unsigned less_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x < y; }); }
-inline unsigned less_equal_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x <= y; }); }
-inline unsigned equal_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x == y; }); }
-inline unsigned not_equal_mask(F4 a, F4 b) { return compare_mask(a, b, [](float x, float y) { return x != y; }); }
+inline unsigned less_mask(F4 a, F4 b) {
+  return compare_mask(a, b, [](float x, float y) { return x < y; });
+}
+inline unsigned less_equal_mask(F4 a, F4 b) {
+  return compare_mask(a, b, [](float x, float y) { return x <= y; });
+}
+inline unsigned equal_mask(F4 a, F4 b) {
+  return compare_mask(a, b, [](float x, float y) { return x == y; });
+}
+inline unsigned not_equal_mask(F4 a, F4 b) {
+  return compare_mask(a, b, [](float x, float y) { return x != y; });
+}
 inline F4 select(unsigned mask, F4 a, F4 b) {
   for (int k = 0; k < 4; ++k)
     if ((mask >> k) & 1u) a.v[k] = b.v[k];

@@ -35,7 +35,7 @@ namespace tessera {
 
 template <std::size_t N>
 struct ClipVertex {
-  glm::vec4 position{0.0f};         // SV_Position, clip space (D3D: 0 <= z <= w inside)
+  glm::vec4 position{0.0f};  // SV_Position, clip space (D3D: 0 <= z <= w inside)
   std::array<float, N> attributes{};
 };
 
@@ -62,7 +62,7 @@ struct PixelInput {
   std::array<float, N> attributes{};
   const std::array<float, N>* ddx_attributes = nullptr;
   const std::array<float, N>* ddy_attributes = nullptr;
-  bool front_face = true;    // SV_IsFrontFace
+  bool front_face = true;  // SV_IsFrontFace
   std::uint32_t primitive_id = 0;
 
   float ddx(std::size_t i) const { return (*ddx_attributes)[i]; }
@@ -76,7 +76,7 @@ struct PixelInput {
 // failed the depth test; their results are discarded.
 template <std::size_t N>
 struct QuadInput {
-  std::array<float, 4> x{}, y{}, z{}, inv_w{};  // SV_Position per lane
+  std::array<float, 4> x{}, y{}, z{}, inv_w{};       // SV_Position per lane
   std::array<std::array<float, 4>, N> attributes{};  // attributes[a][k]: attribute a at lane k
   bool front_face = true;
   std::uint32_t primitive_id = 0;
@@ -94,7 +94,9 @@ struct QuadColor {
 };
 
 template <class Ps, std::size_t N>
-concept QuadPixelShader = requires(const Ps& ps, const QuadInput<N>& q, QuadColor& out) { ps.shade_quad(q, out); };
+concept QuadPixelShader = requires(const Ps& ps, const QuadInput<N>& q, QuadColor& out) {
+  ps.shade_quad(q, out);
+};
 
 // The optional batch form of a domain shader: all of a patch's domain points in one call, so a shader
 // can evaluate several points at once (in SIMD lanes) or share work between points with equal u or v.
@@ -118,18 +120,19 @@ using vs_output_t = std::invoke_result_t<const Vs&, const Vertex&, std::uint32_t
 
 template <class Vs, class Vertex>
 concept VertexShader = requires(const Vs& vs, const Vertex& v) {
-  { vs(v, std::uint32_t{0}) };
+  {vs(v, std::uint32_t{0})};
 };
 
 template <class Hs, class VsOut>
 concept HullShader = requires(const Hs& hs, std::span<const VsOut> in, std::uint32_t id) {
   { Hs::kOutputControlPoints } -> std::convertible_to<int>;
-  { hs.control_point(in, 0, id) };
+  {hs.control_point(in, 0, id)};
   requires Hs::kOutputControlPoints >= 1 && Hs::kOutputControlPoints <= 32;
 };
 
 template <class Hs, class VsOut>
-using hs_control_point_t = decltype(std::declval<const Hs&>().control_point(std::declval<std::span<const VsOut>>(), 0, 0u));
+using hs_control_point_t =
+    decltype(std::declval<const Hs&>().control_point(std::declval<std::span<const VsOut>>(), 0, 0u));
 
 template <class Hs, class VsOut>
 using hs_patch_constants_t = decltype(std::declval<const Hs&>().patch_constants(

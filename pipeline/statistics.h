@@ -54,7 +54,7 @@ struct MemoryStats {
   std::uint64_t geometry_peak_bytes = 0;  // window (VS/HS outputs) + chunk buffers + per-thread scratch
   std::uint64_t framebuffer_bytes = 0;
   std::uint64_t pattern_cache_bytes = 0;
-  std::uint64_t chunks = 0;               // geometry chunks flushed to the rasterizer
+  std::uint64_t chunks = 0;  // geometry chunks flushed to the rasterizer
   std::uint64_t pattern_cache_hits = 0;
   std::uint64_t pattern_cache_misses = 0;
 };

@@ -31,11 +31,11 @@ struct StreamDraw {
 
 template <class DsOut>
 struct PatchOutput {
-  std::uint32_t patch_id = 0;           // SV_PrimitiveID
+  std::uint32_t patch_id = 0;  // SV_PrimitiveID
   ts::OutputPrimitive output = ts::OutputPrimitive::triangle_cw;
   std::span<const ts::DomainPoint> domain;  // where each output was evaluated
-  std::span<const DsOut> points;        // one per domain point
-  std::span<const std::uint32_t> indices;  // primitives (3, 2 or 1 indices each) into `points`
+  std::span<const DsOut> points;            // one per domain point
+  std::span<const std::uint32_t> indices;   // primitives (3, 2 or 1 indices each) into `points`
 };
 
 namespace detail {
@@ -100,20 +100,21 @@ DrawResult stream_out(Device& device, const StreamDraw<Vertex, Vs, Hs, Ds>& d, S
           for (std::size_t s = r.begin(); s != r.end(); ++s) {
             auto& chunk = slots[s];
             chunk.reset();
-            front.for_each_patch(c0 + s, patterns.local(), chunk.tessellator_seconds, [&](const typename FrontEnd::Work& w) {
-              const auto start = detail::Clock::now();
-              const ts::Pattern& pattern = w.pattern;
-              chunk.patches.push_back({w.patch_id, pattern.output, chunk.points.size(), pattern.points.size(),
-                                       chunk.indices.size(), pattern.indices.size()});
-              for (const ts::DomainPoint q : pattern.points) {
-                chunk.domain.push_back(q);
-                chunk.points.push_back(
-                    d.ds(w.constants, w.control_points, detail::domain_location(q, tstate.domain), w.patch_id));
-              }
-              chunk.indices.insert(chunk.indices.end(), pattern.indices.begin(), pattern.indices.end());
-              chunk.ds_invocations += pattern.points.size();
-              chunk.ds_seconds += detail::seconds_since(start);
-            });
+            front.for_each_patch(
+                c0 + s, patterns.local(), chunk.tessellator_seconds, [&](const typename FrontEnd::Work& w) {
+                  const auto start = detail::Clock::now();
+                  const ts::Pattern& pattern = w.pattern;
+                  chunk.patches.push_back({w.patch_id, pattern.output, chunk.points.size(), pattern.points.size(),
+                                           chunk.indices.size(), pattern.indices.size()});
+                  for (const ts::DomainPoint q : pattern.points) {
+                    chunk.domain.push_back(q);
+                    chunk.points.push_back(
+                        d.ds(w.constants, w.control_points, detail::domain_location(q, tstate.domain), w.patch_id));
+                  }
+                  chunk.indices.insert(chunk.indices.end(), pattern.indices.begin(), pattern.indices.end());
+                  chunk.ds_invocations += pattern.points.size();
+                  chunk.ds_seconds += detail::seconds_since(start);
+                });
           }
         });
         std::size_t bytes = 0;

@@ -35,9 +35,12 @@ int mirror_index(int i, int n) {
 // stays small enough to inline into every tap.
 [[gnu::noinline]] int address_outside(int i, int n, AddressMode mode) {
   switch (mode) {
-    case AddressMode::wrap: return wrap_index(i, n);
-    case AddressMode::clamp: return i < 0 ? 0 : n - 1;
-    case AddressMode::mirror: return mirror_index(i, n);
+    case AddressMode::wrap:
+      return wrap_index(i, n);
+    case AddressMode::clamp:
+      return i < 0 ? 0 : n - 1;
+    case AddressMode::mirror:
+      return mirror_index(i, n);
   }
   return 0;
 }
@@ -53,10 +56,12 @@ inline int address(int i, int n, AddressMode mode) {
 float reduce_far(float x, int n, AddressMode mode) {
   if (!std::isfinite(x)) return 0.0f;
   switch (mode) {
-    case AddressMode::wrap: return static_cast<float>(std::fmod(static_cast<double>(x), static_cast<double>(n)));
+    case AddressMode::wrap:
+      return static_cast<float>(std::fmod(static_cast<double>(x), static_cast<double>(n)));
     case AddressMode::mirror:
       return static_cast<float>(std::fmod(static_cast<double>(x), 2.0 * static_cast<double>(n)));
-    case AddressMode::clamp: break;
+    case AddressMode::clamp:
+      break;
   }
   return x < 0.0f ? -1.0f : static_cast<float>(n);
 }
@@ -92,10 +97,14 @@ glm::vec4 fetch(const float* p) {
 
 glm::vec4 fetch(const float* p, int channels) {
   switch (channels) {
-    case 1: return fetch<1>(p);
-    case 2: return fetch<2>(p);
-    case 3: return fetch<3>(p);
-    default: return fetch<4>(p);
+    case 1:
+      return fetch<1>(p);
+    case 2:
+      return fetch<2>(p);
+    case 3:
+      return fetch<3>(p);
+    default:
+      return fetch<4>(p);
   }
 }
 
@@ -193,9 +202,12 @@ std::string size_error(const char* what, int value, int lo, int hi) {
 
 std::string_view to_string(Filter f) {
   switch (f) {
-    case Filter::point: return "point";
-    case Filter::bilinear: return "bilinear";
-    case Filter::trilinear: return "trilinear";
+    case Filter::point:
+      return "point";
+    case Filter::bilinear:
+      return "bilinear";
+    case Filter::trilinear:
+      return "trilinear";
   }
   return "?";
 }
@@ -208,9 +220,12 @@ std::optional<Filter> parse_filter(std::string_view s) {
 
 std::string_view to_string(AddressMode m) {
   switch (m) {
-    case AddressMode::wrap: return "wrap";
-    case AddressMode::clamp: return "clamp";
-    case AddressMode::mirror: return "mirror";
+    case AddressMode::wrap:
+      return "wrap";
+    case AddressMode::clamp:
+      return "clamp";
+    case AddressMode::mirror:
+      return "mirror";
   }
   return "?";
 }
@@ -300,9 +315,10 @@ glm::vec4 Texture2D::sample_point(const Sampler& s, const Level& level, glm::vec
   const int x = point_tap(uv.x * level.fwidth, level.width, s.address_u);
   const int y = point_tap(uv.y * level.fheight, level.height, s.address_v);
   const std::size_t c = static_cast<std::size_t>(channels_);
-  return fetch(texels_.data() + level.offset +
-                   (static_cast<std::size_t>(y) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(x)) * c,
-               channels_);
+  return fetch(
+      texels_.data() + level.offset +
+          (static_cast<std::size_t>(y) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(x)) * c,
+      channels_);
 }
 
 glm::vec4 Texture2D::sample_bilinear(const Sampler& s, const Level& level, glm::vec2 uv) const {
@@ -310,19 +326,26 @@ glm::vec4 Texture2D::sample_bilinear(const Sampler& s, const Level& level, glm::
   const LinearTaps tv = linear_taps(uv.y * level.fheight - 0.5f, level.height, s.address_v);
   const float* base = texels_.data() + level.offset;
   switch (channels_) {
-    case 1: return bilerp<1>(base, level.width, tu, tv);
-    case 2: return bilerp<2>(base, level.width, tu, tv);
-    case 3: return bilerp<3>(base, level.width, tu, tv);
-    default: return bilerp<4>(base, level.width, tu, tv);
+    case 1:
+      return bilerp<1>(base, level.width, tu, tv);
+    case 2:
+      return bilerp<2>(base, level.width, tu, tv);
+    case 3:
+      return bilerp<3>(base, level.width, tu, tv);
+    default:
+      return bilerp<4>(base, level.width, tu, tv);
   }
 }
 
 // lod is already clamped to [0, levels_ - 1], so every level index below is in range.
 glm::vec4 Texture2D::sample_at_lod(const Sampler& s, glm::vec2 uv, float lod) const {
   switch (s.filter) {
-    case Filter::point: return sample_point(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
-    case Filter::bilinear: return sample_bilinear(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
-    case Filter::trilinear: break;
+    case Filter::point:
+      return sample_point(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
+    case Filter::bilinear:
+      return sample_bilinear(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
+    case Filter::trilinear:
+      break;
   }
   const int l0 = static_cast<int>(lod);
   const float f = lod - static_cast<float>(l0);
@@ -345,9 +368,10 @@ namespace {
 // linear_taps (truncate, then one less where the coordinate is below it; the fraction by subtraction).
 // False, with nothing written, when any lane needs linear_taps' far-coordinate or addressing paths.
 template <class Level>
-bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& level, const float* base, std::size_t stride,
-                           std::array<float, 4>& t00, std::array<float, 4>& t01, std::array<float, 4>& t10,
-                           std::array<float, 4>& t11, std::array<float, 4>& fu, std::array<float, 4>& fv) {
+bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& level, const float* base,
+                           std::size_t stride, std::array<float, 4>& t00, std::array<float, 4>& t01,
+                           std::array<float, 4>& t10, std::array<float, 4>& t11, std::array<float, 4>& fu,
+                           std::array<float, 4>& fv) {
 #if defined(__SSE2__)
   const __m128 x = _mm_sub_ps(_mm_mul_ps(_mm_setr_ps(uv[0].x, uv[1].x, uv[2].x, uv[3].x), _mm_set1_ps(level.fwidth)),
                               _mm_set1_ps(0.5f));
@@ -355,7 +379,8 @@ bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& leve
                               _mm_set1_ps(0.5f));
   const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)), far = _mm_set1_ps(kFarCoordinate);
   // NaN compares false, so it fails here as in linear_taps.
-  const __m128 near = _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(x, magnitude), far), _mm_cmplt_ps(_mm_and_ps(y, magnitude), far));
+  const __m128 near =
+      _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(x, magnitude), far), _mm_cmplt_ps(_mm_and_ps(y, magnitude), far));
   if (_mm_movemask_ps(near) != 0xF) return false;
   const auto floor_lanes = [](__m128 a) {
     const __m128i t = _mm_cvttps_epi32(a);

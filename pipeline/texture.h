@@ -75,7 +75,7 @@ std::optional<AddressMode> parse_address_mode(std::string_view s);  // "wrap", "
 
 // Largest width or height accepted (D3D11 itself requires 16384; larger helps offline baking).
 inline constexpr int kMaxTextureSize = 32768;
-inline constexpr int kMaxTextureLevels = 16;   // 32768 -> 1
+inline constexpr int kMaxTextureLevels = 16;  // 32768 -> 1
 
 class Texture2D {
  public:
@@ -100,7 +100,8 @@ class Texture2D {
   glm::vec4 sample_level(const Sampler& s, glm::vec2 uv, float lod) const;
   // Four sample_level calls with one lod (a batch shader's lanes): out[k] = sample_level(s, uv[k], lod),
   // the same bits; a one-channel bilinear level is filtered in SIMD lanes.
-  void sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod, std::array<glm::vec4, 4>& out) const;
+  void sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod,
+                     std::array<glm::vec4, 4>& out) const;
 
   // HLSL SampleGrad, and Sample in a pixel shader (with the quad's derivatives): isotropic lod =
   // log2(max(|ddx * size|, |ddy * size|)), size = level 0's (width, height), then as sample_level.

@@ -103,21 +103,25 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
   const __m256i lane_times3 = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   const __m256i vertex_bytes = _mm256_set1_epi32(int(sizeof(V)));
-  const __m256i id_lanes = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(int(id_step)));
+  const __m256i id_lanes =
+      _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(int(id_step)));
   const __m128i tile_shift = _mm_cvtsi32_si128(c.tiles.shift);
   const auto tile_of = [&](__m256i p) {  // TileGrid::tile_of in each lane
     return _mm256_srl_epi32(_mm256_mullo_epi32(p, _mm256_set1_epi32(int(c.tiles.reciprocal))), tile_shift);
   };
   constexpr std::size_t kSlack = 10;  // eight lanes' slots, a spare slot, and the last block's overrun
-  const auto cmple = [](__m256i a, __m256i b) { return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1)); };
+  const auto cmple = [](__m256i a, __m256i b) {
+    return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1));
+  };
   for (; lanes && t + 8 <= count; t += 8) {
     const int* idx = reinterpret_cast<const int*>(indices + 3 * t);
     const __m256i off0 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx, lane_times3, 4), vertex_bytes);
     const __m256i off1 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx + 1, lane_times3, 4), vertex_bytes);
     const __m256i off2 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx + 2, lane_times3, 4), vertex_bytes);
     // setup_triangle's tests. `finite` is a bool; the gather reads it with the padding after it.
-    const __m256i clip_or = _mm256_or_si256(_mm256_or_si256(gather(offsetof(V, clip_code), off0), gather(offsetof(V, clip_code), off1)),
-                                            gather(offsetof(V, clip_code), off2));
+    const __m256i clip_or =
+        _mm256_or_si256(_mm256_or_si256(gather(offsetof(V, clip_code), off0), gather(offsetof(V, clip_code), off1)),
+                        gather(offsetof(V, clip_code), off2));
     const __m256i finite = _mm256_and_si256(
         _mm256_and_si256(_mm256_and_si256(gather(offsetof(V, finite), off0), gather(offsetof(V, finite), off1)),
                          gather(offsetof(V, finite), off2)),
@@ -125,8 +129,10 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     const __m256i x0 = gather(offsetof(V, x), off0), y0 = gather(offsetof(V, y), off0);
     const __m256i xb = gather(offsetof(V, x), off1), yb = gather(offsetof(V, y), off1);
     const __m256i xd = gather(offsetof(V, x), off2), yd = gather(offsetof(V, y), off2);
-    const __m256i lx = _mm256_min_epi32(_mm256_min_epi32(x0, xb), xd), hx = _mm256_max_epi32(_mm256_max_epi32(x0, xb), xd);
-    const __m256i ly = _mm256_min_epi32(_mm256_min_epi32(y0, yb), yd), hy = _mm256_max_epi32(_mm256_max_epi32(y0, yb), yd);
+    const __m256i lx = _mm256_min_epi32(_mm256_min_epi32(x0, xb), xd),
+                  hx = _mm256_max_epi32(_mm256_max_epi32(x0, xb), xd);
+    const __m256i ly = _mm256_min_epi32(_mm256_min_epi32(y0, yb), yd),
+                  hy = _mm256_max_epi32(_mm256_max_epi32(y0, yb), yd);
     const __m256i max_extent = _mm256_set1_epi32(kEdges32MaxExtent);
     // Lanes for setup_triangle: clipped, not finite, or too large for 32-bit edges.
     const __m256i scalar = _mm256_or_si256(
@@ -157,12 +163,12 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     const __m256i half_less_one = _mm256_set1_epi32(kSubpixelOne / 2 - 1), half = _mm256_set1_epi32(kSubpixelOne / 2);
     const __m256i min_x = _mm256_max_epi32(_mm256_srai_epi32(_mm256_add_epi32(lx, half_less_one), kSubpixelBits),
                                            _mm256_set1_epi32(c.clip_min_x));
-    const __m256i max_x = _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hx, half), kSubpixelBits),
-                                           _mm256_set1_epi32(c.clip_max_x));
+    const __m256i max_x =
+        _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hx, half), kSubpixelBits), _mm256_set1_epi32(c.clip_max_x));
     const __m256i min_y = _mm256_max_epi32(_mm256_srai_epi32(_mm256_add_epi32(ly, half_less_one), kSubpixelBits),
                                            _mm256_set1_epi32(c.clip_min_y));
-    const __m256i max_y = _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hy, half), kSubpixelBits),
-                                           _mm256_set1_epi32(c.clip_max_y));
+    const __m256i max_y =
+        _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hy, half), kSubpixelBits), _mm256_set1_epi32(c.clip_max_y));
     keep = _mm256_and_si256(keep, _mm256_and_si256(cmple(min_x, max_x), cmple(min_y, max_y)));
     if (_mm256_testz_si256(keep, keep)) continue;
     // Stored with positive area: vertices 1 and 2 swap places in lanes with negative area.
@@ -178,8 +184,9 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       const int j = i == 2 ? 0 : i + 1;
       dx[i] = _mm256_sub_epi32(ex[j], ex[i]);
       dy[i] = _mm256_sub_epi32(ey[j], ey[i]);
-      const __m256i top_left = _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy[i]),
-                                               _mm256_and_si256(_mm256_cmpeq_epi32(dy[i], zero), _mm256_cmpgt_epi32(dx[i], zero)));
+      const __m256i top_left =
+          _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy[i]),
+                          _mm256_and_si256(_mm256_cmpeq_epi32(dy[i], zero), _mm256_cmpgt_epi32(dx[i], zero)));
       ref[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(dy[i], _mm256_sub_epi32(ex[i], cx)),
                                                  _mm256_mullo_epi32(dx[i], _mm256_sub_epi32(cy, ey[i]))),
                                 _mm256_xor_si256(top_left, ones));
@@ -202,7 +209,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
         __m256i e[3] = {row[0], row[1], row[2]};
         for (int px = 0; px < kSmallBoxPixels; ++px) {
           const __m256i any_negative = _mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31);
-          found = _mm256_or_si256(found, _mm256_andnot_si256(any_negative, _mm256_set1_epi32(int(1u << (px + 8 * py)))));
+          found =
+              _mm256_or_si256(found, _mm256_andnot_si256(any_negative, _mm256_set1_epi32(int(1u << (px + 8 * py)))));
           for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], step_x[i]);
         }
         for (int i = 0; i < 3; ++i) row[i] = _mm256_add_epi32(row[i], step_y[i]);
@@ -230,20 +238,24 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
         const std::size_t field = offsetof(V, plane_values) + 4 * value;
         const __m256 a0 = gather_ps(field, off0), a1 = gather_ps(field, o1), a2 = gather_ps(field, o2);
         using simd::F8;
-        const detail::PlaneSlopes<F8> s = detail::plane_slopes(F8{a0}, F8{a1}, F8{a2}, F8{fx1}, F8{fy1}, F8{fx2}, F8{fy2}, F8{inv_area});
+        const detail::PlaneSlopes<F8> s =
+            detail::plane_slopes(F8{a0}, F8{a1}, F8{a2}, F8{fx1}, F8{fy1}, F8{fx2}, F8{fy2}, F8{inv_area});
         f[at0] = _mm256_castps_si256(a0);
         f[at_x] = _mm256_castps_si256(s.x.v);
         f[at_y] = _mm256_castps_si256(s.y.v);
       };
       plane(0, L::kZ, L::kZ + 1, L::kZ + 2);
       plane(1, L::kInvW, L::kInvW + 1, L::kInvW + 2);
-      for (std::size_t a = 0; a < N; ++a) plane(2 + a, L::kAttributes + a, L::kAttributes + N + a, L::kAttributes + 2 * N + a);
+      for (std::size_t a = 0; a < N; ++a)
+        plane(2 + a, L::kAttributes + a, L::kAttributes + N + a, L::kAttributes + 2 * N + a);
       f[L::kOrigin] = _mm256_castps_si256(pixels(x0));
       f[L::kOrigin + 1] = _mm256_castps_si256(pixels(y0));
     }
     // The edges as setup_snapped_triangle stores them: dx and dy in 16 bits (exact), [3] repeating [2].
     const __m256i low16 = _mm256_set1_epi32(0xFFFF);
-    const auto pack16 = [&](__m256i lo, __m256i hi) { return _mm256_or_si256(_mm256_and_si256(lo, low16), _mm256_slli_epi32(hi, 16)); };
+    const auto pack16 = [&](__m256i lo, __m256i hi) {
+      return _mm256_or_si256(_mm256_and_si256(lo, low16), _mm256_slli_epi32(hi, 16));
+    };
     f[L::kEdgeDx] = pack16(dx[0], dx[1]), f[L::kEdgeDx + 1] = pack16(dx[2], dx[2]);
     f[L::kEdgeDy] = pack16(dy[0], dy[1]), f[L::kEdgeDy + 1] = pack16(dy[2], dy[2]);
     for (int i = 0; i < 3; ++i) f[L::kEdgeRef + std::size_t(i)] = ref[i];
@@ -261,7 +273,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     char* slot[8];
     for (unsigned k = 0; k < 8; ++k) {
       const bool kept_k = (kept >> k) & 1u;
-      const std::size_t index = kept_k ? first + std::size_t(std::popcount(kept & ((1u << k) - 1u))) : first + kept_count;
+      const std::size_t index =
+          kept_k ? first + std::size_t(std::popcount(kept & ((1u << k) - 1u))) : first + kept_count;
       slot[k] = reinterpret_cast<char*>(&chunk.primitives[index]);
     }
     for (std::size_t b = L::kBlocks; b-- > 0;) {
@@ -277,8 +290,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     alignas(32) std::int32_t tiles[8];
     _mm256_store_si256(reinterpret_cast<__m256i*>(tiles),
                        _mm256_add_epi32(_mm256_mullo_epi32(ty0, _mm256_set1_epi32(g.columns)), tx0));
-    const unsigned one_tile = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(
-        _mm256_and_si256(_mm256_cmpeq_epi32(tx0, tx1), _mm256_cmpeq_epi32(ty0, ty1)))));
+    const unsigned one_tile = unsigned(_mm256_movemask_ps(
+        _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpeq_epi32(tx0, tx1), _mm256_cmpeq_epi32(ty0, ty1)))));
     std::uint32_t index = std::uint32_t(first);
     for (unsigned rest = kept; rest != 0; rest &= rest - 1, ++index) {
       const int k = std::countr_zero(rest);

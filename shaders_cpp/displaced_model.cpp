@@ -13,9 +13,7 @@ std::string float_text(float x) {
   return s.str();
 }
 
-bool is_rgb_name(const std::string& n) {
-  return n == "R" || n == "G" || n == "B" || n == "r" || n == "g" || n == "b";
-}
+bool is_rgb_name(const std::string& n) { return n == "R" || n == "G" || n == "B" || n == "r" || n == "g" || n == "b"; }
 
 }  // namespace
 
@@ -34,10 +32,12 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   const bool vector = d.map->channels() == 3;
   // A height moves along the normal only: an object-space request would be silently meaningless.
   if (!vector && o.space == DisplacementSpace::object)
-    throw DisplacementMapError(o.map + ": object-space displacement needs a vector map (three channels, e.g. R,G,B); the "
+    throw DisplacementMapError(o.map +
+                               ": object-space displacement needs a vector map (three channels, e.g. R,G,B); the "
                                "selected channel is a scalar height");
-  d.kind = !vector ? DisplacementKind::scalar
-                   : o.space == DisplacementSpace::object ? DisplacementKind::vector_object : DisplacementKind::vector_tangent;
+  d.kind = !vector                                ? DisplacementKind::scalar
+           : o.space == DisplacementSpace::object ? DisplacementKind::vector_object
+                                                  : DisplacementKind::vector_tangent;
   d.scale = o.scale, d.bias = o.bias;
   d.shared_normals = o.shared_normals;
   d.flip_v = o.flip_v;

@@ -5,7 +5,8 @@
 // Contract: make_displacement throws DisplacementMapError (one line starting with the map's path) for a
 // missing or unreadable map, a channel the map does not have, a wrong channel count, a cage whose UVs
 // leave the map's [0, 1] square; CageError (naming the cage) for a cage without UVs, with faces that
-// are not quads, or drawn with a scheme whose patches carry no 1-ring (flat, pn). Everything it builds is immutable; draws may run on any number of threads.
+// are not quads, or drawn with a scheme whose patches carry no 1-ring (flat, pn). Everything it builds is immutable;
+// draws may run on any number of threads.
 //
 // Normal maps (for shading): `normal_map` = "auto" takes the RGB of the displacement file when the
 // displacement is a scalar read from a file that has RGB besides it (the monster frog: height in A,
@@ -27,8 +28,8 @@ namespace tessera {
 enum class DisplacementSpace : std::uint8_t { tangent, object };
 
 struct DisplacementOptions {
-  std::string map;                 // path
-  std::string channel;             // displacement_map.h's selection; 1 channel = scalar, 3 = vector
+  std::string map;      // path
+  std::string channel;  // displacement_map.h's selection; 1 channel = scalar, 3 = vector
   float scale = 1.0f, bias = 0.0f;
   DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only
   std::string normal_map = "auto";
@@ -74,12 +75,13 @@ DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const
 template <class Sink>
 DrawResult stream_displaced(Device& device, const SubdModel& m, const Displacement& d, const SubdFactors& factors,
                             ts::Partitioning partitioning, Sink&& sink) {
-  return with_displaced_group(m, d, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
-                                                               const DisplacedHS& hs, const DisplacedDS& ds) {
-    const StreamDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedDS> draw{m.cage.positions, g.indices, g.control_points,
-                                                                       m.vertex_shader(), hs, ds, ts};
-    return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) { sink(p, g); });
-  });
+  return with_displaced_group(
+      m, d, factors, partitioning,
+      [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
+        const StreamDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedDS> draw{
+            m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
+        return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) { sink(p, g); });
+      });
 }
 
 }  // namespace tessera

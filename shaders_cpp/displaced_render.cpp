@@ -6,30 +6,30 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
                             const SubdCamera& camera, Framebuffer& fb) {
   const glm::vec3 light = glm::normalize(camera.eye - camera.target);
   auto pass = [&](bool wire) {
-    return with_displaced_group(model, displacement, factors, partitioning,
-                                [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs,
-                                    const DisplacedDS& ds) {
-      const SubdPassState st = subd_pass_state(model, fb, wire);
-      const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
-      auto go = [&](const auto& ps) {
-        using Ps = std::decay_t<decltype(ps)>;
-        const PatchDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedProjectDS<DisplacedDS>, Ps> d{
-            model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts, st.rasterizer, st.depth,
-            st.viewport};
-        return device.draw(d, fb);
-      };
-      if (wire) return go(ConstantPS<kDisplacedAttributes>{});
-      DisplacedPS ps;
-      ps.light = light;
-      if (displacement.normal_map) {
-        ps.normal_map = &displacement.normal_map->texture();
-        ps.flip_green = displacement.flip_v;
-      } else if (displacement.kind == DisplacementKind::scalar) {
-        ps.height = &displacement.map->texture();
-        ps.height_scale = displacement.scale;
-      }
-      return go(ps);
-    });
+    return with_displaced_group(
+        model, displacement, factors, partitioning,
+        [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
+          const SubdPassState st = subd_pass_state(model, fb, wire);
+          const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
+          auto go = [&](const auto& ps) {
+            using Ps = std::decay_t<decltype(ps)>;
+            const PatchDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedProjectDS<DisplacedDS>, Ps> d{
+                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts,
+                st.rasterizer,        st.depth,  st.viewport};
+            return device.draw(d, fb);
+          };
+          if (wire) return go(ConstantPS<kDisplacedAttributes>{});
+          DisplacedPS ps;
+          ps.light = light;
+          if (displacement.normal_map) {
+            ps.normal_map = &displacement.normal_map->texture();
+            ps.flip_green = displacement.flip_v;
+          } else if (displacement.kind == DisplacementKind::scalar) {
+            ps.height = &displacement.map->texture();
+            ps.height_scale = displacement.scale;
+          }
+          return go(ps);
+        });
   };
   return draw_view_passes(view, fb, pass);
 }

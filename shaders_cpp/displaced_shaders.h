@@ -115,13 +115,14 @@ struct DisplacedHS {
       const auto& e = tc.edge[std::size_t(k)];
       // Patch edge k is SV_TessFactor (k + 1) % 4.
       pc.lod_edge[std::size_t(k)] = displacement_lod(e[1] - e[0], map_size, pc.factors.edge[std::size_t((k + 1) % 4)]);
-      pc.lod_corner[std::size_t(k)] =
-          displacement_lod(tc.corner_span[std::size_t(k)][0], map_size, base.factors.edge(tc.corner_key[std::size_t(k)]));
+      pc.lod_corner[std::size_t(k)] = displacement_lod(tc.corner_span[std::size_t(k)][0], map_size,
+                                                       base.factors.edge(tc.corner_key[std::size_t(k)]));
     }
     const auto& c = tc.interior;
     const float lu = std::max(texel_length(c[1] - c[0], map_size), texel_length(c[2] - c[3], map_size));
     const float lv = std::max(texel_length(c[3] - c[0], map_size), texel_length(c[2] - c[1], map_size));
-    pc.lod_interior = texels_per_segment_lod(std::max(lu / segments(pc.factors.inside[0]), lv / segments(pc.factors.inside[1])));
+    pc.lod_interior =
+        texels_per_segment_lod(std::max(lu / segments(pc.factors.inside[0]), lv / segments(pc.factors.inside[1])));
     return pc;
   }
 };
@@ -174,15 +175,21 @@ struct DisplacedDS {
       lod = pc.lod_corner[std::size_t(k)];
       pa = t[0], pb = t[1];
       ja = tc.corner_span[std::size_t(k)][0], jb = tc.corner_span[std::size_t(k)][1];
-      if (exact) owner_derivatives(tc.vertex_face[std::size_t(k)], tc.vertex_corner[std::size_t(k)], 0.0f, pa, pb);
-      else if (params.shared_normals) n = oriented(unit_or_zero(glm::cross(pa, pb)));
+      if (exact)
+        owner_derivatives(tc.vertex_face[std::size_t(k)], tc.vertex_corner[std::size_t(k)], 0.0f, pa, pb);
+      else if (params.shared_normals)
+        n = oriented(unit_or_zero(glm::cross(pa, pb)));
     } else if (on_u || on_v) {
       int k;
       float t;
-      if (v == 0.0f) k = 0, t = u;
-      else if (u == 1.0f) k = 1, t = v;
-      else if (v == 1.0f) k = 2, t = 1.0f - u;
-      else k = 3, t = 1.0f - v;
+      if (v == 0.0f)
+        k = 0, t = u;
+      else if (u == 1.0f)
+        k = 1, t = v;
+      else if (v == 1.0f)
+        k = 2, t = 1.0f - u;
+      else
+        k = 3, t = 1.0f - v;
       const auto& e = tc.edge[std::size_t(k)];
       const auto& f = pc.edge[std::size_t(k)];
       // The owner's parameter: exact, tessellator parameters are multiples of 2^-16.
@@ -215,7 +222,9 @@ struct DisplacedDS {
     sampler.address_u = sampler.address_v = AddressMode::clamp;
     const glm::vec4 texel = params.map->sample_level(sampler, uv, lod);
     switch (params.kind) {
-      case DisplacementKind::scalar: out.position = s.position + (params.scale * texel.x + params.bias) * n; break;
+      case DisplacementKind::scalar:
+        out.position = s.position + (params.scale * texel.x + params.bias) * n;
+        break;
       case DisplacementKind::vector_object:
         out.position = s.position + (params.scale * glm::vec3(texel) + params.bias);
         break;
@@ -241,10 +250,18 @@ struct DisplacedDS {
     const float v = c == 0 ? 0.0f : c == 1 ? t : c == 2 ? 1.0f : r;
     const SurfacePoint l = base.limit->evaluate(f, 0, u, v);
     switch (c) {
-      case 0: along = l.du, across = l.dv; break;
-      case 1: along = l.dv, across = -l.du; break;
-      case 2: along = -l.du, across = -l.dv; break;
-      default: along = -l.dv, across = l.du; break;
+      case 0:
+        along = l.du, across = l.dv;
+        break;
+      case 1:
+        along = l.dv, across = -l.du;
+        break;
+      case 2:
+        along = -l.du, across = -l.dv;
+        break;
+      default:
+        along = -l.dv, across = l.du;
+        break;
     }
   }
 };
@@ -255,17 +272,18 @@ inline constexpr std::size_t kDisplacedAttributes = 11;
 
 struct DisplacedAttributes {
   std::array<float, kDisplacedAttributes> operator()(const DisplacedPoint& s) const {
-    return {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z, s.dpdv.x, s.dpdv.y, s.dpdv.z, s.uv.x, s.uv.y};
+    return {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z,
+            s.dpdv.x,   s.dpdv.y,   s.dpdv.z,   s.uv.x,   s.uv.y};
   }
 };
 template <class Inner>
 using DisplacedProjectDS = ProjectingDS<Inner, DisplacedAttributes>;
 
-// Clay with a headlight (clay(), subd_shaders.h) on the displaced surface's shading normal: from a tangent-space normal map
-// (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized;
-// `flip_green` for maps whose y points along −V: OBJ cages, whose v points up the image), or derived from the height map (the normal of
-// P + h N with h's texture gradient by central differences one level-0 texel apart, sampled with the
-// pixel's UV derivatives), or the base normal when neither is given.
+// Clay with a headlight (clay(), subd_shaders.h) on the displaced surface's shading normal: from a tangent-space normal
+// map (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized; `flip_green`
+// for maps whose y points along −V: OBJ cages, whose v points up the image), or derived from the height map (the normal
+// of P + h N with h's texture gradient by central differences one level-0 texel apart, sampled with the pixel's UV
+// derivatives), or the base normal when neither is given.
 struct DisplacedPS {
   const Texture2D* normal_map = nullptr;
   const Texture2D* height = nullptr;  // one channel; used when normal_map is null

@@ -43,6 +43,8 @@ SubdModel make_subd_model(Cage cage, Scheme scheme) {
   return m;
 }
 
-SubdModel load_subd_model(const std::string& path, Scheme scheme) { return make_subd_model(load_obj_cage(path), scheme); }
+SubdModel load_subd_model(const std::string& path, Scheme scheme) {
+  return make_subd_model(load_obj_cage(path), scheme);
+}
 
 }  // namespace tessera

@@ -67,11 +67,12 @@ DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, 
 template <class Sink>
 DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& factors, ts::Partitioning partitioning,
                        Sink&& sink) {
-  return for_each_patch_group(m, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
-                                                            const SubdHS& hs, const SubdDS& ds) {
-    const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
-    return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, g); });
-  });
+  return for_each_patch_group(m, factors, partitioning,
+                              [&](const PatchGroup& g, const TessellatorState& ts, const SubdHS& hs, const SubdDS& ds) {
+                                const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{
+                                    m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
+                                return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, g); });
+                              });
 }
 
 }  // namespace tessera

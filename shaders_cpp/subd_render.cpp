@@ -22,7 +22,7 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
   const float distance = glm::length(c.eye - c.target);
   const float reach = distance + glm::length(centre - c.target) + radius;
   const glm::mat4 view = glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0));
-  const glm::mat4 proj = glm::perspectiveRH_ZO(fov, aspect, std::max(reach * 1e-4f, distance - reach) , reach * 1.01f);
+  const glm::mat4 proj = glm::perspectiveRH_ZO(fov, aspect, std::max(reach * 1e-4f, distance - reach), reach * 1.01f);
   c.view_projection = proj * view;
   return c;
 }
@@ -40,23 +40,24 @@ SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, boo
   return st;
 }
 
-DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
-                       SubdView view, const SubdCamera& camera, Framebuffer& fb) {
+DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors,
+                       ts::Partitioning partitioning, SubdView view, const SubdCamera& camera, Framebuffer& fb) {
   const glm::vec3 light = glm::normalize(camera.eye - camera.target);
   auto pass = [&](bool wire) {
-    return for_each_patch_group(model, factors, partitioning, [&](const PatchGroup& g, const TessellatorState& ts,
-                                                                  const SubdHS& hs, const SubdDS& ds) {
-      const SubdPassState st = subd_pass_state(model, fb, wire);
-      const ProjectDS<SubdDS> project{ds, camera.view_projection, st.z_bias};
-      auto go = [&](const auto& ps) {
-        using Ps = std::decay_t<decltype(ps)>;
-        const PatchDraw<glm::vec3, SubdVS, SubdHS, ProjectDS<SubdDS>, Ps> d{
-            model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts, st.rasterizer,
-            st.depth, st.viewport};
-        return device.draw(d, fb);
-      };
-      return wire ? go(ConstantPS<>{}) : go(ClayPS{light});
-    });
+    return for_each_patch_group(
+        model, factors, partitioning,
+        [&](const PatchGroup& g, const TessellatorState& ts, const SubdHS& hs, const SubdDS& ds) {
+          const SubdPassState st = subd_pass_state(model, fb, wire);
+          const ProjectDS<SubdDS> project{ds, camera.view_projection, st.z_bias};
+          auto go = [&](const auto& ps) {
+            using Ps = std::decay_t<decltype(ps)>;
+            const PatchDraw<glm::vec3, SubdVS, SubdHS, ProjectDS<SubdDS>, Ps> d{
+                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts,
+                st.rasterizer,        st.depth,  st.viewport};
+            return device.draw(d, fb);
+          };
+          return wire ? go(ConstantPS<>{}) : go(ClayPS{light});
+        });
   };
   return draw_view_passes(view, fb, pass);
 }

@@ -22,8 +22,8 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
                       std::optional<glm::vec3> target);
 
 // Draws the model into fb (not cleared here); returns the first draw error, statistics summed.
-DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, ts::Partitioning partitioning,
-                       SubdView view, const SubdCamera& camera, Framebuffer& fb);
+DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors,
+                       ts::Partitioning partitioning, SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
 // The fixed-function state of one pass over a subdivision model: back faces culled (front faces on a
 // left-handed cage), solid or wireframe, depth less_equal (the wireframe pass draws over the shaded

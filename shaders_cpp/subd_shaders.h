@@ -147,7 +147,6 @@ struct SubdHS {
   }
 };
 
-
 // What the domain shader produces for one domain point: the surface point, its unit normal, and where
 // it came from: the base face and the domain location in the face's own frame (a quad's (u,v) from its
 // corner 0; a triangle's barycentric (u,v); for a face of more than four sides, (u,v) in its fan
@@ -184,16 +183,30 @@ struct SubdDS {
     // barycentric of patch corner c - r (corner 0: w, 1: u, 2: v).
     if (triangles) {
       switch (patch.rotation) {
-        case 1: s.u = loc.w, s.v = loc.u; break;
-        case 2: s.u = loc.v, s.v = loc.w; break;
-        default: s.u = loc.u, s.v = loc.v; break;
+        case 1:
+          s.u = loc.w, s.v = loc.u;
+          break;
+        case 2:
+          s.u = loc.v, s.v = loc.w;
+          break;
+        default:
+          s.u = loc.u, s.v = loc.v;
+          break;
       }
     } else {
       switch (patch.rotation) {
-        case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
-        case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
-        case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
-        default: s.u = loc.u, s.v = loc.v; break;
+        case 1:
+          s.u = 1.0f - loc.v, s.v = loc.u;
+          break;
+        case 2:
+          s.u = 1.0f - loc.u, s.v = 1.0f - loc.v;
+          break;
+        case 3:
+          s.u = loc.v, s.v = 1.0f - loc.u;
+          break;
+        default:
+          s.u = loc.u, s.v = loc.v;
+          break;
       }
     }
     PatchPoint p;
@@ -210,7 +223,8 @@ struct SubdDS {
         std::array<glm::vec3, 16> b;
         std::array<glm::vec3, 12> du, dv;
         for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
-        for (int i = 0; i < 12; ++i) du[std::size_t(i)] = cp[std::size_t(i)].du, dv[std::size_t(i)] = cp[std::size_t(i)].dv;
+        for (int i = 0; i < 12; ++i)
+          du[std::size_t(i)] = cp[std::size_t(i)].du, dv[std::size_t(i)] = cp[std::size_t(i)].dv;
         p = bezier_patch(b, loc.u, loc.v);
         acc_tangents(du, dv, loc.u, loc.v, p.du, p.dv);
         break;
@@ -247,9 +261,10 @@ struct SubdDS {
         break;
       }
       case PatchKind::exact: {
-        const SurfacePoint l = !triangles                  ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
-                               : limit->face_size(patch.face) == 3 ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
-                                                                  : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
+        const SurfacePoint l = !triangles ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
+                               : limit->face_size(patch.face) == 3
+                                   ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
+                                   : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
         s.position = positive_zero(l.position);
         s.normal = l.normal;
         s.du = l.du, s.dv = l.dv;

@@ -19,21 +19,21 @@ TorusScene make_torus_scene(int width, int height) {
     for (int j = 0; j < N; ++j) {
       const double a = 2 * pi * i / M, b = 2 * pi * j / N;
       cage.emplace_back(float((1 + 0.4 * std::cos(b)) * std::cos(a)), float((1 + 0.4 * std::cos(b)) * std::sin(a)),
-                          float(0.4 * std::sin(b)));
+                        float(0.4 * std::sin(b)));
     }
   indices.reserve(M * N * 16);
   for (int i = 0; i < M; ++i)
     for (int j = 0; j < N; ++j)
       for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c)
-          indices.push_back(std::uint32_t(((i + c - 1 + M) % M) * N + (j + r - 1 + N) % N));
+        for (int c = 0; c < 4; ++c) indices.push_back(std::uint32_t(((i + c - 1 + M) % M) * N + (j + r - 1 + N) % N));
 
   std::vector<float> texels(std::size_t(T) * T);
   for (int y = 0; y < T; ++y)
     for (int x = 0; x < T; ++x) {
       const double u = (x + 0.5) / T, v = (y + 0.5) / T;
       texels[std::size_t(y) * T + std::size_t(x)] =
-          float(0.5 + 0.25 * std::sin(2 * pi * 8 * u) * std::sin(2 * pi * 8 * v) + 0.25 * std::sin(2 * pi * (37 * u + 23 * v)));
+          float(0.5 + 0.25 * std::sin(2 * pi * 8 * u) * std::sin(2 * pi * 8 * v) +
+                0.25 * std::sin(2 * pi * (37 * u + 23 * v)));
     }
   std::string error;
   // The sizes above are valid by construction, so create() cannot fail.
@@ -57,12 +57,25 @@ TorusScene make_torus_scene(int width, int height) {
   cross(f, up, sv);
   normalize(sv);
   cross(sv, f, uv);
-  const double view[16] = {sv[0], uv[0], -f[0], 0, sv[1], uv[1], -f[1], 0, sv[2], uv[2], -f[2], 0,
+  const double view[16] = {sv[0],
+                           uv[0],
+                           -f[0],
+                           0,
+                           sv[1],
+                           uv[1],
+                           -f[1],
+                           0,
+                           sv[2],
+                           uv[2],
+                           -f[2],
+                           0,
                            -(sv[0] * eye[0] + sv[1] * eye[1] + sv[2] * eye[2]),
                            -(uv[0] * eye[0] + uv[1] * eye[1] + uv[2] * eye[2]),
-                           (f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2]), 1};
+                           (f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2]),
+                           1};
   const double fy = 1.0 / std::tan(pi / 8), aspect = double(width) / height, zn = 0.1, zf = 10;
-  const double proj[16] = {fy / aspect, 0, 0, 0, 0, fy, 0, 0, 0, 0, (zf + zn) / (zn - zf), -1, 0, 0, 2 * zf * zn / (zn - zf), 0};
+  const double proj[16] = {
+      fy / aspect, 0, 0, 0, 0, fy, 0, 0, 0, 0, (zf + zn) / (zn - zf), -1, 0, 0, 2 * zf * zn / (zn - zf), 0};
   for (int c = 0; c < 4; ++c) {
     double col[4];
     for (int r = 0; r < 4; ++r) {
@@ -173,7 +186,8 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     for (std::size_t half = 0; half < kLanes; half += 4) {
       std::array<glm::vec2, 4> st;
       for (std::size_t k = 0; k < 4; ++k)
-        st[k] = glm::vec2((float(pi) + u[half + k]) / float(kTorusColumns), (float(pj) + v[half + k]) / float(kTorusRows));
+        st[k] =
+            glm::vec2((float(pi) + u[half + k]) / float(kTorusColumns), (float(pj) + v[half + k]) / float(kTorusRows));
       std::array<glm::vec4, 4> texels;
       height->sample_level4(sampler, st, 0.0f, texels);
       for (std::size_t k = 0; k < 4; ++k) h[half + k] = texels[k].x;

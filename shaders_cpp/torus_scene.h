@@ -26,10 +26,10 @@ inline constexpr int kTorusRows = 32;     // around the tube (j, v)
 inline constexpr int kTorusTextureSize = 1024;
 
 struct TorusScene {
-  std::vector<glm::vec3> cage;          // vertex (i, j) at i * 32 + j
-  std::vector<std::uint32_t> indices;   // 16 per patch, patch (i, j) at i * 32 + j
-  Texture2D height;                     // R32F, no mips
-  glm::mat4 view_projection{1.0f};      // D3D clip space (0 <= z <= w)
+  std::vector<glm::vec3> cage;         // vertex (i, j) at i * 32 + j
+  std::vector<std::uint32_t> indices;  // 16 per patch, patch (i, j) at i * 32 + j
+  Texture2D height;                    // R32F, no mips
+  glm::mat4 view_projection{1.0f};     // D3D clip space (0 <= z <= w)
 };
 
 // Builds the cage, the index buffer, the height texture and the camera for a width x height target.

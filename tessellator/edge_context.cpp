@@ -32,7 +32,8 @@ EdgeContext make_edge_context(Fxp factor, Parity parity) {
   if (ceil_half == floor_half) {
     c.split_point = c.num_half_points + 1;  // no fraction: no point is splitting; never matched
   } else if (odd) {
-    c.split_point = floor_half == kFxpOne ? 0 : (remove_msb(static_cast<int>(floor_half >> kFxpFractionBits) - 1) << 1) + 1;
+    c.split_point =
+        floor_half == kFxpOne ? 0 : (remove_msb(static_cast<int>(floor_half >> kFxpFractionBits) - 1) << 1) + 1;
   } else {
     c.split_point = (remove_msb(static_cast<int>(floor_half >> kFxpFractionBits)) << 1) + 1;
   }

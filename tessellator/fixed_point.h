@@ -68,8 +68,8 @@ constexpr Fxp float_to_fixed(float input) {
   return mantissa >> extra_bits;
 }
 static_assert(float_to_fixed(1.0f) == kFxpOne && float_to_fixed(-0.0f) == 0 && float_to_fixed(0.5f) == 0x8000);
-static_assert(float_to_fixed(3.0f + 1.0f / 131072.0f) == 3 * kFxpOne);           // tie -> even
-static_assert(float_to_fixed(3.0f + 3.0f / 131072.0f) == 3 * kFxpOne + 2);       // tie -> even, upwards
+static_assert(float_to_fixed(3.0f + 1.0f / 131072.0f) == 3 * kFxpOne);      // tie -> even
+static_assert(float_to_fixed(3.0f + 3.0f / 131072.0f) == 3 * kFxpOne + 2);  // tie -> even, upwards
 
 // Exact: both terms are representable and their sum has at most 24 significant bits for values <= 1.
 constexpr float fixed_to_float(Fxp x) {

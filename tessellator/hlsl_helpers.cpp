@@ -21,9 +21,12 @@ Parity inside_parity(float rounded, Partitioning p) {
 
 float reduce(Reduction r, float a, float b) {
   switch (r) {
-    case Reduction::min: return d3d_fmin(a, b);
-    case Reduction::max: return d3d_fmax(a, b);
-    case Reduction::average: break;
+    case Reduction::min:
+      return d3d_fmin(a, b);
+    case Reduction::max:
+      return d3d_fmax(a, b);
+    case Reduction::average:
+      break;
   }
   return (a + b) / 2;
 }
@@ -37,9 +40,12 @@ float anti_pop(Reduction r, float reduced_max, float reduced_average) {
 
 std::string_view to_string(Reduction r) {
   switch (r) {
-    case Reduction::min: return "min";
-    case Reduction::max: return "max";
-    case Reduction::average: return "average";
+    case Reduction::min:
+      return "min";
+    case Reduction::max:
+      return "max";
+    case Reduction::average:
+      return "average";
   }
   return "?";
 }
@@ -71,15 +77,19 @@ float round_factor(float x, Partitioning p) {
 
 float clamp_factor(float x, Partitioning p) {
   switch (p) {
-    case Partitioning::fractional_odd: return d3d_fmin(kMaxOddTessFactor, d3d_fmax(x, kMinOddTessFactor));
-    case Partitioning::fractional_even: return d3d_fmin(kMaxEvenTessFactor, d3d_fmax(x, kMinEvenTessFactor));
+    case Partitioning::fractional_odd:
+      return d3d_fmin(kMaxOddTessFactor, d3d_fmax(x, kMinOddTessFactor));
+    case Partitioning::fractional_even:
+      return d3d_fmin(kMaxEvenTessFactor, d3d_fmax(x, kMinEvenTessFactor));
     case Partitioning::integer:
-    case Partitioning::pow2: break;
+    case Partitioning::pow2:
+      break;
   }
   return d3d_fmin(kMaxEvenTessFactor, d3d_fmax(x, kMinOddTessFactor));
 }
 
-QuadFactors process_quad(Partitioning p, Reduction r, QuadReductionAxis axis, const QuadFactors& in, QuadFactors* unrounded) {
+QuadFactors process_quad(Partitioning p, Reduction r, QuadReductionAxis axis, const QuadFactors& in,
+                         QuadFactors* unrounded) {
   if (!(in.Ueq0 > 0) || !(in.Veq0 > 0) || !(in.Ueq1 > 0) || !(in.Veq1 > 0)) {
     if (unrounded) *unrounded = {in.Ueq0, in.Veq0, in.Ueq1, in.Veq1, 0, 0};
     return {0, 0, 0, 0, 0, 0};  // culled: the tessellator will cull on these
@@ -113,20 +123,29 @@ QuadFactors process_quad(Partitioning p, Reduction r, QuadReductionAxis axis, co
   if (axis == QuadReductionAxis::one_axis) {
     float reduced;
     switch (r) {
-      case Reduction::min: reduced = d3d_fmin(d3d_fmin(Veq0, Veq1), d3d_fmin(Ueq0, Ueq1)); break;
-      case Reduction::max: reduced = d3d_fmax(d3d_fmax(Veq0, Veq1), d3d_fmax(Ueq0, Ueq1)); break;
-      default: reduced = (Veq0 + Veq1 + Ueq0 + Ueq1) / 4; break;
+      case Reduction::min:
+        reduced = d3d_fmin(d3d_fmin(Veq0, Veq1), d3d_fmin(Ueq0, Ueq1));
+        break;
+      case Reduction::max:
+        reduced = d3d_fmax(d3d_fmax(Veq0, Veq1), d3d_fmax(Ueq0, Ueq1));
+        break;
+      default:
+        reduced = (Veq0 + Veq1 + Ueq0 + Ueq1) / 4;
+        break;
     }
     finish(0, reduced * clamp_scale(in.insideU));
     if (parity[0] == Parity::odd && inside[0] < kThree)
-      finish_anti_pop(0, anti_pop(r, d3d_fmax(d3d_fmax(Veq0, Veq1), d3d_fmax(Ueq0, Ueq1)), (Veq0 + Veq1 + Ueq0 + Ueq1) / 4));
+      finish_anti_pop(
+          0, anti_pop(r, d3d_fmax(d3d_fmax(Veq0, Veq1), d3d_fmax(Ueq0, Ueq1)), (Veq0 + Veq1 + Ueq0 + Ueq1) / 4));
     inside[1] = inside[0];
     raw.insideV = raw.insideU;
   } else {
     finish(0, reduce(r, Veq0, Veq1) * clamp_scale(in.insideU));
     finish(1, reduce(r, Ueq0, Ueq1) * clamp_scale(in.insideV));
-    if (parity[0] == Parity::odd && inside[0] < kThree) finish_anti_pop(0, anti_pop(r, d3d_fmax(Veq0, Veq1), (Veq0 + Veq1) / 2));
-    if (parity[1] == Parity::odd && inside[1] < kThree) finish_anti_pop(1, anti_pop(r, d3d_fmax(Ueq0, Ueq1), (Ueq0 + Ueq1) / 2));
+    if (parity[0] == Parity::odd && inside[0] < kThree)
+      finish_anti_pop(0, anti_pop(r, d3d_fmax(Veq0, Veq1), (Veq0 + Veq1) / 2));
+    if (parity[1] == Parity::odd && inside[1] < kThree)
+      finish_anti_pop(1, anti_pop(r, d3d_fmax(Ueq0, Ueq1), (Ueq0 + Ueq1) / 2));
     // The picture frame must come in on all sides as far as the side with the smaller factor.
     for (int a = 0; a < 2; ++a) {
       const int other = (a + 1) & 1;
@@ -147,16 +166,23 @@ TriFactors process_tri(Partitioning p, Reduction r, const TriFactors& in, TriFac
     if (unrounded) *unrounded = {in.Ueq0, in.Veq0, in.Weq0, 0};
     return {0, 0, 0, 0};
   }
-  const float Ueq0 = cleanup_edge_factor(in.Ueq0), Veq0 = cleanup_edge_factor(in.Veq0), Weq0 = cleanup_edge_factor(in.Weq0);
+  const float Ueq0 = cleanup_edge_factor(in.Ueq0), Veq0 = cleanup_edge_factor(in.Veq0),
+              Weq0 = cleanup_edge_factor(in.Weq0);
   TriFactors raw{Ueq0, Veq0, Weq0, 0};
   auto edge = [&](float x) { return is_integer_like(p) ? clamp_factor(round_factor(x, p), p) : clamp_factor(x, p); };
   TriFactors out{edge(Ueq0), edge(Veq0), edge(Weq0), 0};
 
   float inside;
   switch (r) {
-    case Reduction::min: inside = d3d_fmin(d3d_fmin(Ueq0, Veq0), Weq0); break;
-    case Reduction::max: inside = d3d_fmax(d3d_fmax(Ueq0, Veq0), Weq0); break;
-    default: inside = (Ueq0 + Veq0 + Weq0) / 3; break;
+    case Reduction::min:
+      inside = d3d_fmin(d3d_fmin(Ueq0, Veq0), Weq0);
+      break;
+    case Reduction::max:
+      inside = d3d_fmax(d3d_fmax(Ueq0, Veq0), Weq0);
+      break;
+    default:
+      inside = (Ueq0 + Veq0 + Weq0) / 3;
+      break;
   }
   inside = clamp_factor(inside * d3d_fmin(1.0f, clamp_scale(in.inside)), p);
   raw.inside = inside;

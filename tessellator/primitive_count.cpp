@@ -29,8 +29,10 @@ std::size_t quad_points(const ProcessedFactors& p) {
   const int nu = p.inside[0].num_points, nv = p.inside[1].num_points;
   const int rings = std::min(nu, nv) >> 1;
   for (int ring = 1; ring < rings; ++ring) count += std::size_t(2 * (nu - 1 - 2 * ring) + 2 * (nv - 1 - 2 * ring));
-  if (nu > nv && p.inside[1].parity == Parity::even) count += std::size_t(nu - 2 * rings);
-  else if (nv >= nu && p.inside[0].parity == Parity::even) count += std::size_t(nv - 2 * rings);
+  if (nu > nv && p.inside[1].parity == Parity::even)
+    count += std::size_t(nu - 2 * rings);
+  else if (nv >= nu && p.inside[0].parity == Parity::even)
+    count += std::size_t(nv - 2 * rings);
   return count;
 }
 
@@ -42,8 +44,10 @@ std::size_t quad_triangles(const ProcessedFactors& p) {
   for (int ring = 1; ring < rings; ++ring)
     for (int edge = 0; edge < 4; ++edge) {
       const int along = (edge + 1) & 1;
-      if (ring == 1) count += transition_triangles(p.inside[std::size_t(along)], p.outside[std::size_t(edge)]);
-      else count += std::size_t(2 * (n[std::size_t(along)] - 2 * ring));  // a trapezoid: 2 per inside point
+      if (ring == 1)
+        count += transition_triangles(p.inside[std::size_t(along)], p.outside[std::size_t(edge)]);
+      else
+        count += std::size_t(2 * (n[std::size_t(along)] - 2 * ring));  // a trapezoid: 2 per inside point
     }
   return count + std::size_t(2 * detail::quad_middle_strip(p).quads);
 }
@@ -63,7 +67,8 @@ std::size_t tri_triangles(const ProcessedFactors& p) {
   std::size_t count = 0;
   for (int ring = 1; ring < rings; ++ring)
     for (int edge = 0; edge < 3; ++edge)
-      count += ring == 1 ? transition_triangles(p.inside[0], p.outside[std::size_t(edge)]) : std::size_t(2 * (n - 2 * ring));
+      count +=
+          ring == 1 ? transition_triangles(p.inside[0], p.outside[std::size_t(edge)]) : std::size_t(2 * (n - 2 * ring));
   return count + (p.inside[0].parity == Parity::odd ? 1 : 0);
 }
 
@@ -77,10 +82,13 @@ std::size_t primitive_count(const ProcessedFactors& p, OutputPrimitive output) {
   }
   const std::size_t points = p.domain == Domain::quad ? quad_points(p) : tri_points(p);
   switch (output) {
-    case OutputPrimitive::point: return points;
-    case OutputPrimitive::line: return points - 1;  // the points in order, as one line list
+    case OutputPrimitive::point:
+      return points;
+    case OutputPrimitive::line:
+      return points - 1;  // the points in order, as one line list
     case OutputPrimitive::triangle_cw:
-    case OutputPrimitive::triangle_ccw: break;
+    case OutputPrimitive::triangle_ccw:
+      break;
   }
   return p.domain == Domain::quad ? quad_triangles(p) : tri_triangles(p);
 }

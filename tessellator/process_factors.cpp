@@ -23,10 +23,13 @@ struct Bounds {
 
 Bounds clamp_bounds(Partitioning p) {
   switch (p) {
-    case Partitioning::fractional_even: return {kMinEvenTessFactor, kMaxEvenTessFactor};
-    case Partitioning::fractional_odd: return {kMinOddTessFactor, kMaxOddTessFactor};
+    case Partitioning::fractional_even:
+      return {kMinEvenTessFactor, kMaxEvenTessFactor};
+    case Partitioning::fractional_odd:
+      return {kMinOddTessFactor, kMaxOddTessFactor};
     case Partitioning::integer:
-    case Partitioning::pow2: break;
+    case Partitioning::pow2:
+      break;
   }
   return {kMinOddTessFactor, kMaxEvenTessFactor};
 }
@@ -71,8 +74,9 @@ ProcessedFactors process_quad_factors(Partitioning partitioning, const QuadFacto
     return r;
   }
   const Bounds b = clamp_bounds(partitioning);
-  const std::array<float, 4> outside = {clamp_and_round(f.Ueq0, b, partitioning), clamp_and_round(f.Veq0, b, partitioning),
-                                        clamp_and_round(f.Ueq1, b, partitioning), clamp_and_round(f.Veq1, b, partitioning)};
+  const std::array<float, 4> outside = {
+      clamp_and_round(f.Ueq0, b, partitioning), clamp_and_round(f.Veq0, b, partitioning),
+      clamp_and_round(f.Ueq1, b, partitioning), clamp_and_round(f.Veq1, b, partitioning)};
   Bounds inside_bounds = b;
   if (partitioning == Partitioning::fractional_odd) {
     // If anything will tessellate beyond 1, force the inside above 1 so a "picture frame" ring
@@ -100,7 +104,8 @@ ProcessedFactors process_quad_factors(Partitioning partitioning, const QuadFacto
     return r;
   }
   for (std::size_t e = 0; e < 4; ++e) r.outside[e] = context(outside[e], r.outside[e].parity);
-  for (std::size_t a = 0; a < 2; ++a) r.inside[a] = context(inside[a], r.inside[a].parity, min_inside_points(r.inside[a].parity));
+  for (std::size_t a = 0; a < 2; ++a)
+    r.inside[a] = context(inside[a], r.inside[a].parity, min_inside_points(r.inside[a].parity));
   return r;
 }
 
@@ -112,7 +117,8 @@ ProcessedFactors process_tri_factors(Partitioning partitioning, const TriFactors
     return r;
   }
   const Bounds b = clamp_bounds(partitioning);
-  const std::array<float, 3> outside = {clamp_and_round(f.Ueq0, b, partitioning), clamp_and_round(f.Veq0, b, partitioning),
+  const std::array<float, 3> outside = {clamp_and_round(f.Ueq0, b, partitioning),
+                                        clamp_and_round(f.Veq0, b, partitioning),
                                         clamp_and_round(f.Weq0, b, partitioning)};
   Bounds inside_bounds = b;
   if (partitioning == Partitioning::fractional_odd) {
@@ -160,9 +166,12 @@ ProcessedFactors process_isoline_factors(Partitioning partitioning, const Isolin
 ProcessedFactors process_factors(Partitioning partitioning, const FactorSet& f) {
   const auto& x = f.values;
   switch (f.domain) {
-    case Domain::quad: return process_quad_factors(partitioning, {x[0], x[1], x[2], x[3], x[4], x[5]});
-    case Domain::tri: return process_tri_factors(partitioning, {x[0], x[1], x[2], x[3]});
-    case Domain::isoline: break;
+    case Domain::quad:
+      return process_quad_factors(partitioning, {x[0], x[1], x[2], x[3], x[4], x[5]});
+    case Domain::tri:
+      return process_tri_factors(partitioning, {x[0], x[1], x[2], x[3]});
+    case Domain::isoline:
+      break;
   }
   return process_isoline_factors(partitioning, {x[0], x[1]});
 }

@@ -24,8 +24,10 @@ void quad_generate_points(const ProcessedFactors& p, std::vector<DomainPoint>& p
     const bool forward = edge == 1 || edge == 2;
     for (int i = 0; i < last; ++i) {
       const Fxp t = place_point(e, forward ? i : last - i);
-      if (edge & 1) points.push_back(make_point(t, edge == 3 ? kFxpOne : 0));
-      else points.push_back(make_point(edge == 2 ? kFxpOne : 0, t));
+      if (edge & 1)
+        points.push_back(make_point(t, edge == 3 ? kFxpOne : 0));
+      else
+        points.push_back(make_point(edge == 2 ? kFxpOne : 0, t));
     }
   }
 
@@ -38,7 +40,8 @@ void quad_generate_points(const ProcessedFactors& p, std::vector<DomainPoint>& p
     for (int edge = 0; edge < 4; ++edge) {
       const int across = edge & 1;       // the axis held constant along this side
       const int along = (edge + 1) & 1;  // the axis that varies
-      const Fxp perp = place_point(p.inside[static_cast<std::size_t>(across)], edge < 2 ? first : last[static_cast<std::size_t>(across)]);
+      const Fxp perp = place_point(p.inside[static_cast<std::size_t>(across)],
+                                   edge < 2 ? first : last[static_cast<std::size_t>(across)]);
       const EdgeContext& e = p.inside[static_cast<std::size_t>(along)];
       const int end = last[static_cast<std::size_t>(along)];
       const bool forward = edge == 1 || edge == 2;
@@ -51,9 +54,11 @@ void quad_generate_points(const ProcessedFactors& p, std::vector<DomainPoint>& p
 
   // Even parity on the narrower axis leaves a centre row rather than a ring.
   if (n[U] > n[V] && p.inside[V].parity == Parity::even) {
-    for (int i = rings; i <= n[U] - 1 - rings; ++i) points.push_back(make_point(place_point(p.inside[U], i), kFxpOneHalf));
+    for (int i = rings; i <= n[U] - 1 - rings; ++i)
+      points.push_back(make_point(place_point(p.inside[U], i), kFxpOneHalf));
   } else if (n[V] >= n[U] && p.inside[U].parity == Parity::even) {
-    for (int i = n[V] - 1 - rings; i >= rings; --i) points.push_back(make_point(kFxpOneHalf, place_point(p.inside[V], i)));
+    for (int i = n[V] - 1 - rings; i >= rings; --i)
+      points.push_back(make_point(kFxpOneHalf, place_point(p.inside[V], i)));
   }
 }
 
@@ -90,7 +95,8 @@ void quad_generate_connectivity(const ProcessedFactors& p, bool ccw, std::vector
       if (ring == 1) {
         const EdgeContext& in_ctx = p.inside[static_cast<std::size_t>(along)];
         stitch_transition(out, inside, in_ctx.num_half_points, in_ctx.parity, outside,
-                          outer[static_cast<std::size_t>(edge)]->num_half_points, outer[static_cast<std::size_t>(edge)]->parity);
+                          outer[static_cast<std::size_t>(edge)]->num_half_points,
+                          outer[static_cast<std::size_t>(edge)]->parity);
       } else {
         stitch_regular(out, /*trapezoid=*/true, Diagonals::mirrored, ni, inside, outside);
       }
@@ -99,7 +105,8 @@ void quad_generate_connectivity(const ProcessedFactors& p, bool ccw, std::vector
       outer_points[static_cast<std::size_t>(edge)] = ni;
     }
     if (ring == 1)
-      for (int edge = 0; edge < 4; ++edge) outer[static_cast<std::size_t>(edge)] = &p.inside[static_cast<std::size_t>(edge & 1)];
+      for (int edge = 0; edge < 4; ++edge)
+        outer[static_cast<std::size_t>(edge)] = &p.inside[static_cast<std::size_t>(edge & 1)];
   }
 
   // Odd parity on the narrower axis leaves a strip of quads in the middle (the spec's "Z").
@@ -112,7 +119,8 @@ void quad_generate_connectivity(const ProcessedFactors& p, bool ccw, std::vector
     const Row inside{o + 2 * quads + 2, -1, 0, o};
     stitch_regular(out, false, Diagonals::inside_to_outside, quads + 1, inside, Row{o + 1});
   } else if (quads > 0) {
-    const Diagonals d = p.inside[V].parity == Parity::even ? Diagonals::inside_to_outside : Diagonals::inside_to_outside_except_middle;
+    const Diagonals d =
+        p.inside[V].parity == Parity::even ? Diagonals::inside_to_outside : Diagonals::inside_to_outside_except_middle;
     stitch_regular(out, false, d, quads + 1, Row{o + 2 * quads + 1, -1}, Row{o});
   }
 }

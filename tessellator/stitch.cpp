@@ -4,7 +4,8 @@
 
 namespace tessera::ts::detail {
 
-void stitch_regular(TriangleWriter& out, bool trapezoid, Diagonals diagonals, int inside_points, Row inside, Row outside) {
+void stitch_regular(TriangleWriter& out, bool trapezoid, Diagonals diagonals, int inside_points, Row inside,
+                    Row outside) {
   int in = 0, o = 0;
   // Each step emits the quad between inside positions in, in+1 and outside positions o, o+1.
   auto quad_outside_first = [&] {  // diagonal from the outside point forward to the inside point
@@ -54,9 +55,8 @@ namespace {
 // Where the i-th point to appear on a half-edge ends up when the half-edge is fully tessellated
 // (32 segments), in ruler-function split order. A row advances past table entry i once its own
 // half-edge has more points than that position.
-constexpr std::array<int, 33> kFinalPointPosition = {0,  32, 16, 8,  17, 4,  18, 9,  19, 2,  20,
-                                                     10, 21, 5,  22, 11, 23, 1,  24, 12, 25, 6,
-                                                     26, 13, 27, 3,  28, 14, 29, 7,  30, 15, 31};
+constexpr std::array<int, 33> kFinalPointPosition = {0, 32, 16, 8,  17, 4,  18, 9,  19, 2,  20, 10, 21, 5,  22, 11, 23,
+                                                     1, 24, 12, 25, 6,  26, 13, 27, 3,  28, 14, 29, 7,  30, 15, 31};
 
 }  // namespace
 

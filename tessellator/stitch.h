@@ -16,8 +16,8 @@ namespace tessera::ts::detail {
 
 struct Row {
   int base = 0;
-  int step = 1;       // +1 forward, -1 backward through the point array
-  int wrap_at = -1;   // this position is replaced by wrap_to (the ring's first point), -1: none
+  int step = 1;      // +1 forward, -1 backward through the point array
+  int wrap_at = -1;  // this position is replaced by wrap_to (the ring's first point), -1: none
   int wrap_to = 0;
   int operator()(int position) const { return position == wrap_at ? wrap_to : base + step * position; }
 };
@@ -42,7 +42,8 @@ enum class Diagonals { inside_to_outside, inside_to_outside_except_middle, mirro
 
 // Two rows whose point counts differ by 0 (a strip) or by 2 (a trapezoid: the outside row has one
 // extra point at each end). `inside_points` is the inside row's point count.
-void stitch_regular(TriangleWriter& out, bool trapezoid, Diagonals diagonals, int inside_points, Row inside, Row outside);
+void stitch_regular(TriangleWriter& out, bool trapezoid, Diagonals diagonals, int inside_points, Row inside,
+                    Row outside);
 
 // Two rows with arbitrary factors and parities (an outer edge and the first inner ring): points
 // advance in ruler-function split order from both ends towards the middle.

@@ -75,13 +75,13 @@ struct IsolineFactors {
 // What one factor becomes after processing: everything point placement along that edge needs.
 // (The reference's TESS_FACTOR_CONTEXT plus the parity that its hidden m_parity used to carry.)
 struct EdgeContext {
-  Fxp factor = 0;                 // clamped, rounded (integer) factor in 16.16
+  Fxp factor = 0;  // clamped, rounded (integer) factor in 16.16
   Parity parity = Parity::even;
-  int num_points = 0;             // points along the edge, both ends included
-  int num_half_points = 0;        // points on one half, the midpoint excluded
-  int split_point = 0;            // the point that splits off its parent as the factor grows (ruler function)
-  Fxp half_fraction = 0;          // fractional part of factor/2: how far the split point has moved
-  Fxp inv_floor_segments = 0;     // reciprocal-table entries for the floor and ceil segment counts
+  int num_points = 0;          // points along the edge, both ends included
+  int num_half_points = 0;     // points on one half, the midpoint excluded
+  int split_point = 0;         // the point that splits off its parent as the factor grows (ruler function)
+  Fxp half_fraction = 0;       // fractional part of factor/2: how far the split point has moved
+  Fxp inv_floor_segments = 0;  // reciprocal-table entries for the floor and ceil segment counts
   Fxp inv_ceil_segments = 0;
   friend bool operator==(const EdgeContext&, const EdgeContext&) = default;
 };
@@ -90,9 +90,10 @@ struct EdgeContext {
 struct ProcessedFactors {
   Domain domain = Domain::quad;
   bool culled = false;
-  bool minimal = false;            // every factor is exactly 1 (integer/odd): the reference's shortcut
-  std::array<EdgeContext, 4> outside{};  // quad: Ueq0 Veq0 Ueq1 Veq1; tri: Ueq0 Veq0 Weq0; isoline: [0] density, [1] detail
-  std::array<EdgeContext, 2> inside{};   // quad: U V; tri: [0]
+  bool minimal = false;  // every factor is exactly 1 (integer/odd): the reference's shortcut
+  std::array<EdgeContext, 4>
+      outside{};  // quad: Ueq0 Veq0 Ueq1 Veq1; tri: Ueq0 Veq0 Weq0; isoline: [0] density, [1] detail
+  std::array<EdgeContext, 2> inside{};  // quad: U V; tri: [0]
   friend bool operator==(const ProcessedFactors&, const ProcessedFactors&) = default;
 };
 

@@ -17,8 +17,10 @@ void tri_generate_points(const ProcessedFactors& p, std::vector<DomainPoint>& po
     const int last = e.num_points - 1;
     for (int i = 0; i < last; ++i) {
       const Fxp t = place_point(e, edge == 1 ? i : last - i);
-      if (edge == 0) points.push_back(make_point(0, t));
-      else points.push_back(make_point(t, edge == 2 ? kFxpOne - t : 0));
+      if (edge == 0)
+        points.push_back(make_point(0, t));
+      else
+        points.push_back(make_point(t, edge == 2 ? kFxpOne - t : 0));
     }
   }
 
@@ -34,9 +36,15 @@ void tri_generate_points(const ProcessedFactors& p, std::vector<DomainPoint>& po
       for (int i = first; i < end; ++i) {
         const Fxp t = place_point(in, edge == 1 ? i : end - (i - first));
         switch (edge) {
-          case 0: points.push_back(make_point(perp, t - shift)); break;
-          case 1: points.push_back(make_point(t - shift, perp)); break;
-          default: points.push_back(make_point(t - shift, kFxpOne - (t - shift) - perp)); break;
+          case 0:
+            points.push_back(make_point(perp, t - shift));
+            break;
+          case 1:
+            points.push_back(make_point(t - shift, perp));
+            break;
+          default:
+            points.push_back(make_point(t - shift, kFxpOne - (t - shift) - perp));
+            break;
         }
       }
     }
@@ -63,7 +71,8 @@ void tri_generate_connectivity(const ProcessedFactors& p, bool ccw, std::vector<
         outside.wrap_at = no - 1, outside.wrap_to = ring_outside_start;
       }
       if (ring == 1) {
-        stitch_transition(out, inside, in.num_half_points, in.parity, outside, outer[static_cast<std::size_t>(edge)]->num_half_points,
+        stitch_transition(out, inside, in.num_half_points, in.parity, outside,
+                          outer[static_cast<std::size_t>(edge)]->num_half_points,
                           outer[static_cast<std::size_t>(edge)]->parity);
       } else {
         stitch_regular(out, /*trapezoid=*/true, Diagonals::mirrored, ni, inside, outside);

@@ -34,7 +34,8 @@ inline std::string slurp(const std::filesystem::path& p) {
 // Runs `tessera ARGS` through the shell (args are shell words).
 inline CliResult run_cli(const std::string& args) {
   const auto dir = cli_temp_dir();
-  const std::string cmd = std::string(TESSERA_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+  const std::string cmd =
+      std::string(TESSERA_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
 }

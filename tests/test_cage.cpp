@@ -62,7 +62,9 @@ TEST_CASE("OBJ faces: v, v/vt, v/vt/vn and v//vn forms", "[cage]") {
 }
 
 TEST_CASE("OBJ negative indices count back from the last element read", "[cage]") {
-  const Cage c = parse_obj_cage(std::string(kSquare) + "vt 0 0\nvt 1 0\nvt 1 1\nf -4/-3 -3/-2 -2/-1\nv 2 2 0\nvt 2 2\nf -1/-1 -3/-2 -2/-3\n", "neg");
+  const Cage c = parse_obj_cage(
+      std::string(kSquare) + "vt 0 0\nvt 1 0\nvt 1 1\nf -4/-3 -3/-2 -2/-1\nv 2 2 0\nvt 2 2\nf -1/-1 -3/-2 -2/-3\n",
+      "neg");
   CHECK(c.face_vertices == std::vector<int>{0, 1, 2, 4, 2, 3});
   CHECK(c.face_uvs == std::vector<int>{0, 1, 2, 3, 2, 1});
 }
@@ -80,8 +82,7 @@ TEST_CASE("OBJ continuation lines, comments, CRLF and ignored statements", "[cag
 }
 
 TEST_CASE("OBJ tags: creases, corners, holes and the boundary options", "[cage][tags]") {
-  const std::string grid =
-      "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 5 4\nf 2 3 6 5\n";
+  const std::string grid = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 5 4\nf 2 3 6 5\n";
   const Cage c = parse_obj_cage(grid +
                                     "t crease 2/1/0 1 4 2.5\n"
                                     "t crease 4/2/0 0 1 1 2 1.0 10\n"
@@ -102,7 +103,8 @@ TEST_CASE("OBJ tags: creases, corners, holes and the boundary options", "[cage][
   CHECK((t.creases[2].v0 == 1 && t.creases[2].v1 == 2 && t.creases[2].sharpness == 10.0f));
   CHECK((t.creases[3].sharpness == 3.0f && t.creases[4].v0 == 4 && t.creases[4].sharpness == 3.0f));
   REQUIRE(t.corners.size() == 3);
-  CHECK((t.corners[0].vertex == 0 && t.corners[0].sharpness == 4.0f && t.corners[1].vertex == 2 && t.corners[2].sharpness == 0.5f));
+  CHECK((t.corners[0].vertex == 0 && t.corners[0].sharpness == 4.0f && t.corners[1].vertex == 2 &&
+         t.corners[2].sharpness == 0.5f));
   CHECK(t.holes == std::vector<int>{1});
   CHECK(t.boundary == BoundaryInterpolation::edge_and_corner);
   CHECK(t.crease_method == CreaseMethod::chaikin);
@@ -118,11 +120,13 @@ TEST_CASE("OBJ tags: creases, corners, holes and the boundary options", "[cage][
   CHECK_FALSE(d.tags.smooth_triangles);
   CHECK(d.tags.fvar_boundary == 1);
   CHECK(parse_obj_cage(grid + "t interpolateboundary 1/0/0 0\n", "x").tags.boundary == BoundaryInterpolation::none);
-  CHECK(parse_obj_cage(grid + "t interpolateboundary 1/0/0 2\n", "x").tags.boundary == BoundaryInterpolation::edge_only);
+  CHECK(parse_obj_cage(grid + "t interpolateboundary 1/0/0 2\n", "x").tags.boundary ==
+        BoundaryInterpolation::edge_only);
 }
 
 TEST_CASE("OBJ unknown tags and statements are ignored with a warning naming the line", "[cage][tags]") {
-  const Cage c = parse_obj_cage(std::string(kSquare) + "f 1 2 3 4\nt vertexedit 4/2/3 1 0 1 0 0.5 1 add P value\nl 1 2\n", "hedit.obj");
+  const Cage c = parse_obj_cage(
+      std::string(kSquare) + "f 1 2 3 4\nt vertexedit 4/2/3 1 0 1 0 0.5 1 add P value\nl 1 2\n", "hedit.obj");
   REQUIRE(c.warnings.size() == 2);
   CHECK(c.warnings[0] == "hedit.obj:6: tag 'vertexedit' is not supported; ignored");
   CHECK(c.warnings[1].find("hedit.obj:7: statement 'l'") == 0);
@@ -144,10 +148,13 @@ TEST_CASE("OBJ malformed input: one line naming the file, line and element", "[c
       {sq + "f 1 2 0\n", "t.obj:5: face 0 has vertex index 0 (OBJ indices start at 1)"},
       {sq + "f 1 2 -5\n", "t.obj:5: face 0 has relative vertex index -5, but only 4 were read so far"},
       {sq + "f 1 2 3a\n", "t.obj:5: bad integer '3a' in vertex"},
-      {sq + "vt 0 0\nf 1/1 2/1 3/2\n", "t.obj:6: face 0 has texture coordinate index 2, but the cage has 1 texture coordinates"},
+      {sq + "vt 0 0\nf 1/1 2/1 3/2\n",
+       "t.obj:6: face 0 has texture coordinate index 2, but the cage has 1 texture coordinates"},
       {sq + "vt 0 0\nf 1/1 2 3/1\n", "t.obj:6: face 0 gives texture coordinates for some corners but not all"},
-      {sq + "vt 0 0\nf 1/1 2/1 3/1\nf 1 3 4\n", "t.obj:7: face 1 has no texture coordinates, but face 0 (line 6) has them"},
-      {sq + "vt 0 0\nf 1 2 3\nf 1/1 3/1 4/1\n", "t.obj:7: face 1 has texture coordinates, but face 0 (line 6) has none"},
+      {sq + "vt 0 0\nf 1/1 2/1 3/1\nf 1 3 4\n",
+       "t.obj:7: face 1 has no texture coordinates, but face 0 (line 6) has them"},
+      {sq + "vt 0 0\nf 1 2 3\nf 1/1 3/1 4/1\n",
+       "t.obj:7: face 1 has texture coordinates, but face 0 (line 6) has none"},
       {sq + "f 1/1/1/1 2 3\n", "t.obj:5: face 0 corner '1/1/1/1' has too many '/'"},
       {sq + "f 1 2 3 4\nt crease 2/1/0 0 9 1\n", "t.obj:6: crease names vertex 9, but the cage has 4 vertices"},
       {sq + "f 1 2 3 4\nt crease 3/1/0 0 1 2 1\n", "t.obj:6: crease takes pairs of vertices"},
@@ -156,8 +163,10 @@ TEST_CASE("OBJ malformed input: one line naming the file, line and element", "[c
       {sq + "f 1 2 3 4\nt corner 1/1/0 4 1\n", "t.obj:6: corner names vertex 4, but the cage has 4 vertices"},
       {sq + "f 1 2 3 4\nt hole 1/0/0 1\n", "t.obj:6: hole names face 1, but the cage has 1 faces"},
       {sq + "f 1 2 3 4\nt interpolateboundary 1/0/0 7\n", "t.obj:6: interpolateboundary must be 0, 1 or 2, got 7"},
-      {sq + "f 1 2 3 4\nt creasemethod 0/0/1 sharp\n", "t.obj:6: creasemethod must be 'normal' or 'chaikin', got 'sharp'"},
-      {sq + "f 1 2 3 4\nt smoothtriangles 1/0/0 1\n", "t.obj:6: tag 'smoothtriangles' takes 0/0/1 arguments, got 1/0/0"},
+      {sq + "f 1 2 3 4\nt creasemethod 0/0/1 sharp\n",
+       "t.obj:6: creasemethod must be 'normal' or 'chaikin', got 'sharp'"},
+      {sq + "f 1 2 3 4\nt smoothtriangles 1/0/0 1\n",
+       "t.obj:6: tag 'smoothtriangles' takes 0/0/1 arguments, got 1/0/0"},
       {sq + "f 1 2 3 4\nt hole 1/0\n", "t.obj:6: tag 'hole' has counts '1/0'"},
       {sq + "f 1 2 3 4\nt\n", "t.obj:6: tag needs a name"},
   };

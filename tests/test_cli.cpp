@@ -26,7 +26,9 @@ int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n'
 }  // namespace
 
 TEST_CASE("tessera pattern --json matches the library and round-trips floats exactly", "[cli]") {
-  const auto r = run_cli("pattern --domain tri --partitioning fractional_odd --outer 3.5,2,5.25 --inner 4.75 --output triangle_ccw --json");
+  const auto r = run_cli(
+      "pattern --domain tri --partitioning fractional_odd --outer 3.5,2,5.25 --inner 4.75 --output triangle_ccw "
+      "--json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   ts::Pattern p;
@@ -85,8 +87,9 @@ TEST_CASE("tessera pattern --image writes a picture atomically", "[cli]") {
   const fs::path dir = temp_dir();
   const fs::path png = dir / "pattern.png";
   fs::remove(png);
-  auto r = run_cli("pattern -q --domain quad --partitioning fractional_even --outer 3,6.00005,8.5,2 --inner 5,7 --image " + png.string() +
-                   " --image-size 300");
+  auto r =
+      run_cli("pattern -q --domain quad --partitioning fractional_even --outer 3,6.00005,8.5,2 --inner 5,7 --image " +
+              png.string() + " --image-size 300");
   REQUIRE(r.exit_code == 0);
   auto in = OIIO::ImageInput::open(png.string());
   REQUIRE(in);
@@ -125,8 +128,8 @@ TEST_CASE("tessera oracle-compare reports a malformed dump as bad input", "[cli]
 TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cli][pipeline]") {
   const fs::path dir = temp_dir();
   const fs::path image = dir / "torus.png", stats = dir / "stats.json";
-  const auto r = run_cli("bench torus --factor 3 --resolution 96x54 --frames 2 --threads 2 --json -o " + image.string() +
-                         " --stats " + stats.string());
+  const auto r = run_cli("bench torus --factor 3 --resolution 96x54 --frames 2 --threads 2 --json -o " +
+                         image.string() + " --stats " + stats.string());
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["scene"] == "torus");
@@ -152,9 +155,9 @@ TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cl
 }
 
 TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli][pipeline]") {
-  for (const char* args : {"--resolution 0x10", "--resolution 100000x100000", "--resolution big", "--partitioning bogus",
-                           "--factor nan", "--frames 0", "--threads -3", "--tile-size 7", "--tile-size 2048",
-                           "--chunk-primitives 0", "--rounds 0", "--rounds 101"}) {
+  for (const char* args : {"--resolution 0x10", "--resolution 100000x100000", "--resolution big",
+                           "--partitioning bogus", "--factor nan", "--frames 0", "--threads -3", "--tile-size 7",
+                           "--tile-size 2048", "--chunk-primitives 0", "--rounds 0", "--rounds 101"}) {
     INFO(args);
     const auto r = run_cli(std::string("bench torus --frames 1 ") + args);
     CHECK(r.exit_code == 2);
@@ -174,13 +177,16 @@ TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports
   {
     std::ofstream f(harness);
     f << "#!/bin/sh\n"
-         "echo \"$*\" >> '" << calls.string() << "'\n"
+         "echo \"$*\" >> '"
+      << calls.string()
+      << "'\n"
          "{ printf 'P6\\n%d %d\\n255\\n' \"$2\" \"$3\"; head -c $(($2 * $3 * 3)) /dev/zero; } > \"$6\"\n"
          "echo \"triangles 12288 median_s 0.5 min_s 0.25\"\n";
   }
   fs::permissions(harness, fs::perms::owner_all);
-  const auto r = run_cli("bench torus --factor 2 --resolution 48x32 --frames 2 --rounds 3 --threads 2 --json --llvmpipe " +
-                         harness.string());
+  const auto r =
+      run_cli("bench torus --factor 2 --resolution 48x32 --frames 2 --rounds 3 --threads 2 --json --llvmpipe " +
+              harness.string());
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["rounds"] == 3);
@@ -201,9 +207,10 @@ TEST_CASE("tessera analyze --json describes the monster frog", "[cli][cage]") {
   const auto r = run_cli("analyze " + data("sdk-cages/monsterfrog_mapped_00.obj") + " --json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"vertices", "edges", "faces", "patches", "triangles", "quads", "polygons", "regular_patches", "boundary_patches",
-                          "regular_boundary_patches", "combinations", "combination_histogram", "valence_histogram", "max_valence", "holes",
-                          "creases", "corners", "uv_seam_edges", "warnings"})
+  for (const char* key :
+       {"vertices", "edges", "faces", "patches", "triangles", "quads", "polygons", "regular_patches",
+        "boundary_patches", "regular_boundary_patches", "combinations", "combination_histogram", "valence_histogram",
+        "max_valence", "holes", "creases", "corners", "uv_seam_edges", "warnings"})
     CHECK(j.contains(key));
   CHECK(j["vertices"] == 1308);
   CHECK(j["faces"] == 1292);
@@ -247,7 +254,10 @@ TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[
 TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and checks watertightness", "[cli]") {
   const fs::path ply = temp_dir() / "cube.ply";
   const std::string cage = data("osd-shapes/catmark_cube.obj");
-  const auto r = run_cli("tessellate " + cage + " --scheme gregory --factor 3 --partitioning fractional_odd --vary-factors 1 --check-watertight --json -o " + ply.string());
+  const auto r = run_cli(
+      "tessellate " + cage +
+      " --scheme gregory --factor 3 --partitioning fractional_odd --vary-factors 1 --check-watertight --json -o " +
+      ply.string());
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["watertight"]["closed_manifold"] == true);
@@ -269,8 +279,10 @@ TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and 
     for (int k = 0; k < 3; ++k) {
       std::uint32_t index = 0;  // little-endian
       for (int b = 3; b >= 0; --b) index = index << 8 | std::uint8_t(text[f + 1 + std::size_t(4 * k + b)]);
-      if (index < vertices) used[index] = true;
-      else ++bad_faces;
+      if (index < vertices)
+        used[index] = true;
+      else
+        ++bad_faces;
     }
   }
   CHECK(bad_faces == 0);
@@ -305,7 +317,8 @@ TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a 
 TEST_CASE("tessera render writes the image and tessera accuracy reports against the exact limit", "[cli]") {
   const fs::path png = temp_dir() / "frog.png";
   const std::string frog = data("sdk-cages/monsterfrog_mapped_00.obj");
-  const auto r = run_cli("render " + frog + " --scheme acc --factor 3 --resolution 320x240 --view wire-on-shaded -o " + png.string());
+  const auto r = run_cli("render " + frog + " --scheme acc --factor 3 --resolution 320x240 --view wire-on-shaded -o " +
+                         png.string());
   REQUIRE(r.exit_code == 0);
   auto in = OIIO::ImageInput::open(png.string());
   REQUIRE(in);
@@ -323,13 +336,14 @@ TEST_CASE("tessera tessellate, render and accuracy take --scheme pn, and gregory
   for (const char* scheme : {"pn", "gregory"}) {
     INFO(scheme);
     const auto t = run_cli("tessellate " + pyramid + " --scheme " + scheme +
-                             " --factor 3.5 --partitioning fractional_even --vary-factors 1 --check-watertight --json");
+                           " --factor 3.5 --partitioning fractional_even --vary-factors 1 --check-watertight --json");
     REQUIRE(t.exit_code == 0);
     const auto j = nlohmann::json::parse(t.out);
     CHECK(j["watertight"]["closed_manifold"] == true);
     CHECK(j["patches"] == 5);
     const fs::path png = temp_dir() / (std::string("pyramid-") + scheme + ".png");
-    const auto r = run_cli("render " + pyramid + " --scheme " + scheme + " --factor 4 --resolution 160x120 -o " + png.string());
+    const auto r =
+        run_cli("render " + pyramid + " --scheme " + scheme + " --factor 4 --resolution 160x120 -o " + png.string());
     REQUIRE(r.exit_code == 0);
     CHECK(fs::file_size(png) > 0);
     const auto a = run_cli("accuracy " + pyramid + " --scheme " + scheme + " --json");
@@ -347,11 +361,12 @@ TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates",
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["scene"] == "subd");
   CHECK(j["triangles"].get<long>() > 0);
-  for (const char* key : {"median_s", "min_s", "hs_patches_per_thread_s", "ds_points_per_thread_s"}) CHECK(j.contains(key));
+  for (const char* key : {"median_s", "min_s", "hs_patches_per_thread_s", "ds_points_per_thread_s"})
+    CHECK(j.contains(key));
   // Displaced: the same triangles (displacement moves points, it does not add them), the map named.
   const std::string map = data("sdk-cages/monsterfrog.dds");
-  const auto d = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json --displacement " + map +
-                         " --displacement-channel A");
+  const auto d = run_cli("bench frog --scheme acc --factor 2 --resolution 96x64 --frames 1 --json --displacement " +
+                         map + " --displacement-channel A");
   REQUIRE(d.exit_code == 0);
   const auto k = nlohmann::json::parse(d.out);
   CHECK(k["triangles"] == j["triangles"]);
@@ -368,7 +383,7 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
   const std::string cube = data("osd-shapes/catmark_cube.obj");
   const auto plain = run_cli("tessellate " + cube + " --factor 3 --check-watertight --json");
   const auto edges = run_cli("tessellate " + cube + " --factor 3 --partitioning fractional_even --factors-per-edge " +
-                               factors.string() + " --check-watertight --json");
+                             factors.string() + " --check-watertight --json");
   REQUIRE(plain.exit_code == 0);
   REQUIRE(edges.exit_code == 0);
   const auto a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(edges.out);
@@ -383,7 +398,8 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
   CHECK(bad.err.find("factors.txt:1:") != std::string::npos);
 }
 
-TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured renders, one-line errors", "[cli][memory]") {
+TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured renders, one-line errors",
+          "[cli][memory]") {
   const fs::path dir = temp_dir();
   const std::string cage = (dir / "torus.obj").string();
   auto r = run_cli("make-cage torus --grid 16x8 -o " + cage);
@@ -425,7 +441,8 @@ TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured re
 TEST_CASE("tessera with more --threads than cores runs them without oneTBB's worker-limit warning", "[cli]") {
   const fs::path dir = temp_dir();
   const std::string cube = data("sdk-cages/cube.obj");
-  const auto r = run_cli("-q render " + cube + " --factor 3 --resolution 64x64 --threads 64 -o " + (dir / "cube.png").string());
+  const auto r =
+      run_cli("-q render " + cube + " --factor 3 --resolution 64x64 --threads 64 -o " + (dir / "cube.png").string());
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());  // oneTBB would print "TBB Warning: The number of workers is currently limited..."
 }

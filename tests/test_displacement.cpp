@@ -19,8 +19,8 @@
 
 namespace fs = std::filesystem;
 using namespace tessera;
-using tessera::test::data;
 using tessera::test::check_watertight;
+using tessera::test::data;
 using tessera::test::kVaryingFactors;
 using tessera::test::VaryingFactors;
 
@@ -51,8 +51,8 @@ std::vector<float> ramp(int n, float scale) {
   return v;
 }
 
-verify::WeldReport weld_displaced(const SubdModel& m, const Displacement& d, float factor, float vary, ts::Partitioning p,
-                               int threads = 2, std::uint64_t* digest = nullptr) {
+verify::WeldReport weld_displaced(const SubdModel& m, const Displacement& d, float factor, float vary,
+                                  ts::Partitioning p, int threads = 2, std::uint64_t* digest = nullptr) {
   DeviceOptions o;
   o.threads = threads;
   o.chunk_primitives = threads == 1 ? 16384 : 777;
@@ -62,14 +62,15 @@ verify::WeldReport weld_displaced(const SubdModel& m, const Displacement& d, flo
   f.factor = factor;
   f.vary = vary;
   std::uint64_t h = 1469598103934665603ull;
-  const DrawResult r = stream_displaced(device, m, d, f, p, [&](const PatchOutput<DisplacedPoint>& out, const PatchGroup&) {
-    for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3)
-      w.add_triangle(out.points[out.indices[i]].position, out.points[out.indices[i + 1]].position,
-                     out.points[out.indices[i + 2]].position);
-    for (const DisplacedPoint& q : out.points)
-      for (float x : {q.position.x, q.position.y, q.position.z, q.normal.x, q.dpdu.y, q.uv.x})
-        h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
-  });
+  const DrawResult r =
+      stream_displaced(device, m, d, f, p, [&](const PatchOutput<DisplacedPoint>& out, const PatchGroup&) {
+        for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3)
+          w.add_triangle(out.points[out.indices[i]].position, out.points[out.indices[i + 1]].position,
+                         out.points[out.indices[i + 2]].position);
+        for (const DisplacedPoint& q : out.points)
+          for (float x : {q.position.x, q.position.y, q.position.z, q.normal.x, q.dpdu.y, q.uv.x})
+            h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
+      });
   REQUIRE(r.ok());
   if (digest) *digest = h;
   return w.report();
@@ -102,7 +103,10 @@ DisplacementOptions noise_options() {
 
 DisplacementOptions frog_options() {
   // Designated initializers: GCC 12's -Wrestrict misfires on assigning a literal to a std::string here.
-  return DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 0.8f, .bias = -0.4f};  // large, so that any disagreement shows
+  return DisplacementOptions{.map = kFrogMap,
+                             .channel = std::string("A"),
+                             .scale = 0.8f,
+                             .bias = -0.4f};  // large, so that any disagreement shows
 }
 
 using test::run_cli;
@@ -140,14 +144,16 @@ TEST_CASE("Displacement maps load from EXR, TIFF, PNG 8 and 16 bit with channel 
     for (std::size_t i = 0; i < px.size(); ++i) px[i] = float((i * 53) % 256) / 255.0f;
     const std::string path = write_image("rgba8.png", w, h, 4, OIIO::TypeDesc::UINT8, px);
     const auto a = DisplacementMap::load(path, "A", 1);
-    for (int i = 0; i < w * h; ++i) CHECK(a.texture().load(0, i % w, i / w).x == Approx(px[std::size_t(4 * i + 3)]).epsilon(1e-6));
+    for (int i = 0; i < w * h; ++i)
+      CHECK(a.texture().load(0, i % w, i / w).x == Approx(px[std::size_t(4 * i + 3)]).epsilon(1e-6));
     CHECK_THROWS_AS(DisplacementMap::load(path), DisplacementMapError);  // RGBA is ambiguous without a channel
   }
   SECTION("16-bit PNG grey") {
     std::vector<float> px(std::size_t(w * h));
     for (int i = 0; i < w * h; ++i) px[std::size_t(i)] = float(i * 2000) / 65535.0f;
     const auto m = DisplacementMap::load(write_image("h16.png", w, h, 1, OIIO::TypeDesc::UINT16, px));
-    for (int i = 0; i < w * h; ++i) CHECK(m.texture().load(0, i % w, i / w).x == Approx(px[std::size_t(i)]).epsilon(1e-6));
+    for (int i = 0; i < w * h; ++i)
+      CHECK(m.texture().load(0, i % w, i / w).x == Approx(px[std::size_t(i)]).epsilon(1e-6));
     // The top mip is the mean of level 0.
     double mean = 0;
     for (float x : px) mean += x;
@@ -200,20 +206,23 @@ TEST_CASE("Displacement maps load from EXR, TIFF, PNG 8 and 16 bit with channel 
     CHECK(unreadable.rfind(text + ": ", 0) == 0);
     // A wrong channel is reported from the header, before the pixels are decoded: here they are cut
     // off, so a decode first would report that instead.
-    const std::string big = write_image("big.exr", 512, 512, 2, OIIO::TypeDesc::FLOAT, ramp(512 * 512 * 2, 1.0f), {"U", "V"});
+    const std::string big =
+        write_image("big.exr", 512, 512, 2, OIIO::TypeDesc::FLOAT, ramp(512 * 512 * 2, 1.0f), {"U", "V"});
     fs::resize_file(big, fs::file_size(big) / 2);
     const std::string early = message([&] { DisplacementMap::load(big, "Q"); });
     CHECK(early.find("no channel 'Q'") != std::string::npos);
     const std::string truncated = message([&] { DisplacementMap::load(big, "U"); });
     CHECK(truncated.rfind(big + ": ", 0) == 0);
     CHECK(truncated.find("no channel") == std::string::npos);
-    for (const auto& m : {none, bad, count, missing, unreadable, early, truncated}) CHECK(m.find('\n') == std::string::npos);
+    for (const auto& m : {none, bad, count, missing, unreadable, early, truncated})
+      CHECK(m.find('\n') == std::string::npos);
   }
 }
 
-TEST_CASE("The displaced monster frog is watertight on exact bits: acc, gregory, exact, bspline, integer and fractional "
-          "factors varying per edge",
-          "[disp]") {
+TEST_CASE(
+    "The displaced monster frog is watertight on exact bits: acc, gregory, exact, bspline, integer and fractional "
+    "factors varying per edge",
+    "[disp]") {
   for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::bspline}) {
     const SubdModel m = load_subd_model(kFrog, s);
     const Displacement d = make_displacement(m, frog_options());
@@ -248,7 +257,8 @@ TEST_CASE("Owner frames are stored once per distinct unit and read back identica
         const int j = patch.order[std::size_t(k)];
         if ((mask >> j & 1u) == 0) continue;
         const float w = f.weights[f.starts[i] + std::uint32_t(std::popcount(mask & ((1u << j) - 1u)))];
-        terms.emplace_back(g.indices[p * std::size_t(g.control_points) + std::size_t(j)], std::bit_cast<std::uint32_t>(w));
+        terms.emplace_back(g.indices[p * std::size_t(g.control_points) + std::size_t(j)],
+                           std::bit_cast<std::uint32_t>(w));
       }
       return terms;
     };
@@ -291,7 +301,8 @@ TEST_CASE("Vector displacement (tangent and object space) on the frog is waterti
       o.scale = 0.5f;
       o.space = space;
       const Displacement d = make_displacement(m, o);
-      CHECK(d.kind == (space == DisplacementSpace::tangent ? DisplacementKind::vector_tangent : DisplacementKind::vector_object));
+      CHECK(d.kind ==
+            (space == DisplacementSpace::tangent ? DisplacementKind::vector_tangent : DisplacementKind::vector_object));
       INFO(to_string(s) << (space == DisplacementSpace::tangent ? " tangent" : " object"));
       const auto r = weld_displaced(m, d, 2.5f, 1.5f, ts::Partitioning::fractional_odd);
       CHECK(r.closed_manifold());
@@ -299,7 +310,8 @@ TEST_CASE("Vector displacement (tangent and object space) on the frog is waterti
   }
 }
 
-TEST_CASE("Without ownership the displaced frog cracks: per-face UVs at the seams, per-patch normals on edges", "[disp]") {
+TEST_CASE("Without ownership the displaced frog cracks: per-face UVs at the seams, per-patch normals on edges",
+          "[disp]") {
   for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact}) {
     const SubdModel m = load_subd_model(kFrog, s);
     DisplacementOptions o = noise_options();
@@ -343,8 +355,11 @@ TEST_CASE("Displaced stream output and rendering give the same bytes for 1 and 2
 
 TEST_CASE("tessera with --displacement: watertight frog, render, and one-line errors naming the file", "[disp][cli]") {
   const std::string out = (temp_dir() / "displaced-frog.png").string();
-  auto r = run_cli("tessellate " + kFrog + " --scheme acc --factor 3 --vary-factors 1 --partitioning fractional_odd "
-                   "--displacement " + kFrogMap + " --displacement-channel A --displacement-scale 0.6 "
+  auto r = run_cli("tessellate " + kFrog +
+                   " --scheme acc --factor 3 --vary-factors 1 --partitioning fractional_odd "
+                   "--displacement " +
+                   kFrogMap +
+                   " --displacement-channel A --displacement-scale 0.6 "
                    "--displacement-bias -0.3 --check-watertight --json");
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("\"closed_manifold\": true") != std::string::npos);
@@ -357,13 +372,14 @@ TEST_CASE("tessera with --displacement: watertight frog, render, and one-line er
   struct Bad {
     std::string args, names;
   };
-  for (const Bad& b : {Bad{"--displacement " + kFrogMap + ".missing.dds", kFrogMap + ".missing.dds"},
-                       Bad{"--displacement " + kFrogMap + " --displacement-channel Q", kFrogMap},
-                       Bad{"--displacement " + kFrogMap, kFrogMap},  // RGBA: which channel?
-                       Bad{"--displacement " + two, two},            // two channels: neither scalar nor vector
-                       Bad{"--displacement " + kFrogMap + " --displacement-channel R,G", kFrogMap},
-                       // A height has no object-space direction.
-                       Bad{"--displacement " + kFrogMap + " --displacement-channel A --displacement-space object", kFrogMap}}) {
+  for (const Bad& b :
+       {Bad{"--displacement " + kFrogMap + ".missing.dds", kFrogMap + ".missing.dds"},
+        Bad{"--displacement " + kFrogMap + " --displacement-channel Q", kFrogMap},
+        Bad{"--displacement " + kFrogMap, kFrogMap},  // RGBA: which channel?
+        Bad{"--displacement " + two, two},            // two channels: neither scalar nor vector
+        Bad{"--displacement " + kFrogMap + " --displacement-channel R,G", kFrogMap},
+        // A height has no object-space direction.
+        Bad{"--displacement " + kFrogMap + " --displacement-channel A --displacement-space object", kFrogMap}}) {
     INFO(b.args);
     const auto e = run_cli("tessellate " + kFrog + " --scheme exact --check-watertight " + b.args);
     CHECK(e.exit_code != 0);
@@ -387,16 +403,16 @@ TEST_CASE("tessera with --displacement: watertight frog, render, and one-line er
       o << line << "\n";
     }
   }
-  e = run_cli("render " + shifted + " --scheme gregory --resolution 32x32 -o " + out + ".bad.png --displacement " + kFrogMap +
-              " --displacement-channel A");
+  e = run_cli("render " + shifted + " --scheme gregory --resolution 32x32 -o " + out + ".bad.png --displacement " +
+              kFrogMap + " --displacement-channel A");
   CHECK(e.exit_code != 0);
   CHECK(e.err.find(kFrogMap) != std::string::npos);
   CHECK(e.err.find("vt 1") != std::string::npos);
   CHECK(!fs::exists(out + ".bad.png"));
   // Schemes whose patches hold only their face cannot carry the shared frames: a clear refusal.
   for (const char* scheme : {"flat", "pn"}) {
-    e = run_cli("tessellate " + kFrog + " --scheme " + scheme + " --factor 2 --check-watertight --displacement " + kFrogMap +
-                " --displacement-channel A");
+    e = run_cli("tessellate " + kFrog + " --scheme " + scheme + " --factor 2 --check-watertight --displacement " +
+                kFrogMap + " --displacement-channel A");
     CHECK(e.exit_code == 1);
     CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
     CHECK(e.err.find("cannot be displaced") != std::string::npos);

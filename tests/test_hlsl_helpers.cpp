@@ -39,17 +39,19 @@ TEST_CASE("quad reductions over cleaned, unrounded edges", "[tessellator][hlsl]"
   CHECK(q.insideU == 8.0f);  // max(Veq0, Veq1)
   CHECK(q.insideV == 6.5f);  // max(Ueq0, Ueq1)
   QuadFactors unrounded{};
-  q = process_quad(Partitioning::pow2, Reduction::average, QuadReductionAxis::two_axis, {3, 5, 3, 5, 1, 0.5f}, &unrounded);
+  q = process_quad(Partitioning::pow2, Reduction::average, QuadReductionAxis::two_axis, {3, 5, 3, 5, 1, 0.5f},
+                   &unrounded);
   CHECK(q.Ueq0 == 4.0f);
   CHECK(q.Veq0 == 8.0f);
-  CHECK(q.insideU == 8.0f);       // (5 + 5) / 2 = 5 -> pow2 8
-  CHECK(q.insideV == 2.0f);       // (3 + 3) / 2 * 0.5 = 1.5 -> pow2 2
+  CHECK(q.insideU == 8.0f);  // (5 + 5) / 2 = 5 -> pow2 8
+  CHECK(q.insideV == 2.0f);  // (3 + 3) / 2 * 0.5 = 1.5 -> pow2 2
   CHECK(unrounded.insideV == 1.5f);
 }
 
 TEST_CASE("anti-popping: odd inside factors below 3 come in from the edges", "[tessellator][hlsl]") {
   // Scale 0 would make the inside 1 (odd in fractional_odd): replaced by min(3, average).
-  auto q = process_quad(Partitioning::fractional_odd, Reduction::average, QuadReductionAxis::one_axis, {5, 5, 5, 5, 0, 0});
+  auto q =
+      process_quad(Partitioning::fractional_odd, Reduction::average, QuadReductionAxis::one_axis, {5, 5, 5, 5, 0, 0});
   CHECK(q.insideU == 3.0f);
   auto t = process_tri(Partitioning::fractional_odd, Reduction::min, {2, 2, 2, 0});
   CHECK(t.inside == 2.0f);  // min(3, average 2)

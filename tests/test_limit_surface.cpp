@@ -64,14 +64,16 @@ Cage grid_torus(int n, int m) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
       const double a = 2 * pi * i / n, b = 2 * pi * j / m;
-      c.positions.push_back(glm::vec3(float((R + r * std::cos(b)) * std::cos(a)), float((R + r * std::cos(b)) * std::sin(a)),
+      c.positions.push_back(glm::vec3(float((R + r * std::cos(b)) * std::cos(a)),
+                                      float((R + r * std::cos(b)) * std::sin(a)),
                                       float(r * std::sin(b) + 0.1 * std::sin(3 * a))));
     }
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
       c.face_offsets.push_back(int(c.face_vertices.size()));
       c.face_sizes.push_back(4);
-      for (auto [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) c.face_vertices.push_back(((i + di) % n) * m + (j + dj) % m);
+      for (auto [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+        c.face_vertices.push_back(((i + di) % n) * m + (j + dj) % m);
     }
   return c;
 }
@@ -101,10 +103,18 @@ void edge_queries(const LimitSurface& s, int f, int e, float t, Eval&& eval) {
   if (n == 4) {
     const float one = 1.0f;
     switch (e) {
-      case 0: eval(f, 0, t, 0.0f, -1.0f); break;
-      case 1: eval(f, 0, one, t, -1.0f); break;
-      case 2: eval(f, 0, one - t, one, -1.0f); break;
-      default: eval(f, 0, 0.0f, one - t, -1.0f); break;
+      case 0:
+        eval(f, 0, t, 0.0f, -1.0f);
+        break;
+      case 1:
+        eval(f, 0, one, t, -1.0f);
+        break;
+      case 2:
+        eval(f, 0, one - t, one, -1.0f);
+        break;
+      default:
+        eval(f, 0, 0.0f, one - t, -1.0f);
+        break;
     }
     return;
   }
@@ -230,7 +240,8 @@ TEST_CASE("limit surface regular torus equals its bicubic B-spline patches", "[l
             }
           const SurfacePoint q = s.evaluate(f, 0, float(u), float(v));
           worst = std::max(worst, glm::length(glm::dvec3(q.position) - p) / diag);
-          worst_d = std::max(worst_d, std::max(glm::length(glm::dvec3(q.du) - pu), glm::length(glm::dvec3(q.dv) - pv)) / diag);
+          worst_d = std::max(worst_d,
+                             std::max(glm::length(glm::dvec3(q.du) - pu), glm::length(glm::dvec3(q.dv) - pv)) / diag);
         }
     }
   CHECK(worst < 1e-6);
@@ -239,7 +250,8 @@ TEST_CASE("limit surface regular torus equals its bicubic B-spline patches", "[l
 
 TEST_CASE("limit surface corners equal PrimvarRefiner Limit", "[limit]") {
   namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
-  for (const std::string name : {"catmark_cube", "catmark_xord_interior", "catmark_nonquads", "catmark_pyramid", "catmark_gregory_test2"}) {
+  for (const std::string name :
+       {"catmark_cube", "catmark_xord_interior", "catmark_nonquads", "catmark_pyramid", "catmark_gregory_test2"}) {
     INFO(name);
     const Cage cage = load_obj_cage(osd_shape(name));
     const LimitSurface s = LimitSurface::create(cage);
@@ -252,7 +264,8 @@ TEST_CASE("limit surface corners equal PrimvarRefiner Limit", "[limit]") {
       void Clear() { p = glm::dvec3(0.0); }
       void AddWithWeight(const P& o, double w) { p += w * o.p; }
     };
-    std::vector<P> pts(static_cast<std::size_t>(refiner->GetNumVerticesTotal())), limit(static_cast<std::size_t>(refiner->GetLevel(1).GetNumVertices()));
+    std::vector<P> pts(static_cast<std::size_t>(refiner->GetNumVerticesTotal())),
+        limit(static_cast<std::size_t>(refiner->GetLevel(1).GetNumVertices()));
     for (int v = 0; v < cage.vertex_count(); ++v) pts[std::size_t(v)].p = glm::dvec3(cage.positions[std::size_t(v)]);
     osd::Far::PrimvarRefinerReal<double> pr(*refiner);
     P* coarse = pts.data();
@@ -314,8 +327,9 @@ TEST_CASE("limit surface normals are unit length and outward", "[limit]") {
   Cage cube = load_obj_cage(osd_shape("catmark_cube"));
   Cage flipped = cube;  // the same cube wound clockwise and tagged so
   for (int f = 0; f < flipped.face_count(); ++f)
-    std::reverse(flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)],
-                 flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)] + flipped.face_sizes[std::size_t(f)]);
+    std::reverse(
+        flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)],
+        flipped.face_vertices.begin() + flipped.face_offsets[std::size_t(f)] + flipped.face_sizes[std::size_t(f)]);
   flipped.tags.left_handed = true;
   for (const Cage* c : {&cube, &flipped}) {
     const LimitSurface s = LimitSurface::create(*c);
@@ -338,7 +352,8 @@ TEST_CASE("limit surface normals are unit length and outward", "[limit]") {
     for (int k = 0; k < s.sub_patch_count(f); ++k)
       for (int i = 0; i <= 4; ++i)
         for (int j = 0; j <= 4; ++j)
-          if (!(std::abs(glm::length(s.evaluate(f, k, tess_param(i, 4), tess_param(j, 4)).normal) - 1.0f) < 1e-6f)) ++bad;
+          if (!(std::abs(glm::length(s.evaluate(f, k, tess_param(i, 4), tess_param(j, 4)).normal) - 1.0f) < 1e-6f))
+            ++bad;
   CHECK(bad == 0);
 }
 
@@ -353,8 +368,10 @@ TEST_CASE("limit surface derivatives match finite differences in every domain", 
       for (int k = 0; k < s.sub_patch_count(f); ++k)
         for (auto [u, v] : {std::pair{0.3, 0.6}, {0.71, 0.2}}) {
           const SurfacePoint p = s.evaluate(f, k, float(u), float(v));
-          const glm::dvec3 fu = (s.sample_reference(f, k, u + h, v).position - s.sample_reference(f, k, u - h, v).position) / (2 * h);
-          const glm::dvec3 fv = (s.sample_reference(f, k, u, v + h).position - s.sample_reference(f, k, u, v - h).position) / (2 * h);
+          const glm::dvec3 fu =
+              (s.sample_reference(f, k, u + h, v).position - s.sample_reference(f, k, u - h, v).position) / (2 * h);
+          const glm::dvec3 fv =
+              (s.sample_reference(f, k, u, v + h).position - s.sample_reference(f, k, u, v - h).position) / (2 * h);
           CHECK(glm::length(glm::dvec3(p.du) - fu) / diag < 1e-4);
           CHECK(glm::length(glm::dvec3(p.dv) - fv) / diag < 1e-4);
         }
@@ -362,10 +379,13 @@ TEST_CASE("limit surface derivatives match finite differences in every domain", 
       // Points off the lines between sub-patches: there the derivatives of the barycentric map jump
       // (it is only C0); the surface and its normal do not (checked below).
       for (auto [u, v] : {std::pair{0.2, 0.3}, {0.5, 0.25}, {0.1, 0.8}, {0.3, 0.38}}) {
-        const auto at = [&](double a, double b) { return glm::dvec3(s.evaluate_triangle(f, float(a), float(b), float(1 - a - b)).position); };
+        const auto at = [&](double a, double b) {
+          return glm::dvec3(s.evaluate_triangle(f, float(a), float(b), float(1 - a - b)).position);
+        };
         const SurfacePoint p = s.evaluate_triangle(f, float(u), float(v), float(1 - u - v));
         const double hh = 1.0 / 1024;  // exact in float
-        const glm::dvec3 fu = (at(u + hh, v) - at(u - hh, v)) / (2 * hh), fv = (at(u, v + hh) - at(u, v - hh)) / (2 * hh);
+        const glm::dvec3 fu = (at(u + hh, v) - at(u - hh, v)) / (2 * hh),
+                         fv = (at(u, v + hh) - at(u, v - hh)) / (2 * hh);
         CHECK(glm::length(glm::dvec3(p.du) - fu) / diag < 1e-3);
         CHECK(glm::length(glm::dvec3(p.dv) - fv) / diag < 1e-3);
         CHECK(glm::dot(glm::cross(p.du, p.dv), p.normal) > 0);
@@ -377,7 +397,9 @@ TEST_CASE("limit surface derivatives match finite differences in every domain", 
         CHECK(glm::length(n0 - n1) < 1e-2);
       }
       // Corners and the centroid of the barycentric domain land where the sub-patches put them.
-      const auto same = [&](const SurfacePoint& a, const SurfacePoint& b) { return glm::length(a.position - b.position) / diag < 1e-6; };
+      const auto same = [&](const SurfacePoint& a, const SurfacePoint& b) {
+        return glm::length(a.position - b.position) / diag < 1e-6;
+      };
       CHECK(same(s.evaluate_triangle(f, 0, 0, 1), s.evaluate(f, 0, 0, 0)));
       CHECK(same(s.evaluate_triangle(f, 1, 0, 0), s.evaluate(f, 1, 0, 0)));
       CHECK(same(s.evaluate_triangle(f, 0, 1, 0), s.evaluate(f, 2, 0, 0)));
@@ -392,7 +414,9 @@ TEST_CASE("limit surface fan triangles are the sub-patches mapped piecewise affi
   using L = LimitSurface;
   // The map itself: corners, the edge midpoint, the centre, and both spokes land exactly where the
   // contract puts them (the spoke points as the same (s, t) from both triangles).
-  const auto is = [](const L::SubPatchLocation& l, int sub, double s, double t) { return l.sub == sub && l.s == s && l.t == t; };
+  const auto is = [](const L::SubPatchLocation& l, int sub, double s, double t) {
+    return l.sub == sub && l.s == s && l.t == t;
+  };
   CHECK(is(L::fan_location(5, 2, 0.0, 0.0), 2, 0.0, 0.0));
   CHECK(is(L::fan_location(5, 2, 1.0, 0.0), 3, 0.0, 0.0));
   CHECK(is(L::fan_location(5, 4, 1.0, 0.0), 0, 0.0, 0.0));
@@ -527,7 +551,7 @@ TEST_CASE("limit surface broken cages give a one-line CageError", "[limit]") {
 }
 
 TEST_CASE("limit surface rejects faces and valences beyond OpenSubdiv's limits", "[limit]") {
-  const int limit = 65535;  // Bfr::Limits::MaxFaceSize() and MaxValence()
+  const int limit = 65535;        // Bfr::Limits::MaxFaceSize() and MaxValence()
   std::vector<glm::vec3> circle;  // limit + 1 points on the unit circle
   for (int i = 0; i <= limit; ++i) {
     const double a = 2 * 3.14159265358979323846 * i / (limit + 1);
@@ -585,8 +609,10 @@ TEST_CASE("limit surface measurements", "[.][limit-bench]") {
       const LimitAccuracy a = measure_limit_accuracy(cage, s, 6);
       const LimitAccuracy b = compare_limit_surfaces(s, ref, 37);
       const LimitAccuracy c = measure_limit_accuracy(cage, s, 8);
-      std::printf("%-22s level %2d: vs PrimvarRefiner::Limit 1/64 grid max %.3g rms %.3g, 1/256 grid max %.3g | vs level 10 (k/37 + corner zoom) max %.3g (relative to diagonal)\n",
-                  name.c_str(), level, a.max_relative(), a.rms_distance / a.diagonal, c.max_relative(), b.max_relative());
+      std::printf(
+          "%-22s level %2d: vs PrimvarRefiner::Limit 1/64 grid max %.3g rms %.3g, 1/256 grid max %.3g | vs level 10 "
+          "(k/37 + corner zoom) max %.3g (relative to diagonal)\n",
+          name.c_str(), level, a.max_relative(), a.rms_distance / a.diagonal, c.max_relative(), b.max_relative());
     }
   }
   const Cage frog = load_obj_cage(sdk_cage("monsterfrog_mapped_00"));
@@ -620,8 +646,11 @@ TEST_CASE("limit surface measurements", "[.][limit-bench]") {
           }
       edge_ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t4).count() / double(cnt);
     }
-    std::printf("frog (%d faces, %zu sub-patches) level %2d: create %.1f ms, heap +%.1f MB, per-face data %.2f MB; evaluate %.0f ns/interior point, %.0f ns/edge point (%g)\n",
-                s.face_count(), subs, level, std::chrono::duration<double, std::milli>(t1 - t0).count(), double(after - before) / 1024.0,
-                double(s.memory_bytes()) / 1048576.0, std::chrono::duration<double, std::nano>(t3 - t2).count() / n_eval, edge_ns, sink);
+    std::printf(
+        "frog (%d faces, %zu sub-patches) level %2d: create %.1f ms, heap +%.1f MB, per-face data %.2f MB; evaluate "
+        "%.0f ns/interior point, %.0f ns/edge point (%g)\n",
+        s.face_count(), subs, level, std::chrono::duration<double, std::milli>(t1 - t0).count(),
+        double(after - before) / 1024.0, double(s.memory_bytes()) / 1048576.0,
+        std::chrono::duration<double, std::nano>(t3 - t2).count() / n_eval, edge_ns, sink);
   }
 }

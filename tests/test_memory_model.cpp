@@ -127,7 +127,8 @@ TEST_CASE("memory_table keeps the mip level of a real map that a level needs, ne
   CHECK_THROWS_AS(memory_table(c, t, p, o), std::invalid_argument);
 }
 
-TEST_CASE("memory_table on the monster frog: the mesh grows as the square of the level, the ratio with it", "[memory]") {
+TEST_CASE("memory_table on the monster frog: the mesh grows as the square of the level, the ratio with it",
+          "[memory]") {
   const Cage c = load_obj_cage(data("sdk-cages/monsterfrog_mapped_00.obj"));
   const Topology t(c);
   const SubdPatches p = build_patches(c, t, Scheme::gregory);

@@ -53,7 +53,8 @@ struct QuadScene {
 // Two patches side by side covering the viewport, sharing their middle edge (6 vertices, 8 indices).
 QuadScene two_patches(int w, int h) {
   QuadScene s;
-  s.vertices = {{-1, 1, 0.5f, 1}, {0, 1, 0.5f, 1}, {1, 1, 0.5f, 1}, {-1, -1, 0.5f, 1}, {0, -1, 0.5f, 1}, {1, -1, 0.5f, 1}};
+  s.vertices = {{-1, 1, 0.5f, 1},  {0, 1, 0.5f, 1},  {1, 1, 0.5f, 1},
+                {-1, -1, 0.5f, 1}, {0, -1, 0.5f, 1}, {1, -1, 0.5f, 1}};
   s.indices = {0, 1, 3, 4, 1, 2, 4, 5};
   s.counts.assign(std::size_t(w) * h, 0);
   return s;
@@ -85,11 +86,11 @@ TEST_CASE("pipeline: D3D11 statistics of a known draw", "[pipeline][stats]") {
     const PipelineStatistics& st = r.report.statistics;
     CHECK(st.IAVertices == 8);
     CHECK(st.IAPrimitives == 2);
-    CHECK(st.VSInvocations == 6);    // vertex caching: the shared edge's two vertices run once
+    CHECK(st.VSInvocations == 6);  // vertex caching: the shared edge's two vertices run once
     CHECK(st.HSInvocations == 2);
-    CHECK(st.DSInvocations == 2 * 36);  // (5 + 1)^2 domain points per patch
-    CHECK(st.CInvocations == 2 * 50);   // 2 * 5^2 triangles per patch
-    CHECK(st.CPrimitives == 2 * 50);    // nothing clipped or culled
+    CHECK(st.DSInvocations == 2 * 36);                // (5 + 1)^2 domain points per patch
+    CHECK(st.CInvocations == 2 * 50);                 // 2 * 5^2 triangles per patch
+    CHECK(st.CPrimitives == 2 * 50);                  // nothing clipped or culled
     CHECK(st.PSInvocations == std::uint64_t(w * h));  // every pixel exactly once (fill rule, depth less)
     CHECK(st.GSInvocations == 0);
     for (int c : s.counts) CHECK(c == 1);
@@ -115,7 +116,8 @@ TEST_CASE("pipeline: isoline domain draws lines, one pixel per column, joints li
   QuadScene s;
   // u across the width; v maps the four isolines (v = 0, 1/4, 1/2, 3/4) to pixel rows 0, 2, 4, 6.
   auto ndc_y = [&](float row_centre) { return 1.0f - 2.0f * row_centre / float(h); };
-  s.vertices = {{-1, ndc_y(0.5f), 0.5f, 1}, {1, ndc_y(0.5f), 0.5f, 1}, {-1, ndc_y(8.5f), 0.5f, 1}, {1, ndc_y(8.5f), 0.5f, 1}};
+  s.vertices = {
+      {-1, ndc_y(0.5f), 0.5f, 1}, {1, ndc_y(0.5f), 0.5f, 1}, {-1, ndc_y(8.5f), 0.5f, 1}, {1, ndc_y(8.5f), 0.5f, 1}};
   s.indices = {0, 1, 2, 3};
   s.counts.assign(std::size_t(w) * h, 0);
   QuadDraw d = quad_draw(s, w, h, 1.0f);
@@ -137,7 +139,10 @@ TEST_CASE("pipeline: point output lights one pixel per domain point", "[pipeline
   // Domain (0..1) maps to window 1.0 .. 9.0 on both axes, so points at u = 0, 1/2, 1 land in pixels 1, 5, 9.
   auto nx = [&](float px) { return px / float(w) * 2 - 1; };
   auto ny = [&](float py) { return 1 - py / float(h) * 2; };
-  s.vertices = {{nx(1.25f), ny(1.25f), 0.5f, 1}, {nx(9.25f), ny(1.25f), 0.5f, 1}, {nx(1.25f), ny(9.25f), 0.5f, 1}, {nx(9.25f), ny(9.25f), 0.5f, 1}};
+  s.vertices = {{nx(1.25f), ny(1.25f), 0.5f, 1},
+                {nx(9.25f), ny(1.25f), 0.5f, 1},
+                {nx(1.25f), ny(9.25f), 0.5f, 1},
+                {nx(9.25f), ny(9.25f), 0.5f, 1}};
   s.indices = {0, 1, 2, 3};
   s.counts.assign(std::size_t(w) * h, 0);
   QuadDraw d = quad_draw(s, w, h, 2.0f);
@@ -162,12 +167,13 @@ TEST_CASE("pipeline: wireframe fill draws edges only", "[pipeline][lines]") {
   REQUIRE(r.ok());
   int lit = 0;
   for (int c : s.counts) lit += c > 0;
-  CHECK(lit > w);            // the lines are there
-  CHECK(lit < w * h / 2);    // and the interiors are not
+  CHECK(lit > w);                                                  // the lines are there
+  CHECK(lit < w * h / 2);                                          // and the interiors are not
   CHECK(s.counts[std::size_t((h / 2 + 3) * w + w / 4 + 3)] == 0);  // inside a cell of the 4x4 grid
 }
 
-TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads and any chunking", "[pipeline][determinism]") {
+TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads and any chunking",
+          "[pipeline][determinism]") {
   const int w = 320, h = 180;
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
   const auto draw = scenes::make_torus_draw(scene, 7.3f, ts::Partitioning::fractional_odd, w, h);
@@ -225,8 +231,8 @@ struct PerPointDS {
 TEST_CASE("pipeline: SIMD quad pixel shader and batch domain shader match their scalar forms", "[pipeline][simd]") {
   const int w = 320, h = 180;
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  for (const auto& [factor, partitioning] : {std::pair{7.3f, ts::Partitioning::fractional_odd},
-                                             std::pair{5.0f, ts::Partitioning::integer}}) {
+  for (const auto& [factor, partitioning] :
+       {std::pair{7.3f, ts::Partitioning::fractional_odd}, std::pair{5.0f, ts::Partitioning::integer}}) {
     const auto draw = scenes::make_torus_draw(scene, factor, partitioning, w, h);
     PatchDraw<glm::vec3, scenes::PassThroughVS, scenes::UniformFactorHS, PerPointDS, PerPixelPS> scalar;
     scalar.vertices = draw.vertices;
@@ -303,21 +309,25 @@ TEST_CASE("pipeline: a quad shader's derivatives are the per-pixel form's", "[pi
   CHECK(colours.size() > 100);
 }
 
-TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for vertices it rejects", "[pipeline][simd]") {
+TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for vertices it rejects",
+          "[pipeline][simd]") {
   RasterizerState rs;
   const SetupContext c = make_setup_context(Viewport{0, 0, 1920, 1080, 0, 1}, rs, 1920, 1080, 64);
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
   // Special values in every coordinate, points on and beside each plane (view volume, guard band, near,
   // far, w = 0 and negative w), and ordinary points; 4k + 3 of them, so the scalar tail runs too.
-  const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 2.0f, -3.0f, 1e-7f, 1e-6f, 8.6f, -8.6f, 9.0f, inf, -inf, nan};
+  const float specials[] = {0.0f,  -0.0f, 1.0f,  -1.0f, 0.5f, 2.0f, -3.0f, 1e-7f,
+                            1e-6f, 8.6f,  -8.6f, 9.0f,  inf,  -inf, nan};
   Rng rng(5);
   std::vector<ClipVertex<3>> in;
   for (int i = 0; i < 1023; ++i) {
     ClipVertex<3> v;
     for (int k = 0; k < 4; ++k)
-      v.position[k] = rng.uniform(0, 1) < 0.3 ? specials[std::size_t(rng.uniform(0, 15)) % 15] : float(rng.uniform(-1.2, 1.2));
+      v.position[k] =
+          rng.uniform(0, 1) < 0.3 ? specials[std::size_t(rng.uniform(0, 15)) % 15] : float(rng.uniform(-1.2, 1.2));
     if (i % 3 == 0) v.position.w = std::abs(v.position.w) + 0.5f;  // mostly projectable
-    v.attributes = {float(rng.uniform(-1, 1)), float(rng.uniform(-1, 1)), i % 17 == 0 ? nan : float(rng.uniform(-1, 1))};
+    v.attributes = {float(rng.uniform(-1, 1)), float(rng.uniform(-1, 1)),
+                    i % 17 == 0 ? nan : float(rng.uniform(-1, 1))};
     in.push_back(v);
   }
   std::vector<SetupVertex<3>> batch(in.size());
@@ -327,7 +337,8 @@ TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for
   for (std::size_t i = 0; i < in.size(); ++i) {
     const SetupVertex<3> one = make_setup_vertex<3>(c, in[i]);
     const SetupVertex<3>& b = batch[i];
-    INFO("vertex " << i << ": " << in[i].position.x << " " << in[i].position.y << " " << in[i].position.z << " " << in[i].position.w);
+    INFO("vertex " << i << ": " << in[i].position.x << " " << in[i].position.y << " " << in[i].position.z << " "
+                   << in[i].position.w);
     CHECK(b.finite == one.finite);
     CHECK(b.view_code == one.view_code);
     CHECK(b.clip_code == one.clip_code);
@@ -335,7 +346,8 @@ TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for
     CHECK(b.y == one.y);
     CHECK(bits(b.z) == bits(one.z));
     CHECK(bits(b.inv_w) == bits(one.inv_w));
-    for (std::size_t k = 0; k < one.plane_values.size(); ++k) CHECK(bits(b.plane_values[k]) == bits(one.plane_values[k]));
+    for (std::size_t k = 0; k < one.plane_values.size(); ++k)
+      CHECK(bits(b.plane_values[k]) == bits(one.plane_values[k]));
     for (int k = 0; k < 4; ++k) CHECK(bits(b.clip.position[k]) == bits(one.clip.position[k]));
     (!one.finite ? non_finite : one.clip_code ? rejected : projected) += 1;
   }
@@ -344,7 +356,8 @@ TEST_CASE("pipeline: batch vertex setup gives make_setup_vertex's bits, also for
   CHECK(non_finite > 50);
 }
 
-TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records, bins and statistics", "[pipeline][simd]") {
+TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records, bins and statistics",
+          "[pipeline][simd]") {
   // setup_triangle_list sets up eight triangles at a time in SIMD lanes (AVX2 builds) and hands groups
   // with a clipped, non-finite or large triangle to setup_triangle; either way the chunk must get what
   // setup_triangle gives it one triangle at a time. Triangles of 0..14 pixels around a jittered grid that
@@ -375,7 +388,8 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
     }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::uint32_t grid_count = std::uint32_t(clip.size());
-  const glm::vec4 specials[] = {{0.1f, 0.1f, -0.5f, 1.0f}, {40.0f, 0.2f, 0.5f, 1.0f}, {0.3f, nan, 0.5f, 1.0f}, {0.9f, -0.95f, 0.5f, 1.0f}};
+  const glm::vec4 specials[] = {
+      {0.1f, 0.1f, -0.5f, 1.0f}, {40.0f, 0.2f, 0.5f, 1.0f}, {0.3f, nan, 0.5f, 1.0f}, {0.9f, -0.95f, 0.5f, 1.0f}};
   for (const glm::vec4& p : specials) clip.push_back(ClipVertex<3>{p, {0.5f, 0.5f, 0.5f}});
   std::vector<SetupVertex<3>> vertices(clip.size());
   make_setup_vertices<3>(c, clip, vertices);
@@ -403,8 +417,8 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
   one_by_one.reset(c.tiles.count());
   setup_triangle_list<3>(c, lanes, vertices.data(), vertices.size(), indices.data(), count, 1000, id_step);
   for (std::size_t t = 0; t < count; ++t)
-    setup_triangle<3>(c, one_by_one, vertices[indices[3 * t]], vertices[indices[3 * t + 1]], vertices[indices[3 * t + 2]],
-                      1000 + std::uint32_t(t) * id_step);
+    setup_triangle<3>(c, one_by_one, vertices[indices[3 * t]], vertices[indices[3 * t + 1]],
+                      vertices[indices[3 * t + 2]], 1000 + std::uint32_t(t) * id_step);
 
   CHECK(lanes.statistics.CInvocations == one_by_one.statistics.CInvocations);
   CHECK(lanes.statistics.CPrimitives == one_by_one.statistics.CPrimitives);
@@ -417,13 +431,15 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
     const ScreenPrimitive<3>& b = one_by_one.primitives[i];
     bool same = a.kind == b.kind && a.front_face == b.front_face && a.edges32 == b.edges32 && a.min_x == b.min_x &&
                 a.min_y == b.min_y && a.max_x == b.max_x && a.max_y == b.max_y && a.primitive_id == b.primitive_id &&
-                a.box_coverage == b.box_coverage && bits(a.origin_x) == bits(b.origin_x) && bits(a.origin_y) == bits(b.origin_y);
+                a.box_coverage == b.box_coverage && bits(a.origin_x) == bits(b.origin_x) &&
+                bits(a.origin_y) == bits(b.origin_y);
     for (int k = 0; k < 3; ++k) {
       same = same && bits(a.z[k]) == bits(b.z[k]) && bits(a.inv_w[k]) == bits(b.inv_w[k]);
       for (int m = 0; m < 3; ++m) same = same && bits(a.attributes[k][m]) == bits(b.attributes[k][m]);
       // The union holds edges (small triangles) or vertices; [3] of dx and dy is unused.
       if (b.edges32)
-        same = same && a.edges.dx[k] == b.edges.dx[k] && a.edges.dy[k] == b.edges.dy[k] && a.edges.ref[k] == b.edges.ref[k];
+        same = same && a.edges.dx[k] == b.edges.dx[k] && a.edges.dy[k] == b.edges.dy[k] &&
+               a.edges.ref[k] == b.edges.ref[k];
       else
         same = same && a.xy.x[k] == b.xy.x[k] && a.xy.y[k] == b.xy.y[k];
     }
@@ -432,7 +448,8 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
     edges32 += b.edges32;
   }
   CHECK(mismatched == 0);
-  INFO(lanes.primitive_count << " records of " << count << " triangles, " << small_boxes << " with small boxes, " << edges32 << " with 32-bit edges");
+  INFO(lanes.primitive_count << " records of " << count << " triangles, " << small_boxes << " with small boxes, "
+                             << edges32 << " with 32-bit edges");
   // The draw must have exercised what it is meant to: kept small and larger triangles, and rejections.
   CHECK(small_boxes > 300);
   CHECK(lanes.primitive_count - std::size_t(small_boxes) > 100);
@@ -491,7 +508,8 @@ TEST_CASE("pipeline: out-of-range factors are culled or clamped as D3D11 does", 
   struct Case {
     float factor;
     std::uint64_t domain_points;
-  } cases[] = {{nan, 0}, {-1.0f, 0}, {0.0f, 0}, {1e30f, 65 * 65}, {std::numeric_limits<float>::infinity(), 65 * 65}, {0.25f, 4}};
+  } cases[] = {{nan, 0},  {-1.0f, 0}, {0.0f, 0}, {1e30f, 65 * 65}, {std::numeric_limits<float>::infinity(), 65 * 65},
+               {0.25f, 4}};
   for (const auto& c : cases) {
     INFO("factor " << c.factor);
     QuadScene s = two_patches(16, 16);
@@ -503,11 +521,12 @@ TEST_CASE("pipeline: out-of-range factors are culled or clamped as D3D11 does", 
   }
 }
 
-TEST_CASE("pipeline: NaN positions discard their primitives, bad indices fetch a zero vertex", "[pipeline][bad-input]") {
+TEST_CASE("pipeline: NaN positions discard their primitives, bad indices fetch a zero vertex",
+          "[pipeline][bad-input]") {
   Device device(DeviceOptions{2, 16});
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  std::vector<ClipVertex<1>> v = {clip_vertex<1>(-1, -1, 0.5f, 1), clip_vertex<1>(-1, 1, 0.5f, 1), clip_vertex<1>(1, -1, 0.5f, 1),
-                                  clip_vertex<1>(nan, 0, 0.5f, 1)};
+  std::vector<ClipVertex<1>> v = {clip_vertex<1>(-1, -1, 0.5f, 1), clip_vertex<1>(-1, 1, 0.5f, 1),
+                                  clip_vertex<1>(1, -1, 0.5f, 1), clip_vertex<1>(nan, 0, 0.5f, 1)};
   auto draw = [&](std::vector<std::uint32_t> idx, std::vector<int>& counts) {
     auto fb = make_target(8, 8);
     MeshDraw<ClipVertex<1>, ClipPassVS<1>, CountingPS<1>> d;

@@ -49,7 +49,8 @@ int gl_segments(ts::Partitioning p, float x) {
       x = std::clamp(x, 2.0f, 64.0f);
       return 2 * int(std::ceil(double(x) / 2));
     }
-    default: return int(std::ceil(std::clamp(x, 1.0f, 64.0f)));
+    default:
+      return int(std::ceil(std::clamp(x, 1.0f, 64.0f)));
   }
 }
 
@@ -84,7 +85,8 @@ TEST_CASE("property 1: reentrant from many threads at once", "[tessellator][prop
   std::vector<ts::FactorSet> inputs;
   for (int i = 0; i < 200; ++i) inputs.push_back(random_factors(rng, i % 2 ? ts::Domain::quad : ts::Domain::tri));
   std::vector<ts::Pattern> serial(inputs.size());
-  for (std::size_t i = 0; i < inputs.size(); ++i) ts::tessellate(ts::Partitioning::fractional_odd, ts::OutputPrimitive::triangle_cw, inputs[i], serial[i]);
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    ts::tessellate(ts::Partitioning::fractional_odd, ts::OutputPrimitive::triangle_cw, inputs[i], serial[i]);
   std::vector<ts::Pattern> parallel(inputs.size());
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t)
@@ -155,8 +157,8 @@ TEST_CASE("property 4: point and primitive counts", "[tessellator][properties]")
     if (std::any_of(f.values.begin(), f.values.end(), near_threshold)) continue;
     const auto pattern = run(p, ts::OutputPrimitive::triangle_cw, f);
     const auto& v = f.values;
-    INFO("partitioning " << ts::to_string(p) << " domain " << ts::to_string(d) << " factors " << v[0] << " " << v[1] << " " << v[2]
-                         << " " << v[3] << " " << v[4] << " " << v[5]);
+    INFO("partitioning " << ts::to_string(p) << " domain " << ts::to_string(d) << " factors " << v[0] << " " << v[1]
+                         << " " << v[2] << " " << v[3] << " " << v[4] << " " << v[5]);
     if (d == ts::Domain::isoline) {
       const int lines = int(std::ceil(std::clamp(v[0], 1.0f, 64.0f)));
       const int segs = gl_segments(p, v[1]);
@@ -183,7 +185,8 @@ TEST_CASE("property 4: point and primitive counts", "[tessellator][properties]")
         CHECK(pattern.primitive_count() == 2);
         continue;
       }
-      CHECK(pattern.primitive_count() == std::size_t(2 * (i0 - 2) * (i1 - 2) + 2 * (i0 - 2) + 2 * (i1 - 2) + sum_outer));
+      CHECK(pattern.primitive_count() ==
+            std::size_t(2 * (i0 - 2) * (i1 - 2) + 2 * (i0 - 2) + 2 * (i1 - 2) + sum_outer));
       CHECK(pattern.points.size() == std::size_t(sum_outer + (i0 - 1) * (i1 - 1)));
     } else {
       if (all_one && gl_segments(p, v[3]) == 1) {
@@ -228,19 +231,23 @@ TEST_CASE("property 5: range, grid and exact complements", "[tessellator][proper
   }
 }
 
-TEST_CASE("properties 6, 7, 8, 19: edges depend only on their factor, are symmetric and interchangeable", "[tessellator][properties]") {
+TEST_CASE("properties 6, 7, 8, 19: edges depend only on their factor, are symmetric and interchangeable",
+          "[tessellator][properties]") {
   Rng rng(6);
   for (int i = 0; i < kCases; ++i) {
     const auto p = kAllPartitionings[std::size_t(rng.integer(0, 3))];
     const float shared = rng.factor(0.6, 40);
     // Two quads and a triangle that share the factor on some edge, everything else random.
-    auto a = random_factors(rng, ts::Domain::quad), b = random_factors(rng, ts::Domain::quad), t = random_factors(rng, ts::Domain::tri);
+    auto a = random_factors(rng, ts::Domain::quad), b = random_factors(rng, ts::Domain::quad),
+         t = random_factors(rng, ts::Domain::tri);
     const int ea = rng.integer(0, 3), eb = rng.integer(0, 3), et = rng.integer(0, 2);
     a.values[std::size_t(ea)] = shared, b.values[std::size_t(eb)] = shared, t.values[std::size_t(et)] = shared;
     const auto pa = ts::process_factors(p, a), pb = ts::process_factors(p, b), pt = ts::process_factors(p, t);
-    const auto A = run(p, ts::OutputPrimitive::point, a), B = run(p, ts::OutputPrimitive::point, b), T = run(p, ts::OutputPrimitive::point, t);
+    const auto A = run(p, ts::OutputPrimitive::point, a), B = run(p, ts::OutputPrimitive::point, b),
+               T = run(p, ts::OutputPrimitive::point, t);
     const auto sa = edge_parameters(A, pa, ea), sb = edge_parameters(B, pb, eb), st = edge_parameters(T, pt, et);
-    INFO("partitioning " << ts::to_string(p) << " shared factor " << shared << " edges " << ea << " " << eb << " " << et);
+    INFO("partitioning " << ts::to_string(p) << " shared factor " << shared << " edges " << ea << " " << eb << " "
+                         << et);
     REQUIRE(sa == sb);  // 6 + 8: independent of the other factors and of which edge
     REQUIRE(sa == st);  // 19: a quad edge and a triangle edge with the same factor match bit for bit
     for (float x : sa) REQUIRE(std::binary_search(sa.begin(), sa.end(), 1.0f - x));  // 7: exact symmetry
@@ -254,17 +261,21 @@ TEST_CASE("property 9: cw and ccw give the same triangles, cw has positive area"
     const auto cw = run(p, ts::OutputPrimitive::triangle_cw, f), ccw = run(p, ts::OutputPrimitive::triangle_ccw, f);
     REQUIRE(cw.points == ccw.points);
     REQUIRE(cw.indices.size() == ccw.indices.size());
-    const bool folds = p == ts::Partitioning::fractional_even && std::any_of(f.values.begin(), f.values.end(), in_fold_window);
+    const bool folds =
+        p == ts::Partitioning::fractional_even && std::any_of(f.values.begin(), f.values.end(), in_fold_window);
     for (std::size_t k = 0; k < cw.indices.size(); k += 3) {
       REQUIRE(cw.indices[k] == ccw.indices[k]);
       REQUIRE(cw.indices[k + 1] == ccw.indices[k + 2]);
       REQUIRE(cw.indices[k + 2] == ccw.indices[k + 1]);
-      if (!folds) REQUIRE(doubled_area(cw.points[cw.indices[k]], cw.points[cw.indices[k + 1]], cw.points[cw.indices[k + 2]]) >= 0);
+      if (!folds)
+        REQUIRE(doubled_area(cw.points[cw.indices[k]], cw.points[cw.indices[k + 1]], cw.points[cw.indices[k + 2]]) >=
+                0);
     }
   }
 }
 
-TEST_CASE("properties 10 and 11: interior and edge strips depend only on their own factors", "[tessellator][properties]") {
+TEST_CASE("properties 10 and 11: interior and edge strips depend only on their own factors",
+          "[tessellator][properties]") {
   Rng rng(10);
   for (int i = 0; i < kCases; ++i) {
     const auto d = i % 2 ? ts::Domain::quad : ts::Domain::tri;
@@ -327,7 +338,8 @@ TEST_CASE("property 12: coverage, no T-junctions inside a patch", "[tessellator]
       if (!directed.count({edge.second, edge.first})) {
         const auto a = P.points[edge.first], b = P.points[edge.second];
         bool boundary = false;
-        for (int e = 0; e < (d == ts::Domain::quad ? 4 : 3); ++e) boundary = boundary || (on_edge(d, e, a) && on_edge(d, e, b));
+        for (int e = 0; e < (d == ts::Domain::quad ? 4 : 3); ++e)
+          boundary = boundary || (on_edge(d, e, a) && on_edge(d, e, b));
         REQUIRE(boundary);
       }
     }
@@ -351,14 +363,17 @@ TEST_CASE("property 14: integer spacing is i * round(65536/n), mirrored", "[tess
     REQUIRE(P.points.size() == std::size_t(n + 1));
     const std::uint32_t r = ts::kFixedReciprocal[std::size_t(n)];
     for (int i = 0; i <= n; ++i) {
-      const std::uint32_t want = 2 * i == n ? 0x8000u : 2 * i < n ? std::uint32_t(i) * r : 0x10000u - std::uint32_t(n - i) * r;
+      const std::uint32_t want = 2 * i == n  ? 0x8000u
+                                 : 2 * i < n ? std::uint32_t(i) * r
+                                             : 0x10000u - std::uint32_t(n - i) * r;
       REQUIRE(fx(P.points[std::size_t(i)].u) == want);
       REQUIRE(std::abs(double(P.points[std::size_t(i)].u) - double(i) / n) <= 2e-4);
     }
   }
 }
 
-TEST_CASE("property 15: fractional spacing is n-2 equal segments and 2 shorter symmetric ones", "[tessellator][properties]") {
+TEST_CASE("property 15: fractional spacing is n-2 equal segments and 2 shorter symmetric ones",
+          "[tessellator][properties]") {
   Rng rng(15);
   for (auto p : {ts::Partitioning::fractional_odd, ts::Partitioning::fractional_even}) {
     for (int i = 0; i < 300; ++i) {
@@ -366,9 +381,11 @@ TEST_CASE("property 15: fractional spacing is n-2 equal segments and 2 shorter s
       if (in_fold_window(f) || near_threshold(f)) continue;
       const auto P = run(p, ts::OutputPrimitive::point, iso(1, f));
       std::vector<std::int64_t> seg;
-      for (std::size_t k = 1; k < P.points.size(); ++k) seg.push_back(std::int64_t(fx(P.points[k].u)) - std::int64_t(fx(P.points[k - 1].u)));
+      for (std::size_t k = 1; k < P.points.size(); ++k)
+        seg.push_back(std::int64_t(fx(P.points[k].u)) - std::int64_t(fx(P.points[k - 1].u)));
       INFO(ts::to_string(p) << " " << f);
-      for (std::size_t k = 0; k < seg.size(); ++k) REQUIRE(std::llabs(seg[k] - seg[seg.size() - 1 - k]) <= 0);  // symmetric
+      for (std::size_t k = 0; k < seg.size(); ++k)
+        REQUIRE(std::llabs(seg[k] - seg[seg.size() - 1 - k]) <= 0);  // symmetric
       std::vector<std::int64_t> sorted = seg;
       std::sort(sorted.begin(), sorted.end());
       if (sorted.size() >= 3) {
@@ -429,7 +446,8 @@ TEST_CASE("primitive_count() is the generated pattern's primitive count", "[tess
   // Every small integer factor set of each domain (all parities, ring counts, minimal and culled
   // cases), then random real factors up to past the clamp, with NaN and infinities mixed in.
   const std::array<ts::OutputPrimitive, 4> outputs = {ts::OutputPrimitive::point, ts::OutputPrimitive::line,
-                                                      ts::OutputPrimitive::triangle_cw, ts::OutputPrimitive::triangle_ccw};
+                                                      ts::OutputPrimitive::triangle_cw,
+                                                      ts::OutputPrimitive::triangle_ccw};
   std::size_t checked = 0, culled = 0, largest = 0;
   ts::Pattern pattern;
   const auto check = [&](ts::Partitioning p, const ts::FactorSet& f) {
@@ -438,9 +456,9 @@ TEST_CASE("primitive_count() is the generated pattern's primitive count", "[tess
       ts::generate(processed, o, pattern);
       const std::size_t count = ts::primitive_count(processed, o);
       if (count != pattern.primitive_count()) {
-        INFO("domain " << ts::to_string(f.domain) << ", " << ts::to_string(p) << ", " << ts::to_string(o) << ", factors "
-                       << f.values[0] << " " << f.values[1] << " " << f.values[2] << " " << f.values[3] << " "
-                       << f.values[4] << " " << f.values[5]);
+        INFO("domain " << ts::to_string(f.domain) << ", " << ts::to_string(p) << ", " << ts::to_string(o)
+                       << ", factors " << f.values[0] << " " << f.values[1] << " " << f.values[2] << " " << f.values[3]
+                       << " " << f.values[4] << " " << f.values[5]);
         REQUIRE(count == pattern.primitive_count());
       }
       ++checked;

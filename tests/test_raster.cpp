@@ -26,7 +26,8 @@ struct Grid {
   std::vector<std::uint32_t> indices;
 };
 
-Grid jittered_grid(int cols, int rows, float x0, float x1, float y0, float y1, std::uint32_t seed, float (*z_of_x)(float)) {
+Grid jittered_grid(int cols, int rows, float x0, float x1, float y0, float y1, std::uint32_t seed,
+                   float (*z_of_x)(float)) {
   Rng rng(seed);
   Grid g;
   for (int j = 0; j <= rows; ++j)
@@ -68,14 +69,16 @@ std::vector<int> draw_counting(Device& device, const Grid& g, int w, int h, Cull
 // exactly: NDC = window * 2 / size - 1 is exact for a power-of-two size.
 V1 snapped_vertex(std::int32_t x, std::int32_t y, int size) {
   const float half = float(size) / 2.0f;
-  return clip_vertex<1>(float(x) / float(kSubpixelOne) / half - 1.0f, 1.0f - float(y) / float(kSubpixelOne) / half, 0.5f, 1.0f);
+  return clip_vertex<1>(float(x) / float(kSubpixelOne) / half - 1.0f, 1.0f - float(y) / float(kSubpixelOne) / half,
+                        0.5f, 1.0f);
 }
 
 // Adds 1 to `counts` (size x size) at every pixel whose centre the triangle (16.8 vertices, either
 // winding) covers by the one-centre edge test; returns how many.
 int add_exact_coverage(std::int32_t (&sx)[3], std::int32_t (&sy)[3], int size, std::vector<int>& counts) {
   // covers_centre wants positive area (clockwise on screen, y down).
-  const std::int64_t area = std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
+  const std::int64_t area =
+      std::int64_t(sx[1] - sx[0]) * (sy[2] - sy[0]) - std::int64_t(sx[2] - sx[0]) * (sy[1] - sy[0]);
   if (area == 0) return 0;
   if (area < 0) std::swap(sx[1], sx[2]), std::swap(sy[1], sy[2]);
   int pixels = 0;
@@ -113,7 +116,8 @@ TEST_CASE("raster: exact edge and corner ties obey the top-left rule", "[raster]
   auto ndc = [&](float px, float py) { return clip_vertex<1>(px / w * 2 - 1, 1 - py / h * 2, 0.5f, 1); };
   // Pixel centres at (k + 0.5); a fan of 8 triangles around the centre (8.5, 8.5) of a square.
   const float c = 8.5f;
-  const float ring[8][2] = {{2.5f, 2.5f}, {c, 2.5f}, {14.5f, 2.5f}, {14.5f, c}, {14.5f, 14.5f}, {c, 14.5f}, {2.5f, 14.5f}, {2.5f, c}};
+  const float ring[8][2] = {{2.5f, 2.5f},   {c, 2.5f},  {14.5f, 2.5f}, {14.5f, c},
+                            {14.5f, 14.5f}, {c, 14.5f}, {2.5f, 14.5f}, {2.5f, c}};
   g.vertices.push_back(ndc(c, c));
   for (auto& p : ring) g.vertices.push_back(ndc(p[0], p[1]));
   for (std::uint32_t k = 0; k < 8; ++k) g.indices.insert(g.indices.end(), {0, 1 + k, 1 + (k + 1) % 8});
@@ -127,9 +131,9 @@ TEST_CASE("raster: exact edge and corner ties obey the top-left rule", "[raster]
     }
   // Centres in [2.5, 14.5) on both axes under the top-left rule: columns and rows 2..13 -> 12 x 12.
   CHECK(covered == 144);
-  CHECK(counts[8 * w + 8] == 1);   // the shared centre vertex: exactly one of eight triangles
-  CHECK(counts[2 * w + 2] == 1);   // top-left corner: on a top and a left edge
-  CHECK(counts[14 * w + 14] == 0); // bottom-right corner: on a bottom and a right edge
+  CHECK(counts[8 * w + 8] == 1);    // the shared centre vertex: exactly one of eight triangles
+  CHECK(counts[2 * w + 2] == 1);    // top-left corner: on a top and a left edge
+  CHECK(counts[14 * w + 14] == 0);  // bottom-right corner: on a bottom and a right edge
 }
 
 TEST_CASE("raster: triangles clipped by the guard band still tile exactly once", "[raster][clip]") {
@@ -252,7 +256,8 @@ TEST_CASE("raster: depth comparison functions and depth write", "[raster][depth]
   auto run = [&](CompareFunc f, float second_z, bool write) {
     auto fb = make_target(8, 8);
     auto tri = [&](float z, float g) {
-      std::vector<ClipVertex<3>> v = {clip_vertex<3>(-1, -1, z, 1), clip_vertex<3>(-1, 3, z, 1), clip_vertex<3>(3, -1, z, 1)};
+      std::vector<ClipVertex<3>> v = {clip_vertex<3>(-1, -1, z, 1), clip_vertex<3>(-1, 3, z, 1),
+                                      clip_vertex<3>(3, -1, z, 1)};
       for (auto& x : v) x.attributes = {1.0f - g, g, 0.0f};
       return v;
     };
@@ -343,7 +348,8 @@ struct TexturePS {
   const Texture2D* texture = nullptr;
   glm::vec4 operator()(const PixelInput<2>& in) const {
     const Sampler s{Filter::trilinear, AddressMode::wrap, AddressMode::wrap};
-    return texture->sample_grad(s, {in.attributes[0], in.attributes[1]}, {in.ddx(0), in.ddx(1)}, {in.ddy(0), in.ddy(1)});
+    return texture->sample_grad(s, {in.attributes[0], in.attributes[1]}, {in.ddx(0), in.ddx(1)},
+                                {in.ddy(0), in.ddy(1)});
   }
 };
 
@@ -362,7 +368,8 @@ TEST_CASE("raster: pixel-shader derivatives select the mip level; float targets 
     const int w = 32, h = 32;
     // uv spans texels_per_pixel * 32 texels across the 32-pixel target: ddx(u) = texels_per_pixel / 64.
     const float span = texels_per_pixel * 32.0f / 64.0f;
-    std::vector<ClipVertex<2>> v = {clip_vertex<2>(-1, 1, 0.5f, 1), clip_vertex<2>(3, 1, 0.5f, 1), clip_vertex<2>(-1, -3, 0.5f, 1)};
+    std::vector<ClipVertex<2>> v = {clip_vertex<2>(-1, 1, 0.5f, 1), clip_vertex<2>(3, 1, 0.5f, 1),
+                                    clip_vertex<2>(-1, -3, 0.5f, 1)};
     v[0].attributes = {0, 0};
     v[1].attributes = {2 * span, 0};
     v[2].attributes = {0, 2 * span};
@@ -479,7 +486,7 @@ TEST_CASE("raster: tiny triangles cover exactly the centres of the exact edge te
   const std::vector<int> counts = draw_counting(device, g, kSize, kSize);
   REQUIRE(counts.size() == expected.size());
   CHECK(counts == expected);
-  CHECK(lit > 100);   // both kinds occur
+  CHECK(lit > 100);  // both kinds occur
   CHECK(empty > 50);
   CHECK(small_box > 300);  // and both paths of the rasterizer
   CHECK(large_box > 50);

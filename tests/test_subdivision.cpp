@@ -23,13 +23,12 @@
 #include "weld_support.h"
 
 using namespace tessera;
-using tessera::test::data;
 using tessera::test::check_watertight;
+using tessera::test::data;
 using tessera::test::kVaryingFactors;
 using tessera::test::VaryingFactors;
 
 namespace {
-
 
 struct Weld {
   verify::WeldReport report;
@@ -98,7 +97,8 @@ Cage hexagonal_prism() {
   obj += "f 6 5 4 3 2 1\nf 7 8 9 10 11 12\n";
   for (int k = 0; k < 6; ++k) {
     const int a = k + 1, b = (k + 1) % 6 + 1;
-    obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 6) + " " + std::to_string(a + 6) + "\n";
+    obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 6) + " " +
+           std::to_string(a + 6) + "\n";
   }
   return parse_obj_cage(obj, "hexagonal_prism");
 }
@@ -146,7 +146,8 @@ struct PatchEvaluator {
         }
         const SubdHS hs{g->patches, m.patches.tables, SubdFactors{}, tri};
         std::vector<SubdControlPoint> cps;
-        for (int i = 0; i < SubdHS::kOutputControlPoints; ++i) cps.push_back(hs.control_point(in, i, std::uint32_t(id)));
+        for (int i = 0; i < SubdHS::kOutputControlPoints; ++i)
+          cps.push_back(hs.control_point(in, i, std::uint32_t(id)));
         const SubdDS ds{g->patches, m.limit.get(), m.cage.tags.left_handed, tri};
         return ds(SubdPatchConstants{}, cps, loc, std::uint32_t(id));
       }
@@ -157,16 +158,23 @@ struct PatchEvaluator {
   static DomainLocation on_edge(int n, int k, float t) {
     if (n == 3) {
       switch (k) {
-        case 0: return {t, 0.0f, 1.0f - t};
-        case 1: return {1.0f - t, t, 0.0f};
-        default: return {0.0f, 1.0f - t, t};
+        case 0:
+          return {t, 0.0f, 1.0f - t};
+        case 1:
+          return {1.0f - t, t, 0.0f};
+        default:
+          return {0.0f, 1.0f - t, t};
       }
     }
     switch (k) {
-      case 0: return {t, 0.0f, 0.0f};
-      case 1: return {1.0f, t, 0.0f};
-      case 2: return {1.0f - t, 1.0f, 0.0f};
-      default: return {0.0f, 1.0f - t, 0.0f};
+      case 0:
+        return {t, 0.0f, 0.0f};
+      case 1:
+        return {1.0f, t, 0.0f};
+      case 2:
+        return {1.0f - t, 1.0f, 0.0f};
+      default:
+        return {0.0f, 1.0f - t, 0.0f};
     }
   }
   // Patch edge k of face f and whether it runs a -> b (else b -> a); -1 if the face has no such edge.
@@ -218,8 +226,9 @@ double max_normal_jump_across_edges(const SubdModel& m, std::uint64_t& mismatche
 
 TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fractional factors varying per edge",
           "[subd]") {
-  const char* cages[] = {"osd-shapes/catmark_cube.obj", "osd-shapes/catmark_torus.obj", "osd-shapes/catmark_toroidal_tet.obj",
-                         "osd-shapes/catmark_lefthanded.obj", "sdk-cages/monsterfrog_mapped_00.obj", "sdk-cages/guy3.obj"};
+  const char* cages[] = {"osd-shapes/catmark_cube.obj",         "osd-shapes/catmark_torus.obj",
+                         "osd-shapes/catmark_toroidal_tet.obj", "osd-shapes/catmark_lefthanded.obj",
+                         "sdk-cages/monsterfrog_mapped_00.obj", "sdk-cages/guy3.obj"};
   for (const char* cage : cages)
     for (Scheme s : {Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn}) {
       const SubdModel m = load_subd_model(data(cage), s);
@@ -290,7 +299,8 @@ TEST_CASE("Gregory triangles stay close to the exact limit surface", "[subd]") {
     }
   });
   REQUIRE(n > 0);
-  INFO("rms " << std::sqrt(sum2 / double(n)) / diagonal << " max " << max_d / diagonal << " mean angle " << angle / double(n));
+  INFO("rms " << std::sqrt(sum2 / double(n)) / diagonal << " max " << max_d / diagonal << " mean angle "
+              << angle / double(n));
   CHECK(std::sqrt(sum2 / double(n)) / diagonal < 1e-2);
   CHECK(max_d / diagonal < 2.5e-2);
   CHECK(angle / double(n) < 0.075);  // radians, 4.3 degrees
@@ -301,11 +311,12 @@ TEST_CASE("PN triangles and quads: planar faces stay flat and linear, corners an
   // with points at thirds, so the PN triangle is the linear triangle (its centre rule adds nothing) and
   // the Coons interior makes the PN quad the bilinear patch.
   const glm::vec3 n(0.0f, 0.0f, 1.0f);
-  const std::array<glm::vec3, 3> tp{glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(3.0f, 0.5f, 2.0f), glm::vec3(1.0f, 2.0f, 2.0f)};
+  const std::array<glm::vec3, 3> tp{glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(3.0f, 0.5f, 2.0f),
+                                    glm::vec3(1.0f, 2.0f, 2.0f)};
   const std::array<glm::vec3, 3> tn{n, n, n};
   const PNTriangle t = pn_triangle(tp, tn);
-  const std::array<glm::vec3, 4> qp{glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(3.0f, 0.5f, 2.0f), glm::vec3(4.0f, 2.5f, 2.0f),
-                                    glm::vec3(1.0f, 2.0f, 2.0f)};
+  const std::array<glm::vec3, 4> qp{glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(3.0f, 0.5f, 2.0f),
+                                    glm::vec3(4.0f, 2.5f, 2.0f), glm::vec3(1.0f, 2.0f, 2.0f)};
   const std::array<glm::vec3, 4> qn{n, n, n, n};
   const PNQuad q = pn_quad(qp, qn);
   for (int i = 1; i < 8; ++i)
@@ -320,7 +331,8 @@ TEST_CASE("PN triangles and quads: planar faces stay flat and linear, corners an
     }
   // Curved: corners interpolate, corner normals are the vertex normals, an edge leaves its corner in the
   // corner's tangent plane, and the centre bulges by (E - V) / 2.
-  const std::array<glm::vec3, 3> cn{glm::normalize(glm::vec3(-0.3f, -0.2f, 1.0f)), glm::normalize(glm::vec3(0.4f, 0.0f, 1.0f)),
+  const std::array<glm::vec3, 3> cn{glm::normalize(glm::vec3(-0.3f, -0.2f, 1.0f)),
+                                    glm::normalize(glm::vec3(0.4f, 0.0f, 1.0f)),
                                     glm::normalize(glm::vec3(0.0f, 0.5f, 1.0f))};
   const PNTriangle c = pn_triangle(tp, cn);
   CHECK(cubic_triangle(c.b, 0.0f, 0.0f, 1.0f).position == tp[0]);
@@ -401,7 +413,8 @@ TEST_CASE("An n-gon's fan takes its cage edges whole and shares its spokes", "[s
   }
   // Faces of more sides than a patch has control points are refused with one line.
   std::string obj;
-  for (int k = 0; k < 33; ++k) obj += "v " + std::to_string(std::cos(k / 5.25)) + " " + std::to_string(std::sin(k / 5.25)) + " 0\n";
+  for (int k = 0; k < 33; ++k)
+    obj += "v " + std::to_string(std::cos(k / 5.25)) + " " + std::to_string(std::sin(k / 5.25)) + " 0\n";
   obj += "f";
   for (int k = 1; k <= 33; ++k) {
     obj += ' ';
@@ -436,7 +449,8 @@ TEST_CASE("On open cages with n-gons the only open edges are the cage's boundary
       for (int e = 0; e < m.topology->edge_count(); ++e)
         if (m.topology->is_boundary_edge(e)) {
           const int h = m.topology->edge_half_edges(e)[0];
-          expected += std::uint64_t(std::ceil(f.edge(cage_edge_key(m.topology->origin(h), m.topology->destination(h)))));
+          expected +=
+              std::uint64_t(std::ceil(f.edge(cage_edge_key(m.topology->origin(h), m.topology->destination(h)))));
         }
       REQUIRE(expected > 0);
       const verify::WeldReport r = weld(m, f, ts::Partitioning::integer);
@@ -486,16 +500,17 @@ TEST_CASE("Regular faces are the B-spline patch: bspline, acc and gregory match 
     SubdFactors f;
     f.factor = 7;
     double max_d = 0, max_angle = 0;
-    stream_subd(device, m, f, ts::Partitioning::integer, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup& g) {
-      for (const SurfaceSample& p : out.points) {
-        const SurfacePoint e = exact.limit->evaluate(g.patches[out.patch_id].face, 0, p.u, p.v);
-        max_d = std::max(max_d, double(glm::length(p.position - e.position)));
-        max_angle = std::max(max_angle, double(std::acos(std::min(1.0f, glm::dot(p.normal, e.normal)))));
-      }
-    });
+    stream_subd(device, m, f, ts::Partitioning::integer,
+                [&](const PatchOutput<SurfaceSample>& out, const PatchGroup& g) {
+                  for (const SurfaceSample& p : out.points) {
+                    const SurfacePoint e = exact.limit->evaluate(g.patches[out.patch_id].face, 0, p.u, p.v);
+                    max_d = std::max(max_d, double(glm::length(p.position - e.position)));
+                    max_angle = std::max(max_angle, double(std::acos(std::min(1.0f, glm::dot(p.normal, e.normal)))));
+                  }
+                });
     INFO(to_string(s));
-    CHECK(max_d < 1e-5);        // the torus is about 3.4 across: float round-off
-    CHECK(max_angle < 1e-3);    // radians
+    CHECK(max_d < 1e-5);      // the torus is about 3.4 across: float round-off
+    CHECK(max_angle < 1e-3);  // radians
   }
 }
 
@@ -510,15 +525,16 @@ TEST_CASE("Approximations stay close to the limit on the monster frog", "[subd]"
     f.factor = 5;
     double sum2 = 0, mean_angle = 0;
     std::size_t n = 0;
-    stream_subd(device, m, f, ts::Partitioning::integer, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup& g) {
-      for (const SurfaceSample& p : out.points) {
-        const SurfacePoint e = exact.limit->evaluate(g.patches[out.patch_id].face, 0, p.u, p.v);
-        const double d = glm::length(p.position - e.position);
-        sum2 += d * d;
-        mean_angle += std::acos(std::min(1.0, double(glm::dot(p.normal, e.normal))));
-        ++n;
-      }
-    });
+    stream_subd(device, m, f, ts::Partitioning::integer,
+                [&](const PatchOutput<SurfaceSample>& out, const PatchGroup& g) {
+                  for (const SurfaceSample& p : out.points) {
+                    const SurfacePoint e = exact.limit->evaluate(g.patches[out.patch_id].face, 0, p.u, p.v);
+                    const double d = glm::length(p.position - e.position);
+                    sum2 += d * d;
+                    mean_angle += std::acos(std::min(1.0, double(glm::dot(p.normal, e.normal))));
+                    ++n;
+                  }
+                });
     INFO(to_string(s));
     CHECK(std::sqrt(sum2 / double(n)) / diagonal < 1e-3);
     CHECK(mean_angle / double(n) < 0.02);  // radians, about 1 degree
@@ -540,7 +556,8 @@ TEST_CASE("Stream output and stencil evaluation give the same bytes for any thre
     const char* cage;
     Scheme scheme;
   };
-  for (const Case c : {Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::acc}, Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::pn},
+  for (const Case c : {Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::acc},
+                       Case{"sdk-cages/monsterfrog_mapped_00.obj", Scheme::pn},
                        Case{"osd-shapes/catmark_smoothtris0.obj", Scheme::gregory}}) {
     INFO(c.cage << " " << to_string(c.scheme));
     const SubdModel m = load_subd_model(data(c.cage), c.scheme);
@@ -553,11 +570,12 @@ TEST_CASE("Stream output and stencil evaluation give the same bytes for any thre
       SubdFactors f;
       f.factor = 3.5f;
       f.vary = 1.0f;
-      stream_subd(device, m, f, ts::Partitioning::fractional_odd, [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
-        for (const SurfaceSample& p : out.points)
-          for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
-            h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
-      });
+      stream_subd(device, m, f, ts::Partitioning::fractional_odd,
+                  [&](const PatchOutput<SurfaceSample>& out, const PatchGroup&) {
+                    for (const SurfaceSample& p : out.points)
+                      for (float x : {p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z})
+                        h = (h ^ std::bit_cast<std::uint32_t>(x)) * 1099511628211ull;
+                  });
       return h;
     };
     const auto one = digest(1);
@@ -611,7 +629,8 @@ TEST_CASE("Exact draws only the faces OpenSubdiv gives a surface: boundary faces
   for (const SubdPatch& p : m.patches.tris.patches) ++drawn[std::size_t(p.face)];
   int with_surface = 0;
   for (int f = 0; f < m.cage.face_count(); ++f) {
-    const int expected = m.limit->has_surface(f) ? m.limit->sub_patch_count(f) == 1 ? 1 : m.cage.face_sizes[std::size_t(f)] : 0;
+    const int expected =
+        m.limit->has_surface(f) ? m.limit->sub_patch_count(f) == 1 ? 1 : m.cage.face_sizes[std::size_t(f)] : 0;
     CHECK(drawn[std::size_t(f)] == expected);
     with_surface += m.limit->has_surface(f);
   }

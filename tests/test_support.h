@@ -32,14 +32,17 @@ class Rng {
 };
 
 inline const std::array<ts::Partitioning, 4> kAllPartitionings = {ts::Partitioning::integer, ts::Partitioning::pow2,
-                                                                  ts::Partitioning::fractional_odd, ts::Partitioning::fractional_even};
+                                                                  ts::Partitioning::fractional_odd,
+                                                                  ts::Partitioning::fractional_even};
 
 inline ts::Pattern run(ts::Partitioning p, ts::OutputPrimitive o, const ts::FactorSet& f) {
   ts::Pattern out;
   ts::tessellate(p, o, f, out);
   return out;
 }
-inline ts::FactorSet quad(float a, float b, float c, float d, float iu, float iv) { return {ts::Domain::quad, {a, b, c, d, iu, iv}}; }
+inline ts::FactorSet quad(float a, float b, float c, float d, float iu, float iv) {
+  return {ts::Domain::quad, {a, b, c, d, iu, iv}};
+}
 inline ts::FactorSet tri(float a, float b, float c, float in) { return {ts::Domain::tri, {a, b, c, in, 0, 0}}; }
 inline ts::FactorSet iso(float density, float detail) { return {ts::Domain::isoline, {density, detail, 0, 0, 0, 0}}; }
 
@@ -84,7 +87,9 @@ inline std::vector<float> edge_parameters(const ts::Pattern& pattern, const ts::
 using Tri = std::array<std::array<std::uint32_t, 2>, 3>;
 // A triangle by the bit patterns of its vertices' (u, v), rotated to start at its smallest vertex.
 inline Tri canonical_triangle(const ts::DomainPoint& a, const ts::DomainPoint& b, const ts::DomainPoint& c) {
-  auto bits = [](const ts::DomainPoint& p) { return std::array<std::uint32_t, 2>{std::bit_cast<std::uint32_t>(p.u), std::bit_cast<std::uint32_t>(p.v)}; };
+  auto bits = [](const ts::DomainPoint& p) {
+    return std::array<std::uint32_t, 2>{std::bit_cast<std::uint32_t>(p.u), std::bit_cast<std::uint32_t>(p.v)};
+  };
   Tri t = {bits(a), bits(b), bits(c)};
   std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   return t;

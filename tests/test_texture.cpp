@@ -54,9 +54,15 @@ TEST_CASE("texture: create rejects bad sizes, channel counts and texel counts", 
     const char* message_part;
   };
   const Bad cases[] = {
-      {0, 4, 1, 0, "width"},          {-3, 4, 1, 12, "width"},        {32769, 1, 1, 32769, "width"},
-      {4, 0, 1, 0, "height"},         {4, -1, 1, 4, "height"},        {1, 40000, 1, 40000, "height"},
-      {2, 2, 0, 0, "channels"},       {2, 2, 5, 20, "channels"},      {2, 2, 1, 3, "needs 4 floats, got 3"},
+      {0, 4, 1, 0, "width"},
+      {-3, 4, 1, 12, "width"},
+      {32769, 1, 1, 32769, "width"},
+      {4, 0, 1, 0, "height"},
+      {4, -1, 1, 4, "height"},
+      {1, 40000, 1, 40000, "height"},
+      {2, 2, 0, 0, "channels"},
+      {2, 2, 5, 20, "channels"},
+      {2, 2, 1, 3, "needs 4 floats, got 3"},
       {3, 5, 4, 61, "needs 60 floats"},
   };
   for (const Bad& b : cases) {
@@ -243,7 +249,7 @@ TEST_CASE("texture: mip chain of odd sizes is an area-weighted box", "[texture]"
       REQUIRE(t->levels() == 3);
       const glm::vec4 second = t == &column ? t->load(1, 0, 1) : t->load(1, 1, 0);
       CHECK(t->load(1, 0, 0).x == 4.0f);  // (0 + 10 + 10) / 5
-      CHECK(second.x == 16.0f);            // (10 + 30 + 40) / 5
+      CHECK(second.x == 16.0f);           // (10 + 30 + 40) / 5
       CHECK(t->load(2, 0, 0).x == 10.0f);
     }
   }
@@ -300,7 +306,7 @@ TEST_CASE("texture: trilinear blends floor(lod) and floor(lod) + 1 by frac(lod)"
   const Sampler s = sampler(Filter::trilinear);  // clamp: at uv (0.125, 0.125) level 0 -> 0,
   const glm::vec2 uv(0.125f, 0.125f);            // level 1 -> 2.5 (both taps clamp to 0), level 2 -> 7.5
   CHECK(t.sample_level(s, uv, 0.0f).x == 0.0f);
-  CHECK(t.sample_level(s, uv, 0.5f).x == 1.25f);   // 0 * 0.5 + 2.5 * 0.5
+  CHECK(t.sample_level(s, uv, 0.5f).x == 1.25f);    // 0 * 0.5 + 2.5 * 0.5
   CHECK(t.sample_level(s, uv, 0.25f).x == 0.625f);  // 0 * 0.75 + 2.5 * 0.25
   CHECK(t.sample_level(s, uv, 1.0f).x == 2.5f);
   CHECK(t.sample_level(s, uv, 1.5f).x == 5.0f);  // 2.5 * 0.5 + 7.5 * 0.5
@@ -347,9 +353,9 @@ TEST_CASE("texture: sample_grad picks the level from derivatives", "[texture]") 
   // |ddx * size| = 4 texels per pixel -> lod 2.
   CHECK(t.sample_grad(s, uv, {4.0f / 4.0f, 0.0f}, {0.0f, 0.0f}).x == 7.5f);
   CHECK(t.sample_grad(s, uv, {2.0f / 4.0f, 0.0f}, {0.0f, 0.0f}).x == 2.5f);  // lod 1
-  CHECK(t.sample_grad(s, uv, {0.25f, 0.0f}, {0.0f, 1.0f}).x == 7.5f);       // the larger (ddy) wins
-  CHECK(t.sample_grad(s, uv, {0.0f, 0.0f}, {0.0f, 0.0f}).x == 0.0f);        // lod -inf -> 0
-  CHECK(t.sample_grad(s, uv, {0.25f, 0.0f}, {0.0f, 0.25f}).x == 0.0f);      // one texel per pixel -> lod 0
+  CHECK(t.sample_grad(s, uv, {0.25f, 0.0f}, {0.0f, 1.0f}).x == 7.5f);        // the larger (ddy) wins
+  CHECK(t.sample_grad(s, uv, {0.0f, 0.0f}, {0.0f, 0.0f}).x == 0.0f);         // lod -inf -> 0
+  CHECK(t.sample_grad(s, uv, {0.25f, 0.0f}, {0.0f, 0.25f}).x == 0.0f);       // one texel per pixel -> lod 0
   // A diagonal derivative of (1, 1) texels has length sqrt(2): lod 0.5, blended by trilinear.
   CHECK(t.sample_grad(sampler(Filter::trilinear), {0.125f, 0.125f}, {0.25f, 0.25f}, {0.0f, 0.0f}).x == 1.25f);
   // The bias applies on top of the derivative lod.
@@ -458,7 +464,13 @@ TEST_CASE("texture: sample_level4 gives the bits of four sample_level calls", "[
   for (std::size_t i = 0; i < one.size(); ++i) one[i] = std::sin(float(i) * 0.37f);
   for (std::size_t i = 0; i < four.size(); ++i) four[i] = std::cos(float(i) * 0.11f);
   const Texture2D textures[] = {make(64, 32, 1, one), make(16, 8, 4, four)};
-  const float specials[] = {0.0f, 1.0f, -1.0f, 0.5f / 64.0f, 3e9f, -3e9f, std::numeric_limits<float>::quiet_NaN(),
+  const float specials[] = {0.0f,
+                            1.0f,
+                            -1.0f,
+                            0.5f / 64.0f,
+                            3e9f,
+                            -3e9f,
+                            std::numeric_limits<float>::quiet_NaN(),
                             std::numeric_limits<float>::infinity()};
   std::uint32_t state = 12345;
   auto next = [&] {

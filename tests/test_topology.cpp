@@ -20,7 +20,6 @@ using tessera::test::data;
 
 namespace {
 
-
 std::vector<fs::path> all_cages() {
   std::vector<fs::path> files;
   for (const char* folder : {"osd-shapes", "sdk-cages"})
@@ -120,7 +119,9 @@ void check_invariants(const Cage& c, const Topology& t) {
   REQUIRE(t.edge_count() * 2 - boundary_half_edges == t.half_edge_count());
 }
 
-int euler(const Topology& t) { return t.vertex_count() - int(t.isolated_vertices().size()) - t.edge_count() + t.face_count(); }
+int euler(const Topology& t) {
+  return t.vertex_count() - int(t.isolated_vertices().size()) - t.edge_count() + t.face_count();
+}
 
 }  // namespace
 
@@ -150,10 +151,14 @@ TEST_CASE("Topology invariants hold on every valid cage and the non-manifold one
 }
 
 TEST_CASE("Topology: Euler characteristic of closed and open cages", "[topology]") {
-  const std::vector<std::pair<std::string, int>> cases = {
-      {"osd-shapes/catmark_cube.obj", 2},        {"osd-shapes/catmark_torus.obj", 0}, {"osd-shapes/catmark_toroidal_tet.obj", -4},
-      {"osd-shapes/catmark_pyramid.obj", 2},     {"osd-shapes/catmark_pole8.obj", 1}, {"osd-shapes/catmark_lefthanded.obj", 2},
-      {"sdk-cages/shipquads.obj", -2},           {"sdk-cages/monsterfrog_mapped_00.obj", 16}};
+  const std::vector<std::pair<std::string, int>> cases = {{"osd-shapes/catmark_cube.obj", 2},
+                                                          {"osd-shapes/catmark_torus.obj", 0},
+                                                          {"osd-shapes/catmark_toroidal_tet.obj", -4},
+                                                          {"osd-shapes/catmark_pyramid.obj", 2},
+                                                          {"osd-shapes/catmark_pole8.obj", 1},
+                                                          {"osd-shapes/catmark_lefthanded.obj", 2},
+                                                          {"sdk-cages/shipquads.obj", -2},
+                                                          {"sdk-cages/monsterfrog_mapped_00.obj", 16}};
   for (const auto& [file, chi] : cases) {
     INFO(file);
     const Topology t(load_obj_cage(data(file)));
@@ -173,7 +178,8 @@ TEST_CASE("Topology: rings turn counter-clockwise seen from outside", "[topology
     REQUIRE(ring.size() == 3);
     const glm::vec3 p = c.positions[v];
     for (std::size_t i = 0; i < 3; ++i) {
-      const glm::vec3 a = c.positions[t.destination(ring[i])] - p, b = c.positions[t.destination(ring[(i + 1) % 3])] - p;
+      const glm::vec3 a = c.positions[t.destination(ring[i])] - p,
+                      b = c.positions[t.destination(ring[(i + 1) % 3])] - p;
       CHECK(glm::dot(glm::cross(a, b), p) > 0);
     }
   }
@@ -202,18 +208,25 @@ TEST_CASE("Topology: validation errors name the element", "[topology][errors]") 
     c.face_vertices = verts;
     return c;
   };
-  CHECK(topology_error(cage({3}, {0, 1, 5}, 3)) == "hand.obj: face 0 has vertex 5 (0-based), but the cage has 3 vertices");
-  CHECK(topology_error(cage({3}, {0, 1, -1}, 3)) == "hand.obj: face 0 has vertex -1 (0-based), but the cage has 3 vertices");
+  CHECK(topology_error(cage({3}, {0, 1, 5}, 3)) ==
+        "hand.obj: face 0 has vertex 5 (0-based), but the cage has 3 vertices");
+  CHECK(topology_error(cage({3}, {0, 1, -1}, 3)) ==
+        "hand.obj: face 0 has vertex -1 (0-based), but the cage has 3 vertices");
   CHECK(topology_error(cage({2}, {0, 1}, 3)) == "hand.obj: face 0 has 2 vertices; a face needs at least 3");
-  CHECK(topology_error(cage({4}, {0, 1, 2, 1}, 3)) == "hand.obj: face 0 is degenerate: it uses vertex 1 (0-based) twice");
+  CHECK(topology_error(cage({4}, {0, 1, 2, 1}, 3)) ==
+        "hand.obj: face 0 is degenerate: it uses vertex 1 (0-based) twice");
   CHECK(topology_error(cage({3, 3, 3}, {0, 1, 2, 1, 0, 3, 0, 1, 4}, 5)) ==
-        "hand.obj: non-manifold edge between vertices 0 and 1 (0-based): used by 3 faces (0, 1, 2); an edge may have at most two");
+        "hand.obj: non-manifold edge between vertices 0 and 1 (0-based): used by 3 faces (0, 1, 2); an edge may have "
+        "at most two");
   CHECK(topology_error(cage({3, 3}, {0, 1, 2, 0, 1, 3}, 4)) ==
-        "hand.obj: faces 0 and 1 both use the edge from vertex 0 to 1 (0-based) in the same direction (inconsistent orientation)");
+        "hand.obj: faces 0 and 1 both use the edge from vertex 0 to 1 (0-based) in the same direction (inconsistent "
+        "orientation)");
   // Two triangles meeting at vertex 0 only (a bowtie).
-  CHECK(topology_error(cage({3, 3}, {0, 1, 2, 0, 3, 4}, 5)) == "hand.obj: non-manifold vertex 0 (0-based): its 2 faces form more than one fan");
+  CHECK(topology_error(cage({3, 3}, {0, 1, 2, 0, 3, 4}, 5)) ==
+        "hand.obj: non-manifold vertex 0 (0-based): its 2 faces form more than one fan");
   // Two closed fans at vertex 0: two tetrahedra sharing only that vertex.
-  CHECK(topology_error(cage({3, 3, 3, 3, 3, 3, 3, 3}, {0, 2, 1, 0, 3, 2, 0, 1, 3, 1, 2, 3, 0, 5, 4, 0, 6, 5, 0, 4, 6, 4, 5, 6}, 7)) ==
+  CHECK(topology_error(cage({3, 3, 3, 3, 3, 3, 3, 3},
+                            {0, 2, 1, 0, 3, 2, 0, 1, 3, 1, 2, 3, 0, 5, 4, 0, 6, 5, 0, 4, 6, 4, 5, 6}, 7)) ==
         "hand.obj: non-manifold vertex 0 (0-based): its 6 faces form more than one fan");
   Cage holes = cage({3}, {0, 1, 2}, 3);
   holes.tags.holes = {1};
@@ -256,7 +269,8 @@ TEST_CASE("Combinations: the cube has one, the torus is all regular", "[topology
   CHECK(cube.combinations[0].faces == std::vector<int>{0, 1, 2, 3, 4, 5});
   CHECK((cube.stats.patches == 6 && cube.stats.quads == 6 && cube.stats.regular == 0 && cube.stats.boundary == 0));
 
-  const TopologyCombinations torus = analyze_combinations(Topology(load_obj_cage(data("osd-shapes/catmark_torus.obj"))));
+  const TopologyCombinations torus =
+      analyze_combinations(Topology(load_obj_cage(data("osd-shapes/catmark_torus.obj"))));
   REQUIRE(torus.combinations.size() == 1);
   CHECK(torus.combinations[0].text == "4 4 4 4");
   CHECK(torus.combinations[0].patch_class == PatchClass::regular);
@@ -273,7 +287,8 @@ TEST_CASE("Combinations: the cube has one, the torus is all regular", "[topology
   CHECK(h.face_combination[1] == -1);
   CHECK(h.face_class[1] == PatchClass::hole);
   CHECK(h.stats.patches == 5);
-  const TopologyCombinations pyramid = analyze_combinations(Topology(load_obj_cage(data("osd-shapes/catmark_pyramid.obj"))));
+  const TopologyCombinations pyramid =
+      analyze_combinations(Topology(load_obj_cage(data("osd-shapes/catmark_pyramid.obj"))));
   CHECK((pyramid.stats.triangles == 4 && pyramid.stats.quads == 1));
   bool tri_text = false;
   for (const Combination& k : pyramid.combinations) tri_text |= k.face_size == 3 && k.text.rfind("0 ", 0) == 0;
@@ -296,7 +311,8 @@ TEST_CASE("Combinations: the monster frog", "[topology][combinations][data]") {
 }
 
 TEST_CASE("Combinations do not depend on which corner a face starts at", "[topology][combinations]") {
-  for (const char* file : {"sdk-cages/monsterfrog_mapped_00.obj", "osd-shapes/catmark_nonquads.obj", "osd-shapes/catmark_car.obj"}) {
+  for (const char* file :
+       {"sdk-cages/monsterfrog_mapped_00.obj", "osd-shapes/catmark_nonquads.obj", "osd-shapes/catmark_car.obj"}) {
     INFO(file);
     const Cage c = load_obj_cage(data(file));
     Cage rotated = c;

@@ -17,9 +17,9 @@ struct VaryingFactors {
   ts::Partitioning partitioning;
   float factor, vary;
 };
-inline constexpr std::array<VaryingFactors, 3> kVaryingFactors = {VaryingFactors{ts::Partitioning::integer, 3.0f, 1.0f},
-                                                                 VaryingFactors{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
-                                                                 VaryingFactors{ts::Partitioning::fractional_even, 2.6f, 1.3f}};
+inline constexpr std::array<VaryingFactors, 3> kVaryingFactors = {
+    VaryingFactors{ts::Partitioning::integer, 3.0f, 1.0f}, VaryingFactors{ts::Partitioning::fractional_odd, 2.3f, 1.7f},
+    VaryingFactors{ts::Partitioning::fractional_even, 2.6f, 1.3f}};
 
 // Welded on exact bits, every edge is used twice, once each way, and no triangle collapsed.
 inline void check_watertight(const verify::WeldReport& r) {

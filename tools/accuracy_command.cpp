@@ -40,37 +40,38 @@ int run_accuracy(const AccuracyOptions& o) {
   Device device(device_options(o.threads));
   double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0;
   std::uint64_t samples = 0;
-  const DrawResult r = stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup& g) {
-    const SubdPatch& patch = g.patches[p.patch_id];
-    const int n = reference.face_size(patch.face);
-    for (std::size_t i = 0; i < p.points.size(); ++i) {
-      const SurfaceSample& s = p.points[i];
-      const ts::DomainPoint q = p.domain[i];
-      glm::dvec3 pos, nrm;
-      if (g.domain == ts::Domain::tri && n == 3) {
-        // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
-        const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);
-        pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
-      } else if (g.domain == ts::Domain::tri) {  // a fan triangle of a larger face
-        const LimitSurface::SubPatchLocation l = LimitSurface::fan_location(n, patch.sub, q.u, q.v);
-        const ReferenceSample e = reference.sample_reference(patch.face, l.sub, l.s, l.t);
-        pos = e.position, nrm = e.normal;
-      } else {
-        const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
-        pos = e.position, nrm = e.normal;
-      }
-      const double d = glm::length(glm::dvec3(s.position) - pos);
-      max_d = std::max(max_d, d);
-      sum_d2 += d * d;
-      const double c = std::clamp(glm::dot(glm::normalize(glm::dvec3(s.normal)), glm::normalize(nrm)), -1.0, 1.0);
-      const double angle = std::acos(c) * 180.0 / std::numbers::pi;
-      if (std::isfinite(angle)) {
-        max_angle = std::max(max_angle, angle);
-        sum_angle += angle;
-      }
-      ++samples;
-    }
-  });
+  const DrawResult r =
+      stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup& g) {
+        const SubdPatch& patch = g.patches[p.patch_id];
+        const int n = reference.face_size(patch.face);
+        for (std::size_t i = 0; i < p.points.size(); ++i) {
+          const SurfaceSample& s = p.points[i];
+          const ts::DomainPoint q = p.domain[i];
+          glm::dvec3 pos, nrm;
+          if (g.domain == ts::Domain::tri && n == 3) {
+            // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
+            const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);
+            pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
+          } else if (g.domain == ts::Domain::tri) {  // a fan triangle of a larger face
+            const LimitSurface::SubPatchLocation l = LimitSurface::fan_location(n, patch.sub, q.u, q.v);
+            const ReferenceSample e = reference.sample_reference(patch.face, l.sub, l.s, l.t);
+            pos = e.position, nrm = e.normal;
+          } else {
+            const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
+            pos = e.position, nrm = e.normal;
+          }
+          const double d = glm::length(glm::dvec3(s.position) - pos);
+          max_d = std::max(max_d, d);
+          sum_d2 += d * d;
+          const double c = std::clamp(glm::dot(glm::normalize(glm::dvec3(s.normal)), glm::normalize(nrm)), -1.0, 1.0);
+          const double angle = std::acos(c) * 180.0 / std::numbers::pi;
+          if (std::isfinite(angle)) {
+            max_angle = std::max(max_angle, angle);
+            sum_angle += angle;
+          }
+          ++samples;
+        }
+      });
   if (!r.ok()) throw InputError(o.cage + ": " + r.error);
   const double rms = samples ? std::sqrt(sum_d2 / double(samples)) : 0.0;
   const double rel_max = max_d / diagonal, rel_rms = rms / diagonal;

@@ -109,7 +109,8 @@ void patch_section(Report& r, const CageAnalysis& a) {
   // Most frequent first; ties in order of first appearance, so the output is deterministic.
   std::vector<const Combination*> sorted;
   for (const Combination& c : a.combinations.combinations) sorted.push_back(&c);
-  std::stable_sort(sorted.begin(), sorted.end(), [](const Combination* x, const Combination* y) { return x->count > y->count; });
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const Combination* x, const Combination* y) { return x->count > y->count; });
   auto& hist = r.json()["combination_histogram"] = nlohmann::ordered_json::array();
   for (const bool boundary : {false, true}) {
     r.line("");
@@ -119,7 +120,8 @@ void patch_section(Report& r, const CageAnalysis& a) {
   }
   static constexpr const char* kClass[] = {"hole", "regular", "regular_boundary", "boundary", "irregular"};
   for (const Combination* c : sorted) {
-    const std::vector<int> sample(c->faces.begin(), c->faces.begin() + std::min<std::ptrdiff_t>(8, std::ssize(c->faces)));
+    const std::vector<int> sample(c->faces.begin(),
+                                  c->faces.begin() + std::min<std::ptrdiff_t>(8, std::ssize(c->faces)));
     hist.push_back({{"key", c->text},
                     {"count", c->count},
                     {"face_size", c->face_size},
@@ -166,8 +168,10 @@ int run_analyze(const AnalyzeOptions& o) {
   log_info("analyze: " + o.cage + ": " + std::to_string(a->topology.face_count()) + " faces");
   Report report;
   for (Section s : kSections) s(report, *a);
-  if (o.json) std::cout << report.json().dump(2) << "\n";
-  else std::cout << report.text();
+  if (o.json)
+    std::cout << report.json().dump(2) << "\n";
+  else
+    std::cout << report.text();
   return kExitOk;
 }
 
@@ -175,7 +179,8 @@ int run_analyze(const AnalyzeOptions& o) {
 
 Runner add_analyze_command(CLI::App& app) {
   auto o = std::make_shared<AnalyzeOptions>();
-  CLI::App* cmd = app.add_subcommand("analyze", "Describe a control cage (OBJ): topology, tags, UVs, patch combinations");
+  CLI::App* cmd =
+      app.add_subcommand("analyze", "Describe a control cage (OBJ): topology, tags, UVs, patch combinations");
   cmd->add_option("cage", o->cage, "the cage, a Wavefront OBJ file (OpenSubdiv tags accepted)")->required();
   cmd->add_flag("--json", o->json, "print one JSON object instead of text");
   add_memory_options(*cmd, o->memory);

@@ -109,9 +109,10 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
   const fs::path dir = fs::temp_directory_path();
   const std::string stem = "tessera-memory-" + std::to_string(::getpid()) + "-" + std::to_string(level);
   const std::string image = (dir / (stem + ".png")).string(), stats = (dir / (stem + ".json")).string();
-  std::vector<std::string> args = {"tessera",   "-q",        "render",   cage_path, "--scheme", o.scheme,
-                                   "--factor",  std::to_string(level), "--resolution", o.resolution,
-                                   "--threads", std::to_string(o.threads), "-o", image, "--stats", stats};
+  std::vector<std::string> args = {"tessera",      "-q",         "render",    cage_path,
+                                   "--scheme",     o.scheme,     "--factor",  std::to_string(level),
+                                   "--resolution", o.resolution, "--threads", std::to_string(o.threads),
+                                   "-o",           image,        "--stats",   stats};
   if (!o.displacement.empty()) {
     args.insert(args.end(), {"--displacement", o.displacement});
     if (!o.channel.empty()) args.insert(args.end(), {"--displacement-channel", o.channel});
@@ -151,10 +152,14 @@ void add_memory_options(CLI::App& cmd, MemoryOptions& o) {
   cmd.add_flag("--memory", o.enabled,
                "print the talk's memory table: a pre-tessellated mesh against the cage, patches and displacement map");
   cmd.add_option("--displacement", o.displacement, "--memory: the displacement map (its size sets the map rows)");
-  cmd.add_option("--displacement-channel", o.channel, "--memory: the map's height channel, a name or letter (A, height)");
+  cmd.add_option("--displacement-channel", o.channel,
+                 "--memory: the map's height channel, a name or letter (A, height)");
   cmd.add_option("--levels", o.levels, "--memory: tessellation levels (integer factors 1..64)")->capture_default_str();
-  cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")->capture_default_str();
-  cmd.add_option("--texel-bytes", o.texel_bytes, "--memory: bytes per map texel (0: as Tessera keeps the map, a float per channel)")->capture_default_str();
+  cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")
+      ->capture_default_str();
+  cmd.add_option("--texel-bytes", o.texel_bytes,
+                 "--memory: bytes per map texel (0: as Tessera keeps the map, a float per channel)")
+      ->capture_default_str();
   cmd.add_option("--mesh-vertex-bytes", o.mesh_vertex_bytes, "--memory: bytes per vertex of the pre-tessellated mesh")
       ->capture_default_str();
   cmd.add_flag("--measure", o.measure, "--memory: also render each level (tessera render) and report its peak memory");
@@ -169,7 +174,8 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   MemoryModelOptions model;
   model.levels = parse_levels(o.levels);
   if (o.texel_bytes < 0 || o.texel_bytes > 64) throw UsageError("--texel-bytes: must be in 0..64");
-  if (o.mesh_vertex_bytes < 1 || o.mesh_vertex_bytes > 1024) throw UsageError("--mesh-vertex-bytes: must be in 1..1024");
+  if (o.mesh_vertex_bytes < 1 || o.mesh_vertex_bytes > 1024)
+    throw UsageError("--mesh-vertex-bytes: must be in 1..1024");
   int texel_bytes = o.texel_bytes;
   model.mesh_vertex_bytes = o.mesh_vertex_bytes;
   const Scheme scheme = scheme_option(o.scheme, "--memory-scheme");
@@ -215,17 +221,18 @@ std::string memory_text(const MemoryAnalysis& a) {
     << megabytes(t.patch_bytes) << " MB + map at one texel per generated vertex, " << a.texel_bytes
     << " B per texel, with its mip chain\n";
   s << "- map: " << a.map_description << "; UV area " << t.uv_area << " over " << t.faces << " faces\n";
-  s << "level | mesh vertices | mesh triangles | mesh MB (vertices + indices) | map side needed | map kept | Tessera MB | ratio";
-  if (!a.measured.empty()) s << " | render peak RSS MB (process base " << megabytes(a.base_rss_bytes) << ") | geometry peak MB";
+  s << "level | mesh vertices | mesh triangles | mesh MB (vertices + indices) | map side needed | map kept | Tessera "
+       "MB | ratio";
+  if (!a.measured.empty())
+    s << " | render peak RSS MB (process base " << megabytes(a.base_rss_bytes) << ") | geometry peak MB";
   s << "\n";
   for (std::size_t i = 0; i < t.levels.size(); ++i) {
     const MemoryLevel& m = t.levels[i];
     char ratio[32];
     std::snprintf(ratio, sizeof ratio, "%.1f", m.ratio());
     s << m.level << " | " << m.mesh_vertices << " | " << m.mesh_triangles << " | " << megabytes(m.mesh_bytes()) << " ("
-      << megabytes(m.mesh_vertex_bytes) << " + " << megabytes(m.mesh_index_bytes) << ") | "
-      << m.needed_map_side << " | " << m.map_width << "x" << m.map_height << " | " << megabytes(m.tessera_bytes) << " | "
-      << ratio;
+      << megabytes(m.mesh_vertex_bytes) << " + " << megabytes(m.mesh_index_bytes) << ") | " << m.needed_map_side
+      << " | " << m.map_width << "x" << m.map_height << " | " << megabytes(m.tessera_bytes) << " | " << ratio;
     if (!a.measured.empty())
       s << " | " << megabytes(a.measured[i].peak_rss_bytes) << " | " << megabytes(a.measured[i].geometry_peak_bytes);
     s << "\n";

@@ -20,7 +20,7 @@ namespace tessera::cli {
 struct MemoryOptions {
   bool enabled = false;
   std::string scheme = "gregory", levels = "8,16,32,64";
-  std::string displacement, channel;  // the map, and the channel that holds the height (displacement_map.h)
+  std::string displacement, channel;            // the map, and the channel that holds the height (displacement_map.h)
   int texel_bytes = 0, mesh_vertex_bytes = 32;  // texel_bytes 0: as the map is kept
   bool measure = false;
   std::string resolution = "1920x1080";

@@ -30,7 +30,8 @@ struct Workload {
 Workload make_workload(ts::Domain domain, ts::Partitioning p, float factor, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> jitter(0.75f, 1.0f);
-  Workload w{std::string(ts::to_string(domain)) + " " + std::string(ts::to_string(p)) + " ~" + float_text(factor), p, {}};
+  Workload w{
+      std::string(ts::to_string(domain)) + " " + std::string(ts::to_string(p)) + " ~" + float_text(factor), p, {}};
   for (int i = 0; i < 64; ++i) {
     ts::FactorSet f;
     f.domain = domain;
@@ -45,7 +46,8 @@ int run_bench_tessellator(const BenchOptions& o) {
   std::vector<Workload> loads;
   std::uint32_t seed = 1;
   for (ts::Domain d : {ts::Domain::quad, ts::Domain::tri})
-    for (ts::Partitioning p : {ts::Partitioning::integer, ts::Partitioning::fractional_odd, ts::Partitioning::fractional_even})
+    for (ts::Partitioning p :
+         {ts::Partitioning::integer, ts::Partitioning::fractional_odd, ts::Partitioning::fractional_even})
       for (float f : {8.0f, 16.0f, 64.0f}) loads.push_back(make_workload(d, p, f, seed++));
 
   const double per_load = o.seconds / double(loads.size());
@@ -70,8 +72,8 @@ int run_bench_tessellator(const BenchOptions& o) {
     const double mpts = double(points) / elapsed / 1e6, mtris = double(tris) / elapsed / 1e6;
     if (!o.json) {
       char line[160];
-      std::snprintf(line, sizeof line, "%-34s %8.1f M points/s %8.1f M triangles/s  (%zu patches)\n", w.name.c_str(), mpts, mtris,
-                    reps * w.patches.size());
+      std::snprintf(line, sizeof line, "%-34s %8.1f M points/s %8.1f M triangles/s  (%zu patches)\n", w.name.c_str(),
+                    mpts, mtris, reps * w.patches.size());
       std::cout << line;
     }
     json["workloads"].push_back(
@@ -79,11 +81,12 @@ int run_bench_tessellator(const BenchOptions& o) {
   }
   json["points_per_s"] = total_points / total_time;
   json["triangles_per_s"] = total_tris / total_time;
-  if (o.json) std::cout << json_text(json) << "\n";
+  if (o.json)
+    std::cout << json_text(json) << "\n";
   else {
     char line[160];
-    std::snprintf(line, sizeof line, "overall: %.1f M points/s, %.1f M triangles/s on one thread\n", total_points / total_time / 1e6,
-                  total_tris / total_time / 1e6);
+    std::snprintf(line, sizeof line, "overall: %.1f M points/s, %.1f M triangles/s on one thread\n",
+                  total_points / total_time / 1e6, total_tris / total_time / 1e6);
     std::cout << line;
   }
   return kExitOk;

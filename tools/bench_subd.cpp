@@ -47,8 +47,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
     const auto start = Clock::now();
     device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
     const DrawResult r =
-        displacement ? render_displaced(device, model, *displacement, factors, partitioning, SubdView::shaded, camera, *fb)
-                     : render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
+        displacement
+            ? render_displaced(device, model, *displacement, factors, partitioning, SubdView::shaded, camera, *fb)
+            : render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     last = r.report;
@@ -58,10 +59,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
   const auto discard = [](const auto&, const PatchGroup&) {};
   const auto start = Clock::now();
-  const DrawResult s =
-      displacement
-          ? stream_displaced(device, model, *displacement, factors, partitioning, discard)
-          : stream_subd(device, model, factors, partitioning, discard);
+  const DrawResult s = displacement ? stream_displaced(device, model, *displacement, factors, partitioning, discard)
+                                    : stream_subd(device, model, factors, partitioning, discard);
   const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
   std::sort(frame_s.begin(), frame_s.end());
   const double median = frame_s[frame_s.size() / 2];
@@ -88,12 +87,13 @@ int run_bench_subd(const BenchSubdOptions& o) {
     std::cout << json_text(j) << "\n";
   } else {
     char line[400];
-    std::snprintf(line, sizeof line,
-                  "%s, %s%s, factor %g, %dx%d, %d threads: median %.4f s (min %.4f), %llu triangles, %.1f M triangles/s\n"
-                  "front end alone (stream output): %.4f s; HS %.2f M patches/thread-s, DS %.1f M points/thread-s\n",
-                  cage.c_str(), to_string(scheme), displacement ? " displaced" : "", double(o.factor), w, h, device.threads(), median, frame_s.front(),
-                  (unsigned long long)st.CInvocations, double(st.CInvocations) / median / 1e6, stream_s, hs_rate / 1e6,
-                  ds_rate / 1e6);
+    std::snprintf(
+        line, sizeof line,
+        "%s, %s%s, factor %g, %dx%d, %d threads: median %.4f s (min %.4f), %llu triangles, %.1f M triangles/s\n"
+        "front end alone (stream output): %.4f s; HS %.2f M patches/thread-s, DS %.1f M points/thread-s\n",
+        cage.c_str(), to_string(scheme), displacement ? " displaced" : "", double(o.factor), w, h, device.threads(),
+        median, frame_s.front(), (unsigned long long)st.CInvocations, double(st.CInvocations) / median / 1e6, stream_s,
+        hs_rate / 1e6, ds_rate / 1e6);
     std::cout << line;
   }
   return kExitOk;
@@ -103,7 +103,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
 
 Runner add_bench_subd_command(CLI::App& bench) {
   auto o = std::make_shared<BenchSubdOptions>();
-  CLI::App* cmd = bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
+  CLI::App* cmd =
+      bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
   cmd->add_option("--cage", o->cage, "the cage (default: the monster frog shipped with tessera)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
   cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();

@@ -49,14 +49,17 @@ struct LlvmpipeRun {
 // Checked before rendering, so a bad --llvmpipe fails at once.
 void check_llvmpipe(const TorusOptions& o, ts::Partitioning p) {
   // The torus hull shader would round pow2 factors that the harness cannot.
-  if (p == ts::Partitioning::pow2) throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
-  if (!std::filesystem::exists(o.llvmpipe)) throw InputError(o.llvmpipe + ": no such llvmpipe harness (build tessbench.cpp)");
+  if (p == ts::Partitioning::pow2)
+    throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
+  if (!std::filesystem::exists(o.llvmpipe))
+    throw InputError(o.llvmpipe + ": no such llvmpipe harness (build tessbench.cpp)");
 }
 
 LlvmpipeRun run_llvmpipe(const TorusOptions& o, ts::Partitioning p, int w, int h, int threads) {
   const char* spacing = oracle::gl_spacing(p);
   LlvmpipeRun r;
-  r.image = (std::filesystem::temp_directory_path() / ("tessera-llvmpipe-" + std::to_string(::getpid()) + ".ppm")).string();
+  r.image =
+      (std::filesystem::temp_directory_path() / ("tessera-llvmpipe-" + std::to_string(::getpid()) + ".ppm")).string();
   char cmd[2048];
   std::snprintf(cmd, sizeof cmd, "LP_NUM_THREADS=%d '%s' %.9g %d %d %d %s '%s' 2>&1", threads, o.llvmpipe.c_str(),
                 double(o.factor), w, h, o.frames, spacing, r.image.c_str());
@@ -80,7 +83,8 @@ LlvmpipeRun run_llvmpipe(const TorusOptions& o, ts::Partitioning p, int w, int h
 int run_bench_torus(const TorusOptions& o) {
   const auto partitioning = ts::parse_partitioning(o.partitioning);
   if (!partitioning) throw UsageError("--partitioning: expected integer, pow2, fractional_odd or fractional_even");
-  if (!std::isfinite(o.factor)) throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
+  if (!std::isfinite(o.factor))
+    throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
   if (o.rounds < 1 || o.rounds > 100) throw UsageError("--rounds: must be in 1..100");
   // The device would clamp these silently; a benchmark must run what it was asked to.
@@ -152,12 +156,15 @@ int run_bench_torus(const TorusOptions& o) {
     // Over the rounds: the median of the harness's medians, its minimum, the median of the ratios.
     lp = llvmpipe_rounds.back();
     std::vector<double> medians;
-    for (const LlvmpipeRun& r : llvmpipe_rounds) medians.push_back(r.median_s), lp->min_s = std::min(lp->min_s, r.min_s);
+    for (const LlvmpipeRun& r : llvmpipe_rounds)
+      medians.push_back(r.median_s), lp->min_s = std::min(lp->min_s, r.min_s);
     lp->median_s = median_of(medians);
     speedup = median_of(round_speedups);
-    const std::string ours = o.output.empty()
-                                 ? (std::filesystem::temp_directory_path() / ("tessera-torus-" + std::to_string(::getpid()) + ".png")).string()
-                                 : o.output;
+    const std::string ours =
+        o.output.empty()
+            ? (std::filesystem::temp_directory_path() / ("tessera-torus-" + std::to_string(::getpid()) + ".png"))
+                  .string()
+            : o.output;
     if (o.output.empty())
       if (auto e = fb->write_color(ours); !e.empty()) throw InputError(e);
     diff = verify::compare_images(ours, lp->image, 2);
@@ -183,28 +190,29 @@ int run_bench_torus(const TorusOptions& o) {
               {"peak_rss_bytes", rss},
               {"times", to_json(report.times)}};
     if (lp)
-      j["llvmpipe"] = {{"median_s", lp->median_s},           {"min_s", lp->min_s},
-                       {"triangles", lp->triangles},         {"speedup", speedup},
-                       {"round_speedups", round_speedups},   {"pixels_over_2", diff->over_threshold},
-                       {"share_over_2", diff->share()},      {"max_difference", diff->max_difference}};
+      j["llvmpipe"] = {{"median_s", lp->median_s},         {"min_s", lp->min_s},
+                       {"triangles", lp->triangles},       {"speedup", speedup},
+                       {"round_speedups", round_speedups}, {"pixels_over_2", diff->over_threshold},
+                       {"share_over_2", diff->share()},    {"max_difference", diff->max_difference}};
     std::cout << json_text(j) << "\n";
   } else {
     char line[512];
-    std::snprintf(line, sizeof line,
-                  "torus factor %s %s %dx%d %s threads %d: triangles %llu median_s %.4f min_s %.4f (%.1f M triangles/s), "
-                  "geometry peak %.1f MB, framebuffer %.1f MB, peak RSS %.1f MB\n",
-                  float_text(o.factor).c_str(), o.partitioning.c_str(), w, h, kBuildIsa, device.threads(),
-                  static_cast<unsigned long long>(triangles), median, minimum, double(triangles) / median / 1e6,
-                  double(report.memory.geometry_peak_bytes) / 1e6, double(report.memory.framebuffer_bytes) / 1e6,
-                  double(rss) / 1e6);
+    std::snprintf(
+        line, sizeof line,
+        "torus factor %s %s %dx%d %s threads %d: triangles %llu median_s %.4f min_s %.4f (%.1f M triangles/s), "
+        "geometry peak %.1f MB, framebuffer %.1f MB, peak RSS %.1f MB\n",
+        float_text(o.factor).c_str(), o.partitioning.c_str(), w, h, kBuildIsa, device.threads(),
+        static_cast<unsigned long long>(triangles), median, minimum, double(triangles) / median / 1e6,
+        double(report.memory.geometry_peak_bytes) / 1e6, double(report.memory.framebuffer_bytes) / 1e6,
+        double(rss) / 1e6);
     std::cout << line;
     if (lp) {
       std::snprintf(line, sizeof line,
                     "llvmpipe: triangles %llu median_s %.4f min_s %.4f; speedup %.2fx; pixels differing by more than "
                     "2/255: %llu of %llu (%.4f%%), max difference %d\n",
                     static_cast<unsigned long long>(lp->triangles), lp->median_s, lp->min_s, speedup,
-                    static_cast<unsigned long long>(diff->over_threshold), static_cast<unsigned long long>(diff->pixels),
-                    100.0 * diff->share(), diff->max_difference);
+                    static_cast<unsigned long long>(diff->over_threshold),
+                    static_cast<unsigned long long>(diff->pixels), 100.0 * diff->share(), diff->max_difference);
       std::cout << line;
     }
   }
@@ -215,13 +223,16 @@ int run_bench_torus(const TorusOptions& o) {
 
 Runner add_bench_torus_command(CLI::App& bench) {
   auto o = std::make_shared<TorusOptions>();
-  CLI::App* cmd = bench.add_subcommand("torus", "The displaced B-spline torus of tessbench.cpp through the whole pipeline");
+  CLI::App* cmd =
+      bench.add_subcommand("torus", "The displaced B-spline torus of tessbench.cpp through the whole pipeline");
   cmd->add_option("--factor", o->factor, "tessellation factor on every edge and inside")->capture_default_str();
-  cmd->add_option("--partitioning", o->partitioning, "integer, pow2, fractional_odd or fractional_even")->capture_default_str();
+  cmd->add_option("--partitioning", o->partitioning, "integer, pow2, fractional_odd or fractional_even")
+      ->capture_default_str();
   cmd->add_option("--resolution", o->resolution, "WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up frame)")->capture_default_str();
-  cmd->add_option("--rounds", o->rounds,
-                  "measure this many times, taking turns with --llvmpipe; its speedup is the median of the rounds' ratios")
+  cmd->add_option(
+         "--rounds", o->rounds,
+         "measure this many times, taking turns with --llvmpipe; its speedup is the median of the rounds' ratios")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads, 0 = all")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");

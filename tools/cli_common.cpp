@@ -45,9 +45,12 @@ std::vector<float> parse_float_list(std::string_view text, std::string_view what
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    const std::string_view token = text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const std::string_view token =
+        text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     const auto value = parse_float(token);
-    if (!value) throw UsageError(std::string(what) + ": '" + std::string(token) + "' is not a number (use e.g. 4, 3.5, nan, inf, -0)");
+    if (!value)
+      throw UsageError(std::string(what) + ": '" + std::string(token) +
+                       "' is not a number (use e.g. 4, 3.5, nan, inf, -0)");
     values.push_back(*value);
     if (comma == std::string_view::npos) break;
     start = comma + 1;
@@ -87,7 +90,8 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& what,
   if (!std::regex_match(text, m, re)) throw UsageError(what + ": expected AxB, got '" + text + "'");
   const int a = std::stoi(m[1]), b = std::stoi(m[2]);
   if (a < lo || b < lo || a > hi || b > hi)
-    throw UsageError(what + ": " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi) + " per side");
+    throw UsageError(what + ": " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi) +
+                     " per side");
   return {a, b};
 }
 

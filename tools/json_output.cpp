@@ -70,15 +70,16 @@ std::string json_text(const FloatJson& value) {
 }
 
 Json to_json(const PipelineStatistics& s) {
-  return {{"IAVertices", s.IAVertices},       {"IAPrimitives", s.IAPrimitives}, {"VSInvocations", s.VSInvocations},
-          {"GSInvocations", s.GSInvocations}, {"GSPrimitives", s.GSPrimitives}, {"CInvocations", s.CInvocations},
+  return {{"IAVertices", s.IAVertices},       {"IAPrimitives", s.IAPrimitives},   {"VSInvocations", s.VSInvocations},
+          {"GSInvocations", s.GSInvocations}, {"GSPrimitives", s.GSPrimitives},   {"CInvocations", s.CInvocations},
           {"CPrimitives", s.CPrimitives},     {"PSInvocations", s.PSInvocations}, {"HSInvocations", s.HSInvocations},
           {"DSInvocations", s.DSInvocations}};
 }
 
 Json to_json(const StageTimes& t) {
-  return {{"ia_vs_s", t.ia_vs}, {"hs_s", t.hs},       {"tessellator_s", t.tessellator}, {"ds_s", t.ds},
-          {"setup_s", t.setup}, {"raster_s", t.raster}, {"wall_s", t.wall}};
+  return {{"ia_vs_s", t.ia_vs}, {"hs_s", t.hs},       {"tessellator_s", t.tessellator},
+          {"ds_s", t.ds},       {"setup_s", t.setup}, {"raster_s", t.raster},
+          {"wall_s", t.wall}};
 }
 
 Json to_json(const MemoryStats& m) {
@@ -88,9 +89,12 @@ Json to_json(const MemoryStats& m) {
 }
 
 Json to_json(const verify::WeldReport& w) {
-  return {{"closed_manifold", w.closed_manifold()}, {"triangles", w.triangles},
-          {"welded_vertices", w.welded_vertices},   {"edges", w.edges},
-          {"open_edges", w.boundary_edges},         {"nonmanifold_edges", w.nonmanifold_edges},
+  return {{"closed_manifold", w.closed_manifold()},
+          {"triangles", w.triangles},
+          {"welded_vertices", w.welded_vertices},
+          {"edges", w.edges},
+          {"open_edges", w.boundary_edges},
+          {"nonmanifold_edges", w.nonmanifold_edges},
           {"degenerate_triangles", w.degenerate_triangles}};
 }
 

@@ -18,8 +18,8 @@
 namespace tessera::cli {
 
 using Json = nlohmann::ordered_json;
-using FloatJson = nlohmann::basic_json<nlohmann::ordered_map, std::vector, std::string, bool, std::int64_t,
-                                       std::uint64_t, float>;
+using FloatJson =
+    nlohmann::basic_json<nlohmann::ordered_map, std::vector, std::string, bool, std::int64_t, std::uint64_t, float>;
 
 // A float as the double nearest its shortest text (float_text), so that JSON shows 3.3 rather
 // than 3.299999952316284; either reads back to the same float.

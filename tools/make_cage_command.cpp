@@ -37,10 +37,12 @@ int run_make_cage(const MakeCageOptions& o) {
 
 Runner add_make_cage_command(CLI::App& app) {
   auto o = std::make_shared<MakeCageOptions>();
-  CLI::App* cmd = app.add_subcommand("make-cage", "write a synthetic control cage (OBJ with UVs) for scaling measurements");
+  CLI::App* cmd =
+      app.add_subcommand("make-cage", "write a synthetic control cage (OBJ with UVs) for scaling measurements");
   cmd->add_option("shape", o->shape, "the shape: torus")->capture_default_str();
   cmd->add_option("--grid", o->grid, "faces around x across (each 3..4096)")->capture_default_str();
-  cmd->add_option("--major-radius", o->major, "torus: distance from the centre to the tube's centre")->capture_default_str();
+  cmd->add_option("--major-radius", o->major, "torus: distance from the centre to the tube's centre")
+      ->capture_default_str();
   cmd->add_option("--minor-radius", o->minor, "torus: the tube's radius")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "the OBJ file to write");
   return [o] { return run_make_cage(*o); };

@@ -37,26 +37,32 @@ int run_pattern(const PatternOptions& o) {
   if (!domain) throw UsageError("--domain: unknown domain '" + o.domain + "' (quad, tri, isoline)");
   const auto partitioning = ts::parse_partitioning(o.partitioning);
   if (!partitioning)
-    throw UsageError("--partitioning: unknown partitioning '" + o.partitioning + "' (integer, pow2, fractional_odd, fractional_even)");
-  const std::string output_name = !o.output.empty() ? o.output : *domain == ts::Domain::isoline ? "line" : "triangle_cw";
+    throw UsageError("--partitioning: unknown partitioning '" + o.partitioning +
+                     "' (integer, pow2, fractional_odd, fractional_even)");
+  const std::string output_name = !o.output.empty()                ? o.output
+                                  : *domain == ts::Domain::isoline ? "line"
+                                                                   : "triangle_cw";
   const auto output = ts::parse_output_primitive(output_name);
-  if (!output) throw UsageError("--output: unknown output primitive '" + o.output + "' (point, line, triangle_cw, triangle_ccw)");
-  if (*domain == ts::Domain::isoline && (*output == ts::OutputPrimitive::triangle_cw || *output == ts::OutputPrimitive::triangle_ccw))
+  if (!output)
+    throw UsageError("--output: unknown output primitive '" + o.output + "' (point, line, triangle_cw, triangle_ccw)");
+  if (*domain == ts::Domain::isoline &&
+      (*output == ts::OutputPrimitive::triangle_cw || *output == ts::OutputPrimitive::triangle_ccw))
     throw UsageError("--output: the isoline domain makes lines or points, not " + o.output);
 
   const auto outer = parse_float_list(o.outer, "--outer");
   const std::size_t want_outer = std::size_t(ts::outer_factor_count(*domain));
   const std::size_t want_inner = std::size_t(ts::inside_factor_count(*domain));
   if (outer.size() != want_outer)
-    throw UsageError("--outer: the " + o.domain + " domain takes " + std::to_string(want_outer) + " outer factors, got " +
-                     std::to_string(outer.size()));
+    throw UsageError("--outer: the " + o.domain + " domain takes " + std::to_string(want_outer) +
+                     " outer factors, got " + std::to_string(outer.size()));
   std::vector<float> inner;
   if (!o.inner.empty()) inner = parse_float_list(o.inner, "--inner");
   if (want_inner == 0 && !inner.empty()) throw UsageError("--inner: the isoline domain takes no inside factors");
   if (want_inner > 0 && inner.size() != want_inner)
     throw UsageError("--inner: the " + o.domain + " domain takes " + std::to_string(want_inner) + " inside factor" +
                      (want_inner > 1 ? "s" : "") + ", got " + std::to_string(inner.size()));
-  if (o.image_size < 64 || o.image_size > 8192) throw UsageError("--image-size: must be in 64..8192, got " + std::to_string(o.image_size));
+  if (o.image_size < 64 || o.image_size > 8192)
+    throw UsageError("--image-size: must be in 64..8192, got " + std::to_string(o.image_size));
 
   ts::FactorSet factors;
   factors.domain = *domain;
@@ -67,8 +73,8 @@ int run_pattern(const PatternOptions& o) {
   const ts::ProcessedFactors processed = ts::process_factors(*partitioning, factors);
   ts::Pattern pattern;
   ts::generate(processed, *output, pattern);
-  log_debug(std::to_string(pattern.points.size()) + " points, " + std::to_string(pattern.primitive_count()) + " primitives" +
-            (pattern.culled ? " (culled)" : ""));
+  log_debug(std::to_string(pattern.points.size()) + " points, " + std::to_string(pattern.primitive_count()) +
+            " primitives" + (pattern.culled ? " (culled)" : ""));
 
   if (!o.image.empty()) {
     write_pattern_image({*partitioning, factors, processed, &pattern, o.image_size}, o.image);
@@ -77,8 +83,9 @@ int run_pattern(const PatternOptions& o) {
   if (o.json) {
     std::cout << json_text(pattern_json(pattern)) << "\n";
   } else if (o.image.empty()) {
-    std::cout << (pattern.culled ? "culled" : std::to_string(pattern.points.size()) + " points, " + std::to_string(pattern.primitive_count()) +
-                                                  " primitives")
+    std::cout << (pattern.culled ? "culled"
+                                 : std::to_string(pattern.points.size()) + " points, " +
+                                       std::to_string(pattern.primitive_count()) + " primitives")
               << "\n";
   }
   return kExitOk;
@@ -94,10 +101,12 @@ Runner add_pattern_command(CLI::App& app) {
       "tri: 3 outer (Ueq0,Veq0,Weq0) and 1 inner; isoline: 2 outer (density,detail) and none.\n"
       "Example: tessera pattern --domain tri --partitioning fractional_odd --outer 3.5,2,5 --inner 4 --image tri.png");
   cmd->add_option("--domain", o->domain, "quad | tri | isoline")->capture_default_str();
-  cmd->add_option("--partitioning", o->partitioning, "integer | pow2 | fractional_odd | fractional_even")->capture_default_str();
+  cmd->add_option("--partitioning", o->partitioning, "integer | pow2 | fractional_odd | fractional_even")
+      ->capture_default_str();
   cmd->add_option("--outer", o->outer, "outer (edge) factors, comma-separated")->required();
   cmd->add_option("--inner", o->inner, "inside factors, comma-separated");
-  cmd->add_option("--output", o->output, "point | line | triangle_cw | triangle_ccw (default: line for isolines, else triangle_cw)");
+  cmd->add_option("--output", o->output,
+                  "point | line | triangle_cw | triangle_ccw (default: line for isolines, else triangle_cw)");
   cmd->add_flag("--json", o->json, "print {\"culled\", \"points\", \"primitives\"} in the tessellator's order");
   cmd->add_option("--image", o->image, "draw the pattern to this PNG");
   cmd->add_option("--image-size", o->image_size, "picture size in pixels")->capture_default_str();

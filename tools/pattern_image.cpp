@@ -69,11 +69,13 @@ class Canvas {
         Rgb sum{0, 0, 0};
         for (int sy = 0; sy < kSupersample; ++sy)
           for (int sx = 0; sx < kSupersample; ++sx) {
-            const Rgb& p = px_[std::size_t(y * kSupersample + sy) * std::size_t(w_) + std::size_t(x * kSupersample + sx)];
+            const Rgb& p =
+                px_[std::size_t(y * kSupersample + sy) * std::size_t(w_) + std::size_t(x * kSupersample + sx)];
             sum.r += p.r, sum.g += p.g, sum.b += p.b;
           }
         const float n = float(kSupersample * kSupersample);
-        row[std::size_t(x) * 3] = sum.r / n, row[std::size_t(x) * 3 + 1] = sum.g / n, row[std::size_t(x) * 3 + 2] = sum.b / n;
+        row[std::size_t(x) * 3] = sum.r / n, row[std::size_t(x) * 3 + 1] = sum.g / n,
+                             row[std::size_t(x) * 3 + 2] = sum.b / n;
       }
       out.set_pixels(OIIO::ROI(0, size, y, y + 1), OIIO::TypeDesc::FLOAT, row.data());
     }
@@ -105,7 +107,8 @@ struct Layout {
   }
 };
 
-constexpr Rgb kEdgeColor[4] = {{0.99f, 0.85f, 0.62f}, {0.72f, 0.88f, 0.98f}, {0.78f, 0.93f, 0.74f}, {0.92f, 0.80f, 0.96f}};
+constexpr Rgb kEdgeColor[4] = {
+    {0.99f, 0.85f, 0.62f}, {0.72f, 0.88f, 0.98f}, {0.78f, 0.93f, 0.74f}, {0.92f, 0.80f, 0.96f}};
 constexpr Rgb kInteriorColor{0.93f, 0.93f, 0.90f};
 constexpr Rgb kInvertedColor{0.95f, 0.15f, 0.12f};
 constexpr Rgb kWire{0.25f, 0.27f, 0.32f};
@@ -127,11 +130,13 @@ int edge_of(ts::Domain d, const ts::DomainPoint& p) {
   return -1;
 }
 
-void text(OIIO::ImageBuf& img, int x, int y, const std::string& s, int size, OIIO::ImageBufAlgo::TextAlignX ax, bool& font_ok) {
+void text(OIIO::ImageBuf& img, int x, int y, const std::string& s, int size, OIIO::ImageBufAlgo::TextAlignX ax,
+          bool& font_ok) {
   if (!font_ok) return;
   const float black[3] = {0.08f, 0.08f, 0.1f};
   if (!OIIO::ImageBufAlgo::render_text(img, x, y, s, size, kFont, black, ax, OIIO::ImageBufAlgo::TextAlignY::Center)) {
-    log_info(std::string("cannot draw text on the pattern image (font ") + kFont + "; install fonts-dejavu-core); drawing without labels");
+    log_info(std::string("cannot draw text on the pattern image (font ") + kFont +
+             "; install fonts-dejavu-core); drawing without labels");
     font_ok = false;
   }
 }
@@ -188,7 +193,8 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
       for (int k = 0; k < per; ++k) {
         if (per == 2 && k == 1) break;
         canvas.line(layout.map(pattern.points[pattern.indices[i + std::size_t(k)]]),
-                    layout.map(pattern.points[pattern.indices[i + std::size_t((k + 1) % per)]]), width, per == 2 ? kPointColor : kWire);
+                    layout.map(pattern.points[pattern.indices[i + std::size_t((k + 1) % per)]]), width,
+                    per == 2 ? kPointColor : kWire);
       }
   }
   const double radius = pattern.points.size() > 1500 ? 1.4 : pattern.points.size() > 300 ? 2.2 : 3.2;
@@ -203,19 +209,23 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
   using AX = OIIO::ImageBufAlgo::TextAlignX;
   const int big = std::max(12, pic.size / 40), small = std::max(10, pic.size / 52);
   const auto& f = pic.raw.values;
-  std::string title = std::string(ts::to_string(domain)) + "   " + std::string(ts::to_string(pic.partitioning)) + "   " +
-                      std::string(ts::to_string(pattern.output));
+  std::string title = std::string(ts::to_string(domain)) + "   " + std::string(ts::to_string(pic.partitioning)) +
+                      "   " + std::string(ts::to_string(pattern.output));
   text(img, pic.size / 2, int(margin * 0.35), title, big, AX::Center, font_ok);
   std::string counts = pattern.culled ? std::string("CULLED: an edge factor is <= 0, -0 or NaN")
-                                      : std::to_string(pattern.points.size()) + " points, " + std::to_string(pattern.primitive_count()) +
-                                            (per == 3 ? " triangles" : per == 2 ? " segments" : " points");
+                                      : std::to_string(pattern.points.size()) + " points, " +
+                                            std::to_string(pattern.primitive_count()) +
+                                            (per == 3   ? " triangles"
+                                             : per == 2 ? " segments"
+                                                        : " points");
   if (inverted) counts += ", " + std::to_string(inverted) + " inverted (red)";
   if (degenerate) counts += ", " + std::to_string(degenerate) + " zero-area";
   text(img, pic.size / 2, int(margin * 0.75), counts, small, AX::Center, font_ok);
 
   // Factors along their edges: "name = raw -> segments".
   const auto& pf = pic.processed;
-  auto label = [&](const char* name, float raw, const ts::EdgeContext* e, const char* sep = " = ", const char* sep2 = "  ") {
+  auto label = [&](const char* name, float raw, const ts::EdgeContext* e, const char* sep = " = ",
+                   const char* sep2 = "  ") {
     std::string s = name;
     s += sep;
     s += float_text(raw);
@@ -235,31 +245,40 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
   if (domain == ts::Domain::quad || domain == ts::Domain::isoline) {
     const bool quad = domain == ts::Domain::quad;
     if (quad) {
-      text(img, int(L - 8), int(T + E / 2), label("Ueq0", f[0], &pf.outside[0], "\n= ", "\n"), small, AX::Right, font_ok);
+      text(img, int(L - 8), int(T + E / 2), label("Ueq0", f[0], &pf.outside[0], "\n= ", "\n"), small, AX::Right,
+           font_ok);
       text(img, int(L + E / 2), int(T - small), label("Veq0", f[1], &pf.outside[1]), small, AX::Center, font_ok);
-      text(img, int(L + E + 8), int(T + E / 2), label("Ueq1", f[2], &pf.outside[2], "\n= ", "\n"), small, AX::Left, font_ok);
+      text(img, int(L + E + 8), int(T + E / 2), label("Ueq1", f[2], &pf.outside[2], "\n= ", "\n"), small, AX::Left,
+           font_ok);
       text(img, int(L + E / 2), int(T + E + small), label("Veq1", f[3], &pf.outside[3]), small, AX::Center, font_ok);
       text(img, pic.size / 2, int(T + E + 2.4 * small),
-           "inside U = " + float_text(f[4]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")") +
-               ",  inside V = " + float_text(f[5]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[1]) + ")"),
+           "inside U = " + float_text(f[4]) +
+               (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")") + ",  inside V = " +
+               float_text(f[5]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[1]) + ")"),
            small, AX::Center, font_ok);
     } else {
-      text(img, int(L - 8), int(T + E / 2), label("density", f[0], nullptr, "\n= ") + (pf.culled ? "" : "\n(" + segments_text(pf.outside[0]) + " lines)"),
-           small, AX::Right, font_ok);
+      text(
+          img, int(L - 8), int(T + E / 2),
+          label("density", f[0], nullptr, "\n= ") + (pf.culled ? "" : "\n(" + segments_text(pf.outside[0]) + " lines)"),
+          small, AX::Right, font_ok);
       text(img, int(L + E / 2), int(T - small), label("detail", f[1], &pf.outside[1]), small, AX::Center, font_ok);
     }
     text(img, int(L - 4), int(T - small), "(0,0)", small, AX::Right, font_ok);
     text(img, int(L + E + 4), int(T + E + small), "(1,1)", small, AX::Left, font_ok);
   } else {
     const P2 U = layout.map({1, 0}), V = layout.map({0, 1}), W = layout.map({0, 0});
-    text(img, int((V.x + W.x) / 2 - 10), int((V.y + W.y) / 2), label("Ueq0", f[0], &pf.outside[0]), small, AX::Right, font_ok);
-    text(img, int((W.x + U.x) / 2), int(W.y + small * 1.4), label("Veq0", f[1], &pf.outside[1]), small, AX::Center, font_ok);
-    text(img, int((U.x + V.x) / 2 + 10), int((U.y + V.y) / 2), label("Weq0", f[2], &pf.outside[2]), small, AX::Left, font_ok);
+    text(img, int((V.x + W.x) / 2 - 10), int((V.y + W.y) / 2), label("Ueq0", f[0], &pf.outside[0]), small, AX::Right,
+         font_ok);
+    text(img, int((W.x + U.x) / 2), int(W.y + small * 1.4), label("Veq0", f[1], &pf.outside[1]), small, AX::Center,
+         font_ok);
+    text(img, int((U.x + V.x) / 2 + 10), int((U.y + V.y) / 2), label("Weq0", f[2], &pf.outside[2]), small, AX::Left,
+         font_ok);
     text(img, int(V.x), int(V.y - small), "v = 1", small, AX::Center, font_ok);
     text(img, int(U.x + 6), int(U.y + small), "u = 1", small, AX::Left, font_ok);
     text(img, int(W.x - 6), int(W.y + small), "w = 1", small, AX::Right, font_ok);
     text(img, pic.size / 2, int(W.y + small * 3),
-         "inside = " + float_text(f[3]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")"), small, AX::Center, font_ok);
+         "inside = " + float_text(f[3]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")"),
+         small, AX::Center, font_ok);
   }
 
   write_file_atomically(path, [&](const std::string& temp) {

@@ -13,10 +13,10 @@ namespace tessera::cli {
 
 struct PatternPicture {
   ts::Partitioning partitioning = ts::Partitioning::integer;
-  ts::FactorSet raw;             // the factors as given
+  ts::FactorSet raw;  // the factors as given
   ts::ProcessedFactors processed;
   const ts::Pattern* pattern = nullptr;
-  int size = 1024;               // pixels, square
+  int size = 1024;  // pixels, square
 };
 
 // Renders and writes a PNG (or any format OpenImageIO knows from the extension) atomically.

@@ -4,7 +4,6 @@
 #include <iostream>
 #include <sstream>
 
-
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
@@ -55,10 +54,12 @@ int run_render(const RenderOptions& o) {
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);
   fb->clear(glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
-  const SubdView view = o.view == "shaded" ? SubdView::shaded : o.view == "wireframe" ? SubdView::wireframe : SubdView::wire_on_shaded;
-  const DrawResult result = displacement
-                                ? render_displaced(device, model, *displacement, factors, partitioning, view, camera, *fb)
-                                : render_subd(device, model, factors, partitioning, view, camera, *fb);
+  const SubdView view = o.view == "shaded"      ? SubdView::shaded
+                        : o.view == "wireframe" ? SubdView::wireframe
+                                                : SubdView::wire_on_shaded;
+  const DrawResult result =
+      displacement ? render_displaced(device, model, *displacement, factors, partitioning, view, camera, *fb)
+                   : render_subd(device, model, factors, partitioning, view, camera, *fb);
   if (!result.ok()) throw InputError(o.cage + ": " + result.error);
   const DrawReport& total = result.report;
   if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);

@@ -81,12 +81,20 @@ int run_tessellate(const TessellateOptions& o) {
   if (!o.output.empty()) {
     write_file_atomically(o.output, [&](const std::string& temp) {
       PlyStreamWriter ply(temp, o.output,
-                          {{"float", "x"}, {"float", "y"}, {"float", "z"}, {"float", "nx"}, {"float", "ny"},
-                           {"float", "nz"}, {"int", "face"}, {"float", "u"}, {"float", "v"}});
+                          {{"float", "x"},
+                           {"float", "y"},
+                           {"float", "z"},
+                           {"float", "nx"},
+                           {"float", "ny"},
+                           {"float", "nz"},
+                           {"int", "face"},
+                           {"float", "u"},
+                           {"float", "v"}});
       tessellate(&ply);
       const std::string made_by =
           "tessera tessellate " + std::filesystem::path(o.cage).filename().string() + " scheme " + to_string(scheme) +
-          (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string() : std::string()) +
+          (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string()
+                        : std::string()) +
           " factor " + float_text(o.factor) + " partitioning " + o.partitioning;
       ply.finish({made_by, "each patch writes its own vertices; face = base face, u v = domain location"});
     });

@@ -13,11 +13,13 @@ void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float
                         std::string& partitioning, int& threads) {
   cmd.add_option("--scheme", scheme,
                  "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
-                 "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit) or pn (PN triangles and quads)")->capture_default_str();
+                 "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit) or pn (PN triangles and quads)")
+      ->capture_default_str();
   cmd.add_option("--factor", factor, "tessellation factor on every edge")->capture_default_str();
   cmd.add_option("--vary-factors", vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
   cmd.add_option("--factors-per-edge", factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
-  cmd.add_option("--partitioning", partitioning, "integer, pow2, fractional_odd or fractional_even")->capture_default_str();
+  cmd.add_option("--partitioning", partitioning, "integer, pow2, fractional_odd or fractional_even")
+      ->capture_default_str();
   cmd.add_option("--threads", threads, "worker threads (0: all)");
 }
 
@@ -75,12 +77,14 @@ void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
   cmd.add_option("--displacement", d.map, "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs");
   cmd.add_option("--displacement-channel", d.channel,
                  "channel(s) of the map: a name or letter (A, height) for a scalar, three (RGB, 'X,Y,Z') for a vector");
-  cmd.add_option("--displacement-scale", d.scale, "displacement = scale * texel + bias (object units)")->capture_default_str();
+  cmd.add_option("--displacement-scale", d.scale, "displacement = scale * texel + bias (object units)")
+      ->capture_default_str();
   cmd.add_option("--displacement-bias", d.bias, "added after scaling")->capture_default_str();
   cmd.add_option("--displacement-space", d.space, "vector maps: tangent or object")->capture_default_str();
-  cmd.add_option("--normal-map", d.normal_map,
-                 "shading normals: auto (the displacement file's RGB when the height is another channel, else derived), "
-                 "derived (from the height), or a tangent-space normal map file")
+  cmd.add_option(
+         "--normal-map", d.normal_map,
+         "shading normals: auto (the displacement file's RGB when the height is another channel, else derived), "
+         "derived (from the height), or a tangent-space normal map file")
       ->capture_default_str();
 }
 

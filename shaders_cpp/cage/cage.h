@@ -45,14 +45,14 @@ struct CageTags {
   std::vector<int> holes;  // face indices that produce no surface
   BoundaryInterpolation boundary = BoundaryInterpolation::edge_only;
   CreaseMethod crease_method = CreaseMethod::uniform;
-  bool smooth_triangles = false;      // Sdc TRI_SUB_SMOOTH
-  bool left_handed = false;           // faces wound clockwise
-  int fvar_boundary = 1;              // `t facevaryinginterpolateboundary`: 0..5 as OpenSubdiv
+  bool smooth_triangles = false;        // Sdc TRI_SUB_SMOOTH
+  bool left_handed = false;             // faces wound clockwise
+  int fvar_boundary = 1;                // `t facevaryinginterpolateboundary`: 0..5 as OpenSubdiv
   bool fvar_propagate_corners = false;  // `t facevaryingpropagatecorners 1 0 0 N`: N != 0
 };
 
 struct Cage {
-  std::string name;                   // where it came from (a file path), for messages
+  std::string name;  // where it came from (a file path), for messages
   std::vector<glm::vec3> positions;
   // Faces, flattened: face f has face_sizes[f] vertices starting at face_offsets[f] of face_vertices,
   // in the file's order (counter-clockwise seen from outside unless tags.left_handed).

@@ -66,7 +66,9 @@ class ObjParser {
   [[noreturn]] void fail(int line, const std::string& what) const {
     throw CageError(cage_.name + ":" + std::to_string(line) + ": " + what);
   }
-  void warn(int line, const std::string& what) { cage_.warnings.push_back(cage_.name + ":" + std::to_string(line) + ": " + what); }
+  void warn(int line, const std::string& what) {
+    cage_.warnings.push_back(cage_.name + ":" + std::to_string(line) + ": " + what);
+  }
 
   static void tokenize(std::string_view s, std::vector<std::string_view>& out) {
     out.clear();
@@ -102,11 +104,16 @@ class ObjParser {
 
   void statement(const Statement& st) {
     const std::string_view kw = st.tokens[0];
-    if (kw == "v") vertex(st);
-    else if (kw == "vt") texcoord(st);
-    else if (kw == "f") face(st);
-    else if (kw == "t") tag(st);
-    else if (kw == "vn" || kw == "g" || kw == "o" || kw == "s" || kw == "mtllib" || kw == "usemtl") return;
+    if (kw == "v")
+      vertex(st);
+    else if (kw == "vt")
+      texcoord(st);
+    else if (kw == "f")
+      face(st);
+    else if (kw == "t")
+      tag(st);
+    else if (kw == "vn" || kw == "g" || kw == "o" || kw == "s" || kw == "mtllib" || kw == "usemtl")
+      return;
     else if (warned_.insert(std::string(kw)).second)
       warn(st.line, "statement '" + std::string(kw) + "' is not supported; ignored (and further ones)");
   }
@@ -140,15 +147,16 @@ class ObjParser {
     if (i > 0) return i - 1;
     const long long r = static_cast<long long>(count) + i;
     if (r < 0)
-      fail(line, "face " + std::to_string(face) + " has relative " + what + " index " + std::to_string(i) + ", but only " +
-                     std::to_string(count) + " were read so far");
+      fail(line, "face " + std::to_string(face) + " has relative " + what + " index " + std::to_string(i) +
+                     ", but only " + std::to_string(count) + " were read so far");
     return static_cast<int>(r);
   }
 
   void face(const Statement& st) {
     const int f = cage_.face_count();
     const std::size_t n = st.tokens.size() - 1;
-    if (n < 3) fail(st.line, "face " + std::to_string(f) + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+    if (n < 3)
+      fail(st.line, "face " + std::to_string(f) + " has " + std::to_string(n) + " vertices; a face needs at least 3");
     bool any_uv = false, all_uv = true;
     cage_.face_offsets.push_back(static_cast<int>(cage_.face_vertices.size()));
     cage_.face_sizes.push_back(static_cast<int>(n));
@@ -174,10 +182,12 @@ class ObjParser {
     }
     if (any_uv && !all_uv)
       fail(st.line, "face " + std::to_string(f) + " gives texture coordinates for some corners but not all");
-    if (f == 0) faces_have_uvs_ = any_uv;
+    if (f == 0)
+      faces_have_uvs_ = any_uv;
     else if (any_uv != faces_have_uvs_)
-      fail(st.line, "face " + std::to_string(f) + (any_uv ? " has" : " has no") + " texture coordinates, but face 0 (line " +
-                        std::to_string(face_lines_[0]) + ")" + (any_uv ? " has none" : " has them"));
+      fail(st.line, "face " + std::to_string(f) + (any_uv ? " has" : " has no") +
+                        " texture coordinates, but face 0 (line " + std::to_string(face_lines_[0]) + ")" +
+                        (any_uv ? " has none" : " has them"));
   }
 
   // `t name nI/nF/nS ints floats strings`
@@ -186,14 +196,16 @@ class ObjParser {
     const std::string name(st.tokens[1]);
     const std::string_view counts = st.tokens[2];
     const std::size_t a = counts.find('/'), b = a == std::string_view::npos ? a : counts.find('/', a + 1);
-    if (b == std::string_view::npos) fail(st.line, "tag '" + name + "' has counts '" + std::string(counts) + "', expected nInts/nFloats/nStrings");
+    if (b == std::string_view::npos)
+      fail(st.line, "tag '" + name + "' has counts '" + std::string(counts) + "', expected nInts/nFloats/nStrings");
     const int ni = integer(counts.substr(0, a), st.line, "tag counts");
     const int nf = integer(counts.substr(a + 1, b - a - 1), st.line, "tag counts");
     const int ns = integer(counts.substr(b + 1), st.line, "tag counts");
     if (ni < 0 || nf < 0 || ns < 0) fail(st.line, "tag '" + name + "' has negative counts");
     const std::size_t want = 3 + std::size_t(ni) + std::size_t(nf) + std::size_t(ns);
     if (st.tokens.size() != want)
-      fail(st.line, "tag '" + name + "' declares " + std::to_string(static_cast<long long>(ni) + nf + ns) + " arguments but has " + std::to_string(st.tokens.size() - 3));
+      fail(st.line, "tag '" + name + "' declares " + std::to_string(static_cast<long long>(ni) + nf + ns) +
+                        " arguments but has " + std::to_string(st.tokens.size() - 3));
     std::vector<int> ints;
     std::vector<float> floats;
     for (int i = 0; i < ni; ++i) ints.push_back(integer(st.tokens[3 + std::size_t(i)], st.line, "tag"));
@@ -201,22 +213,25 @@ class ObjParser {
     const auto strings = std::vector<std::string_view>(st.tokens.begin() + 3 + ni + nf, st.tokens.end());
     auto expect = [&](int i, int f, int s) {
       if (ni != i || nf != f || ns != s)
-        fail(st.line, "tag '" + name + "' takes " + std::to_string(i) + "/" + std::to_string(f) + "/" + std::to_string(s) + " arguments, got " +
-                          std::string(counts));
+        fail(st.line, "tag '" + name + "' takes " + std::to_string(i) + "/" + std::to_string(f) + "/" +
+                          std::to_string(s) + " arguments, got " + std::string(counts));
     };
     auto sharpness = [&](float s) {
-      if (s < 0) fail(st.line, "tag '" + name + "' has negative sharpness " + std::string(st.tokens[3 + std::size_t(ni)]));
+      if (s < 0)
+        fail(st.line, "tag '" + name + "' has negative sharpness " + std::string(st.tokens[3 + std::size_t(ni)]));
       return s;
     };
     if (name == "crease") {
       if (ni < 2 || ni % 2 != 0 || ns != 0 || (nf != 1 && nf != ni / 2))
         fail(st.line, "crease takes pairs of vertices and one sharpness or one per pair, got " + std::string(counts));
       for (int p = 0; p < ni / 2; ++p) {
-        cage_.tags.creases.push_back({ints[std::size_t(2 * p)], ints[std::size_t(2 * p + 1)], sharpness(floats[nf == 1 ? 0 : std::size_t(p)])});
+        cage_.tags.creases.push_back(
+            {ints[std::size_t(2 * p)], ints[std::size_t(2 * p + 1)], sharpness(floats[nf == 1 ? 0 : std::size_t(p)])});
         crease_lines_.push_back(st.line);
       }
     } else if (name == "corner") {
-      if (ni < 1 || ns != 0 || (nf != 1 && nf != ni)) fail(st.line, "corner takes vertices and one sharpness or one per vertex, got " + std::string(counts));
+      if (ni < 1 || ns != 0 || (nf != 1 && nf != ni))
+        fail(st.line, "corner takes vertices and one sharpness or one per vertex, got " + std::string(counts));
       for (int p = 0; p < ni; ++p) {
         cage_.tags.corners.push_back({ints[std::size_t(p)], sharpness(floats[nf == 1 ? 0 : std::size_t(p)])});
         corner_lines_.push_back(st.line);
@@ -229,23 +244,31 @@ class ObjParser {
       }
     } else if (name == "interpolateboundary") {
       expect(1, 0, 0);
-      static constexpr BoundaryInterpolation kModes[] = {BoundaryInterpolation::none, BoundaryInterpolation::edge_and_corner,
-                                                         BoundaryInterpolation::edge_only};
-      if (ints[0] < 0 || ints[0] > 2) fail(st.line, "interpolateboundary must be 0, 1 or 2, got " + std::to_string(ints[0]));
+      static constexpr BoundaryInterpolation kModes[] = {
+          BoundaryInterpolation::none, BoundaryInterpolation::edge_and_corner, BoundaryInterpolation::edge_only};
+      if (ints[0] < 0 || ints[0] > 2)
+        fail(st.line, "interpolateboundary must be 0, 1 or 2, got " + std::to_string(ints[0]));
       cage_.tags.boundary = kModes[ints[0]];
     } else if (name == "creasemethod") {
       expect(0, 0, 1);
-      if (strings[0] == "normal") cage_.tags.crease_method = CreaseMethod::uniform;
-      else if (strings[0] == "chaikin") cage_.tags.crease_method = CreaseMethod::chaikin;
-      else fail(st.line, "creasemethod must be 'normal' or 'chaikin', got '" + std::string(strings[0]) + "'");
+      if (strings[0] == "normal")
+        cage_.tags.crease_method = CreaseMethod::uniform;
+      else if (strings[0] == "chaikin")
+        cage_.tags.crease_method = CreaseMethod::chaikin;
+      else
+        fail(st.line, "creasemethod must be 'normal' or 'chaikin', got '" + std::string(strings[0]) + "'");
     } else if (name == "smoothtriangles") {
       expect(0, 0, 1);
-      if (strings[0] == "smooth") cage_.tags.smooth_triangles = true;
-      else if (strings[0] == "catmark") cage_.tags.smooth_triangles = false;
-      else fail(st.line, "smoothtriangles must be 'catmark' or 'smooth', got '" + std::string(strings[0]) + "'");
+      if (strings[0] == "smooth")
+        cage_.tags.smooth_triangles = true;
+      else if (strings[0] == "catmark")
+        cage_.tags.smooth_triangles = false;
+      else
+        fail(st.line, "smoothtriangles must be 'catmark' or 'smooth', got '" + std::string(strings[0]) + "'");
     } else if (name == "facevaryinginterpolateboundary") {
       expect(1, 0, 0);
-      if (ints[0] < 0 || ints[0] > 5) fail(st.line, "facevaryinginterpolateboundary must be 0..5, got " + std::to_string(ints[0]));
+      if (ints[0] < 0 || ints[0] > 5)
+        fail(st.line, "facevaryinginterpolateboundary must be 0..5, got " + std::to_string(ints[0]));
       cage_.tags.fvar_boundary = ints[0];
     } else if (name == "facevaryingpropagatecorners") {
       expect(1, 0, 0);
@@ -263,27 +286,33 @@ class ObjParser {
       for (int k = 0; k < cage_.face_sizes[std::size_t(f)]; ++k) {
         const int v = cage_.face_vertex(f, k);
         if (v >= nv)
-          fail(face_lines_[std::size_t(f)], "face " + std::to_string(f) + " has vertex index " + std::to_string(v + 1) + ", but the cage has " +
-                                               std::to_string(nv) + " vertices");
+          fail(face_lines_[std::size_t(f)], "face " + std::to_string(f) + " has vertex index " + std::to_string(v + 1) +
+                                                ", but the cage has " + std::to_string(nv) + " vertices");
         if (faces_have_uvs_) {
           const int t = face_uvs_[std::size_t(cage_.face_offsets[std::size_t(f)] + k)];
           if (t >= int(cage_.uvs.size()))
-            fail(face_lines_[std::size_t(f)], "face " + std::to_string(f) + " has texture coordinate index " + std::to_string(t + 1) +
-                                                 ", but the cage has " + std::to_string(cage_.uvs.size()) + " texture coordinates");
+            fail(face_lines_[std::size_t(f)], "face " + std::to_string(f) + " has texture coordinate index " +
+                                                  std::to_string(t + 1) + ", but the cage has " +
+                                                  std::to_string(cage_.uvs.size()) + " texture coordinates");
         }
       }
-    if (faces_have_uvs_) cage_.face_uvs = std::move(face_uvs_);
-    else cage_.uvs.clear();  // coordinates no face uses are of no use
+    if (faces_have_uvs_)
+      cage_.face_uvs = std::move(face_uvs_);
+    else
+      cage_.uvs.clear();  // coordinates no face uses are of no use
     for (std::size_t i = 0; i < cage_.tags.creases.size(); ++i)
       for (int v : {cage_.tags.creases[i].v0, cage_.tags.creases[i].v1})
         if (v < 0 || v >= nv)
-          fail(crease_lines_[i], "crease names vertex " + std::to_string(v) + ", but the cage has " + std::to_string(nv) + " vertices (0-based)");
+          fail(crease_lines_[i], "crease names vertex " + std::to_string(v) + ", but the cage has " +
+                                     std::to_string(nv) + " vertices (0-based)");
     for (std::size_t i = 0; i < cage_.tags.corners.size(); ++i)
       if (const int v = cage_.tags.corners[i].vertex; v < 0 || v >= nv)
-        fail(corner_lines_[i], "corner names vertex " + std::to_string(v) + ", but the cage has " + std::to_string(nv) + " vertices (0-based)");
+        fail(corner_lines_[i], "corner names vertex " + std::to_string(v) + ", but the cage has " + std::to_string(nv) +
+                                   " vertices (0-based)");
     for (std::size_t i = 0; i < cage_.tags.holes.size(); ++i)
       if (const int f = cage_.tags.holes[i]; f < 0 || f >= nf)
-        fail(hole_lines_[i], "hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces (0-based)");
+        fail(hole_lines_[i],
+             "hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces (0-based)");
   }
 
   std::string_view text_;

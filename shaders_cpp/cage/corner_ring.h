@@ -15,9 +15,9 @@ namespace tessera {
 struct CornerRing {
   int center = -1;
   bool boundary = false;
-  bool sharp_corner = false;                    // interpolated: a tagged corner, or a valence-2 boundary corner
-  std::vector<int> edges;                       // e_0 .. e_{n-1}
-  std::vector<std::vector<int>> face_others;    // per face i: its vertices strictly between e_i and e_{i+1}
+  bool sharp_corner = false;                  // interpolated: a tagged corner, or a valence-2 boundary corner
+  std::vector<int> edges;                     // e_0 .. e_{n-1}
+  std::vector<std::vector<int>> face_others;  // per face i: its vertices strictly between e_i and e_{i+1}
   int slot = 0;
 
   int valence() const { return static_cast<int>(edges.size()); }

@@ -39,23 +39,28 @@ Topology::Topology(const Cage& cage) {
   for (int f = 0; f < nf; ++f) {
     const int n = face_sizes_[f];
     if (n < 3) fail("face " + std::to_string(f) + " has " + std::to_string(n) + " vertices; a face needs at least 3");
-    if (face_offsets_[f] != expected_offset || std::size_t(expected_offset) + std::size_t(n) > cage.face_vertices.size())
+    if (face_offsets_[f] != expected_offset ||
+        std::size_t(expected_offset) + std::size_t(n) > cage.face_vertices.size())
       fail("face " + std::to_string(f) + " has an offset that does not follow the previous face");
     expected_offset += n;
     for (int k = 0; k < n; ++k) {
       const int v = cage.face_vertex(f, k);
       if (v < 0 || v >= nv)
-        fail("face " + std::to_string(f) + " has vertex " + std::to_string(v) + " (0-based), but the cage has " + std::to_string(nv) + " vertices");
-      if (stamp[v] == f) fail("face " + std::to_string(f) + " is degenerate: it uses vertex " + std::to_string(v) + " (0-based) twice");
+        fail("face " + std::to_string(f) + " has vertex " + std::to_string(v) + " (0-based), but the cage has " +
+             std::to_string(nv) + " vertices");
+      if (stamp[v] == f)
+        fail("face " + std::to_string(f) + " is degenerate: it uses vertex " + std::to_string(v) + " (0-based) twice");
       stamp[v] = f;
     }
   }
   if (std::size_t(expected_offset) != cage.face_vertices.size()) fail("face_vertices has entries that no face uses");
-  if (cage.has_uvs() && cage.face_uvs.size() != cage.face_vertices.size()) fail("face_uvs does not have one entry per face corner");
+  if (cage.has_uvs() && cage.face_uvs.size() != cage.face_vertices.size())
+    fail("face_uvs does not have one entry per face corner");
 
   hole_.assign(std::size_t(nf), 0);
   for (int f : cage.tags.holes) {
-    if (f < 0 || f >= nf) fail("hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces");
+    if (f < 0 || f >= nf)
+      fail("hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces");
     hole_[f] = 1;
   }
 
@@ -89,15 +94,17 @@ Topology::Topology(const Cage& cage) {
       for (int h = 0; h < nh; ++h)
         if (edge_[h] == e) faces.push_back(face_[h]);
       const int h0 = edge_half_edges_[e][0];
-      fail("non-manifold edge between vertices " + std::to_string(origin_[h0]) + " and " + std::to_string(destination(h0)) + " (0-based): used by " +
-           std::to_string(uses[e]) + " faces (" + join(faces) + "); an edge may have at most two");
+      fail("non-manifold edge between vertices " + std::to_string(origin_[h0]) + " and " +
+           std::to_string(destination(h0)) + " (0-based): used by " + std::to_string(uses[e]) + " faces (" +
+           join(faces) + "); an edge may have at most two");
     }
   for (int e = 0; e < edge_count(); ++e) {
     const auto [h0, h1] = edge_half_edges_[e];
     if (h1 < 0) continue;
     if (origin_[h0] == origin_[h1])
-      fail("faces " + std::to_string(face_[h0]) + " and " + std::to_string(face_[h1]) + " both use the edge from vertex " + std::to_string(origin_[h0]) +
-           " to " + std::to_string(destination(h0)) + " (0-based) in the same direction (inconsistent orientation)");
+      fail("faces " + std::to_string(face_[h0]) + " and " + std::to_string(face_[h1]) +
+           " both use the edge from vertex " + std::to_string(origin_[h0]) + " to " + std::to_string(destination(h0)) +
+           " (0-based) in the same direction (inconsistent orientation)");
     twin_[h0] = h1;
     twin_[h1] = h0;
   }
@@ -134,13 +141,15 @@ Topology::Topology(const Cage& cage) {
       if (h == start) break;
     }
     if (boundary_starts > 1 || walked != count)
-      fail("non-manifold vertex " + std::to_string(v) + " (0-based): its " + std::to_string(count) + " faces form more than one fan");
+      fail("non-manifold vertex " + std::to_string(v) + " (0-based): its " + std::to_string(count) +
+           " faces form more than one fan");
     boundary_[v] = boundary_starts == 1;
     valence_[v] = count + (boundary_starts == 1 ? 1 : 0);
   }
   if (!isolated_.empty())
-    warnings_.push_back(name + ": " + std::to_string(isolated_.size()) + " isolated vertices (used by no face; ignored), first " +
-                        std::to_string(isolated_.front()) + " (0-based)");
+    warnings_.push_back(name + ": " + std::to_string(isolated_.size()) +
+                        " isolated vertices (used by no face; ignored), first " + std::to_string(isolated_.front()) +
+                        " (0-based)");
 
   // Sharpness from the tags.
   corner_sharpness_.assign(std::size_t(nv), 0.0f);
@@ -150,7 +159,9 @@ Topology::Topology(const Cage& cage) {
     if (!std::isfinite(s) || s < 0) fail(what + " has sharpness " + std::to_string(s) + "; it must be finite and >= 0");
   };
   for (const Corner& c : cage.tags.corners) {
-    if (c.vertex < 0 || c.vertex >= nv) fail("corner names vertex " + std::to_string(c.vertex) + ", but the cage has " + std::to_string(nv) + " vertices");
+    if (c.vertex < 0 || c.vertex >= nv)
+      fail("corner names vertex " + std::to_string(c.vertex) + ", but the cage has " + std::to_string(nv) +
+           " vertices");
     check_sharpness(c.sharpness, "corner at vertex " + std::to_string(c.vertex));
     corner_sharpness_[c.vertex] = c.sharpness;
     if (c.sharpness > 0) sharp_at_[c.vertex] = 1;
@@ -159,7 +170,8 @@ Topology::Topology(const Cage& cage) {
   std::string first_missing;
   for (const Crease& c : cage.tags.creases) {
     if (c.v0 < 0 || c.v0 >= nv || c.v1 < 0 || c.v1 >= nv)
-      fail("crease names vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) + ", but the cage has " + std::to_string(nv) + " vertices");
+      fail("crease names vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) + ", but the cage has " +
+           std::to_string(nv) + " vertices");
     check_sharpness(c.sharpness, "crease " + std::to_string(c.v0) + "-" + std::to_string(c.v1));
     const auto it = edge_of.find(edge_key(c.v0, c.v1));
     if (c.v0 == c.v1 || it == edge_of.end()) {
@@ -170,7 +182,8 @@ Topology::Topology(const Cage& cage) {
     if (c.sharpness > 0) sharp_at_[c.v0] = sharp_at_[c.v1] = 1;
   }
   if (missing)
-    warnings_.push_back(name + ": " + std::to_string(missing) + " creases name two vertices that share no edge (ignored), first " + first_missing);
+    warnings_.push_back(name + ": " + std::to_string(missing) +
+                        " creases name two vertices that share no edge (ignored), first " + first_missing);
 }
 
 int Topology::corner_of(int f, int v) const {

@@ -49,7 +49,8 @@ void corner_words(const Topology& t, int h, int pos_in_ring, std::vector<std::in
   out.push_back(fan.boundary ? pos_in_ring : 0);
   for (int j = 0; j < fan.count; ++j) out.push_back(t.face_size(t.face(ring[(fan.start + j) % fan.count])));
   out.push_back(std::bit_cast<std::int32_t>(t.corner_sharpness(fan.vertex)));
-  for (int j = 0; j < fan.count; ++j) out.push_back(std::bit_cast<std::int32_t>(t.edge_sharpness(t.edge(ring[(fan.start + j) % fan.count]))));
+  for (int j = 0; j < fan.count; ++j)
+    out.push_back(std::bit_cast<std::int32_t>(t.edge_sharpness(t.edge(ring[(fan.start + j) % fan.count]))));
   if (fan.boundary) out.push_back(std::bit_cast<std::int32_t>(t.edge_sharpness(t.edge(t.prev(ring[fan.count - 1])))));
 }
 
@@ -97,7 +98,8 @@ TopologyCombinations analyze_combinations(const Topology& t) {
     int rotation = 0;
     for (int r = 0; r < n; ++r) {
       candidate.assign(1, n);
-      for (int i = 0; i < n; ++i) candidate.insert(candidate.end(), corners[(r + i) % n].begin(), corners[(r + i) % n].end());
+      for (int i = 0; i < n; ++i)
+        candidate.insert(candidate.end(), corners[(r + i) % n].begin(), corners[(r + i) % n].end());
       if (r == 0 || candidate < best) {
         best.swap(candidate);
         rotation = r;
@@ -121,9 +123,12 @@ TopologyCombinations analyze_combinations(const Topology& t) {
 
     CombinationStats& s = out.stats;
     ++s.patches;
-    if (n == 3) ++s.triangles;
-    else if (n == 4) ++s.quads;
-    else ++s.polygons;
+    if (n == 3)
+      ++s.triangles;
+    else if (n == 4)
+      ++s.quads;
+    else
+      ++s.polygons;
     if (cls == PatchClass::regular) ++s.regular;
     if (cls == PatchClass::boundary || cls == PatchClass::regular_boundary) ++s.boundary;
     if (cls == PatchClass::regular_boundary) ++s.regular_boundary;

@@ -44,10 +44,10 @@ struct Combination {
   std::vector<std::int32_t> key;  // as described above; equal keys <=> equal 1-ring structure
   std::string text;               // readable, see combination_text()
   int face_size = 0;
-  bool boundary = false;          // some corner is on a boundary
+  bool boundary = false;                           // some corner is on a boundary
   PatchClass patch_class = PatchClass::irregular;  // the class of every face with this key
-  int count = 0;                  // faces with this key
-  std::vector<int> faces;         // all of them, ascending
+  int count = 0;                                   // faces with this key
+  std::vector<int> faces;                          // all of them, ascending
 };
 
 struct CombinationStats {

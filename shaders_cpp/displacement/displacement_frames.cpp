@@ -28,7 +28,8 @@ std::array<Stencil, 4> elevate(const Stencil& q0, const Stencil& q1, const Stenc
 Frame8 edge_frame(Scheme scheme, const std::array<CornerRing, 4>& c) {
   Frame8 f;
   auto put = [&](const std::array<Stencil, 4>& along, const std::array<Stencil, 4>& cross) {
-    for (int i = 0; i < 4; ++i) f[std::size_t(i)] = along[std::size_t(i)], f[std::size_t(4 + i)] = cross[std::size_t(i)];
+    for (int i = 0; i < 4; ++i)
+      f[std::size_t(i)] = along[std::size_t(i)], f[std::size_t(4 + i)] = cross[std::size_t(i)];
   };
   if (scheme == Scheme::acc) {
     const auto s = acc_quad_stencils(c);
@@ -54,7 +55,7 @@ Frame8 edge_frame(Scheme scheme, const std::array<CornerRing, 4>& c) {
 }  // namespace
 
 PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchGroup& group, Scheme scheme) {
-  std::unordered_map<int, Frame8> edges;                   // by cage edge
+  std::unordered_map<int, Frame8> edges;                     // by cage edge
   std::unordered_map<int, std::array<Stencil, 2>> vertices;  // by cage vertex
   auto edge_stencils = [&](int h) -> const Frame8& {
     const int e = t.edge(h);
@@ -72,7 +73,8 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
     const CornerRing r = gather_corner_ring(cage, t, fv, t.corner(hv));
     std::array<Stencil, 2> s;
     if (scheme == Scheme::flat) {
-      s = {Stencil::vertex(t.destination(hv)) - Stencil::vertex(v), Stencil::vertex(t.origin(t.prev(hv))) - Stencil::vertex(v)};
+      s = {Stencil::vertex(t.destination(hv)) - Stencil::vertex(v),
+           Stencil::vertex(t.origin(t.prev(hv))) - Stencil::vertex(v)};
     } else {
       s = {limit_tangent(r, r.slot), limit_tangent(r, r.slot + 1)};
     }
@@ -97,7 +99,8 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
         out.masks.push_back(m);
         out.starts.push_back(std::uint32_t(out.weights.size()));
         const int n = std::popcount(m);
-        out.weights.insert(out.weights.end(), weights.begin() + std::ptrdiff_t(w), weights.begin() + std::ptrdiff_t(w) + n);
+        out.weights.insert(out.weights.end(), weights.begin() + std::ptrdiff_t(w),
+                           weights.begin() + std::ptrdiff_t(w) + n);
         w += std::size_t(n);
       }
     }
@@ -114,8 +117,9 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
       for (const auto& [v, w] : s.terms) {
         const auto it = position.find(v);
         if (it == position.end())
-          throw CageError(cage.name + ": face " + std::to_string(patch.face) + ": internal error, a frame stencil reaches vertex " +
-                          std::to_string(v) + " outside the patch's ring");
+          throw CageError(cage.name + ": face " + std::to_string(patch.face) +
+                          ": internal error, a frame stencil reaches vertex " + std::to_string(v) +
+                          " outside the patch's ring");
         // A zero (or underflowed) weight adds nothing to the sum: it is left out.
         const float f = float(w);
         if (f == 0.0f) continue;
@@ -141,7 +145,8 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
       }
     };
     add_units(8, edge_stencils);  // the edge units
-    add_units(2, [&](int h) -> const auto& { return vertex_stencils(t.origin(h)); });  // the corner units
+    add_units(
+        2, [&](int h) -> const auto& { return vertex_stencils(t.origin(h)); });  // the corner units
   }
   out.unit_count = int(interned.size());
   return out;

@@ -50,11 +50,11 @@ inline constexpr int kFrameStencils = 40;
 struct PatchFrames {
   // Patch p's stencil r is stored stencil  units[8 p + r / 8] + r % 8  for r < 32 (edge units), and
   // units[8 p + 4 + (r - 32) / 2] + r % 2  for the corners.
-  std::vector<std::uint32_t> units;    // per patch 8: the first stored stencil of edge units 0..3, corner units 0..3
-  std::vector<std::uint32_t> masks;    // per stored stencil: bit j = ring position j has a nonzero weight
-  std::vector<std::uint32_t> starts;   // per stored stencil: its first weight in `weights`
-  std::vector<float> weights;          // per stored stencil, its nonzero weights by ascending ring position
-  int unit_count = 0;                  // distinct units (edge and corner)
+  std::vector<std::uint32_t> units;   // per patch 8: the first stored stencil of edge units 0..3, corner units 0..3
+  std::vector<std::uint32_t> masks;   // per stored stencil: bit j = ring position j has a nonzero weight
+  std::vector<std::uint32_t> starts;  // per stored stencil: its first weight in `weights`
+  std::vector<float> weights;         // per stored stencil, its nonzero weights by ascending ring position
+  int unit_count = 0;                 // distinct units (edge and corner)
 
   std::uint32_t stencil(std::size_t patch, int r) const {
     return r < 32 ? units[8 * patch + std::size_t(r / 8)] + std::uint32_t(r % 8)

@@ -10,7 +10,9 @@
 namespace tessera {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw DisplacementMapError(path + ": " + what); }
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw DisplacementMapError(path + ": " + what);
+}
 
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
@@ -127,7 +129,8 @@ DisplacementMap DisplacementImage::select(std::string_view spec, int count) cons
   const std::size_t pixels = std::size_t(width_) * std::size_t(height_), stride = names_.size();
   std::vector<float> texels(pixels * chosen.size());
   for (std::size_t p = 0; p < pixels; ++p)
-    for (std::size_t k = 0; k < chosen.size(); ++k) texels[p * chosen.size() + k] = texels_[p * stride + std::size_t(chosen[k])];
+    for (std::size_t k = 0; k < chosen.size(); ++k)
+      texels[p * chosen.size() + k] = texels_[p * stride + std::size_t(chosen[k])];
   std::string error;
   auto t = Texture2D::create(width_, height_, int(chosen.size()), std::move(texels), true, &error);
   if (!t) fail(path_, error);

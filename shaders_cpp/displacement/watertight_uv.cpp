@@ -20,8 +20,7 @@ int vertex_owner(const Topology& t, int v) {
 
 std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topology& t, const PatchGroup& group,
                                                   UvOwnership ownership, bool flip_v) {
-  if (!cage.has_uvs())
-    throw CageError(cage.name + ": has no texture coordinates (vt); a displacement map needs them");
+  if (!cage.has_uvs()) throw CageError(cage.name + ": has no texture coordinates (vt); a displacement map needs them");
   for (int f = 0; f < t.face_count(); ++f)
     if (!t.is_hole(f) && t.face_size(f) != 4)
       throw CageError(cage.name + ": face " + std::to_string(f) + " has " + std::to_string(t.face_size(f)) +
@@ -30,7 +29,9 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
   std::vector<glm::vec2> uvs = cage.uvs;
   if (flip_v)
     for (auto& x : uvs) x.y = 1.0f - x.y;
-  auto uv = [&](int f, int k) { return uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])]; };
+  auto uv = [&](int f, int k) {
+    return uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])];
+  };
   std::vector<PatchTexcoords> out;
   out.reserve(group.size());
   for (const SubdPatch& p : group.patches) {

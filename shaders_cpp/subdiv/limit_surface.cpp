@@ -57,10 +57,10 @@ struct LimitSurface::Impl {
   std::unique_ptr<osd::Far::TopologyRefiner> refiner;
   std::unique_ptr<osd::Bfr::RefinerSurfaceFactory<>> factory;
 
-  std::vector<int> sizes;          // per face
-  std::vector<int> corner_base;    // per face: first entry in corners/edge_owner
-  std::vector<int> corners;        // cage vertex of each face corner
-  std::vector<Surface> surfaces;   // per face; invalid without a surface
+  std::vector<int> sizes;         // per face
+  std::vector<int> corner_base;   // per face: first entry in corners/edge_owner
+  std::vector<int> corners;       // cage vertex of each face corner
+  std::vector<Surface> surfaces;  // per face; invalid without a surface
   std::vector<std::size_t> pp_offset;
   std::vector<double> patch_points;
 
@@ -68,8 +68,8 @@ struct LimitSurface::Impl {
     int face = -1, edge = -1;
     bool reversed = false;  // the owner runs the edge the other way
   };
-  std::vector<EdgeOwner> edge_owner;       // per face corner e: owner of edge e -> e+1
-  std::vector<SharedPoint> vertex_limit;   // per cage vertex (unused vertices stay zero)
+  std::vector<EdgeOwner> edge_owner;      // per face corner e: owner of edge e -> e+1
+  std::vector<SharedPoint> vertex_limit;  // per cage vertex (unused vertices stay zero)
 
   glm::dvec3 lo{0.0}, hi{0.0};
 
@@ -136,10 +136,14 @@ struct LimitSurface::Impl {
     const int n = sizes[std::size_t(f)];
     if (n == 4) {
       switch (e) {
-        case 0: return shared(f, 0, s, 0.0);
-        case 1: return shared(f, 0, 1.0, s);
-        case 2: return shared(f, 0, 1.0 - s, 1.0);
-        default: return shared(f, 0, 0.0, 1.0 - s);
+        case 0:
+          return shared(f, 0, s, 0.0);
+        case 1:
+          return shared(f, 0, 1.0, s);
+        case 2:
+          return shared(f, 0, 1.0 - s, 1.0);
+        default:
+          return shared(f, 0, 0.0, 1.0 - s);
       }
     }
     if (s <= 0.5) return shared(f, e, 2.0 * s, 0.0);
@@ -163,24 +167,40 @@ struct LimitSurface::Impl {
   bool owned(int f, int k, double s, double t, SharedPoint& out) const {
     const int n = sizes[std::size_t(f)];
     if (n == 4) {
-      if (s == 0.0 && t == 0.0) out = corner(f, 0);
-      else if (s == 1.0 && t == 0.0) out = corner(f, 1);
-      else if (s == 1.0 && t == 1.0) out = corner(f, 2);
-      else if (s == 0.0 && t == 1.0) out = corner(f, 3);
-      else if (t == 0.0) out = cage_edge(f, 0, s);
-      else if (s == 1.0) out = cage_edge(f, 1, t);
-      else if (t == 1.0) out = cage_edge(f, 2, 1.0 - s);
-      else if (s == 0.0) out = cage_edge(f, 3, 1.0 - t);
-      else return false;
+      if (s == 0.0 && t == 0.0)
+        out = corner(f, 0);
+      else if (s == 1.0 && t == 0.0)
+        out = corner(f, 1);
+      else if (s == 1.0 && t == 1.0)
+        out = corner(f, 2);
+      else if (s == 0.0 && t == 1.0)
+        out = corner(f, 3);
+      else if (t == 0.0)
+        out = cage_edge(f, 0, s);
+      else if (s == 1.0)
+        out = cage_edge(f, 1, t);
+      else if (t == 1.0)
+        out = cage_edge(f, 2, 1.0 - s);
+      else if (s == 0.0)
+        out = cage_edge(f, 3, 1.0 - t);
+      else
+        return false;
       return true;
     }
-    if (s == 0.0 && t == 0.0) out = corner(f, k);
-    else if (t == 0.0) out = cage_edge(f, k, 0.5 * s);                  // first half of edge k
-    else if (s == 0.0) out = cage_edge(f, (k + n - 1) % n, 1.0 - 0.5 * t);  // second half of edge k-1
-    else if (s == 1.0 && t == 1.0) out = shared(f, 0, 1.0, 1.0);           // face centre
-    else if (s == 1.0) out = shared(f, k, 1.0, t);                        // sub-patch edge k | k+1
-    else if (t == 1.0) out = shared(f, (k + n - 1) % n, 1.0, s);            // sub-patch edge k-1 | k
-    else return false;
+    if (s == 0.0 && t == 0.0)
+      out = corner(f, k);
+    else if (t == 0.0)
+      out = cage_edge(f, k, 0.5 * s);  // first half of edge k
+    else if (s == 0.0)
+      out = cage_edge(f, (k + n - 1) % n, 1.0 - 0.5 * t);  // second half of edge k-1
+    else if (s == 1.0 && t == 1.0)
+      out = shared(f, 0, 1.0, 1.0);  // face centre
+    else if (s == 1.0)
+      out = shared(f, k, 1.0, t);  // sub-patch edge k | k+1
+    else if (t == 1.0)
+      out = shared(f, (k + n - 1) % n, 1.0, s);  // sub-patch edge k-1 | k
+    else
+      return false;
     return true;
   }
 
@@ -209,7 +229,12 @@ struct LimitSurface::Impl {
     const double k00 = j11 / det, k01 = -j01 / det, k10 = -j10 / det, k11 = j00 / det;
     static constexpr double M[3][2][2] = {{{1, 0}, {0, 1}}, {{0, 1}, {-1, -1}}, {{-1, -1}, {1, 0}}};
     const auto& m = M[k];
-    return {k, s, t, k00 * m[0][0] + k01 * m[1][0], k00 * m[0][1] + k01 * m[1][1], k10 * m[0][0] + k11 * m[1][0],
+    return {k,
+            s,
+            t,
+            k00 * m[0][0] + k01 * m[1][0],
+            k00 * m[0][1] + k01 * m[1][1],
+            k10 * m[0][0] + k11 * m[1][0],
             k10 * m[0][1] + k11 * m[1][1]};
   }
 
@@ -238,8 +263,8 @@ LimitSurface::~LimitSurface() = default;
 
 LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   if (approx_level < 1 || approx_level > kMaxApproxLevel)
-    throw std::invalid_argument("LimitSurface: approximation level " + std::to_string(approx_level) + " is outside 1.." +
-                                std::to_string(kMaxApproxLevel));
+    throw std::invalid_argument("LimitSurface: approximation level " + std::to_string(approx_level) +
+                                " is outside 1.." + std::to_string(kMaxApproxLevel));
   auto m = std::make_unique<Impl>();
   m->level = approx_level;
   m->left_handed = cage.tags.left_handed;
@@ -267,7 +292,8 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   for (int f = 0; f < nf; ++f) {
     Surface& s = m->surfaces[std::size_t(f)];
     if (m->factory->FaceHasLimitSurface(f) && !m->factory->InitVertexSurface(f, &s))
-      throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) + " has no OpenSubdiv limit surface");
+      throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
+                      " has no OpenSubdiv limit surface");
     m->pp_offset[std::size_t(f)] = m->patch_points.size();
     if (!s.IsValid()) continue;
     const std::size_t first = m->patch_points.size();
@@ -298,8 +324,8 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
       m->edge_owner[std::size_t(base + e)] = {o.face, o.edge, o.from != a};
       if (!vertex_done[std::size_t(a)]) {
         vertex_done[std::size_t(a)] = 1;
-        m->vertex_limit[std::size_t(a)] = n == 4 ? m->shared(f, 0, e == 1 || e == 2 ? 1.0 : 0.0, e >= 2 ? 1.0 : 0.0)
-                                                 : m->shared(f, e, 0.0, 0.0);
+        m->vertex_limit[std::size_t(a)] =
+            n == 4 ? m->shared(f, 0, e == 1 || e == 2 ? 1.0 : 0.0, e >= 2 ? 1.0 : 0.0) : m->shared(f, e, 0.0, 0.0);
       }
     }
   }
@@ -377,13 +403,20 @@ SurfacePoint LimitSurface::evaluate_triangle(int face, float u, float v, float w
   const glm::dvec3 pu = r.ds * tm.ds_du + r.dt * tm.dt_du, pv = r.ds * tm.ds_dv + r.dt * tm.dt_dv;
   SharedPoint sh;
   bool is_shared = true;
-  if (du == 0.0 && dv == 0.0) sh = m.corner(face, 0);
-  else if (du == 1.0) sh = m.corner(face, 1);
-  else if (dv == 1.0) sh = m.corner(face, 2);
-  else if (dv == 0.0) sh = m.cage_edge(face, 0, du);         // corner 0 -> 1
-  else if (du + dv == 1.0) sh = m.cage_edge(face, 1, dv);    // corner 1 -> 2 (w = 0)
-  else if (du == 0.0) sh = m.cage_edge(face, 2, 1.0 - dv);   // corner 2 -> 0
-  else is_shared = false;
+  if (du == 0.0 && dv == 0.0)
+    sh = m.corner(face, 0);
+  else if (du == 1.0)
+    sh = m.corner(face, 1);
+  else if (dv == 1.0)
+    sh = m.corner(face, 2);
+  else if (dv == 0.0)
+    sh = m.cage_edge(face, 0, du);  // corner 0 -> 1
+  else if (du + dv == 1.0)
+    sh = m.cage_edge(face, 1, dv);  // corner 1 -> 2 (w = 0)
+  else if (du == 0.0)
+    sh = m.cage_edge(face, 2, 1.0 - dv);  // corner 2 -> 0
+  else
+    is_shared = false;
   if (is_shared) return {sh.position, glm::vec3(pu), glm::vec3(pv), sh.normal};
   glm::dvec3 n = m.normal_of(pu, pv);
   if (n == glm::dvec3(0.0)) n = m.normal_at(face, tm.k, tm.s, tm.t, r);
@@ -418,9 +451,12 @@ SurfacePoint LimitSurface::evaluate_fan(int face, int triangle, float u, float v
   const glm::dvec3 pu = left ? 2.0 * r.ds : -2.0 * r.dt, pv = left ? r.ds + r.dt : r.ds - r.dt;
   SharedPoint sh;
   if (dv == 0.0) {  // the cage edge
-    if (du == 0.0) sh = m.corner(face, triangle);
-    else if (du == 1.0) sh = m.corner(face, (triangle + 1) % n);
-    else sh = m.cage_edge(face, triangle, du);
+    if (du == 0.0)
+      sh = m.corner(face, triangle);
+    else if (du == 1.0)
+      sh = m.corner(face, (triangle + 1) % n);
+    else
+      sh = m.cage_edge(face, triangle, du);
   } else if (dv == 1.0) {
     sh = m.shared(face, 0, 1.0, 1.0);  // the centre, as evaluate() gives it
   } else {

@@ -127,8 +127,8 @@ Stencil cross_ring_vector(const CornerRing& r, int j, int dir) {
   // e_{j+dir}, e_{j-dir}, and the far points of the faces on either side of edge j.
   auto edge_at = [&](int i) -> Stencil {
     if (!r.boundary) return Stencil::vertex(r.e(i));
-    if (i < 0) return 2.0 * Stencil::vertex(p) - Stencil::vertex(r.e(1));         // phantom e_{-1}
-    if (i >= n) return 2.0 * Stencil::vertex(p) - Stencil::vertex(r.e(n - 2));    // phantom e_n
+    if (i < 0) return 2.0 * Stencil::vertex(p) - Stencil::vertex(r.e(1));       // phantom e_{-1}
+    if (i >= n) return 2.0 * Stencil::vertex(p) - Stencil::vertex(r.e(n - 2));  // phantom e_n
     return Stencil::vertex(r.e(i));
   };
   auto face_at = [&](int i) -> Stencil {  // far point of the face between e_i and e_{i+1}
@@ -153,8 +153,8 @@ Stencil cross_ring_vector(const CornerRing& r, int j, int dir) {
 // Castano's per-valence tangent lengths for Gregory edge points (valence 3..13; larger valences keep
 // the last value): they bring E = P + T/3 closer to the limit surface than the bare ACC tangent.
 double tangent_scale(const CornerRing& r) {
-  static constexpr double kScale[] = {0.667791, 1.0, 1.11268, 1.1284, 1.10289, 1.06062, 1.01262, 0.963949, 0.916926,
-                                      0.872541, 0.831134};
+  static constexpr double kScale[] = {0.667791, 1.0,      1.11268,  1.1284,   1.10289, 1.06062,
+                                      1.01262,  0.963949, 0.916926, 0.872541, 0.831134};
   if (r.boundary || r.sharp_corner || r.valence() < 3) return 1.0;
   return kScale[std::min(r.valence(), 13) - 3];
 }

@@ -43,8 +43,12 @@ PNTriangle pn_triangle(std::span<const glm::vec3, 3> pf, std::span<const glm::ve
   const dvec3 b[10] = {p[0], b210, b120, p[1], b201, b111, b021, b102, b012, p[2]};
   for (int i = 0; i < 10; ++i) t.b[std::size_t(i)] = glm::vec3(b[i]);
   // (0,0) (1,0) (2,0) | (0,1) (1,1) | (0,2)
-  const dvec3 m[6] = {n[0], edge_normal(p[0], p[1], n[0], n[1]), n[1], edge_normal(p[2], p[0], n[2], n[0]),
-                      edge_normal(p[1], p[2], n[1], n[2]), n[2]};
+  const dvec3 m[6] = {n[0],
+                      edge_normal(p[0], p[1], n[0], n[1]),
+                      n[1],
+                      edge_normal(p[2], p[0], n[2], n[0]),
+                      edge_normal(p[1], p[2], n[1], n[2]),
+                      n[2]};
   for (int i = 0; i < 6; ++i) t.n[std::size_t(i)] = glm::vec3(m[i]);
   return t;
 }

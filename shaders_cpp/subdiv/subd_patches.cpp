@@ -14,12 +14,18 @@ namespace tessera {
 
 const char* to_string(Scheme s) {
   switch (s) {
-    case Scheme::flat: return "flat";
-    case Scheme::bspline: return "bspline";
-    case Scheme::acc: return "acc";
-    case Scheme::gregory: return "gregory";
-    case Scheme::exact: return "exact";
-    case Scheme::pn: return "pn";
+    case Scheme::flat:
+      return "flat";
+    case Scheme::bspline:
+      return "bspline";
+    case Scheme::acc:
+      return "acc";
+    case Scheme::gregory:
+      return "gregory";
+    case Scheme::exact:
+      return "exact";
+    case Scheme::pn:
+      return "pn";
   }
   return "?";
 }
@@ -195,7 +201,8 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       Stencil centre;
       for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
       for (int k = 0; k < n; ++k) {
-        const std::int64_t before = cage_edge_key(corner(k - 1), corner(k)), outer = cage_edge_key(corner(k), corner(k + 1)),
+        const std::int64_t before = cage_edge_key(corner(k - 1), corner(k)),
+                           outer = cage_edge_key(corner(k), corner(k + 1)),
                            after = cage_edge_key(corner(k + 1), corner(k + 2));
         const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
                                                      EdgeFactorKey{outer, after}, EdgeFactorKey{}};

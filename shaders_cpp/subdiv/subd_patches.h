@@ -42,14 +42,14 @@ const char* to_string(Scheme s);
 
 // How the domain shader evaluates a patch.
 enum class PatchKind : std::uint8_t {
-  bilinear,  // 4 corners (flat quads)
-  linear,    // 3 corners (flat triangles and the fan triangles of n-gons)
-  acc,       // 16 Bezier points + tangent patches (control points carry du/dv)
-  gregory,   // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
+  bilinear,          // 4 corners (flat quads)
+  linear,            // 3 corners (flat triangles and the fan triangles of n-gons)
+  acc,               // 16 Bezier points + tangent patches (control points carry du/dv)
+  gregory,           // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
   gregory_triangle,  // 15 triangular Gregory points (quartic, cubic boundaries) on the tri domain
   pn_triangle,       // PN triangle: 10 cubic Bezier points, 6 normal coefficients, from the corners
   pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
-  exact,     // the limit surface (limit_surface.h), evaluated per domain point
+  exact,             // the limit surface (limit_surface.h), evaluated per domain point
 };
 
 inline constexpr int kMaxPatchControlPoints = 32;
@@ -76,11 +76,11 @@ struct StencilTable {
 
 struct SubdPatch {
   int face = 0;
-  int sub = 0;                 // fan triangle k of a face of more than four sides (0 otherwise)
-  int table = -1;              // into SubdPatches::tables, -1 for exact
+  int sub = 0;     // fan triangle k of a face of more than four sides (0 otherwise)
+  int table = -1;  // into SubdPatches::tables, -1 for exact
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
-  std::uint8_t rotation = 0;   // patch corner k is face corner (k + rotation) % (3 or 4)
+  std::uint8_t rotation = 0;                                 // patch corner k is face corner (k + rotation) % (3 or 4)
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan
   // triangle's Veq0 is its cage edge, Ueq0 the spoke to vertex k, Weq0 the spoke to vertex k+1.

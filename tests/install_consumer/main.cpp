@@ -17,11 +17,12 @@ int main() {
   SubdFactors factors;
   factors.factor = 4.0f;
   verify::WeldChecker weld;
-  const DrawResult r = stream_subd(device, model, factors, ts::Partitioning::integer, [&](const auto& p, const PatchGroup&) {
-    for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3)
-      weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
-                        p.points[p.indices[i + 2]].position);
-  });
+  const DrawResult r =
+      stream_subd(device, model, factors, ts::Partitioning::integer, [&](const auto& p, const PatchGroup&) {
+        for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3)
+          weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
+                            p.points[p.indices[i + 2]].position);
+      });
   if (!r.ok()) {
     std::fprintf(stderr, "consumer: %s\n", r.error.c_str());
     return 1;

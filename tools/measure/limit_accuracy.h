@@ -25,9 +25,9 @@ namespace tessera {
 
 struct LimitAccuracy {
   std::size_t samples = 0;
-  double max_distance = 0.0;      // absolute
+  double max_distance = 0.0;  // absolute
   double rms_distance = 0.0;
-  double diagonal = 0.0;          // of the limit surface's bounding box
+  double diagonal = 0.0;  // of the limit surface's bounding box
   double max_relative() const { return diagonal > 0 ? max_distance / diagonal : max_distance; }
 };
 

@@ -57,7 +57,8 @@ std::uint64_t mip_chain_bytes(int width, int height, int first_level, int texel_
 MemoryTable memory_table(const Cage& cage, const Topology& topology, const SubdPatches& patches,
                          const MemoryModelOptions& options) {
   for (int level : options.levels)
-    if (level < 1 || level > 64) throw std::invalid_argument("memory level " + std::to_string(level) + " is not in 1..64");
+    if (level < 1 || level > 64)
+      throw std::invalid_argument("memory level " + std::to_string(level) + " is not in 1..64");
   if (options.mesh_vertex_bytes <= 0 || options.index_bytes <= 0 || options.texel_bytes <= 0)
     throw std::invalid_argument("memory model byte sizes must be positive");
   if (options.map && (options.map->width <= 0 || options.map->height <= 0))
@@ -69,9 +70,10 @@ MemoryTable memory_table(const Cage& cage, const Topology& topology, const SubdP
   std::uint64_t weights = 0;
   for (const StencilTable& t : patches.tables) weights += t.weights.size();
   const std::uint64_t patch_count = patches.quads.size() + patches.tris.size();
-  table.patch_bytes = (patches.quads.indices.size() + patches.tris.indices.size()) * sizeof(std::uint32_t) +
-                      weights * sizeof(float) + patch_count * sizeof(SubdPatch) +
-                      options.displacement_data_bytes.value_or(cage.has_uvs() ? patch_count * 16 * sizeof(glm::vec2) : 0);
+  table.patch_bytes =
+      (patches.quads.indices.size() + patches.tris.indices.size()) * sizeof(std::uint32_t) + weights * sizeof(float) +
+      patch_count * sizeof(SubdPatch) +
+      options.displacement_data_bytes.value_or(cage.has_uvs() ? patch_count * 16 * sizeof(glm::vec2) : 0);
 
   // Vertices of the mesh that do not depend on the level: one per cage vertex and distinct UV.
   std::uint64_t corner_vertices = 0;

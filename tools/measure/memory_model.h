@@ -60,20 +60,20 @@ struct MemoryLevel {
   std::uint64_t mesh_vertices = 0, mesh_triangles = 0;
   std::uint64_t mesh_vertex_bytes = 0, mesh_index_bytes = 0;
   // What Tessera keeps.
-  int needed_map_side = 0;         // R_L, before any cap by the real map
+  int needed_map_side = 0;            // R_L, before any cap by the real map
   int map_width = 0, map_height = 0;  // the finest mip level kept
-  std::uint64_t map_bytes = 0;     // that level and all coarser ones
-  std::uint64_t tessera_bytes = 0;  // cage + patches + map
+  std::uint64_t map_bytes = 0;        // that level and all coarser ones
+  std::uint64_t tessera_bytes = 0;    // cage + patches + map
   std::uint64_t mesh_bytes() const { return mesh_vertex_bytes + mesh_index_bytes; }
   double ratio() const { return tessera_bytes ? double(mesh_bytes()) / double(tessera_bytes) : 0.0; }
 };
 
 struct MemoryTable {
   // Independent of the level.
-  std::uint64_t cage_bytes = 0;    // positions, UVs, face and face-UV indices
-  std::uint64_t patch_bytes = 0;   // IA indices, stencil tables, patch records, displacement data
-  double uv_area = 0.0;            // sum of the faces' areas in UV space (0 without UVs: unit area per face)
-  int faces = 0;                   // non-hole faces
+  std::uint64_t cage_bytes = 0;   // positions, UVs, face and face-UV indices
+  std::uint64_t patch_bytes = 0;  // IA indices, stencil tables, patch records, displacement data
+  double uv_area = 0.0;           // sum of the faces' areas in UV space (0 without UVs: unit area per face)
+  int faces = 0;                  // non-hole faces
   std::vector<MemoryLevel> levels;
 };
 

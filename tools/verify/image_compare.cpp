@@ -6,7 +6,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-
 namespace tessera::verify {
 namespace {
 
@@ -28,7 +27,8 @@ Rgb8 read_rgb8(const std::string& path) {
     throw ImageError(path + ": cannot decode image (" + in->geterror() + ")");
   img.px.resize(std::size_t(img.width) * std::size_t(img.height) * 3);
   for (std::size_t i = 0; i < std::size_t(img.width) * std::size_t(img.height); ++i)
-    for (int c = 0; c < 3; ++c) img.px[i * 3 + std::size_t(c)] = all[i * std::size_t(channels) + std::size_t(std::min(c, channels - 1))];
+    for (int c = 0; c < 3; ++c)
+      img.px[i * 3 + std::size_t(c)] = all[i * std::size_t(channels) + std::size_t(std::min(c, channels - 1))];
   return img;
 }
 

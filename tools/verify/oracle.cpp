@@ -12,7 +12,9 @@
 namespace tessera::oracle {
 namespace {
 
-const char* gl_domain(ts::Domain d) { return d == ts::Domain::quad ? "quads" : d == ts::Domain::tri ? "triangles" : "isolines"; }
+const char* gl_domain(ts::Domain d) {
+  return d == ts::Domain::quad ? "quads" : d == ts::Domain::tri ? "triangles" : "isolines";
+}
 // A number in a capture or case line: strtof over the whole token (the harness prints %.9g).
 bool read_capture_float(const std::string& s, float& out) {
   if (s.empty()) return false;
@@ -52,9 +54,12 @@ std::string vertex_string(const Vertex& v) {
 const char* gl_spacing(ts::Partitioning p) {
   switch (p) {
     case ts::Partitioning::integer:
-    case ts::Partitioning::pow2: return "equal_spacing";
-    case ts::Partitioning::fractional_odd: return "fractional_odd_spacing";
-    case ts::Partitioning::fractional_even: return "fractional_even_spacing";
+    case ts::Partitioning::pow2:
+      return "equal_spacing";
+    case ts::Partitioning::fractional_odd:
+      return "fractional_odd_spacing";
+    case ts::Partitioning::fractional_even:
+      return "fractional_even_spacing";
   }
   return "equal_spacing";
 }
@@ -71,26 +76,43 @@ bool parse_case_line(const std::string& line, Case& out, std::string& error) {
   }
   out = Case{};
   out.line = line;
-  if (domain == "quads") out.factors.domain = ts::Domain::quad;
-  else if (domain == "triangles") out.factors.domain = ts::Domain::tri;
-  else if (domain == "isolines") out.factors.domain = ts::Domain::isoline;
-  else return error = "unknown domain '" + domain + "'", false;
-  if (spacing == "equal_spacing") out.partitioning = ts::Partitioning::integer;
-  else if (spacing == "fractional_odd_spacing") out.partitioning = ts::Partitioning::fractional_odd;
-  else if (spacing == "fractional_even_spacing") out.partitioning = ts::Partitioning::fractional_even;
-  else return error = "unknown spacing '" + spacing + "'", false;
+  if (domain == "quads")
+    out.factors.domain = ts::Domain::quad;
+  else if (domain == "triangles")
+    out.factors.domain = ts::Domain::tri;
+  else if (domain == "isolines")
+    out.factors.domain = ts::Domain::isoline;
+  else
+    return error = "unknown domain '" + domain + "'", false;
+  if (spacing == "equal_spacing")
+    out.partitioning = ts::Partitioning::integer;
+  else if (spacing == "fractional_odd_spacing")
+    out.partitioning = ts::Partitioning::fractional_odd;
+  else if (spacing == "fractional_even_spacing")
+    out.partitioning = ts::Partitioning::fractional_even;
+  else
+    return error = "unknown spacing '" + spacing + "'", false;
   if (winding != "ccw" && winding != "cw") return error = "unknown winding '" + winding + "'", false;
   if (mode != "prims" && mode != "points") return error = "unknown mode '" + mode + "'", false;
-  if (mode == "points") out.output = ts::OutputPrimitive::point;
-  else if (out.factors.domain == ts::Domain::isoline) out.output = ts::OutputPrimitive::line;
-  else out.output = winding == "ccw" ? ts::OutputPrimitive::triangle_cw : ts::OutputPrimitive::triangle_ccw;
+  if (mode == "points")
+    out.output = ts::OutputPrimitive::point;
+  else if (out.factors.domain == ts::Domain::isoline)
+    out.output = ts::OutputPrimitive::line;
+  else
+    out.output = winding == "ccw" ? ts::OutputPrimitive::triangle_cw : ts::OutputPrimitive::triangle_ccw;
   float v[6];
   for (int i = 0; i < 6; ++i)
     if (!read_capture_float(f[i], v[i])) return error = "bad factor '" + f[i] + "'", false;
   switch (out.factors.domain) {
-    case ts::Domain::quad: out.factors.values = {v[0], v[1], v[2], v[3], v[4], v[5]}; break;
-    case ts::Domain::tri: out.factors.values = {v[0], v[1], v[2], v[4], 0, 0}; break;
-    case ts::Domain::isoline: out.factors.values = {v[0], v[1], 0, 0, 0, 0}; break;
+    case ts::Domain::quad:
+      out.factors.values = {v[0], v[1], v[2], v[3], v[4], v[5]};
+      break;
+    case ts::Domain::tri:
+      out.factors.values = {v[0], v[1], v[2], v[4], 0, 0};
+      break;
+    case ts::Domain::isoline:
+      out.factors.values = {v[0], v[1], 0, 0, 0, 0};
+      break;
   }
   return true;
 }
@@ -98,11 +120,18 @@ bool parse_case_line(const std::string& line, Case& out, std::string& error) {
 std::string case_line(ts::Domain d, ts::Partitioning p, ts::OutputPrimitive o, const std::array<float, 6>& x) {
   std::array<float, 6> gl{};  // O0 O1 O2 O3 I0 I1
   switch (d) {
-    case ts::Domain::quad: gl = x; break;
-    case ts::Domain::tri: gl = {x[0], x[1], x[2], 1, x[3], 1}; break;
-    case ts::Domain::isoline: gl = {x[0], x[1], 1, 1, 1, 1}; break;
+    case ts::Domain::quad:
+      gl = x;
+      break;
+    case ts::Domain::tri:
+      gl = {x[0], x[1], x[2], 1, x[3], 1};
+      break;
+    case ts::Domain::isoline:
+      gl = {x[0], x[1], 1, 1, 1, 1};
+      break;
   }
-  std::string s = std::string(gl_domain(d)) + " " + gl_spacing(p) + " " + (o == ts::OutputPrimitive::triangle_ccw ? "cw" : "ccw") + " " +
+  std::string s = std::string(gl_domain(d)) + " " + gl_spacing(p) + " " +
+                  (o == ts::OutputPrimitive::triangle_ccw ? "cw" : "ccw") + " " +
                   (o == ts::OutputPrimitive::point ? "points" : "prims");
   for (float f : gl) {
     char buf[32];
@@ -120,8 +149,10 @@ bool read_dump(std::istream& in, std::vector<Capture>& out, std::string& error) 
     if (line.rfind("case ", 0) != 0) continue;
     Capture cap;
     std::string why;
-    if (!parse_case_line(line.substr(5), cap.c, why)) return error = "line " + std::to_string(line_no) + ": " + why, false;
-    if (!std::getline(in, line)) return error = "line " + std::to_string(line_no) + ": case without a count line", false;
+    if (!parse_case_line(line.substr(5), cap.c, why))
+      return error = "line " + std::to_string(line_no) + ": " + why, false;
+    if (!std::getline(in, line))
+      return error = "line " + std::to_string(line_no) + ": case without a count line", false;
     ++line_no;
     unsigned long n = 0;
     int per = 0;
@@ -131,7 +162,8 @@ bool read_dump(std::istream& in, std::vector<Capture>& out, std::string& error) 
     for (auto& prim : cap.primitives) {
       prim.resize(std::size_t(per));
       for (auto& v : prim) {
-        if (!std::getline(in, line)) return error = "line " + std::to_string(line_no) + ": dump ends inside a case", false;
+        if (!std::getline(in, line))
+          return error = "line " + std::to_string(line_no) + ": dump ends inside a case", false;
         ++line_no;
         std::istringstream vs(line);
         std::string a, b, c;
@@ -158,7 +190,8 @@ std::vector<Primitive> tessera_primitives(const Case& c) {
     for (int k = 0; k < per; ++k) {
       const ts::DomainPoint d = pattern.points[pattern.indices[i + std::size_t(k)]];
       const float w = c.factors.domain == ts::Domain::tri ? (1.0f - d.u) - d.v : 0.0f;
-      p.push_back({std::bit_cast<std::uint32_t>(d.u), std::bit_cast<std::uint32_t>(d.v), std::bit_cast<std::uint32_t>(w)});
+      p.push_back(
+          {std::bit_cast<std::uint32_t>(d.u), std::bit_cast<std::uint32_t>(d.v), std::bit_cast<std::uint32_t>(w)});
     }
     prims.push_back(std::move(p));
   }

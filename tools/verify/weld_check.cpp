@@ -42,8 +42,10 @@ WeldReport WeldChecker::report() const {
     // Count each undirected edge once, from its smaller end (or from the only direction present).
     if (back != 0 && a > b) continue;
     ++r.edges;
-    if (uses > 1 || back > 1) ++r.nonmanifold_edges;
-    else if (back == 0) ++r.boundary_edges;
+    if (uses > 1 || back > 1)
+      ++r.nonmanifold_edges;
+    else if (back == 0)
+      ++r.boundary_edges;
   }
   return r;
 }

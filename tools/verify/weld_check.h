@@ -18,8 +18,8 @@ struct WeldReport {
   std::uint64_t welded_vertices = 0;
   std::uint64_t degenerate_triangles = 0;  // two corners welded together: left out of the edge count
   std::uint64_t edges = 0;
-  std::uint64_t boundary_edges = 0;        // used by one triangle: a crack, or the cage's own boundary
-  std::uint64_t nonmanifold_edges = 0;     // used by more than two triangles, or twice the same way
+  std::uint64_t boundary_edges = 0;     // used by one triangle: a crack, or the cage's own boundary
+  std::uint64_t nonmanifold_edges = 0;  // used by more than two triangles, or twice the same way
   bool closed_manifold() const { return boundary_edges == 0 && nonmanifold_edges == 0 && triangles > 0; }
   std::string summary() const;
 };
