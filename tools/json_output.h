@@ -1,5 +1,6 @@
 // The one JSON path of the `tessera` commands: results are built as nlohmann-json values and
-// written by json_text, in one style for every command: one line, `{"key": value, "list": [1, 2]}`,
+// written by json_text, in one style for every command but `analyze` (whose long report prints
+// indented, nlohmann's dump(2), as it always has): one line, `{"key": value, "list": [1, 2]}`,
 // keys in insertion order, strings escaped by nlohmann, numbers in their shortest round-trip text
 // (std::to_chars: 7, 0.25, 2.9604483920546154; NaN and infinities as null).
 //
