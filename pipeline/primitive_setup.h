@@ -24,13 +24,43 @@ namespace tessera {
 
 namespace detail {
 
+// Setup's integer steps are templates over the lane type I: std::int32_t for one triangle,
+// simd::I4 (simd4.h) for a triangle's three edges in lanes, simd::I8 (simd8.h) for eight triangles
+// in lanes (triangle_list_setup.h). Every form computes the same integers, so the two setups cannot
+// drift apart.
+
 // First and last pixel whose centre (p + 0.5) lies in [lo, hi] (16.8 fixed point).
-inline std::int32_t first_pixel_at_or_after(std::int32_t lo) {
+template <class I>
+I first_pixel_at_or_after(I lo) {
   // ceil((lo - 128) / 256) = floor((lo - 128 + 255) / 256); >> is floor division (arithmetic shift).
-  return (lo - kSubpixelOne / 2 + kSubpixelOne - 1) >> kSubpixelBits;
+  return (lo + I(kSubpixelOne / 2 - 1)) >> kSubpixelBits;
 }
-inline std::int32_t last_pixel_at_or_before(std::int32_t hi) {
-  return (hi - kSubpixelOne / 2) >> kSubpixelBits;  // arithmetic shift = floor
+template <class I>
+I last_pixel_at_or_before(I hi) {
+  return (hi - I(kSubpixelOne / 2)) >> kSubpixelBits;  // arithmetic shift = floor
+}
+
+// D3D11's top-left rule as an edge function's bias: 0 on a top edge (horizontal, the inside below:
+// dy == 0, dx > 0) or a left edge (dy < 0), -1 elsewhere, so a centre exactly on another edge is
+// outside. In lanes the comparisons are masks, and the bias is their complement.
+inline std::int32_t top_left_bias(std::int32_t dx, std::int32_t dy) { return dy < 0 || (dy == 0 && dx > 0) ? 0 : -1; }
+template <class I>
+[[gnu::always_inline]] inline I top_left_bias(I dx, I dy) {
+  const I zero(0);
+  return ~(less(dy, zero) | (equal(dy, zero) & greater(dx, zero)));
+}
+
+// The edge from (x, y) to (x_next, y_next) of a triangle with positive area, in 32 bits: its
+// direction and its value at the centre (cx, cy) with the top-left bias (covers_centre's edge
+// function; exact for triangles within kEdges32MaxExtent, whose values all fit).
+template <class I>
+struct Edge32 {
+  I dx, dy, ref;
+};
+template <class I>
+[[gnu::always_inline]] inline Edge32<I> edge32(I x, I y, I x_next, I y_next, I cx, I cy) {
+  const I dx = x_next - x, dy = y_next - y;
+  return {dx, dy, dy * (x - cx) + dx * (cy - y) + top_left_bias(dx, dy)};
 }
 
 // Edge i of a triangle with positive area runs from vertex i to vertex i + 1; it is >= 0 on the inside
@@ -45,8 +75,8 @@ inline EdgeFunction edge_function(const std::int32_t* x, const std::int32_t* y, 
                                   std::int64_t cy) {
   const int j = i == 2 ? 0 : i + 1;
   const std::int64_t dx = x[j] - x[i], dy = y[j] - y[i];
-  const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-  return {-dy * (cx - x[i]) + dx * (cy - y[i]) + (top_left ? 0 : -1), -dy * kSubpixelOne, dx * kSubpixelOne};
+  return {-dy * (cx - x[i]) + dx * (cy - y[i]) + top_left_bias(std::int32_t(dx), std::int32_t(dy)), -dy * kSubpixelOne,
+          dx * kSubpixelOne};
 }
 
 // The one-centre form: whether pixel (px, py)'s centre (px + 0.5, py + 0.5) is covered.
@@ -58,20 +88,27 @@ inline bool covers_centre(const std::int32_t (&x)[3], const std::int32_t (&y)[3]
   return all >= 0;
 }
 
+// The pixel box whose centres lie in [lx, hx] x [ly, hy] (16.8), clipped to what may be written (empty when min > max).
+template <class I = std::int32_t>
+struct PixelBox {
+  I min_x, max_x, min_y, max_y;
+  bool empty() const { return min_x > max_x || min_y > max_y; }  // one triangle's box
+};
+template <class I>
+[[gnu::always_inline]] inline PixelBox<I> clipped_pixel_box(const SetupContext& c, I lx, I hx, I ly, I hy) {
+  using std::max, std::min;  // simd::max and min by argument-dependent lookup
+  return {max(first_pixel_at_or_after(lx), I(c.clip_min_x)), min(last_pixel_at_or_before(hx), I(c.clip_max_x)),
+          max(first_pixel_at_or_after(ly), I(c.clip_min_y)), min(last_pixel_at_or_before(hy), I(c.clip_max_y))};
+}
+
 // Clips the pixel box to what may be written; false if nothing is left.
 template <std::size_t N>
 bool finish_box(const SetupContext& c, ScreenPrimitive<N>& p, std::int32_t lo_x, std::int32_t hi_x, std::int32_t lo_y,
                 std::int32_t hi_y) {
-  p.min_x = std::max(first_pixel_at_or_after(lo_x), c.clip_min_x);
-  p.max_x = std::min(last_pixel_at_or_before(hi_x), c.clip_max_x);
-  p.min_y = std::max(first_pixel_at_or_after(lo_y), c.clip_min_y);
-  p.max_y = std::min(last_pixel_at_or_before(hi_y), c.clip_max_y);
-  return p.min_x <= p.max_x && p.min_y <= p.max_y;
+  const PixelBox<> b = clipped_pixel_box(c, lo_x, hi_x, lo_y, hi_y);
+  p.min_x = b.min_x, p.max_x = b.max_x, p.min_y = b.min_y, p.max_y = b.max_y;
+  return !b.empty();
 }
-
-}  // namespace detail
-
-namespace detail {
 
 template <std::size_t N>
 void copy_vertex(const SetupVertex<N>& v, ScreenPrimitive<N>& out, int slot) {
@@ -101,17 +138,6 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
 // The steps of setup_snapped_triangle. Each is inlined into it: they run once per triangle, and at
 // high factors nearly every triangle is a few pixels.
 
-// A triangle's covered pixel box, clipped to what may be written (empty when min > max).
-struct PixelBox {
-  std::int32_t min_x, max_x, min_y, max_y;
-  bool empty() const { return min_x > max_x || min_y > max_y; }
-};
-[[gnu::always_inline]] inline PixelBox clipped_pixel_box(const SetupContext& c, std::int32_t lx, std::int32_t hx,
-                                                         std::int32_t ly, std::int32_t hy) {
-  return {std::max(first_pixel_at_or_after(lx), c.clip_min_x), std::min(last_pixel_at_or_before(hx), c.clip_max_x),
-          std::max(first_pixel_at_or_after(ly), c.clip_min_y), std::min(last_pixel_at_or_before(hy), c.clip_max_y)};
-}
-
 // A triangle's edge functions in 32 bits (ScreenPrimitive::edges; the vertices in positive-area order),
 // and for a box of at most kSmallBoxPixels^2 centres the ones it covers (box_coverage).
 struct SetupEdges32 {
@@ -128,15 +154,15 @@ struct SetupEdges32 {
 // (unsigned arithmetic wraps, defined), which gives the exact values because every value used fits
 // (kEdges32MaxExtent; the reference centre lies inside the vertex box).
 template <std::size_t N>
-[[gnu::always_inline]] inline SetupEdges32 setup_edges32(const SetupVertex<N>* const (&v)[3],
-                                                         const std::int32_t (&vx)[3], const std::int32_t (&vy)[3],
-                                                         const PixelBox& box, bool small_box) {
+[[gnu::always_inline]] inline SetupEdges32 setup_edges32([[maybe_unused]] const SetupVertex<N>* const (&v)[3],
+                                                         [[maybe_unused]] const std::int32_t (&vx)[3],
+                                                         [[maybe_unused]] const std::int32_t (&vy)[3],
+                                                         const PixelBox<>& box, bool small_box) {
   SetupEdges32 e;
   const std::int32_t min_x = box.min_x, max_x = box.max_x, min_y = box.min_y, max_y = box.max_y;
   unsigned box_coverage = 0;
   const std::int32_t cx = min_x * kSubpixelOne + kSubpixelOne / 2, cy = min_y * kSubpixelOne + kSubpixelOne / 2;
 #if defined(__SSE2__)
-  (void)vx, (void)vy;
   // The three edges in lanes 0..2 (lane 3 repeats edge 2's direction; it is never used). A
   // SetupVertex's x and y are adjacent: one 64-bit load per vertex.
   static_assert(offsetof(SetupVertex<N>, y) == offsetof(SetupVertex<N>, x) + sizeof(std::int32_t));
@@ -145,15 +171,10 @@ template <std::size_t N>
   const __m128i p2 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v[2]->x));
   const __m128i p01 = _mm_unpacklo_epi32(p0, p1), p22 = _mm_unpacklo_epi32(p2, p2);  // x0 x1 y0 y1, x2 x2 y2 y2
   const __m128i x = _mm_unpacklo_epi64(p01, p22), y = _mm_unpackhi_epi64(p01, p22);  // x0 x1 x2 x2, y0 y1 y2 y2
-  const __m128i dx = _mm_sub_epi32(_mm_shuffle_epi32(x, _MM_SHUFFLE(0, 0, 2, 1)), x);
-  const __m128i dy = _mm_sub_epi32(_mm_shuffle_epi32(y, _MM_SHUFFLE(0, 0, 2, 1)), y);
-  const __m128i zero = _mm_setzero_si128();
-  const __m128i top_left =
-      _mm_or_si128(_mm_cmplt_epi32(dy, zero), _mm_and_si128(_mm_cmpeq_epi32(dy, zero), _mm_cmpgt_epi32(dx, zero)));
-  const __m128i bias = _mm_xor_si128(top_left, _mm_set1_epi32(-1));  // 0 on a top or left edge, else -1
-  const __m128i ref = _mm_add_epi32(_mm_add_epi32(simd::mullo32(dy, _mm_sub_epi32(x, _mm_set1_epi32(cx))),
-                                                  simd::mullo32(dx, _mm_sub_epi32(_mm_set1_epi32(cy), y))),
-                                    bias);
+  using simd::I4;
+  const Edge32<I4> edges = edge32(I4(x), I4(y), I4(_mm_shuffle_epi32(x, _MM_SHUFFLE(0, 0, 2, 1))),
+                                  I4(_mm_shuffle_epi32(y, _MM_SHUFFLE(0, 0, 2, 1))), I4(cx), I4(cy));
+  const __m128i dx = edges.dx.v, dy = edges.dy.v, ref = edges.ref.v, zero = _mm_setzero_si128();
   const __m128i sx = _mm_slli_epi32(_mm_sub_epi32(zero, dy), kSubpixelBits), sy = _mm_slli_epi32(dx, kSubpixelBits);
   e.ref_lanes = ref;
   e.d_lanes = _mm_packs_epi32(dx, dy);  // exact: |d| <= kEdges32MaxExtent
@@ -189,12 +210,11 @@ template <std::size_t N>
     box_coverage = found & columns & rows;
   }
 #else
-  (void)v;
   std::uint32_t edge_sx[4] = {}, edge_sy[4] = {};
   for (int i = 0; i < 3; ++i) {
     const int j = i == 2 ? 0 : i + 1;
     const std::int32_t dx = vx[j] - vx[i], dy = vy[j] - vy[i];
-    const std::uint32_t bias = std::uint32_t(int(dy < 0) | (int(dy == 0) & int(dx > 0))) - 1u;
+    const std::uint32_t bias = std::uint32_t(top_left_bias(dx, dy));
     e.ref[i] = std::uint32_t(dy) * std::uint32_t(vx[i] - cx) + std::uint32_t(dx) * std::uint32_t(cy - vy[i]) + bias;
     edge_sx[i] = std::uint32_t(-dy) * kSubpixelOne;
     edge_sy[i] = std::uint32_t(dx) * kSubpixelOne;
@@ -299,7 +319,7 @@ template <std::size_t N>
   // The box test comes before the primitive is built: most micro-triangles stop here.
   const std::int32_t lx = std::min(std::min(a.x, b.x), d.x), hx = std::max(std::max(a.x, b.x), d.x);
   const std::int32_t ly = std::min(std::min(a.y, b.y), d.y), hy = std::max(std::max(a.y, b.y), d.y);
-  const PixelBox box = clipped_pixel_box(c, lx, hx, ly, hy);
+  const PixelBox<> box = clipped_pixel_box(c, lx, hx, ly, hy);
   if (box.empty()) return;
   // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.
   const SetupVertex<N>* const v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};

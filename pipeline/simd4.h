@@ -63,6 +63,26 @@ inline __m128i mullo32(__m128i a, __m128i b) {
                             _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
 #endif
 }
+// Four 32-bit integer lanes, arithmetic modulo 2^32 as the instructions wrap: primitive setup's
+// integer steps (edge functions of one triangle, one edge per lane), written once as templates over
+// the lane type (primitive_setup.h) for I4 and for simd8.h's I8. Comparisons give lane masks: all
+// ones where true.
+struct I4 {
+  __m128i v;
+  I4() = default;
+  explicit I4(__m128i x) : v(x) {}
+  explicit I4(std::int32_t x) : v(_mm_set1_epi32(x)) {}
+  friend I4 operator+(I4 a, I4 b) { return I4(_mm_add_epi32(a.v, b.v)); }
+  friend I4 operator-(I4 a, I4 b) { return I4(_mm_sub_epi32(a.v, b.v)); }
+  friend I4 operator*(I4 a, I4 b) { return I4(mullo32(a.v, b.v)); }
+  friend I4 operator&(I4 a, I4 b) { return I4(_mm_and_si128(a.v, b.v)); }
+  friend I4 operator|(I4 a, I4 b) { return I4(_mm_or_si128(a.v, b.v)); }
+  friend I4 operator~(I4 a) { return I4(_mm_xor_si128(a.v, _mm_set1_epi32(-1))); }
+};
+inline I4 less(I4 a, I4 b) { return I4(_mm_cmplt_epi32(a.v, b.v)); }
+inline I4 equal(I4 a, I4 b) { return I4(_mm_cmpeq_epi32(a.v, b.v)); }
+inline I4 greater(I4 a, I4 b) { return I4(_mm_cmpgt_epi32(a.v, b.v)); }
+
 // std::max(a, b) is (a < b) ? b : a; maxps(b, a) is (b > a) ? b : a: the same for every input.
 inline F4 max(F4 a, F4 b) { return {_mm_max_ps(b.v, a.v)}; }
 // std::min(a, b) is (b < a) ? b : a; minps(b, a) is (b < a) ? b : a.

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -31,6 +32,29 @@ struct F8 {
   friend F8 operator-(F8 a) { return {_mm256_xor_ps(a.v, _mm256_set1_ps(-0.0f))}; }  // flips the sign bit, as -x
 };
 inline F8 sqrt(F8 a) { return {_mm256_sqrt_ps(a.v)}; }
+
+#if defined(__AVX2__)
+// Eight 32-bit integer lanes (AVX2), as simd4.h's I4: the eight-lane triangle setup
+// (triangle_list_setup.h) runs primitive setup's integer steps over eight triangles with it.
+struct I8 {
+  __m256i v;
+  I8() = default;
+  explicit I8(__m256i x) : v(x) {}
+  explicit I8(std::int32_t x) : v(_mm256_set1_epi32(x)) {}
+  friend I8 operator+(I8 a, I8 b) { return I8(_mm256_add_epi32(a.v, b.v)); }
+  friend I8 operator-(I8 a, I8 b) { return I8(_mm256_sub_epi32(a.v, b.v)); }
+  friend I8 operator*(I8 a, I8 b) { return I8(_mm256_mullo_epi32(a.v, b.v)); }
+  friend I8 operator&(I8 a, I8 b) { return I8(_mm256_and_si256(a.v, b.v)); }
+  friend I8 operator|(I8 a, I8 b) { return I8(_mm256_or_si256(a.v, b.v)); }
+  friend I8 operator~(I8 a) { return I8(_mm256_xor_si256(a.v, _mm256_set1_epi32(-1))); }
+  friend I8 operator>>(I8 a, int bits) { return I8(_mm256_srai_epi32(a.v, bits)); }  // arithmetic, as for int32
+};
+inline I8 less(I8 a, I8 b) { return I8(_mm256_cmpgt_epi32(b.v, a.v)); }
+inline I8 equal(I8 a, I8 b) { return I8(_mm256_cmpeq_epi32(a.v, b.v)); }
+inline I8 greater(I8 a, I8 b) { return I8(_mm256_cmpgt_epi32(a.v, b.v)); }
+inline I8 max(I8 a, I8 b) { return I8(_mm256_max_epi32(a.v, b.v)); }
+inline I8 min(I8 a, I8 b) { return I8(_mm256_min_epi32(a.v, b.v)); }
+#endif
 
 #else
 

@@ -152,7 +152,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     const __m256i inside = _mm256_cmpeq_epi32(view_and, zero);  // not wholly outside one view-volume plane
     chunk.statistics.CInvocations += 8;
     chunk.statistics.CPrimitives += unsigned(std::popcount(unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(inside)))));
-    // setup_snapped_triangle, lane by lane. The area fits in 32 bits: every extent is at most kEdges32MaxExtent.
+    // setup_snapped_triangle, lane by lane, its integer and plane steps shared (primitive_setup.h's
+    // templates over the lane type). The area fits in 32 bits: every extent is at most kEdges32MaxExtent.
     const __m256i area = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(xb, x0), _mm256_sub_epi32(yd, y0)),
                                           _mm256_mullo_epi32(_mm256_sub_epi32(xd, x0), _mm256_sub_epi32(yb, y0)));
     const __m256i positive = _mm256_cmpgt_epi32(area, zero);
@@ -160,15 +161,9 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     __m256i keep = _mm256_andnot_si256(_mm256_cmpeq_epi32(area, zero), inside);
     if (c.cull == CullMode::back) keep = _mm256_and_si256(keep, front);
     if (c.cull == CullMode::front) keep = _mm256_andnot_si256(front, keep);
-    const __m256i half_less_one = _mm256_set1_epi32(kSubpixelOne / 2 - 1), half = _mm256_set1_epi32(kSubpixelOne / 2);
-    const __m256i min_x = _mm256_max_epi32(_mm256_srai_epi32(_mm256_add_epi32(lx, half_less_one), kSubpixelBits),
-                                           _mm256_set1_epi32(c.clip_min_x));
-    const __m256i max_x =
-        _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hx, half), kSubpixelBits), _mm256_set1_epi32(c.clip_max_x));
-    const __m256i min_y = _mm256_max_epi32(_mm256_srai_epi32(_mm256_add_epi32(ly, half_less_one), kSubpixelBits),
-                                           _mm256_set1_epi32(c.clip_min_y));
-    const __m256i max_y =
-        _mm256_min_epi32(_mm256_srai_epi32(_mm256_sub_epi32(hy, half), kSubpixelBits), _mm256_set1_epi32(c.clip_max_y));
+    using simd::I8;
+    const detail::PixelBox<I8> box = detail::clipped_pixel_box(c, I8(lx), I8(hx), I8(ly), I8(hy));
+    const __m256i min_x = box.min_x.v, max_x = box.max_x.v, min_y = box.min_y.v, max_y = box.max_y.v;
     keep = _mm256_and_si256(keep, _mm256_and_si256(cmple(min_x, max_x), cmple(min_y, max_y)));
     if (_mm256_testz_si256(keep, keep)) continue;
     // Stored with positive area: vertices 1 and 2 swap places in lanes with negative area.
@@ -176,20 +171,15 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     const __m256i y1 = _mm256_blendv_epi8(yd, yb, positive), y2 = _mm256_blendv_epi8(yb, yd, positive);
     const __m256i o1 = _mm256_blendv_epi8(off2, off1, positive), o2 = _mm256_blendv_epi8(off1, off2, positive);
     // Edge i from vertex i to vertex i + 1, at the centre of pixel (min_x, min_y), with its top-left bias.
-    const __m256i cx = _mm256_add_epi32(_mm256_slli_epi32(min_x, kSubpixelBits), half);
-    const __m256i cy = _mm256_add_epi32(_mm256_slli_epi32(min_y, kSubpixelBits), half);
-    const __m256i ex[3] = {x0, x1, x2}, ey[3] = {y0, y1, y2};
+    const __m256i half = _mm256_set1_epi32(kSubpixelOne / 2);
+    const I8 cx(_mm256_add_epi32(_mm256_slli_epi32(min_x, kSubpixelBits), half));
+    const I8 cy(_mm256_add_epi32(_mm256_slli_epi32(min_y, kSubpixelBits), half));
+    const I8 ex[3] = {I8(x0), I8(x1), I8(x2)}, ey[3] = {I8(y0), I8(y1), I8(y2)};
     __m256i dx[3], dy[3], ref[3];
     for (int i = 0; i < 3; ++i) {
       const int j = i == 2 ? 0 : i + 1;
-      dx[i] = _mm256_sub_epi32(ex[j], ex[i]);
-      dy[i] = _mm256_sub_epi32(ey[j], ey[i]);
-      const __m256i top_left =
-          _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy[i]),
-                          _mm256_and_si256(_mm256_cmpeq_epi32(dy[i], zero), _mm256_cmpgt_epi32(dx[i], zero)));
-      ref[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(dy[i], _mm256_sub_epi32(ex[i], cx)),
-                                                 _mm256_mullo_epi32(dx[i], _mm256_sub_epi32(cy, ey[i]))),
-                                _mm256_xor_si256(top_left, ones));
+      const detail::Edge32<I8> e = detail::edge32(ex[i], ey[i], ex[j], ey[j], cx, cy);
+      dx[i] = e.dx.v, dy[i] = e.dy.v, ref[i] = e.ref.v;
     }
     // The covered centres of a box of at most 4x4 (ScreenPrimitive::box_coverage): each centre tested in
     // all lanes; other lanes' results are masked off.
