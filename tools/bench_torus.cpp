@@ -48,7 +48,9 @@ struct LlvmpipeRun {
 
 // Checked before rendering, so a bad --llvmpipe fails at once.
 void check_llvmpipe(const TorusOptions& o, ts::Partitioning p) {
-  // The torus hull shader would round pow2 factors that the harness cannot.
+  // The harness is asked for a GL spacing and GL names none for pow2. (The D3D11 tessellator runs pow2
+  // as integer, so equal_spacing would draw the same pattern; the option stays refused so that the
+  // llvmpipe run is always of the partitioning the user named.)
   if (p == ts::Partitioning::pow2)
     throw UsageError("--llvmpipe: GL has no pow2 spacing; use integer or a fractional partitioning");
   if (!std::filesystem::exists(o.llvmpipe))

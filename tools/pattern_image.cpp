@@ -74,8 +74,10 @@ class Canvas {
             sum.r += p.r, sum.g += p.g, sum.b += p.b;
           }
         const float n = float(kSupersample * kSupersample);
-        row[std::size_t(x) * 3] = sum.r / n, row[std::size_t(x) * 3 + 1] = sum.g / n,
-                             row[std::size_t(x) * 3 + 2] = sum.b / n;
+        float* out_pixel = &row[std::size_t(x) * 3];
+        out_pixel[0] = sum.r / n;
+        out_pixel[1] = sum.g / n;
+        out_pixel[2] = sum.b / n;
       }
       out.set_pixels(OIIO::ROI(0, size, y, y + 1), OIIO::TypeDesc::FLOAT, row.data());
     }

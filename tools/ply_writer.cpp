@@ -27,8 +27,7 @@ PlyStreamWriter::~PlyStreamWriter() {
 }
 
 void PlyStreamWriter::put_triangle(std::string& out, std::int32_t a, std::int32_t b, std::int32_t c) {
-  put(out, std::uint8_t(3));
-  put(out, a), put(out, b), put(out, c);
+  put(out, std::uint8_t(3), a, b, c);
 }
 
 void PlyStreamWriter::append(const std::string& vertex_records, std::uint64_t vertices, const std::string& face_records,

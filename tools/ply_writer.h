@@ -31,14 +31,10 @@ class PlyStreamWriter {
   PlyStreamWriter(const PlyStreamWriter&) = delete;
   PlyStreamWriter& operator=(const PlyStreamWriter&) = delete;
 
-  // One value appended to a record buffer, little-endian.
-  template <class T>
-  static void put(std::string& out, const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::array<char, sizeof(T)> bytes;
-    std::memcpy(bytes.data(), &v, sizeof v);
-    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
-    out.append(bytes.data(), bytes.size());
+  // Values appended to a record buffer in order, each little-endian.
+  template <class... T>
+  static void put(std::string& out, const T&... values) {
+    (put_one(out, values), ...);
   }
   static void put_triangle(std::string& out, std::int32_t a, std::int32_t b, std::int32_t c);
 
@@ -55,6 +51,15 @@ class PlyStreamWriter {
   std::vector<Property> properties_;
   std::ofstream vertex_out_, face_out_;
   std::uint64_t vertices_ = 0, faces_ = 0;
+
+  template <class T>
+  static void put_one(std::string& out, const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::array<char, sizeof(T)> bytes;
+    std::memcpy(bytes.data(), &v, sizeof v);
+    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+    out.append(bytes.data(), bytes.size());
+  }
 };
 
 }  // namespace tessera::cli

@@ -53,12 +53,8 @@ int run_tessellate(const TessellateOptions& o) {
       vbuf.clear(), fbuf.clear();
       if (ply)
         for (const auto& s : p.points) {
-          PlyStreamWriter::put(vbuf, s.position.x), PlyStreamWriter::put(vbuf, s.position.y);
-          PlyStreamWriter::put(vbuf, s.position.z);
-          PlyStreamWriter::put(vbuf, s.normal.x), PlyStreamWriter::put(vbuf, s.normal.y);
-          PlyStreamWriter::put(vbuf, s.normal.z);
-          PlyStreamWriter::put(vbuf, std::int32_t(s.face));
-          PlyStreamWriter::put(vbuf, s.u), PlyStreamWriter::put(vbuf, s.v);
+          PlyStreamWriter::put(vbuf, s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z,
+                               std::int32_t(s.face), s.u, s.v);
         }
       std::uint64_t faces = 0;
       for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3, ++faces) {

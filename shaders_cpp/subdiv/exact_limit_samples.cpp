@@ -1,4 +1,4 @@
-// Accuracy of the Bfr limit surface against OpenSubdiv's exact vertex limit masks.
+// Exact limit positions of uniformly refined vertices, with the domain location of each.
 //
 // The domain location of every uniformly refined vertex is tracked level by level: a child vertex of
 // a parent vertex, edge or face sits at the parent's corner, the edge's midpoint, or the face's
