@@ -33,20 +33,13 @@ struct GuardBand {
 
 inline float clip_distance(int plane, const glm::vec4& p, GuardBand g) {
   switch (plane) {
-    case kNear:
-      return p.z;
-    case kFar:
-      return p.w - p.z;
-    case kLeft:
-      return g.gx * p.w + p.x;
-    case kRight:
-      return g.gx * p.w - p.x;
-    case kBottom:
-      return g.gy * p.w + p.y;
-    case kTop:
-      return g.gy * p.w - p.y;
-    default:
-      return p.w - kMinClipW;
+    case kNear: return p.z;
+    case kFar: return p.w - p.z;
+    case kLeft: return g.gx * p.w + p.x;
+    case kRight: return g.gx * p.w - p.x;
+    case kBottom: return g.gy * p.w + p.y;
+    case kTop: return g.gy * p.w - p.y;
+    default: return p.w - kMinClipW;
   }
 }
 

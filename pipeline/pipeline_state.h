@@ -55,22 +55,14 @@ struct TessellatorState {
 // The comparison D3D11 applies: `incoming func stored`.
 inline bool depth_passes(CompareFunc f, float incoming, float stored) {
   switch (f) {
-    case CompareFunc::never:
-      return false;
-    case CompareFunc::less:
-      return incoming < stored;
-    case CompareFunc::equal:
-      return incoming == stored;
-    case CompareFunc::less_equal:
-      return incoming <= stored;
-    case CompareFunc::greater:
-      return incoming > stored;
-    case CompareFunc::not_equal:
-      return incoming != stored;
-    case CompareFunc::greater_equal:
-      return incoming >= stored;
-    case CompareFunc::always:
-      return true;
+    case CompareFunc::never: return false;
+    case CompareFunc::less: return incoming < stored;
+    case CompareFunc::equal: return incoming == stored;
+    case CompareFunc::less_equal: return incoming <= stored;
+    case CompareFunc::greater: return incoming > stored;
+    case CompareFunc::not_equal: return incoming != stored;
+    case CompareFunc::greater_equal: return incoming >= stored;
+    case CompareFunc::always: return true;
   }
   return false;
 }

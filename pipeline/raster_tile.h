@@ -74,22 +74,14 @@ inline constexpr std::uint8_t kQuadLanes[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2,
 template <CompareFunc kDepthFunc>
 unsigned depth_pass_mask(simd::F4 z, simd::F4 stored) {
   switch (kDepthFunc) {
-    case CompareFunc::never:
-      return 0;
-    case CompareFunc::less:
-      return simd::less_mask(z, stored);
-    case CompareFunc::equal:
-      return simd::equal_mask(z, stored);
-    case CompareFunc::less_equal:
-      return simd::less_equal_mask(z, stored);
-    case CompareFunc::greater:
-      return simd::less_mask(stored, z);
-    case CompareFunc::not_equal:
-      return simd::not_equal_mask(z, stored);
-    case CompareFunc::greater_equal:
-      return simd::less_equal_mask(stored, z);
-    case CompareFunc::always:
-      return 0xF;
+    case CompareFunc::never: return 0;
+    case CompareFunc::less: return simd::less_mask(z, stored);
+    case CompareFunc::equal: return simd::equal_mask(z, stored);
+    case CompareFunc::less_equal: return simd::less_equal_mask(z, stored);
+    case CompareFunc::greater: return simd::less_mask(stored, z);
+    case CompareFunc::not_equal: return simd::not_equal_mask(z, stored);
+    case CompareFunc::greater_equal: return simd::less_equal_mask(stored, z);
+    case CompareFunc::always: return 0xF;
   }
   return 0;
 }
@@ -474,12 +466,8 @@ std::uint64_t rasterize_tile_with(const ForEach& for_each_primitive, int tx0, in
       case PrimitiveKind::triangle:
         invocations += rasterize_triangle_with<N, Ps, kDepthFunc>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
         break;
-      case PrimitiveKind::line:
-        invocations += rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-        break;
-      case PrimitiveKind::point:
-        invocations += rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb);
-        break;
+      case PrimitiveKind::line: invocations += rasterize_line<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb); break;
+      case PrimitiveKind::point: invocations += rasterize_point<N>(p, tx0, ty0, tx1, ty1, ps, rc, fb); break;
     }
   });
   return invocations;
@@ -500,22 +488,14 @@ std::uint64_t rasterize_tile(const ForEach& for_each_primitive, int tx0, int ty0
   };
   using F = CompareFunc;
   switch (rc.depth.func) {
-    case F::never:
-      return with(std::integral_constant<F, F::never>{});
-    case F::less:
-      return with(std::integral_constant<F, F::less>{});
-    case F::equal:
-      return with(std::integral_constant<F, F::equal>{});
-    case F::less_equal:
-      return with(std::integral_constant<F, F::less_equal>{});
-    case F::greater:
-      return with(std::integral_constant<F, F::greater>{});
-    case F::not_equal:
-      return with(std::integral_constant<F, F::not_equal>{});
-    case F::greater_equal:
-      return with(std::integral_constant<F, F::greater_equal>{});
-    case F::always:
-      return with(std::integral_constant<F, F::always>{});
+    case F::never: return with(std::integral_constant<F, F::never>{});
+    case F::less: return with(std::integral_constant<F, F::less>{});
+    case F::equal: return with(std::integral_constant<F, F::equal>{});
+    case F::less_equal: return with(std::integral_constant<F, F::less_equal>{});
+    case F::greater: return with(std::integral_constant<F, F::greater>{});
+    case F::not_equal: return with(std::integral_constant<F, F::not_equal>{});
+    case F::greater_equal: return with(std::integral_constant<F, F::greater_equal>{});
+    case F::always: return with(std::integral_constant<F, F::always>{});
   }
   return 0;
 }

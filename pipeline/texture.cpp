@@ -35,12 +35,9 @@ int mirror_index(int i, int n) {
 // stays small enough to inline into every tap.
 [[gnu::noinline]] int address_outside(int i, int n, AddressMode mode) {
   switch (mode) {
-    case AddressMode::wrap:
-      return wrap_index(i, n);
-    case AddressMode::clamp:
-      return i < 0 ? 0 : n - 1;
-    case AddressMode::mirror:
-      return mirror_index(i, n);
+    case AddressMode::wrap: return wrap_index(i, n);
+    case AddressMode::clamp: return i < 0 ? 0 : n - 1;
+    case AddressMode::mirror: return mirror_index(i, n);
   }
   return 0;
 }
@@ -56,12 +53,10 @@ inline int address(int i, int n, AddressMode mode) {
 float reduce_far(float x, int n, AddressMode mode) {
   if (!std::isfinite(x)) return 0.0f;
   switch (mode) {
-    case AddressMode::wrap:
-      return static_cast<float>(std::fmod(static_cast<double>(x), static_cast<double>(n)));
+    case AddressMode::wrap: return static_cast<float>(std::fmod(static_cast<double>(x), static_cast<double>(n)));
     case AddressMode::mirror:
       return static_cast<float>(std::fmod(static_cast<double>(x), 2.0 * static_cast<double>(n)));
-    case AddressMode::clamp:
-      break;
+    case AddressMode::clamp: break;
   }
   return x < 0.0f ? -1.0f : static_cast<float>(n);
 }
@@ -97,14 +92,10 @@ glm::vec4 fetch(const float* p) {
 
 glm::vec4 fetch(const float* p, int channels) {
   switch (channels) {
-    case 1:
-      return fetch<1>(p);
-    case 2:
-      return fetch<2>(p);
-    case 3:
-      return fetch<3>(p);
-    default:
-      return fetch<4>(p);
+    case 1: return fetch<1>(p);
+    case 2: return fetch<2>(p);
+    case 3: return fetch<3>(p);
+    default: return fetch<4>(p);
   }
 }
 
@@ -202,12 +193,9 @@ std::string size_error(const char* what, int value, int lo, int hi) {
 
 std::string_view to_string(Filter f) {
   switch (f) {
-    case Filter::point:
-      return "point";
-    case Filter::bilinear:
-      return "bilinear";
-    case Filter::trilinear:
-      return "trilinear";
+    case Filter::point: return "point";
+    case Filter::bilinear: return "bilinear";
+    case Filter::trilinear: return "trilinear";
   }
   return "?";
 }
@@ -220,12 +208,9 @@ std::optional<Filter> parse_filter(std::string_view s) {
 
 std::string_view to_string(AddressMode m) {
   switch (m) {
-    case AddressMode::wrap:
-      return "wrap";
-    case AddressMode::clamp:
-      return "clamp";
-    case AddressMode::mirror:
-      return "mirror";
+    case AddressMode::wrap: return "wrap";
+    case AddressMode::clamp: return "clamp";
+    case AddressMode::mirror: return "mirror";
   }
   return "?";
 }
@@ -326,26 +311,19 @@ glm::vec4 Texture2D::sample_bilinear(const Sampler& s, const Level& level, glm::
   const LinearTaps tv = linear_taps(uv.y * level.fheight - 0.5f, level.height, s.address_v);
   const float* base = texels_.data() + level.offset;
   switch (channels_) {
-    case 1:
-      return bilerp<1>(base, level.width, tu, tv);
-    case 2:
-      return bilerp<2>(base, level.width, tu, tv);
-    case 3:
-      return bilerp<3>(base, level.width, tu, tv);
-    default:
-      return bilerp<4>(base, level.width, tu, tv);
+    case 1: return bilerp<1>(base, level.width, tu, tv);
+    case 2: return bilerp<2>(base, level.width, tu, tv);
+    case 3: return bilerp<3>(base, level.width, tu, tv);
+    default: return bilerp<4>(base, level.width, tu, tv);
   }
 }
 
 // lod is already clamped to [0, levels_ - 1], so every level index below is in range.
 glm::vec4 Texture2D::sample_at_lod(const Sampler& s, glm::vec2 uv, float lod) const {
   switch (s.filter) {
-    case Filter::point:
-      return sample_point(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
-    case Filter::bilinear:
-      return sample_bilinear(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
-    case Filter::trilinear:
-      break;
+    case Filter::point: return sample_point(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
+    case Filter::bilinear: return sample_bilinear(s, levels_info_[static_cast<std::size_t>(lod + 0.5f)], uv);
+    case Filter::trilinear: break;
   }
   const int l0 = static_cast<int>(lod);
   const float f = lod - static_cast<float>(l0);

@@ -222,9 +222,7 @@ struct DisplacedDS {
     sampler.address_u = sampler.address_v = AddressMode::clamp;
     const glm::vec4 texel = params.map->sample_level(sampler, uv, lod);
     switch (params.kind) {
-      case DisplacementKind::scalar:
-        out.position = s.position + (params.scale * texel.x + params.bias) * n;
-        break;
+      case DisplacementKind::scalar: out.position = s.position + (params.scale * texel.x + params.bias) * n; break;
       case DisplacementKind::vector_object:
         out.position = s.position + (params.scale * glm::vec3(texel) + params.bias);
         break;
@@ -250,18 +248,10 @@ struct DisplacedDS {
     const float v = c == 0 ? 0.0f : c == 1 ? t : c == 2 ? 1.0f : r;
     const SurfacePoint l = base.limit->evaluate(f, 0, u, v);
     switch (c) {
-      case 0:
-        along = l.du, across = l.dv;
-        break;
-      case 1:
-        along = l.dv, across = -l.du;
-        break;
-      case 2:
-        along = -l.du, across = -l.dv;
-        break;
-      default:
-        along = -l.dv, across = l.du;
-        break;
+      case 0: along = l.du, across = l.dv; break;
+      case 1: along = l.dv, across = -l.du; break;
+      case 2: along = -l.du, across = -l.dv; break;
+      default: along = -l.dv, across = l.du; break;
     }
   }
 };

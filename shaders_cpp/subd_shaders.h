@@ -183,38 +183,22 @@ struct SubdDS {
     // barycentric of patch corner c - r (corner 0: w, 1: u, 2: v).
     if (triangles) {
       switch (patch.rotation) {
-        case 1:
-          s.u = loc.w, s.v = loc.u;
-          break;
-        case 2:
-          s.u = loc.v, s.v = loc.w;
-          break;
-        default:
-          s.u = loc.u, s.v = loc.v;
-          break;
+        case 1: s.u = loc.w, s.v = loc.u; break;
+        case 2: s.u = loc.v, s.v = loc.w; break;
+        default: s.u = loc.u, s.v = loc.v; break;
       }
     } else {
       switch (patch.rotation) {
-        case 1:
-          s.u = 1.0f - loc.v, s.v = loc.u;
-          break;
-        case 2:
-          s.u = 1.0f - loc.u, s.v = 1.0f - loc.v;
-          break;
-        case 3:
-          s.u = loc.v, s.v = 1.0f - loc.u;
-          break;
-        default:
-          s.u = loc.u, s.v = loc.v;
-          break;
+        case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
+        case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
+        case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
+        default: s.u = loc.u, s.v = loc.v; break;
       }
     }
     PatchPoint p;
     std::optional<glm::vec3> field_normal;
     switch (patch.kind) {
-      case PatchKind::bilinear:
-        p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v);
-        break;
+      case PatchKind::bilinear: p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v); break;
       case PatchKind::linear: {
         p = linear_triangle(cp[0].p, cp[1].p, cp[2].p, loc.u, loc.v, loc.w);
         break;

@@ -21,12 +21,9 @@ Parity inside_parity(float rounded, Partitioning p) {
 
 float reduce(Reduction r, float a, float b) {
   switch (r) {
-    case Reduction::min:
-      return d3d_fmin(a, b);
-    case Reduction::max:
-      return d3d_fmax(a, b);
-    case Reduction::average:
-      break;
+    case Reduction::min: return d3d_fmin(a, b);
+    case Reduction::max: return d3d_fmax(a, b);
+    case Reduction::average: break;
   }
   return (a + b) / 2;
 }
@@ -40,12 +37,9 @@ float anti_pop(Reduction r, float reduced_max, float reduced_average) {
 
 std::string_view to_string(Reduction r) {
   switch (r) {
-    case Reduction::min:
-      return "min";
-    case Reduction::max:
-      return "max";
-    case Reduction::average:
-      return "average";
+    case Reduction::min: return "min";
+    case Reduction::max: return "max";
+    case Reduction::average: return "average";
   }
   return "?";
 }
@@ -77,13 +71,10 @@ float round_factor(float x, Partitioning p) {
 
 float clamp_factor(float x, Partitioning p) {
   switch (p) {
-    case Partitioning::fractional_odd:
-      return d3d_fmin(kMaxOddTessFactor, d3d_fmax(x, kMinOddTessFactor));
-    case Partitioning::fractional_even:
-      return d3d_fmin(kMaxEvenTessFactor, d3d_fmax(x, kMinEvenTessFactor));
+    case Partitioning::fractional_odd: return d3d_fmin(kMaxOddTessFactor, d3d_fmax(x, kMinOddTessFactor));
+    case Partitioning::fractional_even: return d3d_fmin(kMaxEvenTessFactor, d3d_fmax(x, kMinEvenTessFactor));
     case Partitioning::integer:
-    case Partitioning::pow2:
-      break;
+    case Partitioning::pow2: break;
   }
   return d3d_fmin(kMaxEvenTessFactor, d3d_fmax(x, kMinOddTessFactor));
 }
@@ -123,15 +114,9 @@ QuadFactors process_quad(Partitioning p, Reduction r, QuadReductionAxis axis, co
   if (axis == QuadReductionAxis::one_axis) {
     float reduced;
     switch (r) {
-      case Reduction::min:
-        reduced = d3d_fmin(d3d_fmin(Veq0, Veq1), d3d_fmin(Ueq0, Ueq1));
-        break;
-      case Reduction::max:
-        reduced = d3d_fmax(d3d_fmax(Veq0, Veq1), d3d_fmax(Ueq0, Ueq1));
-        break;
-      default:
-        reduced = (Veq0 + Veq1 + Ueq0 + Ueq1) / 4;
-        break;
+      case Reduction::min: reduced = d3d_fmin(d3d_fmin(Veq0, Veq1), d3d_fmin(Ueq0, Ueq1)); break;
+      case Reduction::max: reduced = d3d_fmax(d3d_fmax(Veq0, Veq1), d3d_fmax(Ueq0, Ueq1)); break;
+      default: reduced = (Veq0 + Veq1 + Ueq0 + Ueq1) / 4; break;
     }
     finish(0, reduced * clamp_scale(in.insideU));
     if (parity[0] == Parity::odd && inside[0] < kThree)
@@ -174,15 +159,9 @@ TriFactors process_tri(Partitioning p, Reduction r, const TriFactors& in, TriFac
 
   float inside;
   switch (r) {
-    case Reduction::min:
-      inside = d3d_fmin(d3d_fmin(Ueq0, Veq0), Weq0);
-      break;
-    case Reduction::max:
-      inside = d3d_fmax(d3d_fmax(Ueq0, Veq0), Weq0);
-      break;
-    default:
-      inside = (Ueq0 + Veq0 + Weq0) / 3;
-      break;
+    case Reduction::min: inside = d3d_fmin(d3d_fmin(Ueq0, Veq0), Weq0); break;
+    case Reduction::max: inside = d3d_fmax(d3d_fmax(Ueq0, Veq0), Weq0); break;
+    default: inside = (Ueq0 + Veq0 + Weq0) / 3; break;
   }
   inside = clamp_factor(inside * d3d_fmin(1.0f, clamp_scale(in.inside)), p);
   raw.inside = inside;

@@ -82,13 +82,10 @@ std::size_t primitive_count(const ProcessedFactors& p, OutputPrimitive output) {
   }
   const std::size_t points = p.domain == Domain::quad ? quad_points(p) : tri_points(p);
   switch (output) {
-    case OutputPrimitive::point:
-      return points;
-    case OutputPrimitive::line:
-      return points - 1;  // the points in order, as one line list
+    case OutputPrimitive::point: return points;
+    case OutputPrimitive::line: return points - 1;  // the points in order, as one line list
     case OutputPrimitive::triangle_cw:
-    case OutputPrimitive::triangle_ccw:
-      break;
+    case OutputPrimitive::triangle_ccw: break;
   }
   return p.domain == Domain::quad ? quad_triangles(p) : tri_triangles(p);
 }

@@ -23,13 +23,10 @@ struct Bounds {
 
 Bounds clamp_bounds(Partitioning p) {
   switch (p) {
-    case Partitioning::fractional_even:
-      return {kMinEvenTessFactor, kMaxEvenTessFactor};
-    case Partitioning::fractional_odd:
-      return {kMinOddTessFactor, kMaxOddTessFactor};
+    case Partitioning::fractional_even: return {kMinEvenTessFactor, kMaxEvenTessFactor};
+    case Partitioning::fractional_odd: return {kMinOddTessFactor, kMaxOddTessFactor};
     case Partitioning::integer:
-    case Partitioning::pow2:
-      break;
+    case Partitioning::pow2: break;
   }
   return {kMinOddTessFactor, kMaxEvenTessFactor};
 }
@@ -166,12 +163,9 @@ ProcessedFactors process_isoline_factors(Partitioning partitioning, const Isolin
 ProcessedFactors process_factors(Partitioning partitioning, const FactorSet& f) {
   const auto& x = f.values;
   switch (f.domain) {
-    case Domain::quad:
-      return process_quad_factors(partitioning, {x[0], x[1], x[2], x[3], x[4], x[5]});
-    case Domain::tri:
-      return process_tri_factors(partitioning, {x[0], x[1], x[2], x[3]});
-    case Domain::isoline:
-      break;
+    case Domain::quad: return process_quad_factors(partitioning, {x[0], x[1], x[2], x[3], x[4], x[5]});
+    case Domain::tri: return process_tri_factors(partitioning, {x[0], x[1], x[2], x[3]});
+    case Domain::isoline: break;
   }
   return process_isoline_factors(partitioning, {x[0], x[1]});
 }

@@ -9,13 +9,10 @@ namespace tessera::ts {
 
 int Pattern::vertices_per_primitive() const {
   switch (output) {
-    case OutputPrimitive::point:
-      return 1;
-    case OutputPrimitive::line:
-      return 2;
+    case OutputPrimitive::point: return 1;
+    case OutputPrimitive::line: return 2;
     case OutputPrimitive::triangle_cw:
-    case OutputPrimitive::triangle_ccw:
-      break;
+    case OutputPrimitive::triangle_ccw: break;
   }
   return domain == Domain::isoline ? 2 : 3;  // isolines only ever make segments
 }
@@ -116,38 +113,27 @@ std::uint64_t hash(const ProcessedFactors& p, OutputPrimitive output) {
 
 std::string_view to_string(Domain d) {
   switch (d) {
-    case Domain::quad:
-      return "quad";
-    case Domain::tri:
-      return "tri";
-    case Domain::isoline:
-      return "isoline";
+    case Domain::quad: return "quad";
+    case Domain::tri: return "tri";
+    case Domain::isoline: return "isoline";
   }
   return "?";
 }
 std::string_view to_string(Partitioning p) {
   switch (p) {
-    case Partitioning::integer:
-      return "integer";
-    case Partitioning::pow2:
-      return "pow2";
-    case Partitioning::fractional_odd:
-      return "fractional_odd";
-    case Partitioning::fractional_even:
-      return "fractional_even";
+    case Partitioning::integer: return "integer";
+    case Partitioning::pow2: return "pow2";
+    case Partitioning::fractional_odd: return "fractional_odd";
+    case Partitioning::fractional_even: return "fractional_even";
   }
   return "?";
 }
 std::string_view to_string(OutputPrimitive o) {
   switch (o) {
-    case OutputPrimitive::point:
-      return "point";
-    case OutputPrimitive::line:
-      return "line";
-    case OutputPrimitive::triangle_cw:
-      return "triangle_cw";
-    case OutputPrimitive::triangle_ccw:
-      return "triangle_ccw";
+    case OutputPrimitive::point: return "point";
+    case OutputPrimitive::line: return "line";
+    case OutputPrimitive::triangle_cw: return "triangle_cw";
+    case OutputPrimitive::triangle_ccw: return "triangle_ccw";
   }
   return "?";
 }

@@ -36,15 +36,9 @@ void tri_generate_points(const ProcessedFactors& p, std::vector<DomainPoint>& po
       for (int i = first; i < end; ++i) {
         const Fxp t = place_point(in, edge == 1 ? i : end - (i - first));
         switch (edge) {
-          case 0:
-            points.push_back(make_point(perp, t - shift));
-            break;
-          case 1:
-            points.push_back(make_point(t - shift, perp));
-            break;
-          default:
-            points.push_back(make_point(t - shift, kFxpOne - (t - shift) - perp));
-            break;
+          case 0: points.push_back(make_point(perp, t - shift)); break;
+          case 1: points.push_back(make_point(t - shift, perp)); break;
+          default: points.push_back(make_point(t - shift, kFxpOne - (t - shift) - perp)); break;
         }
       }
     }

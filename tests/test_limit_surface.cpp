@@ -103,18 +103,10 @@ void edge_queries(const LimitSurface& s, int f, int e, float t, Eval&& eval) {
   if (n == 4) {
     const float one = 1.0f;
     switch (e) {
-      case 0:
-        eval(f, 0, t, 0.0f, -1.0f);
-        break;
-      case 1:
-        eval(f, 0, one, t, -1.0f);
-        break;
-      case 2:
-        eval(f, 0, one - t, one, -1.0f);
-        break;
-      default:
-        eval(f, 0, 0.0f, one - t, -1.0f);
-        break;
+      case 0: eval(f, 0, t, 0.0f, -1.0f); break;
+      case 1: eval(f, 0, one, t, -1.0f); break;
+      case 2: eval(f, 0, one - t, one, -1.0f); break;
+      default: eval(f, 0, 0.0f, one - t, -1.0f); break;
     }
     return;
   }

@@ -49,8 +49,7 @@ int gl_segments(ts::Partitioning p, float x) {
       x = std::clamp(x, 2.0f, 64.0f);
       return 2 * int(std::ceil(double(x) / 2));
     }
-    default:
-      return int(std::ceil(std::clamp(x, 1.0f, 64.0f)));
+    default: return int(std::ceil(std::clamp(x, 1.0f, 64.0f)));
   }
 }
 

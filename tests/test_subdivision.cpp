@@ -158,23 +158,16 @@ struct PatchEvaluator {
   static DomainLocation on_edge(int n, int k, float t) {
     if (n == 3) {
       switch (k) {
-        case 0:
-          return {t, 0.0f, 1.0f - t};
-        case 1:
-          return {1.0f - t, t, 0.0f};
-        default:
-          return {0.0f, 1.0f - t, t};
+        case 0: return {t, 0.0f, 1.0f - t};
+        case 1: return {1.0f - t, t, 0.0f};
+        default: return {0.0f, 1.0f - t, t};
       }
     }
     switch (k) {
-      case 0:
-        return {t, 0.0f, 0.0f};
-      case 1:
-        return {1.0f, t, 0.0f};
-      case 2:
-        return {1.0f - t, 1.0f, 0.0f};
-      default:
-        return {0.0f, 1.0f - t, 0.0f};
+      case 0: return {t, 0.0f, 0.0f};
+      case 1: return {1.0f, t, 0.0f};
+      case 2: return {1.0f - t, 1.0f, 0.0f};
+      default: return {0.0f, 1.0f - t, 0.0f};
     }
   }
   // Patch edge k of face f and whether it runs a -> b (else b -> a); -1 if the face has no such edge.

@@ -136,14 +136,10 @@ struct LimitSurface::Impl {
     const int n = sizes[std::size_t(f)];
     if (n == 4) {
       switch (e) {
-        case 0:
-          return shared(f, 0, s, 0.0);
-        case 1:
-          return shared(f, 0, 1.0, s);
-        case 2:
-          return shared(f, 0, 1.0 - s, 1.0);
-        default:
-          return shared(f, 0, 0.0, 1.0 - s);
+        case 0: return shared(f, 0, s, 0.0);
+        case 1: return shared(f, 0, 1.0, s);
+        case 2: return shared(f, 0, 1.0 - s, 1.0);
+        default: return shared(f, 0, 0.0, 1.0 - s);
       }
     }
     if (s <= 0.5) return shared(f, e, 2.0 * s, 0.0);

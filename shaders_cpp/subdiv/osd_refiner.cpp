@@ -25,12 +25,8 @@ std::string cage_label(const Cage& cage) { return cage.name.empty() ? std::strin
 Options sdc_options(const CageTags& tags) {
   Options o;
   switch (tags.boundary) {
-    case BoundaryInterpolation::none:
-      o.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_NONE);
-      break;
-    case BoundaryInterpolation::edge_only:
-      o.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_ONLY);
-      break;
+    case BoundaryInterpolation::none: o.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_NONE); break;
+    case BoundaryInterpolation::edge_only: o.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_ONLY); break;
     case BoundaryInterpolation::edge_and_corner:
       o.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_AND_CORNER);
       break;

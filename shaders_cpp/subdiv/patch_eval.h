@@ -68,16 +68,11 @@ inline QuadEdge quad_edge(float u, float v) {
 // The position of a bicubic Bezier patch b[i + 4 j] on one of its edges, from that edge's points.
 inline glm::vec3 bezier_edge_position(std::span<const glm::vec3, 16> b, QuadEdge e, float u, float v) {
   switch (e) {
-    case QuadEdge::v0:
-      return cubic_sum(cubic_bernstein(u), b[0], b[1], b[2], b[3]);
-    case QuadEdge::v1:
-      return cubic_sum(cubic_bernstein(u), b[12], b[13], b[14], b[15]);
-    case QuadEdge::u0:
-      return cubic_sum(cubic_bernstein(v), b[0], b[4], b[8], b[12]);
-    case QuadEdge::u1:
-      return cubic_sum(cubic_bernstein(v), b[3], b[7], b[11], b[15]);
-    case QuadEdge::none:
-      break;
+    case QuadEdge::v0: return cubic_sum(cubic_bernstein(u), b[0], b[1], b[2], b[3]);
+    case QuadEdge::v1: return cubic_sum(cubic_bernstein(u), b[12], b[13], b[14], b[15]);
+    case QuadEdge::u0: return cubic_sum(cubic_bernstein(v), b[0], b[4], b[8], b[12]);
+    case QuadEdge::u1: return cubic_sum(cubic_bernstein(v), b[3], b[7], b[11], b[15]);
+    case QuadEdge::none: break;
   }
   return {};
 }
@@ -173,21 +168,11 @@ inline PatchPoint bilinear_patch(const glm::vec3& p0, const glm::vec3& p1, const
   const QuadEdge e = quad_edge(u, v);
   const float s = 1.0f - u, t = 1.0f - v;
   switch (e) {
-    case QuadEdge::v0:
-      p.position = s * p0 + u * p1;
-      break;
-    case QuadEdge::v1:
-      p.position = s * p3 + u * p2;
-      break;
-    case QuadEdge::u0:
-      p.position = t * p0 + v * p3;
-      break;
-    case QuadEdge::u1:
-      p.position = t * p1 + v * p2;
-      break;
-    case QuadEdge::none:
-      p.position = t * (s * p0 + u * p1) + v * (s * p3 + u * p2);
-      break;
+    case QuadEdge::v0: p.position = s * p0 + u * p1; break;
+    case QuadEdge::v1: p.position = s * p3 + u * p2; break;
+    case QuadEdge::u0: p.position = t * p0 + v * p3; break;
+    case QuadEdge::u1: p.position = t * p1 + v * p2; break;
+    case QuadEdge::none: p.position = t * (s * p0 + u * p1) + v * (s * p3 + u * p2); break;
   }
   p.du = t * (p1 - p0) + v * (p2 - p3);
   p.dv = s * (p3 - p0) + u * (p2 - p1);
@@ -286,17 +271,10 @@ inline PatchPoint gregory_triangle(std::span<const glm::vec3, 15> g, float u, fl
   at(1, 2) = blend(Fp(2), w, Fm(2), u);
   PatchPoint p = bezier_triangle<4>(b, u, v, w);
   switch (tri_edge(u, v, w)) {
-    case TriEdge::v0:
-      p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1));
-      break;
-    case TriEdge::w0:
-      p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2));
-      break;
-    case TriEdge::u0:
-      p.position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0));
-      break;
-    case TriEdge::none:
-      break;
+    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
+    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;
+    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0)); break;
+    case TriEdge::none: break;
   }
   return p;
 }
@@ -307,17 +285,10 @@ inline PatchPoint cubic_triangle(std::span<const glm::vec3, 10> b, float u, floa
   PatchPoint p = bezier_triangle<3>(b, u, v, w);
   auto at = [&](int j, int k) { return b[std::size_t(tri_index(3, j, k))]; };
   switch (tri_edge(u, v, w)) {
-    case TriEdge::v0:
-      p.position = cubic_sum(cubic_bernstein(u), at(0, 0), at(1, 0), at(2, 0), at(3, 0));
-      break;
-    case TriEdge::w0:
-      p.position = cubic_sum(cubic_bernstein(v), at(3, 0), at(2, 1), at(1, 2), at(0, 3));
-      break;
-    case TriEdge::u0:
-      p.position = cubic_sum(cubic_bernstein(w), at(0, 3), at(0, 2), at(0, 1), at(0, 0));
-      break;
-    case TriEdge::none:
-      break;
+    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), at(0, 0), at(1, 0), at(2, 0), at(3, 0)); break;
+    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), at(3, 0), at(2, 1), at(1, 2), at(0, 3)); break;
+    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), at(0, 3), at(0, 2), at(0, 1), at(0, 0)); break;
+    case TriEdge::none: break;
   }
   return p;
 }
@@ -332,18 +303,10 @@ inline glm::vec3 quadratic_triangle_normal(std::span<const glm::vec3, 6> n, floa
   };
   glm::vec3 r;
   switch (tri_edge(u, v, w)) {
-    case TriEdge::v0:
-      r = edge(u, at(0, 0), at(1, 0), at(2, 0));
-      break;
-    case TriEdge::w0:
-      r = edge(v, at(2, 0), at(1, 1), at(0, 2));
-      break;
-    case TriEdge::u0:
-      r = edge(w, at(0, 2), at(0, 1), at(0, 0));
-      break;
-    case TriEdge::none:
-      r = bezier_triangle<2>(n, u, v, w).position;
-      break;
+    case TriEdge::v0: r = edge(u, at(0, 0), at(1, 0), at(2, 0)); break;
+    case TriEdge::w0: r = edge(v, at(2, 0), at(1, 1), at(0, 2)); break;
+    case TriEdge::u0: r = edge(w, at(0, 2), at(0, 1), at(0, 0)); break;
+    case TriEdge::none: r = bezier_triangle<2>(n, u, v, w).position; break;
   }
   return unit_or_zero(r);
 }
@@ -356,18 +319,10 @@ inline glm::vec3 biquadratic_normal(std::span<const glm::vec3, 9> n, float u, fl
   };
   glm::vec3 r;
   switch (quad_edge(u, v)) {
-    case QuadEdge::v0:
-      r = sum(qu, n[0], n[1], n[2]);
-      break;
-    case QuadEdge::v1:
-      r = sum(qu, n[6], n[7], n[8]);
-      break;
-    case QuadEdge::u0:
-      r = sum(qv, n[0], n[3], n[6]);
-      break;
-    case QuadEdge::u1:
-      r = sum(qv, n[2], n[5], n[8]);
-      break;
+    case QuadEdge::v0: r = sum(qu, n[0], n[1], n[2]); break;
+    case QuadEdge::v1: r = sum(qu, n[6], n[7], n[8]); break;
+    case QuadEdge::u0: r = sum(qv, n[0], n[3], n[6]); break;
+    case QuadEdge::u1: r = sum(qv, n[2], n[5], n[8]); break;
     case QuadEdge::none:
       r = sum(qv, sum(qu, n[0], n[1], n[2]), sum(qu, n[3], n[4], n[5]), sum(qu, n[6], n[7], n[8]));
       break;

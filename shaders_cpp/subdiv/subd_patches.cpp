@@ -14,18 +14,12 @@ namespace tessera {
 
 const char* to_string(Scheme s) {
   switch (s) {
-    case Scheme::flat:
-      return "flat";
-    case Scheme::bspline:
-      return "bspline";
-    case Scheme::acc:
-      return "acc";
-    case Scheme::gregory:
-      return "gregory";
-    case Scheme::exact:
-      return "exact";
-    case Scheme::pn:
-      return "pn";
+    case Scheme::flat: return "flat";
+    case Scheme::bspline: return "bspline";
+    case Scheme::acc: return "acc";
+    case Scheme::gregory: return "gregory";
+    case Scheme::exact: return "exact";
+    case Scheme::pn: return "pn";
   }
   return "?";
 }

@@ -54,12 +54,9 @@ std::string vertex_string(const Vertex& v) {
 const char* gl_spacing(ts::Partitioning p) {
   switch (p) {
     case ts::Partitioning::integer:
-    case ts::Partitioning::pow2:
-      return "equal_spacing";
-    case ts::Partitioning::fractional_odd:
-      return "fractional_odd_spacing";
-    case ts::Partitioning::fractional_even:
-      return "fractional_even_spacing";
+    case ts::Partitioning::pow2: return "equal_spacing";
+    case ts::Partitioning::fractional_odd: return "fractional_odd_spacing";
+    case ts::Partitioning::fractional_even: return "fractional_even_spacing";
   }
   return "equal_spacing";
 }
@@ -104,15 +101,9 @@ bool parse_case_line(const std::string& line, Case& out, std::string& error) {
   for (int i = 0; i < 6; ++i)
     if (!read_capture_float(f[i], v[i])) return error = "bad factor '" + f[i] + "'", false;
   switch (out.factors.domain) {
-    case ts::Domain::quad:
-      out.factors.values = {v[0], v[1], v[2], v[3], v[4], v[5]};
-      break;
-    case ts::Domain::tri:
-      out.factors.values = {v[0], v[1], v[2], v[4], 0, 0};
-      break;
-    case ts::Domain::isoline:
-      out.factors.values = {v[0], v[1], 0, 0, 0, 0};
-      break;
+    case ts::Domain::quad: out.factors.values = {v[0], v[1], v[2], v[3], v[4], v[5]}; break;
+    case ts::Domain::tri: out.factors.values = {v[0], v[1], v[2], v[4], 0, 0}; break;
+    case ts::Domain::isoline: out.factors.values = {v[0], v[1], 0, 0, 0, 0}; break;
   }
   return true;
 }
@@ -120,15 +111,9 @@ bool parse_case_line(const std::string& line, Case& out, std::string& error) {
 std::string case_line(ts::Domain d, ts::Partitioning p, ts::OutputPrimitive o, const std::array<float, 6>& x) {
   std::array<float, 6> gl{};  // O0 O1 O2 O3 I0 I1
   switch (d) {
-    case ts::Domain::quad:
-      gl = x;
-      break;
-    case ts::Domain::tri:
-      gl = {x[0], x[1], x[2], 1, x[3], 1};
-      break;
-    case ts::Domain::isoline:
-      gl = {x[0], x[1], 1, 1, 1, 1};
-      break;
+    case ts::Domain::quad: gl = x; break;
+    case ts::Domain::tri: gl = {x[0], x[1], x[2], 1, x[3], 1}; break;
+    case ts::Domain::isoline: gl = {x[0], x[1], 1, 1, 1, 1}; break;
   }
   std::string s = std::string(gl_domain(d)) + " " + gl_spacing(p) + " " +
                   (o == ts::OutputPrimitive::triangle_ccw ? "cw" : "ccw") + " " +
