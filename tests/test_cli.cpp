@@ -374,6 +374,26 @@ TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates",
   CHECK(j["displacement"] == "");
 }
 
+TEST_CASE("tessera bench frog finds its default cage beside the binary, and says so when it is missing", "[cli]") {
+  // The default cage comes from share/tessera/ next to the binary's directory, not from the source tree.
+  const auto r = run_cli("bench frog --factor 2 --resolution 64x64 --frames 1 --json");
+  REQUIRE(r.exit_code == 0);
+  CHECK(nlohmann::json::parse(r.out)["cage"].get<std::string>().find("share/tessera/monsterfrog_mapped_00.obj") !=
+        std::string::npos);
+  // A copy of the binary without its share/ directory: one line naming the file and --cage, exit 1.
+  const auto dir = test::cli_temp_dir() / "lone";
+  std::filesystem::create_directories(dir / "bin");
+  std::filesystem::copy_file(TESSERA_BIN, dir / "bin" / "tessera", std::filesystem::copy_options::overwrite_existing);
+  const std::string cmd = (dir / "bin" / "tessera").string() + " bench frog --frames 1 2>" + (dir / "err").string();
+  const int status = std::system(cmd.c_str());
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  const std::string err = test::slurp(dir / "err");
+  CHECK(err.find("share/tessera/monsterfrog_mapped_00.obj") != std::string::npos);
+  CHECK(err.find("--cage") != std::string::npos);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+}
+
 TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on both of its faces", "[cli]") {
   const fs::path factors = temp_dir() / "factors.txt";
   {

@@ -31,7 +31,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   const auto [w, h] = parse_resolution(o.resolution);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
-  const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj") : o.cage;
+  const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
   const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   Device device(device_options(o.threads));

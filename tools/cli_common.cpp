@@ -95,12 +95,13 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& what,
   return {a, b};
 }
 
-std::string shared_data_file(const std::string& name) {
+std::string shared_data_file(const std::string& name, const std::string& option) {
   std::error_code error;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
   const std::filesystem::path path = exe.parent_path().parent_path() / "share" / "tessera" / name;
   if (error || !std::filesystem::is_regular_file(path, error))
-    throw InputError(path.string() + ": shipped data file missing (reinstall tessera, or name the file)");
+    throw InputError(path.string() + ": tessera's shipped data file is missing (reinstall tessera, or give " + option +
+                     ")");
   return path.string();
 }
 

@@ -58,8 +58,9 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 void write_text_atomically(const std::string& path, const std::string& text);
 
 // A data file shipped with tessera (the default cage of `bench frog`): share/tessera/<name> beside
-// the binary's directory, in the build tree as in an installed tree. Throws InputError when absent.
-std::string shared_data_file(const std::string& name);
+// the binary's directory, in the build tree as in an installed tree. Throws InputError when absent,
+// naming the file and `option`, the option that names another file instead.
+std::string shared_data_file(const std::string& name, const std::string& option);
 
 // "AxB" for option `what`, each side in lo..hi; throws UsageError naming the option.
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi);
