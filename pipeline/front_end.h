@@ -222,6 +222,7 @@ class PatchFrontEnd {
                                   report);
       hull_.run(hs_, vs_out_, vcache_, n, n_in_, first_, tstate_, [&]() -> StageTimes& { return front_times.local(); });
       report.statistics.HSInvocations += n;
+      for (std::size_t p = 0; p < n; ++p) report.patches_culled += hull_.processed[p].culled ? 1u : 0u;
       cut_chunks(hull_.cost, chunk_primitives_, 256, chunks_);
       on_window();
       window_bytes_peak_ = std::max(window_bytes_peak_, window_bytes());

@@ -61,6 +61,7 @@ struct MemoryStats {
 
 struct DrawReport {
   PipelineStatistics statistics;
+  std::uint64_t patches_culled = 0;  // patches the tessellator culled (a zero, negative or NaN factor)
   StageTimes times;
   MemoryStats memory;
 };

@@ -22,6 +22,21 @@ std::size_t Displacement::bytes() const {
          frames.bytes();
 }
 
+float displacement_bound(const Texture2D& map, DisplacementKind kind, float scale, float bias) {
+  // Every level is a box average of level 0 and bilinear filtering blends texels with weights in
+  // [0, 1], so no sample leaves level 0's range; computed in double, then rounded up.
+  double largest = 0.0;
+  for (int y = 0; y < map.height(0); ++y)
+    for (int x = 0; x < map.width(0); ++x) {
+      const glm::dvec4 t(map.load(0, x, y));
+      const double m = kind == DisplacementKind::scalar
+                           ? std::abs(double(scale) * t.x + double(bias))
+                           : glm::length(glm::dvec3(double(scale) * glm::dvec3(t) + double(bias)));
+      largest = std::max(largest, m);
+    }
+  return std::nextafter(float(largest), INFINITY);
+}
+
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& o) {
   if (!std::isfinite(o.scale) || !std::isfinite(o.bias))
     throw DisplacementMapError(o.map + ": displacement scale and bias must be finite");
@@ -69,6 +84,7 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   }
 
   d.frames = build_patch_frames(cage, *model.topology, model.patches.quads, model.patches.scheme);
+  d.bound = displacement_bound(d.map->texture(), d.kind, d.scale, d.bias);
   return d;
 }
 

@@ -51,11 +51,15 @@ struct Displacement {
   std::vector<PatchTexcoords> texcoords;  // per quad patch
   PatchFrames frames;                     // per quad patch
   std::size_t bytes() const;              // maps (all levels) + per-patch data
+  // The largest distance a point is moved: max |scale * texel + bias| over level 0 (a vector's length).
+  // LOD and culling grow their bounds by it.
+  float bound = 0.0f;
 
   DisplacementParams params() const { return {&map->texture(), kind, scale, bias, shared_normals}; }
 };
 
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& options);
+float displacement_bound(const Texture2D& map, DisplacementKind kind, float scale, float bias);
 
 // The displaced hull and domain shaders of the model's (quad) patch group, handed to
 // draw(group, tessellator_state, hs, ds) -> DrawResult.
@@ -65,7 +69,7 @@ DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const
   const PatchGroup& g = m.patches.quads;
   if (g.patches.empty()) return {};
   const TessellatorState ts{g.domain, partitioning, ts::OutputPrimitive::triangle_cw};
-  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false}, d.texcoords, &d.frames,
+  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning}, d.texcoords, &d.frames,
                        glm::vec2(float(d.map->width()), float(d.map->height()))};
   const DisplacedDS ds{SubdDS{g.patches, m.limit.get(), m.cage.tags.left_handed, false}, d.texcoords, d.params()};
   return draw(g, ts, hs, ds);

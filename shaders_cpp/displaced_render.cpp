@@ -11,10 +11,12 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
         [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
           const SubdPassState st = subd_pass_state(model, fb, wire);
           const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
+          DisplacedHS pass_hs = hs;  // the frustum test sees the pass's depth bias
+          pass_hs.base.factors.cull.z_bias = st.z_bias;
           auto go = [&](const auto& ps) {
             using Ps = std::decay_t<decltype(ps)>;
             const PatchDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedProjectDS<DisplacedDS>, Ps> d{
-                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, project, ps, ts,
+                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), pass_hs, project, ps, ts,
                 st.rasterizer,        st.depth,  st.viewport};
             return device.draw(d, fb);
           };

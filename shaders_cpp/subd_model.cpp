@@ -1,6 +1,7 @@
 #include "shaders_cpp/subd_model.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
@@ -25,6 +26,25 @@ int remove_patches(PatchGroup& g, Keep&& keep) {
   return removed;
 }
 
+// Per face, the box of every vertex of the faces around its corners: the limit surface of the face is
+// a convex combination of them (Catmull-Clark's rules, creased or not, have non-negative weights).
+std::vector<Box3> face_ring_boxes(const Cage& cage, const Topology& t) {
+  std::vector<Box3> boxes(std::size_t(t.face_count()));
+  for (int f = 0; f < t.face_count(); ++f) {
+    Box3 b{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+    for (int k = 0; k < t.face_size(f); ++k) {
+      const int v = t.origin(t.face_half_edge(f) + k);
+      for (const int h : t.ring(v))
+        for (int g = t.face(h), j = 0; j < t.face_size(g); ++j) {
+          const glm::vec3& p = cage.positions[std::size_t(t.origin(t.face_half_edge(g) + j))];
+          b.lo = glm::min(b.lo, p), b.hi = glm::max(b.hi, p);
+        }
+    }
+    boxes[std::size_t(f)] = b;
+  }
+  return boxes;
+}
+
 }  // namespace
 
 SubdModel make_subd_model(Cage cage, Scheme scheme) {
@@ -39,6 +59,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme) {
     // none. They draw nothing, like holes.
     auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
     for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
+    m.ring_boxes = face_ring_boxes(m.cage, *m.topology);
   }
   return m;
 }

@@ -25,6 +25,7 @@ struct SubdModel {
   SubdPatches patches;
   std::unique_ptr<LimitSurface> limit;  // exact scheme only
   std::vector<glm::vec3> normals;       // pn only: per cage vertex (pn_patch.h)
+  std::vector<Box3> ring_boxes;         // exact only: per face, the box of its 1-ring (frustum culling)
   // The vertex shader: no animation; the normals as a second vertex stream.
   SubdVS vertex_shader() const {
     SubdVS vs;
@@ -39,6 +40,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme);
 // Adds one draw's report to a total: statistics and stage times summed, geometry peak the largest.
 inline void add_draw_report(DrawReport& total, const DrawReport& part) {
   total.statistics += part.statistics;
+  total.patches_culled += part.patches_culled;
   total.times += part.times;
   total.memory.geometry_peak_bytes = std::max(total.memory.geometry_peak_bytes, part.memory.geometry_peak_bytes);
 }
@@ -54,7 +56,7 @@ DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, 
     if (g->patches.empty()) continue;
     const bool tri = g->domain == ts::Domain::tri;
     const TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
-    const SubdHS hs{g->patches, m.patches.tables, factors, tri};
+    const SubdHS hs{g->patches, m.patches.tables, factors, tri, m.ring_boxes, partitioning};
     const SubdDS ds{g->patches, m.limit.get(), m.cage.tags.left_handed, tri};
     DrawResult r = draw(*g, ts, hs, ds);
     if (!r.ok()) return r;

@@ -20,6 +20,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders_cpp/lod/frustum_cull.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
@@ -56,10 +57,13 @@ struct SubdControlPoint {
 // Tessellation factors as a pure function of cage edge keys (subd_patches.h), so the two patches on
 // an edge always agree. `vary` > 0 spreads factors over [factor, factor * (1 + vary)] by a hash of the
 // key (to test edges whose factors differ); inside factors average the edges of each direction.
+// `per_edge` (a --factors-per-edge file, or the view-dependent LOD of lod/edge_lod.h) overrides both
+// for the edges it lists. `cull` zeroes the factors of patches outside the view (lod/frustum_cull.h).
 struct SubdFactors {
   float factor = 8.0f;
   float vary = 0.0f;
   std::shared_ptr<const std::unordered_map<std::int64_t, float>> per_edge;  // by cage_edge_key
+  FrustumCull cull;
   // The factor of one cage edge (the base factor for key -1).
   float edge(std::int64_t key) const {
     if (key >= 0 && per_edge) {
@@ -90,7 +94,9 @@ struct SubdHS {
   std::span<const SubdPatch> patches;
   std::span<const StencilTable> tables;
   SubdFactors factors;
-  bool triangles = false;  // the tri domain: three edge factors, one inside factor
+  bool triangles = false;              // the tri domain: three edge factors, one inside factor
+  std::span<const Box3> ring_boxes{};  // per face, `exact` only: the box of its 1-ring (culling)
+  ts::Partitioning partitioning = ts::Partitioning::integer;
 
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
     const SubdPatch& patch = patches[patch_id];
@@ -130,11 +136,18 @@ struct SubdHS {
     return cp;
   }
 
-  SubdPatchConstants patch_constants(std::span<const SubdVertex>, std::span<const SubdControlPoint>,
+  SubdPatchConstants patch_constants(std::span<const SubdVertex>, std::span<const SubdControlPoint> cp,
                                      std::uint32_t patch_id) const {
     const SubdPatch& patch = patches[patch_id];
     SubdPatchConstants pc;
-    auto& f = pc.factors;
+    if (outside_view(patch, cp)) return pc;  // zero factors: the tessellator culls the patch
+    pc.factors = edge_and_inside_factors(patch);
+    return pc;
+  }
+
+  // The factors of a patch that is not culled.
+  TessFactors edge_and_inside_factors(const SubdPatch& patch) const {
+    TessFactors f;
     for (int k = 0; k < 4; ++k) f.edge[std::size_t(k)] = factors.edge(patch.edge_keys[std::size_t(k)]);
     if (triangles) {
       f.inside[0] = (f.edge[0] + f.edge[1] + f.edge[2]) / 3.0f;
@@ -143,7 +156,48 @@ struct SubdHS {
       f.inside[0] = (f.edge[1] + f.edge[3]) * 0.5f;
       f.inside[1] = (f.edge[0] + f.edge[2]) * 0.5f;
     }
-    return pc;
+    if (partitioning == ts::Partitioning::fractional_odd) lift_inside_factors(f);
+    return f;
+  }
+
+  // fractional_odd only. An inside factor in (1, 1 + 2^-10) puts a ring of points within 2^-11 of the
+  // patch boundary, where the tessellator's 16.16 fixed point can round them onto the boundary's own
+  // points, and the outer edges open; with the other inside factor exactly 1, the stitch folds
+  // zero-area triangles back along an outer edge (an edge used four times). Edge factors at and just
+  // above 1 make such means (view-dependent LOD clamps at 1), so while either inside factor is above
+  // 1, both are raised to at least 1 + 2^-10 (invisible; all-ones patches stay two triangles).
+  static void lift_inside_factors(TessFactors& f) {
+    constexpr float kLow = 1.0f + 0x1p-10f;
+    if (!(std::max(f.inside[0], f.inside[1]) > 1.0f)) return;
+    for (float& x : f.inside)
+      if (x >= 1.0f && x < kLow) x = kLow;
+  }
+
+  // The frustum test on the patch's hull: its control points, or for `exact` (no control points) the
+  // box of its face's 1-ring.
+  bool outside_view(const SubdPatch& patch, std::span<const SubdControlPoint> cp) const {
+    if (!factors.cull.enabled) return false;
+    if (patch.kind == PatchKind::exact) {
+      // The IA patch of `exact` is the face alone; its surface lies in the hull of the face's 1-ring.
+      if (std::size_t(patch.face) >= ring_boxes.size()) return false;
+      const Box3& box = ring_boxes[std::size_t(patch.face)];
+      return factors.cull.outside(8, [&](int i) { return box.corner(i); });
+    }
+    return factors.cull.outside(hull_points(patch.kind), [&](int i) { return cp[std::size_t(i)].p; });
+  }
+  // How many of a patch kind's output control points carry positions whose hull holds the surface.
+  static int hull_points(PatchKind k) {
+    switch (k) {
+      case PatchKind::bilinear: return 4;
+      case PatchKind::linear: return 3;
+      case PatchKind::acc: return 16;
+      case PatchKind::gregory: return 20;
+      case PatchKind::gregory_triangle: return 15;
+      case PatchKind::pn_triangle: return 10;
+      case PatchKind::pn_quad: return 16;
+      case PatchKind::exact: return 0;
+    }
+    return 0;
   }
 };
 

@@ -20,11 +20,13 @@ ALLOWED = {
     "shaders_cpp/cage": [],
     "shaders_cpp/subdiv": ["tessellator", "shaders_cpp/cage"],
     "shaders_cpp/displacement": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
-    "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement"],
+    "shaders_cpp/lod": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
+    "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
+                    "shaders_cpp/lod"],
     "tools/verify": ["tessellator"],
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
-              "shaders_cpp", "tools/verify", "tools/measure"],
+              "shaders_cpp/lod", "shaders_cpp", "tools/verify", "tools/measure"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 PUBLIC = re.compile(r"tessera_public_headers\(\s*\S+\s+([^)]*)\)", re.S)

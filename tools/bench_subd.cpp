@@ -12,13 +12,16 @@
 #include "shaders_cpp/displaced_render.h"
 #include "shaders_cpp/subd_render.h"
 #include "tools/tessellate_options.h"
+#include "tools/view_options.h"
 
 namespace tessera::cli {
 namespace {
 
 struct BenchSubdOptions {
   std::string cage;  // empty: the monster frog shipped beside the binary (shared_data_file)
-  std::string scheme = "gregory", partitioning = "integer", factors_file, resolution = "1920x1080", output;
+  std::string scheme = "gregory", partitioning = "integer", factors_file, output;
+  CameraCli camera;
+  LodCli lod;
   float factor = 16.0f, vary = 0.0f;
   int threads = 0, frames = 5;
   bool json = false;
@@ -28,17 +31,19 @@ struct BenchSubdOptions {
 int run_bench_subd(const BenchSubdOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  const auto [w, h] = parse_resolution(o.resolution);
+  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
   const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  const ViewSetup view = view_option(o.camera, model.cage);
+  const int w = view.width, h = view.height;
+  const SubdCamera& camera = view.camera;
+  apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
   Device device(device_options(o.threads));
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);
-  const SubdCamera camera = frame_cage(model.cage, w, h, 35.0f, std::nullopt, std::nullopt);
 
   using Clock = std::chrono::steady_clock;
   std::vector<double> frame_s;
@@ -76,6 +81,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
                     {"resolution", std::to_string(w) + "x" + std::to_string(h)},
                     {"threads", device.threads()},
                     {"frames", o.frames},
+                    {"lod", o.lod.mode},
+                    {"cull", o.lod.cull},
+                    {"patches_culled", last.patches_culled},
                     {"triangles", st.CInvocations},
                     {"median_s", median},
                     {"min_s", frame_s.front()},
@@ -107,7 +115,8 @@ Runner add_bench_subd_command(CLI::App& bench) {
       bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
   cmd->add_option("--cage", o->cage, "the cage (default: the monster frog shipped with tessera)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
-  cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
+  add_camera_options(*cmd, o->camera);
+  add_lod_options(*cmd, o->lod, "all");
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");

@@ -10,44 +10,35 @@
 #include "shaders_cpp/displaced_render.h"
 #include "shaders_cpp/subd_render.h"
 #include "tools/tessellate_options.h"
+#include "tools/view_options.h"
 
 namespace tessera::cli {
 namespace {
 
 struct RenderOptions {
   std::string cage, output, scheme = "gregory", partitioning = "integer", factors_file, view = "shaded";
-  std::string resolution = "1920x1080", eye, target;
-  float factor = 8.0f, vary = 0.0f, fov = 35.0f;
+  CameraCli camera;
+  LodCli lod;
+  float factor = 8.0f, vary = 0.0f;
   int threads = 0;
   std::string stats;
   DisplacementCli displacement;
 };
 
-glm::vec3 parse_vec3(const std::string& text, const char* what) {
-  const auto v = parse_float_list(text, what);
-  if (v.size() != 3) throw UsageError(std::string(what) + ": expected x,y,z");
-  for (float x : v)
-    if (!std::isfinite(x)) throw UsageError(std::string(what) + ": not finite");
-  return {v[0], v[1], v[2]};
-}
-
 int run_render(const RenderOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  const auto [w, h] = parse_resolution(o.resolution);
-  if (!(o.fov > 1.0f && o.fov < 179.0f)) throw UsageError("--fov: must be in (1, 179) degrees");
+  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   if (o.view != "shaded" && o.view != "wireframe" && o.view != "wire-on-shaded")
     throw UsageError("--view: '" + o.view + "' is not shaded, wireframe or wire-on-shaded");
   if (o.output.empty()) throw UsageError("-o out.png is required");
 
   const SubdModel model = load_model(o.cage, scheme);
   const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
-  std::optional<glm::vec3> eye, target;
-  if (!o.eye.empty()) eye = parse_vec3(o.eye, "--camera-position");
-  if (!o.target.empty()) target = parse_vec3(o.target, "--camera-target");
-  if (eye && target && glm::length(*eye - *target) <= 0.0f) throw UsageError("camera position and target coincide");
-  const SubdCamera camera = frame_cage(model.cage, w, h, o.fov, eye, target);
+  const ViewSetup view_setup = view_option(o.camera, model.cage);
+  const int w = view_setup.width, h = view_setup.height;
+  const SubdCamera& camera = view_setup.camera;
+  apply_lod_options(o.lod, view_setup, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
 
   Device device(device_options(o.threads));
   std::string error;
@@ -83,10 +74,8 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("cage", o->cage, "the cage (OBJ, OpenSubdiv tags allowed)")->required();
   cmd->add_option("-o,--output", o->output, "output image (PNG or EXR)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
-  cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
-  cmd->add_option("--camera-position", o->eye, "x,y,z (default: framing the model)");
-  cmd->add_option("--camera-target", o->target, "x,y,z (default: the model's centre)");
-  cmd->add_option("--fov", o->fov, "vertical field of view, degrees")->capture_default_str();
+  add_camera_options(*cmd, o->camera);
+  add_lod_options(*cmd, o->lod, "all");
   cmd->add_option("--view", o->view, "shaded, wireframe or wire-on-shaded")->capture_default_str();
   add_displacement_options(*cmd, o->displacement);
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times, memory and peak RSS as JSON");

@@ -15,6 +15,7 @@
 #include "tools/ply_writer.h"
 #include "shaders_cpp/subd_model.h"
 #include "tools/tessellate_options.h"
+#include "tools/view_options.h"
 #include "tools/verify/weld_check.h"
 
 namespace tessera::cli {
@@ -26,6 +27,8 @@ struct TessellateOptions {
   int threads = 0;
   bool check = false, json = false;
   DisplacementCli displacement;
+  CameraCli camera;
+  LodCli lod;
 };
 
 int run_tessellate(const TessellateOptions& o) {
@@ -39,6 +42,8 @@ int run_tessellate(const TessellateOptions& o) {
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +
              " faces are not regular and are drawn as Gregory patches");
+  const ViewSetup view = view_option(o.camera, model.cage);
+  apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
   log_debug(std::to_string(model.patches.quads.size() + model.patches.tris.size()) + " patches, " +
             std::to_string(model.patches.tables.size()) + " stencil tables");
 
@@ -91,7 +96,7 @@ int run_tessellate(const TessellateOptions& o) {
           "tessera tessellate " + std::filesystem::path(o.cage).filename().string() + " scheme " + to_string(scheme) +
           (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string()
                         : std::string()) +
-          " factor " + float_text(o.factor) + " partitioning " + o.partitioning;
+          " factor " + float_text(o.factor) + " lod " + o.lod.mode + " partitioning " + o.partitioning;
       ply.finish({made_by, "each patch writes its own vertices; face = base face, u v = domain location"});
     });
   } else {
@@ -134,6 +139,8 @@ Runner add_tessellate_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "output PLY (binary; each patch its own vertices)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
   add_displacement_options(*cmd, o->displacement);
+  add_camera_options(*cmd, o->camera);
+  add_lod_options(*cmd, o->lod, "none");
   cmd->add_flag("--check-watertight", o->check, "weld on exact bits and check for a closed 2-manifold (exit 1 if not)");
   cmd->add_flag("--json", o->json, "print the summary as JSON");
   return [o] { return run_tessellate(*o); };

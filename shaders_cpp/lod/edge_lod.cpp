@@ -1,0 +1,61 @@
+#include "shaders_cpp/lod/edge_lod.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shaders_cpp/subdiv/subd_patches.h"
+
+namespace tessera {
+
+std::optional<LodMode> parse_lod_mode(std::string_view name) {
+  if (name == "uniform") return LodMode::uniform;
+  if (name == "distance") return LodMode::distance;
+  if (name == "screen") return LodMode::screen;
+  return std::nullopt;
+}
+
+const char* to_string(LodMode m) {
+  switch (m) {
+    case LodMode::uniform: return "uniform";
+    case LodMode::distance: return "distance";
+    case LodMode::screen: return "screen";
+  }
+  return "?";
+}
+
+float pixels_per_unit(int viewport_height, float fov_y_degrees) {
+  return 0.5f * float(viewport_height) / std::tan(0.5f * glm::radians(fov_y_degrees));
+}
+
+namespace {
+float clamp_factor(float f) {
+  // NaN (a degenerate camera was refused before; kept safe here) falls to 1.
+  return f >= 1.0f ? std::min(f, kMaxLodFactor) : 1.0f;
+}
+}  // namespace
+
+float edge_lod_factor(const glm::vec3& p0, const glm::vec3& p1, const LodSettings& s) {
+  if (s.mode == LodMode::uniform) return s.factor;
+  // p0 + p1 and |p1 - p0| are symmetric in the end points, so either direction gives the same bits.
+  const glm::vec3 centre = 0.5f * (p0 + p1);
+  const float d = glm::length(centre - s.camera.eye);
+  if (s.mode == LodMode::distance) return d > 0.0f ? clamp_factor(s.factor * s.lod_distance / d) : kMaxLodFactor;
+  const float radius = 0.5f * glm::length(p1 - p0) + s.bound;
+  if (!(d > radius)) return kMaxLodFactor;  // the eye is inside the sphere
+  const float diameter_pixels = 2.0f * radius * s.camera.pixels_per_unit / d;
+  return clamp_factor(diameter_pixels / s.edge_pixels);
+}
+
+std::shared_ptr<const EdgeFactorTable> edge_lod_factors(const Cage& cage, const Topology& topology,
+                                                        const LodSettings& s) {
+  auto table = std::make_shared<EdgeFactorTable>();
+  table->reserve(std::size_t(topology.edge_count()));
+  for (int e = 0; e < topology.edge_count(); ++e) {
+    const int h = topology.edge_half_edges(e)[0];
+    const int a = topology.origin(h), b = topology.destination(h);
+    (*table)[cage_edge_key(a, b)] = edge_lod_factor(cage.positions[std::size_t(a)], cage.positions[std::size_t(b)], s);
+  }
+  return table;
+}
+
+}  // namespace tessera

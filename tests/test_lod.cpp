@@ -1,0 +1,209 @@
+// View-dependent LOD and frustum patch culling (shaders_cpp/lod): the factor rules, watertightness
+// under view-dependent factors (welded on exact bits), and culling that never changes a pixel.
+#include <bit>
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "shaders_cpp/displaced_render.h"
+#include "shaders_cpp/lod/edge_lod.h"
+#include "shaders_cpp/lod/frustum_cull.h"
+#include "shaders_cpp/subd_render.h"
+#include "test_data.h"
+#include "weld_support.h"
+
+namespace tessera {
+namespace {
+
+const std::string kFrog = test::data("sdk-cages/monsterfrog_mapped_00.obj");
+const std::string kFrogMap = test::data("sdk-cages/monsterfrog.dds");
+
+LodSettings screen_lod(glm::vec3 eye, float edge_pixels = 8.0f, float bound = 0.0f) {
+  LodSettings s;
+  s.mode = LodMode::screen;
+  s.edge_pixels = edge_pixels;
+  s.bound = bound;
+  s.camera.eye = eye;
+  s.camera.pixels_per_unit = pixels_per_unit(1080, 35.0f);
+  return s;
+}
+
+// The camera of an inside-the-frog view: it cuts through the surface, so patches lie behind, beside
+// and in front of it.
+SubdCamera near_camera(const Cage& cage, int w, int h) {
+  return frame_cage(cage, w, h, 35.0f, glm::vec3(20, 5, 12), glm::vec3(-3, -2.5f, 2));
+}
+
+template <class Stream>
+verify::WeldReport weld(Stream&& stream) {
+  verify::WeldChecker w;
+  const DrawResult r = stream([&](const auto& out, const PatchGroup&) {
+    for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3)
+      w.add_triangle(out.points[out.indices[i]].position, out.points[out.indices[i + 1]].position,
+                     out.points[out.indices[i + 2]].position);
+  });
+  REQUIRE(r.ok());
+  return w.report();
+}
+
+}  // namespace
+
+TEST_CASE("Edge LOD: symmetric in the end points, clamped to [1, 64], falling with distance", "[lod]") {
+  const glm::vec3 a(0.1f, 0.7f, -0.3f), b(1.3f, -0.2f, 0.45f);
+  for (const LodMode mode : {LodMode::distance, LodMode::screen}) {
+    LodSettings s = screen_lod(glm::vec3(3, 2, 9));
+    s.mode = mode;
+    s.factor = 12.0f;
+    s.lod_distance = 5.0f;
+    const float f = edge_lod_factor(a, b, s);
+    CHECK(std::bit_cast<std::uint32_t>(f) == std::bit_cast<std::uint32_t>(edge_lod_factor(b, a, s)));
+    CHECK(f >= 1.0f);
+    CHECK(f <= 64.0f);
+    // Twice as far: half the factor (both rules are 1/d before clamping).
+    const glm::vec3 mid = 0.5f * (a + b);
+    LodSettings far = s;
+    far.camera.eye = mid + 2.0f * (s.camera.eye - mid);
+    CHECK(edge_lod_factor(a, b, far) == Approx(f / 2.0f).epsilon(1e-5));
+    // Very far: 1; inside the sphere or at the midpoint: 64.
+    far.camera.eye = mid + 1e6f * (s.camera.eye - mid);
+    CHECK(edge_lod_factor(a, b, far) == 1.0f);
+    far.camera.eye = mid;
+    CHECK(edge_lod_factor(a, b, far) == 64.0f);
+  }
+  // Screen: the sphere's projected diameter over the target pixels; a displacement bound grows it.
+  LodSettings s = screen_lod(glm::vec3(0, 0, 40), 4.0f);
+  const glm::vec3 p0(-1, 0, 0), p1(1, 0, 0);
+  CHECK(edge_lod_factor(p0, p1, s) == Approx(2.0f * s.camera.pixels_per_unit / 40.0f / 4.0f));
+  s.bound = 0.5f;
+  CHECK(edge_lod_factor(p0, p1, s) == Approx(3.0f * s.camera.pixels_per_unit / 40.0f / 4.0f));
+  CHECK(parse_lod_mode("screen") == LodMode::screen);
+  CHECK_FALSE(parse_lod_mode("bogus"));
+}
+
+TEST_CASE("Screen LOD keeps the frog watertight on exact bits: every scheme, partitioning and camera", "[lod]") {
+  Device device(DeviceOptions{});
+  const std::array<glm::vec3, 2> eyes = {glm::vec3(20, 5, 12), glm::vec3(120, 40, 170)};
+  for (const Scheme scheme : {Scheme::gregory, Scheme::exact, Scheme::pn, Scheme::flat}) {
+    const SubdModel m = load_subd_model(kFrog, scheme);
+    for (const glm::vec3 eye : eyes)
+      for (const auto p : {ts::Partitioning::integer, ts::Partitioning::pow2, ts::Partitioning::fractional_odd,
+                           ts::Partitioning::fractional_even}) {
+        INFO(to_string(scheme) << " " << ts::to_string(p) << " eye " << eye.x);
+        SubdFactors f;
+        f.per_edge = edge_lod_factors(m.cage, *m.topology, screen_lod(eye, 16.0f));
+        const auto r = weld([&](auto&& sink) { return stream_subd(device, m, f, p, sink); });
+        CHECK(r.closed_manifold());
+        CHECK(r.boundary_edges == 0);
+        CHECK(r.nonmanifold_edges == 0);
+      }
+  }
+  // Displaced, with the map's bound in the spheres.
+  for (const Scheme scheme : {Scheme::acc, Scheme::exact}) {
+    const SubdModel m = load_subd_model(kFrog, scheme);
+    const Displacement d = make_displacement(
+        m, DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 1.2f, .bias = -0.6f});
+    // |1.2 a - 0.6| is at most 0.6; the frog's alpha spans most of [0, 1].
+    CHECK(d.bound > 0.5f);
+    CHECK(d.bound <= 0.6f);
+    SubdFactors f;
+    f.per_edge = edge_lod_factors(m.cage, *m.topology, screen_lod(eyes[0], 16.0f, d.bound));
+    const auto r = weld(
+        [&](auto&& sink) { return stream_displaced(device, m, d, f, ts::Partitioning::fractional_odd, sink); });
+    CHECK(r.closed_manifold());
+  }
+}
+
+TEST_CASE("fractional_odd inside factors near 1 are lifted so no ring lands on, or folds along, the patch edges", "[lod]") {
+  // Edge factors at 1 and barely above it (as screen LOD makes them where it clamps) average to inside
+  // factors within 2^-16 of 1; without the raise these weld open.
+  const SubdModel m = load_subd_model(test::data("osd-shapes/catmark_cube.obj"), Scheme::gregory);
+  Device device(DeviceOptions{});
+  const std::array<float, 6> near_one = {1.0f, 1.0f + 0x1p-23f, 1.0f + 0x1p-17f, 1.0f + 0x1p-14f, 1.0f + 0x1p-11f,
+                                         1.5f};
+  int runs = 0;
+  for (std::size_t seed = 0; seed < 36; ++seed) {
+    auto table = std::make_shared<EdgeFactorTable>();
+    int e = 0;
+    for (int h = 0; h < m.topology->half_edge_count(); ++h) {
+      const std::int64_t key = cage_edge_key(m.topology->origin(h), m.topology->destination(h));
+      if (!table->contains(key)) (*table)[key] = near_one[(seed * 7 + std::size_t(e++) * (seed + 1)) % 6];
+    }
+    SubdFactors f;
+    f.per_edge = table;
+    for (const auto p : {ts::Partitioning::fractional_odd, ts::Partitioning::fractional_even}) {
+      const auto r = weld([&](auto&& sink) { return stream_subd(device, m, f, p, sink); });
+      INFO("seed " << seed << " " << ts::to_string(p));
+      CHECK(r.closed_manifold());
+      ++runs;
+    }
+  }
+  auto lifted = [](float a, float b) {
+    TessFactors f;
+    f.inside = {a, b};
+    SubdHS::lift_inside_factors(f);
+    return f.inside;
+  };
+  CHECK(lifted(1.0f + 0x1p-20f, 3.0f) == std::array<float, 2>{1.0f + 0x1p-10f, 3.0f});
+  CHECK(lifted(1.0f, 1.0f + 0x1p-8f) == std::array<float, 2>{1.0f + 0x1p-10f, 1.0f + 0x1p-8f});
+  CHECK(lifted(1.0f, 1.0f) == std::array<float, 2>{1.0f, 1.0f});
+  CHECK(lifted(3.25f, 0.5f) == std::array<float, 2>{3.25f, 0.5f});
+  CHECK(runs == 72);
+}
+
+TEST_CASE("Frustum culling removes patches and never changes a pixel, displaced, with cameras inside the frog",
+          "[lod]") {
+  Device device(DeviceOptions{});
+  const int w = 320, h = 180;
+  for (const Scheme scheme : {Scheme::gregory, Scheme::exact}) {
+    const SubdModel m = load_subd_model(kFrog, scheme);
+    const Displacement d = make_displacement(
+        m, DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 1.2f, .bias = -0.6f});
+    for (const SubdCamera& camera :
+         {near_camera(m.cage, w, h),
+          frame_cage(m.cage, w, h, 35.0f, glm::vec3(2, 1, 30), glm::vec3(2, 1, -10)),  // from inside, looking through
+          frame_cage(m.cage, w, h, 60.0f, glm::vec3(-25, 3, -4), glm::vec3(-10, 0, 0))}) {
+      for (const SubdView view : {SubdView::shaded, SubdView::wire_on_shaded}) {
+        auto image = [&](bool cull, std::uint64_t& culled) {
+          auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, nullptr);
+          REQUIRE(fb);
+          fb->clear(glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), 1.0f);
+          SubdFactors f;
+          f.factor = 5.0f;
+          f.cull.enabled = cull;
+          f.cull.view_projection = camera.view_projection;
+          f.cull.growth = d.bound;
+          const DrawResult r = render_displaced(device, m, d, f, ts::Partitioning::fractional_odd, view, camera, *fb);
+          REQUIRE(r.ok());
+          culled = r.report.patches_culled;
+          return fb->color_bytes();
+        };
+        std::uint64_t culled = 0, none = 0;
+        const auto with = image(true, culled);
+        const auto without = image(false, none);
+        INFO(to_string(scheme) << " eye " << camera.eye.x << " view " << int(view));
+        CHECK(none == 0);
+        CHECK(culled > 0);
+        CHECK(with == without);
+      }
+    }
+  }
+}
+
+TEST_CASE("FrustumCull tests the hull grown by the bound against each clip plane", "[lod]") {
+  FrustumCull c;
+  c.enabled = true;  // identity: the clip volume is -1 <= x, y <= 1, 0 <= z <= 1
+  const std::array<glm::vec3, 2> right = {glm::vec3(1.5f, 0, 0.5f), glm::vec3(2.0f, 0.3f, 0.2f)};
+  auto at = [&](const auto& pts) { return [&pts](int i) { return pts[std::size_t(i)]; }; };
+  CHECK(c.outside(2, at(right)));
+  c.growth = 0.6f;  // now the grown hull reaches x = 0.9
+  CHECK_FALSE(c.outside(2, at(right)));
+  c.growth = 0.0f;
+  const std::array<glm::vec3, 2> straddling = {glm::vec3(1.5f, 0, 0.5f), glm::vec3(-3.0f, 0, 0.5f)};
+  CHECK_FALSE(c.outside(2, at(straddling)));
+  const std::array<glm::vec3, 1> behind = {glm::vec3(0, 0, -0.5f)};
+  CHECK(c.outside(1, at(behind)));
+  c.enabled = false;
+  CHECK_FALSE(c.outside(2, at(right)));
+}
+
+}  // namespace tessera

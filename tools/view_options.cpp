@@ -1,0 +1,89 @@
+#include "tools/view_options.h"
+
+#include <cmath>
+
+#include "tools/cli_common.h"
+
+namespace tessera::cli {
+
+glm::vec3 parse_vec3(const std::string& text, const char* what) {
+  const auto v = parse_float_list(text, what);
+  if (v.size() != 3) throw UsageError(std::string(what) + ": expected x,y,z");
+  for (float x : v)
+    if (!std::isfinite(x)) throw UsageError(std::string(what) + ": not finite");
+  return {v[0], v[1], v[2]};
+}
+
+void add_camera_options(CLI::App& cmd, CameraCli& c) {
+  cmd.add_option("--resolution", c.resolution, "WxH")->capture_default_str();
+  cmd.add_option("--camera-position", c.eye, "x,y,z (default: framing the model)");
+  cmd.add_option("--camera-target", c.target, "x,y,z (default: the model's centre)");
+  cmd.add_option("--fov", c.fov, "vertical field of view, degrees")->capture_default_str();
+}
+
+ViewSetup view_option(const CameraCli& c, const Cage& cage) {
+  ViewSetup v;
+  std::tie(v.width, v.height) = parse_resolution(c.resolution);
+  if (!(c.fov > 1.0f && c.fov < 179.0f)) throw UsageError("--fov: must be in (1, 179) degrees");
+  std::optional<glm::vec3> eye, target;
+  if (!c.eye.empty()) eye = parse_vec3(c.eye, "--camera-position");
+  if (!c.target.empty()) target = parse_vec3(c.target, "--camera-target");
+  if (eye && target && glm::length(*eye - *target) <= 0.0f) throw UsageError("camera position and target coincide");
+  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
+  if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
+    throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
+  return v;
+}
+
+void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) {
+  l.cull = cull_default;
+  cmd.add_option("--lod", l.mode,
+                 "tessellation factors: uniform (--factor), distance (falling with each edge's distance to the "
+                 "dicing camera) or screen (each cage edge's projected size over --edge-pixels)")
+      ->capture_default_str();
+  cmd.add_option("--edge-pixels", l.edge_pixels, "--lod screen: target pixels per segment")->capture_default_str();
+  cmd.add_option("--lod-distance", l.lod_distance,
+                 "--lod distance: the distance at which an edge gets --factor (default: camera to target)");
+  cmd.add_option("--dicing-camera-position", l.dicing_eye,
+                 "x,y,z: measure LOD from here instead of the view camera (a frozen tessellation to fly around)");
+  cmd.add_option("--cull", l.cull,
+                 "patch culling: none, frustum, or all (every test that cannot change a pixel: frustum)")
+      ->capture_default_str();
+}
+
+LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, const SubdModel& model,
+                            float displacement_bound, SubdFactors& factors) {
+  LodResult r;
+  const auto mode = parse_lod_mode(l.mode);
+  if (!mode) throw UsageError("--lod: '" + l.mode + "' is not uniform, distance or screen");
+  const auto cull = parse_patch_cull_mode(l.cull);
+  if (!cull) throw UsageError("--cull: '" + l.cull + "' is not none, frustum or all");
+  r.cull = *cull;
+  if (!(std::isfinite(l.edge_pixels) && l.edge_pixels >= 0.25f && l.edge_pixels <= 4096.0f))
+    throw UsageError("--edge-pixels: " + float_text(l.edge_pixels) + " is not in [0.25, 4096]");
+  if (!(std::isfinite(l.lod_distance) && l.lod_distance >= 0.0f))
+    throw UsageError("--lod-distance: " + float_text(l.lod_distance) + " is not a finite distance >= 0");
+  if (*mode == LodMode::uniform && (l.edge_pixels != 8.0f || l.lod_distance != 0.0f || !l.dicing_eye.empty()))
+    throw UsageError("--edge-pixels, --lod-distance and --dicing-camera-position need --lod distance or screen");
+  LodSettings& s = r.settings;
+  s.mode = *mode;
+  s.factor = factors.factor;
+  s.edge_pixels = l.edge_pixels;
+  s.bound = displacement_bound;
+  s.camera.eye = l.dicing_eye.empty() ? view.camera.eye : parse_vec3(l.dicing_eye, "--dicing-camera-position");
+  s.camera.pixels_per_unit = pixels_per_unit(view.height, fov);
+  s.lod_distance = l.lod_distance > 0.0f ? l.lod_distance : glm::length(view.camera.eye - view.camera.target);
+  if (s.mode != LodMode::uniform) {
+    if (factors.per_edge || factors.vary > 0.0f)
+      throw UsageError("--lod " + l.mode + " sets every edge's factor: drop --factors-per-edge and --vary-factors");
+    factors.per_edge = edge_lod_factors(model.cage, *model.topology, s);
+  }
+  if (r.cull == PatchCullMode::frustum) {
+    factors.cull.enabled = true;
+    factors.cull.view_projection = view.camera.view_projection;
+    factors.cull.growth = displacement_bound;
+  }
+  return r;
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,49 @@
+// Options the commands that look at a cage share (render, tessellate, bench frog): the camera, the
+// level of detail that follows a dicing camera, and patch culling.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+#include "shaders_cpp/lod/edge_lod.h"
+#include "shaders_cpp/lod/frustum_cull.h"
+#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/subd_render.h"
+
+namespace tessera::cli {
+
+struct CameraCli {
+  std::string resolution = "1920x1080", eye, target;
+  float fov = 35.0f;
+};
+void add_camera_options(CLI::App& cmd, CameraCli& c);
+
+// The view camera: WxH, and the camera that frames the cage unless given. UsageError for a bad
+// resolution, fov, or a position equal to the target.
+struct ViewSetup {
+  int width = 0, height = 0;
+  SubdCamera camera;
+};
+ViewSetup view_option(const CameraCli& c, const Cage& cage);
+
+struct LodCli {
+  std::string mode = "uniform", dicing_eye, cull;
+  float edge_pixels = 8.0f, lod_distance = 0.0f;
+};
+// --lod, --edge-pixels, --lod-distance, --dicing-camera-position, and --cull with its default.
+void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default);
+
+// Fills factors.per_edge from the LOD (nothing for uniform) and factors.cull from --cull, with the
+// view and a displacement bound. UsageError for bad values.
+struct LodResult {
+  LodSettings settings;
+  PatchCullMode cull = PatchCullMode::none;
+};
+LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, const SubdModel& model,
+                            float displacement_bound, SubdFactors& factors);
+
+glm::vec3 parse_vec3(const std::string& text, const char* what);
+
+}  // namespace tessera::cli
