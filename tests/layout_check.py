@@ -23,10 +23,12 @@ ALLOWED = {
     "shaders_cpp/lod": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
                     "shaders_cpp/lod"],
+    "shaders_cpp/debug": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv",
+                          "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp"],
     "tools/verify": ["tessellator"],
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
-              "shaders_cpp/lod", "shaders_cpp", "tools/verify", "tools/measure"],
+              "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "tools/verify", "tools/measure"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 PUBLIC = re.compile(r"tessera_public_headers\(\s*\S+\s+([^)]*)\)", re.S)

@@ -1,5 +1,6 @@
 #include "tools/verify/weld_check.h"
 
+#include <algorithm>
 #include <bit>
 #include <sstream>
 
@@ -14,6 +15,7 @@ std::uint32_t WeldChecker::weld(const glm::vec3& p) {
   for (const auto& [key, id] : bucket)
     if (key == bits) return id;
   bucket.emplace_back(bits, next_id_);
+  positions_.push_back(p);
   return next_id_++;
 }
 
@@ -48,6 +50,25 @@ WeldReport WeldChecker::report() const {
       ++r.boundary_edges;
   }
   return r;
+}
+
+std::vector<WeldEdge> WeldChecker::bad_edges() const {
+  std::vector<std::pair<std::uint64_t, bool>> bad;
+  for (const auto& [key, uses] : directed_) {
+    const std::uint32_t a = std::uint32_t(key >> 32), b = std::uint32_t(key);
+    const auto it = directed_.find(std::uint64_t(b) << 32 | a);
+    const std::uint32_t back = it == directed_.end() ? 0 : it->second;
+    if (back != 0 && a > b) continue;
+    if (uses > 1 || back > 1)
+      bad.emplace_back(key, true);
+    else if (back == 0)
+      bad.emplace_back(key, false);
+  }
+  std::sort(bad.begin(), bad.end());
+  std::vector<WeldEdge> out;
+  for (const auto& [key, nonmanifold] : bad)
+    out.push_back({positions_[std::size_t(key >> 32)], positions_[std::size_t(std::uint32_t(key))], nonmanifold});
+  return out;
 }
 
 std::string WeldReport::summary() const {

@@ -24,15 +24,24 @@ struct WeldReport {
   std::string summary() const;
 };
 
+// An edge the weld found open (used once) or non-manifold, by its welded end points.
+struct WeldEdge {
+  glm::vec3 a{0.0f}, b{0.0f};
+  bool nonmanifold = false;
+};
+
 class WeldChecker {
  public:
   void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
   WeldReport report() const;
+  // The edges report() counts as open or non-manifold, in welded-vertex order (deterministic).
+  std::vector<WeldEdge> bad_edges() const;
 
  private:
   std::uint32_t weld(const glm::vec3& p);
   std::unordered_map<std::uint64_t, std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>>> buckets_;
   std::uint32_t next_id_ = 0;
+  std::vector<glm::vec3> positions_;  // by welded id
   // Directed edge (a, b) -> uses; keyed by a << 32 | b.
   std::unordered_map<std::uint64_t, std::uint32_t> directed_;
   std::uint64_t triangles_ = 0, degenerate_ = 0;

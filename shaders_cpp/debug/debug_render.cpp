@@ -1,0 +1,64 @@
+#include "shaders_cpp/debug/debug_render.h"
+
+namespace tessera {
+namespace {
+
+// draw(group, tessellator state, hs, ds) over the draw's patch groups, displaced or not.
+template <class Draw>
+DrawResult for_each_draw_group(const SubdModel& m, const Displacement* d, const SubdFactors& factors,
+                               ts::Partitioning partitioning, Draw&& draw) {
+  if (d != nullptr) return with_displaced_group(m, *d, factors, partitioning, draw);
+  return for_each_patch_group(m, factors, partitioning, draw);
+}
+
+}  // namespace
+
+PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
+                               ts::Partitioning partitioning, const PatchTableCamera& camera) {
+  PatchTables tables;
+  const TopologyCombinations combos = analyze_combinations(*model.topology);
+  for_each_draw_group(model, displacement, factors, partitioning,
+                      [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto&) {
+                        auto rows = build_patch_table(model, g, hs, ts, combos, camera);
+                        (g.domain == ts::Domain::tri ? tables.tris : tables.quads) = std::move(rows);
+                        return DrawResult{};
+                      });
+  return tables;
+}
+
+DrawResult render_debug(Device& device, const SubdModel& model, const Displacement* displacement,
+                        const SubdFactors& factors, ts::Partitioning partitioning, const DebugRender& view,
+                        const PatchTables& tables, const SubdCamera& camera, Framebuffer& fb) {
+  DrawResult total;
+  for (const bool wire : {false, true}) {
+    if (wire && !view.wire_pass) continue;
+    const DrawResult r = for_each_draw_group(
+        model, displacement, factors, partitioning,
+        [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto& ds) {
+          const SubdPassState st = subd_pass_state(model, fb, wire);
+          using Ds = std::decay_t<decltype(ds)>;
+          using Hs = std::decay_t<decltype(hs)>;
+          // 0.2 % of the distance to the eye: enough to win the depth test against the surface the
+          // edge lies on at the depth buffer's precision, far less than any surface the edge is behind.
+          const DebugDS<Ds> debug_ds{ds, camera.view_projection, camera.eye, wire ? 2e-3f : 0.0f};
+          auto go = [&](const auto& ps) {
+            using Ps = std::decay_t<decltype(ps)>;
+            const PatchDraw<glm::vec3, SubdVS, Hs, DebugDS<Ds>, Ps> d{
+                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, debug_ds, ps, ts,
+                st.rasterizer,        st.depth,  st.viewport};
+            return device.draw(d, fb);
+          };
+          const std::vector<PatchInfo>& rows = tables.of(g.domain);
+          if (wire) return go(DebugWirePS{rows, view.ps.light, view.ps.paper});
+          DebugPS ps = view.ps;
+          ps.patches = rows;
+          return go(ps);
+        });
+    if (!r.ok()) return r;
+    add_draw_report(total.report, r.report);
+  }
+  total.report.memory.framebuffer_bytes = fb.bytes();
+  return total;
+}
+
+}  // namespace tessera

@@ -1,0 +1,34 @@
+// Drawing the debug views: the model through the debug shaders (debug_shaders.h) with per-patch facts
+// (patch_table.h), and, for the wireframe views, the triangle edges over the surface.
+//
+// Contract: the same draws as render_subd / render_displaced (the same VS, HS and DS, so the same
+// tessellation, and the same culling), with the debug pixel shader; deterministic for any thread count.
+#pragma once
+
+#include <vector>
+
+#include "shaders_cpp/debug/debug_shaders.h"
+#include "shaders_cpp/debug/patch_table.h"
+#include "shaders_cpp/displaced_model.h"
+#include "shaders_cpp/subd_render.h"
+
+namespace tessera {
+
+// The rows of both patch groups (quad domain, tri domain), for one draw's factors.
+struct PatchTables {
+  std::vector<PatchInfo> quads, tris;
+  const std::vector<PatchInfo>& of(ts::Domain d) const { return d == ts::Domain::tri ? tris : quads; }
+};
+PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
+                               ts::Partitioning partitioning, const PatchTableCamera& camera);
+
+struct DebugRender {
+  DebugPS ps;             // the view and its parameters; `patches` is set per group
+  bool wire_pass = false; // draw the triangle edges over the surface
+};
+
+DrawResult render_debug(Device& device, const SubdModel& model, const Displacement* displacement,
+                        const SubdFactors& factors, ts::Partitioning partitioning, const DebugRender& view,
+                        const PatchTables& tables, const SubdCamera& camera, Framebuffer& fb);
+
+}  // namespace tessera

@@ -1,0 +1,290 @@
+#include "tools/render_views.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "shaders_cpp/debug/overlay.h"
+#include "shaders_cpp/displaced_render.h"
+#include "tools/cli_common.h"
+#include "tools/verify/weld_check.h"
+
+namespace tessera::cli {
+namespace {
+
+constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
+    {ViewKind::shaded, "shaded"},
+    {ViewKind::wireframe, "wireframe"},
+    {ViewKind::wire_on_shaded, "wire-on-shaded"},
+    {ViewKind::factors, "factors"},
+    {ViewKind::density, "density"},
+    {ViewKind::patch_type, "patch-type"},
+    {ViewKind::combination, "combination"},
+    {ViewKind::patch_id, "patch-id"},
+    {ViewKind::normals, "normals"},
+    {ViewKind::uv, "uv"},
+    {ViewKind::displacement, "displacement"},
+    {ViewKind::cage, "cage"},
+    {ViewKind::cracks, "cracks"},
+    {ViewKind::culled, "culled"},
+}};
+
+const glm::vec4 kBackground(0.93f, 0.94f, 0.96f, 1.0f);
+
+std::string fixed(float x, int digits) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, double(x));
+  return buf;
+}
+
+template <class F>
+std::vector<glm::vec3> sample_ramp(F&& color) {
+  std::vector<glm::vec3> r(256);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = color(float(i) / 255.0f);
+  return r;
+}
+
+DrawResult draw_shaded(Device& device, const ViewInputs& in, const SubdCamera& camera, Framebuffer& fb) {
+  return in.displacement ? render_displaced(device, in.model, *in.displacement, in.factors, in.partitioning,
+                                            SubdView::shaded, camera, fb)
+                         : render_subd(device, in.model, in.factors, in.partitioning, SubdView::shaded, camera, fb);
+}
+
+// A camera that sees the whole model and the view camera's position, from behind and above it, for
+// the culled view: the view's frustum and what it culled, seen from outside.
+SubdCamera overview_camera(const ViewInputs& in, int w, int h) {
+  const Cage& cage = in.model.cage;
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : cage.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 eye = in.view.camera.eye, target = in.view.camera.target;
+  lo = glm::min(lo, eye), hi = glm::max(hi, eye);
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const float radius = 0.5f * glm::length(hi - lo);
+  glm::vec3 back = glm::normalize(eye - target);
+  back = glm::normalize(back + glm::vec3(0.6f, 0.8f, 0.3f));
+  Cage frame;
+  frame.positions = {lo, hi};
+  return frame_cage(frame, w, h, 35.0f, centre + back * (radius / std::tan(glm::radians(17.5f)) * 1.1f), centre);
+}
+
+}  // namespace
+
+std::optional<ViewKind> parse_view(std::string_view name) {
+  for (const auto& [kind, text] : kViews)
+    if (name == text) return kind;
+  return std::nullopt;
+}
+
+const char* to_string(ViewKind v) {
+  for (const auto& [kind, text] : kViews)
+    if (kind == v) return text;
+  return "?";
+}
+
+std::string view_names() {
+  std::string s;
+  for (const auto& [kind, text] : kViews) s += (s.empty() ? "" : ", ") + std::string(text);
+  return s;
+}
+
+PatchTables view_patch_tables(const ViewInputs& in) {
+  const PatchTableCamera camera{in.view.camera.eye, pixels_per_unit(in.view.height, in.fov)};
+  return build_patch_tables(in.model, in.displacement, in.factors, in.partitioning, camera);
+}
+
+ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Framebuffer& fb) {
+  ViewOutput out;
+  fb.clear(kBackground, 1.0f);
+  const SubdCamera& camera = in.view.camera;
+  const Scheme scheme = in.model.patches.scheme;
+  if (kind == ViewKind::shaded) {
+    out.result = draw_shaded(device, in, camera, fb);
+    return out;
+  }
+  if (kind == ViewKind::displacement && !in.displacement)
+    throw UsageError("--view displacement needs --displacement MAP");
+
+  if (kind == ViewKind::cage || kind == ViewKind::cracks) {
+    out.result = draw_shaded(device, in, camera, fb);
+    if (!out.result.ok()) return out;
+    out.has_legend = true;
+    if (kind == ViewKind::cage) {
+      const Topology& t = *in.model.topology;
+      std::vector<OverlayLine> lines;
+      for (int e = 0; e < t.edge_count(); ++e) {
+        const int h = t.edge_half_edges(e)[0];
+        lines.push_back({in.model.cage.positions[std::size_t(t.origin(h))],
+                         in.model.cage.positions[std::size_t(t.destination(h))]});
+      }
+      // The cage lies off the surface; where the surface hides it, it is drawn faintly.
+      OverlayStyle hidden{glm::vec3(0.1f, 0.3f, 0.75f), 1.0f, 0.25f, false, 0.0f};
+      OverlayStyle visible{glm::vec3(0.1f, 0.3f, 0.75f), 1.6f, 0.9f, true, 1e-5f};
+      draw_lines(fb, camera.view_projection, lines, hidden);
+      draw_lines(fb, camera.view_projection, lines, visible);
+      visible.width = 4.0f;
+      draw_points(fb, camera.view_projection, in.model.cage.positions, visible);
+      out.legend.title = "control cage over the surface (" + std::string(to_string(scheme)) + ")";
+      out.legend.lines = {std::to_string(t.edge_count()) + " cage edges, " + std::to_string(t.vertex_count()) +
+                          " vertices; faint where the surface hides them"};
+      return out;
+    }
+    // Cracks: the tessellation welded on exact bits; open and non-manifold edges drawn thick.
+    verify::WeldChecker weld;
+    auto sink = [&](const auto& p, const PatchGroup&) {
+      for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3)
+        weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
+                          p.points[p.indices[i + 2]].position);
+    };
+    const DrawResult s =
+        in.displacement ? stream_displaced(device, in.model, *in.displacement, in.factors, in.partitioning, sink)
+                        : stream_subd(device, in.model, in.factors, in.partitioning, sink);
+    if (!s.ok()) return {s, {}, false, 0, 0};
+    std::vector<OverlayLine> open, nonmanifold;
+    for (const verify::WeldEdge& e : weld.bad_edges()) (e.nonmanifold ? nonmanifold : open).push_back({e.a, e.b});
+    out.open_edges = open.size(), out.nonmanifold_edges = nonmanifold.size();
+    draw_lines(fb, camera.view_projection, open, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
+    draw_lines(fb, camera.view_projection, nonmanifold,
+               OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
+    const verify::WeldReport r = weld.report();
+    out.legend.title = "cracks: the tessellation welded on exact float bits";
+    out.legend.lines = {std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) +
+                            " welded vertices",
+                        std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
+                            " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
+    return out;
+  }
+
+  // The debug shader views.
+  SubdFactors factors = in.factors;
+  SubdCamera draw_camera = camera;
+  if (kind == ViewKind::culled) {
+    factors.cull.enabled = false;  // draw what the view culled, from outside
+    draw_camera = overview_camera(in, fb.width(), fb.height());
+  }
+  const PatchTables tables = view_patch_tables(in);
+  DebugRender r;
+  r.ps.light = glm::normalize(draw_camera.eye - draw_camera.target);
+  r.ps.processed = in.processed;
+  r.ps.edge_pixels = in.edge_pixels;
+  out.has_legend = true;
+  Legend& legend = out.legend;
+  switch (kind) {
+    case ViewKind::wireframe:
+    case ViewKind::wire_on_shaded:
+      r.ps.view = DebugView::wire;
+      r.ps.paper = kind == ViewKind::wireframe;
+      r.wire_pass = true;
+      out.has_legend = false;
+      break;
+    case ViewKind::factors: {
+      r.ps.view = DebugView::factors;
+      float lo = INFINITY, hi = -INFINITY;
+      for (const auto* t : {&tables.quads, &tables.tris})
+        for (const PatchInfo& p : *t) {
+          if (p.culled) continue;
+          for (int k = 0; k < (p.tri ? 3 : 4); ++k) {
+            const float f = in.processed ? p.edge_processed[std::size_t(k)] : p.raw.edge[std::size_t(k)];
+            lo = std::min(lo, f), hi = std::max(hi, f);
+          }
+        }
+      legend.title = std::string("tessellation factor, ") + (in.processed ? "processed" : "raw") + " (" +
+                     std::string(ts::to_string(in.partitioning)) + ")";
+      legend.lines = {"outer rings: their edge's factor; interior: the larger inside factor",
+                      std::isfinite(lo) ? "edges drawn: " + fixed(lo, 2) + " to " + fixed(hi, 2) : "no patch drawn"};
+      legend.ramp = sample_ramp([](float t) { return heat_color(t); });
+      for (int k = 0; k <= 6; ++k) legend.ticks.emplace_back(float(k) / 6.0f, std::to_string(1 << k));
+      break;
+    }
+    case ViewKind::density: {
+      r.ps.view = DebugView::density;
+      legend.title = "pixels per segment, target " + fixed(in.edge_pixels, 1) + " (--edge-pixels)";
+      legend.lines = {"blue: finer than the target; red: coarser"};
+      legend.ramp = sample_ramp([](float t) { return diverging_color(t); });
+      for (int k = -3; k <= 3; ++k)
+        legend.ticks.emplace_back(float(k + 3) / 6.0f, fixed(in.edge_pixels * std::exp2(float(k)), k < 0 ? 1 : 0));
+      break;
+    }
+    case ViewKind::patch_type: {
+      r.ps.view = DebugView::patch_type;
+      std::array<int, kPatchTypeCount> count{};
+      for (const auto* t : {&tables.quads, &tables.tris})
+        for (const PatchInfo& p : *t) ++count[std::size_t(p.type)];
+      legend.title = "patch type, scheme " + std::string(to_string(scheme));
+      for (int k = 0; k < kPatchTypeCount; ++k)
+        if (count[std::size_t(k)] > 0)
+          legend.swatches.emplace_back(category_color(k), std::string(to_string(PatchType(k))) + ": " +
+                                                              std::to_string(count[std::size_t(k)]) + " patches");
+      break;
+    }
+    case ViewKind::combination: {
+      r.ps.view = DebugView::combination;
+      const TopologyCombinations combos = analyze_combinations(*in.model.topology);
+      legend.title = std::to_string(combos.combinations.size()) + " topology combinations (as tessera analyze)";
+      std::vector<int> order(combos.combinations.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return combos.combinations[std::size_t(a)].count > combos.combinations[std::size_t(b)].count;
+      });
+      for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i) {
+        const Combination& c = combos.combinations[std::size_t(order[i])];
+        legend.swatches.emplace_back(category_color(order[i]), c.text + " : " + std::to_string(c.count));
+      }
+      if (order.size() > 8) legend.lines = {"the 8 most frequent:"};
+      break;
+    }
+    case ViewKind::patch_id:
+      r.ps.view = DebugView::patch_id;
+      legend.title = "patch id (SV_PrimitiveID): one colour per patch";
+      legend.lines = {std::to_string(tables.quads.size()) + " quad-domain, " + std::to_string(tables.tris.size()) +
+                      " tri-domain patches"};
+      break;
+    case ViewKind::normals:
+      r.ps.view = DebugView::normals;
+      legend.title = "surface normal, world space: RGB = (x, y, z) / 2 + 1/2";
+      break;
+    case ViewKind::uv: {
+      r.ps.view = DebugView::uv;
+      if (!in.model.cage.has_uvs()) throw UsageError("--view uv: " + in.model.cage.name + " has no UVs");
+      if (in.displacement) r.ps.height = &in.displacement->map->texture();
+      std::size_t seams = 0;
+      for (const auto* t : {&tables.quads, &tables.tris})
+        for (const PatchInfo& p : *t) seams += std::size_t(std::popcount(unsigned(p.seam_edges)));
+      legend.title = "texture coordinates: 16 x 16 checks, red = u, green = v";
+      legend.lines = {"UV seams in red (" + std::to_string(seams / 2) + " seam edges)"};
+      break;
+    }
+    case ViewKind::displacement: {
+      r.ps.view = DebugView::displacement;
+      const Displacement& d = *in.displacement;
+      if (d.kind != DisplacementKind::scalar) throw UsageError("--view displacement shows scalar maps only");
+      r.ps.height = &d.map->texture();
+      r.ps.height_scale = d.scale, r.ps.height_bias = d.bias, r.ps.height_range = d.bound;
+      legend.title = "signed displacement (scale * texel + bias), object units";
+      legend.ramp = sample_ramp([](float t) { return diverging_color(t); });
+      legend.ticks = {{0.0f, "-" + fixed(d.bound, 3)}, {0.5f, "0"}, {1.0f, "+" + fixed(d.bound, 3)}};
+      break;
+    }
+    case ViewKind::culled: {
+      r.ps.view = DebugView::culled;
+      std::size_t culled = 0, total = 0;
+      for (const auto* t : {&tables.quads, &tables.tris})
+        for (const PatchInfo& p : *t) culled += p.culled ? 1 : 0, ++total;
+      legend.title = "frustum culling, seen from outside the view";
+      legend.swatches = {{glm::vec3(0.92f, 0.25f, 0.18f), std::to_string(culled) + " of " + std::to_string(total) +
+                                                              " patches culled (zero factors)"},
+                         {glm::vec3(0.1f, 0.1f, 0.1f), "the view camera's frustum"}};
+      break;
+    }
+    default: break;
+  }
+  const Displacement* d = in.displacement;
+  out.result = render_debug(device, in.model, d, factors, in.partitioning, r, tables, draw_camera, fb);
+  if (out.result.ok() && kind == ViewKind::culled) {
+    std::vector<OverlayLine> lines;
+    frustum_lines(camera.view_projection, lines);
+    draw_lines(fb, draw_camera.view_projection, lines, OverlayStyle{glm::vec3(0.1f), 1.5f, 1.0f, false, 0.0f});
+  }
+  return out;
+}
+
+}  // namespace tessera::cli

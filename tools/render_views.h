@@ -1,0 +1,60 @@
+// The views of `tessera render`: their names, and drawing one (the pipeline's draws, then overlays)
+// with the legend that explains it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "shaders_cpp/debug/debug_render.h"
+#include "tools/view_legend.h"
+#include "tools/view_options.h"
+
+namespace tessera::cli {
+
+enum class ViewKind : std::uint8_t {
+  shaded,
+  wireframe,
+  wire_on_shaded,
+  factors,
+  density,
+  patch_type,
+  combination,
+  patch_id,
+  normals,
+  uv,
+  displacement,
+  cage,
+  cracks,
+  culled,
+};
+std::optional<ViewKind> parse_view(std::string_view name);
+const char* to_string(ViewKind v);
+std::string view_names();  // "shaded, wireframe, ..." for help and errors
+
+struct ViewInputs {
+  const SubdModel& model;
+  const Displacement* displacement = nullptr;
+  SubdFactors factors;  // with the LOD's per-edge factors and the cull
+  ts::Partitioning partitioning = ts::Partitioning::integer;
+  const ViewSetup& view;
+  float fov = 35.0f;
+  float edge_pixels = 8.0f;  // density's target
+  bool processed = false;    // factors: processed rather than raw
+};
+
+struct ViewOutput {
+  DrawResult result;
+  Legend legend;
+  bool has_legend = false;
+  std::uint64_t open_edges = 0, nonmanifold_edges = 0;  // cracks
+};
+
+// The patch tables of the inputs' draw, measured from the view camera.
+PatchTables view_patch_tables(const ViewInputs& in);
+
+// Draws view `kind` into fb (cleared here). UsageError for a view the inputs cannot give (the
+// displacement view without a displacement).
+ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Framebuffer& fb);
+
+}  // namespace tessera::cli
