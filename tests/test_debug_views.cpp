@@ -1,0 +1,143 @@
+// The debug views of `tessera render` and the per-patch statistics: every view draws, views differ,
+// images are the same bytes for any thread count, statistics agree with the pipeline's counters, the
+// crack finder finds open edges, overlays draw where they should, and bad options are one-line errors.
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "shaders_cpp/debug/overlay.h"
+#include "test_data.h"
+#include "tools/verify/weld_check.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_cli;
+
+const std::string kFrog = test::data("sdk-cages/monsterfrog_mapped_00.obj");
+const std::string kDisplaced = " --displacement " + test::data("sdk-cages/monsterfrog.dds") +
+                               " --displacement-channel A --displacement-scale 1.2 --displacement-bias -0.6";
+const std::string kCamera = " --camera-position 48,15,66 --camera-target -3,-2.5,2 --resolution 320x180";
+
+std::string bytes_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("Every render view draws the displaced frog; the views differ; bytes do not depend on threads",
+          "[views][cli]") {
+  const fs::path dir = test::cli_temp_dir();
+  std::set<std::string> images;
+  const std::vector<std::string> views = {"shaded", "wireframe", "wire-on-shaded", "factors", "density",
+                                          "patch-type", "combination", "patch-id", "normals", "uv",
+                                          "displacement", "cage", "cracks", "culled"};
+  for (const std::string& v : views) {
+    const fs::path out = dir / ("view-" + v + ".png");
+    const auto r = run_cli("render " + kFrog + " --scheme gregory --lod screen --partitioning fractional_odd" +
+                           kDisplaced + kCamera + " --view " + v + " -o " + out.string());
+    INFO(v << ": " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("view " + v) != std::string::npos);
+    images.insert(bytes_of(out));
+  }
+  CHECK(images.size() == views.size());  // every view is a different picture
+  // The factors view with 1 and 2 threads: the same bytes.
+  for (const int threads : {1, 2}) {
+    const fs::path out = dir / ("factors-" + std::to_string(threads) + ".png");
+    REQUIRE(run_cli("render " + kFrog + " --lod screen --partitioning fractional_odd" + kCamera +
+                    " --view factors --threads " + std::to_string(threads) + " -o " + out.string())
+                .exit_code == 0);
+  }
+  CHECK(bytes_of(dir / "factors-1.png") == bytes_of(dir / "factors-2.png"));
+}
+
+TEST_CASE("render --stats: a row per patch, totals that match the pipeline's counters, histograms that sum",
+          "[views][cli]") {
+  const fs::path dir = test::cli_temp_dir();
+  const fs::path stats = dir / "frog-stats.json";
+  // A camera inside the frog: some patches are culled.
+  const auto r = run_cli("render " + kFrog +
+                         " --lod screen --partitioning fractional_odd --camera-position 20,5,12 "
+                         "--camera-target -3,-2.5,2 --resolution 480x270 -o " +
+                         (dir / "s.png").string() + " --stats " + stats.string());
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(bytes_of(stats));
+  const auto& rows = j["patches"];
+  REQUIRE(rows.size() == 1292);
+  std::uint64_t triangles = 0, culled = 0;
+  for (const auto& row : rows) {
+    triangles += row["triangles"].get<std::uint64_t>();
+    culled += row["culled"].is_null() ? 0 : 1;
+    CHECK(row["raw"]["edge"].size() == 4);
+  }
+  CHECK(culled > 0);
+  CHECK(j["totals"]["patches_culled"] == culled);
+  CHECK(j["totals"]["triangles"] == triangles);
+  // The shaded view is one pass: the clipper saw exactly the table's triangles.
+  CHECK(j["statistics"]["CInvocations"] == triangles);
+  std::uint64_t binned = 0;
+  for (const auto& b : j["histograms"]["triangle_area_pixels"]) binned += b["count"].get<std::uint64_t>();
+  CHECK(binned + j["totals"]["triangles_behind_eye"].get<std::uint64_t>() == triangles);
+  CHECK(j["totals"]["triangles_streamed"] == triangles);
+  std::uint64_t edge_factors = 0;
+  for (const auto& b : j["histograms"]["edge_factors"]) edge_factors += b["count"].get<std::uint64_t>();
+  CHECK(edge_factors == 4 * (1292 - culled));
+  CHECK(j["lod"]["mode"] == "screen");
+}
+
+TEST_CASE("The crack finder returns exactly the open and non-manifold edges", "[views]") {
+  verify::WeldChecker w;
+  const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(1, 1, 0);
+  w.add_triangle(a, b, c);
+  w.add_triangle(b, d, c);  // shares b-c: four open edges remain
+  auto edges = w.bad_edges();
+  REQUIRE(edges.size() == 4);
+  for (const auto& e : edges) {
+    CHECK_FALSE(e.nonmanifold);
+    const bool diagonal = (e.a == b && e.b == c) || (e.a == c && e.b == b);
+    CHECK_FALSE(diagonal);
+  }
+  w.add_triangle(b, c, glm::vec3(0.5f, 0.5f, 1.0f));  // b-c used a second time the same way
+  edges = w.bad_edges();
+  CHECK(std::count_if(edges.begin(), edges.end(), [](const verify::WeldEdge& e) { return e.nonmanifold; }) == 1);
+}
+
+TEST_CASE("Overlay lines draw where they project, and stay hidden behind the depth buffer", "[views]") {
+  auto fb = Framebuffer::create(64, 32, ColorFormat::rgba8_unorm, nullptr);
+  REQUIRE(fb);
+  fb->clear(glm::vec4(1.0f), 0.5f);
+  // Identity view-projection: clip = world. A horizontal segment at y = 0 (the middle row), depth 0.25.
+  const std::vector<OverlayLine> front = {{glm::vec3(-0.5f, 0.0f, 0.25f), glm::vec3(0.5f, 0.0f, 0.25f)}};
+  draw_lines(*fb, glm::mat4(1.0f), front, OverlayStyle{glm::vec3(0.0f), 2.0f, 1.0f, true, 0.0f});
+  CHECK(fb->color(32, 15).r < 0.1f);   // on the line
+  CHECK(fb->color(32, 4).r == 1.0f);   // far from it
+  CHECK(fb->color(4, 15).r == 1.0f);   // past its end
+  // The same line behind the depth buffer (depth 0.75 > 0.5): nothing is drawn.
+  fb->clear(glm::vec4(1.0f), 0.5f);
+  const std::vector<OverlayLine> behind = {{glm::vec3(-0.5f, 0.0f, 0.75f), glm::vec3(0.5f, 0.0f, 0.75f)}};
+  draw_lines(*fb, glm::mat4(1.0f), behind, OverlayStyle{glm::vec3(0.0f), 2.0f, 1.0f, true, 0.0f});
+  CHECK(fb->color(32, 15).r == 1.0f);
+}
+
+TEST_CASE("View, LOD and cull options: bad values are one-line usage errors", "[views][cli]") {
+  const std::string out = " -o " + (test::cli_temp_dir() / "bad.png").string();
+  for (const std::string args :
+       {"--view bogus", "--view displacement", "--lod bogus", "--lod screen --edge-pixels 0",
+        "--lod screen --edge-pixels nan", "--cull bogus", "--edge-pixels 4", "--lod screen --vary-factors 1",
+        "--factor-kind cooked", "--lod distance --lod-distance -1", "--camera-position 1,2"}) {
+    const auto r = run_cli("render " + kFrog + " --resolution 64x36 " + args + out);
+    INFO(args << ": " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  CHECK_FALSE(fs::exists(test::cli_temp_dir() / "bad.png"));
+}
+
+}  // namespace tessera
