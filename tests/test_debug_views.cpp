@@ -126,6 +126,22 @@ TEST_CASE("Overlay lines draw where they project, and stay hidden behind the dep
   CHECK(fb->color(32, 15).r == 1.0f);
 }
 
+TEST_CASE("bench dolly: with fractional_odd, vertices move in proportion to the camera step", "[views][cli]") {
+  auto run = [&](int frames) {
+    const auto r = run_cli("bench dolly --cage " + kFrog +
+                           " --camera-position 48,15,66 --camera-target -3,-2.5,2 --resolution 320x180 --frames " +
+                           std::to_string(frames) + " --json");
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["per_frame"].size() == std::size_t(frames));
+    CHECK(j["per_frame"][0]["largest_move_pixels"] == 0.0);
+    return j["median_move_pixels"].get<double>();
+  };
+  const double coarse = run(8), fine = run(16);
+  CHECK(coarse > 0.0);
+  CHECK(fine < 0.75 * coarse);  // half the step, about half the move: no popping
+}
+
 TEST_CASE("View, LOD and cull options: bad values are one-line usage errors", "[views][cli]") {
   const std::string out = " -o " + (test::cli_temp_dir() / "bad.png").string();
   for (const std::string args :

@@ -104,11 +104,13 @@ Runner add_bench_command(CLI::App& app) {
   tess->fallthrough();
   Runner torus = add_bench_torus_command(*cmd);
   Runner frog = add_bench_subd_command(*cmd);
-  return [o, tess, torus, frog]() -> int {
+  Runner dolly = add_bench_dolly_command(*cmd);
+  return [o, tess, torus, frog, dolly]() -> int {
     if (tess->parsed()) return run_bench_tessellator(*o);
     if (const int rc = torus(); rc >= 0) return rc;
     if (const int rc = frog(); rc >= 0) return rc;
-    throw UsageError("bench: choose a benchmark (tessellator, torus, frog)");
+    if (const int rc = dolly(); rc >= 0) return rc;
+    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly)");
   };
 }
 

@@ -23,5 +23,6 @@ Runner add_make_cage_command(CLI::App& app);
 // Registered under `bench`; its runner returns -1 when `bench torus` was not the chosen subcommand.
 Runner add_bench_torus_command(CLI::App& bench);
 Runner add_bench_subd_command(CLI::App& bench);
+Runner add_bench_dolly_command(CLI::App& bench);
 
 }  // namespace tessera::cli

@@ -35,6 +35,15 @@ ViewSetup view_option(const CameraCli& c, const Cage& cage) {
   return v;
 }
 
+ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target) {
+  CameraCli given = c;
+  given.eye.clear(), given.target.clear();
+  ViewSetup v = view_option(given, cage);  // resolution and fov checked
+  if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
+  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
+  return v;
+}
+
 void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) {
   l.cull = cull_default;
   cmd.add_option("--lod", l.mode,

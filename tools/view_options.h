@@ -27,6 +27,8 @@ struct ViewSetup {
   SubdCamera camera;
 };
 ViewSetup view_option(const CameraCli& c, const Cage& cage);
+// The same with the camera's position and target given (a path of cameras).
+ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target);
 
 struct LodCli {
   std::string mode = "uniform", dicing_eye, cull;

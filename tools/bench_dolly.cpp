@@ -1,0 +1,197 @@
+// `tessera bench dolly`: the camera moves in a straight line toward its target, with view-dependent
+// LOD, frame by frame: per frame the triangles, the frame time and the largest vertex movement since
+// the previous frame, which is how continuous the LOD is (fractional partitioning should move
+// vertices in proportion to the camera step; integer partitioning pops by a fixed amount).
+//
+// Movement: for each tessellated vertex of a frame, the screen distance (through this frame's camera,
+// so the camera's own motion does not count) to the nearest vertex, in domain space, of the same
+// patch in the previous frame. A vertex that appears where an old one was (fractional_odd's split
+// points) has moved 0; a vertex that appears in the middle of a segment (integer) has moved half a
+// segment. The nearest vertex is found in a 64 x 64 grid over each patch's domain.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <unordered_map>
+
+#include "shaders_cpp/displaced_render.h"
+#include "shaders_cpp/subd_render.h"
+#include "tools/cli_common.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "tools/tessellate_options.h"
+#include "tools/view_options.h"
+
+namespace tessera::cli {
+namespace {
+
+struct DollyOptions {
+  std::string cage, scheme = "gregory", partitioning = "fractional_odd", factors_file, to;
+  CameraCli camera;
+  LodCli lod;
+  float factor = 16.0f, vary = 0.0f;
+  int threads = 0, frames = 30;
+  bool json = false;
+  DisplacementCli displacement;
+};
+
+// One frame's tessellation: per patch (quad group ids first, then tri ids offset by the quad count),
+// its vertices' domain locations and world positions.
+struct PatchPoints {
+  std::vector<glm::vec2> domain;
+  std::vector<glm::vec3> position;
+};
+using FramePoints = std::vector<PatchPoints>;
+
+constexpr int kGrid = 64;
+
+// The largest screen distance from a vertex of `now` to its nearest (in domain space) vertex of the
+// same patch in `before`, both projected by `vp` into a w x h target.
+double largest_move(const FramePoints& before, const FramePoints& now, const glm::mat4& vp, int w, int h) {
+  auto screen = [&](const glm::vec3& p, glm::dvec2& s) {
+    const glm::vec4 c = vp * glm::vec4(p, 1.0f);
+    if (!(c.w > 0.0f)) return false;
+    s = {(double(c.x) / c.w * 0.5 + 0.5) * w, (0.5 - double(c.y) / c.w * 0.5) * h};
+    return true;
+  };
+  double largest = 0.0;
+  std::vector<std::vector<std::uint32_t>> grid(std::size_t(kGrid * kGrid));
+  for (std::size_t p = 0; p < now.size() && p < before.size(); ++p) {
+    const PatchPoints& a = before[p];
+    const PatchPoints& b = now[p];
+    if (a.domain.empty() || b.domain.empty()) continue;
+    for (auto& cell : grid) cell.clear();
+    auto cell_of = [](float x) { return std::clamp(int(x * float(kGrid)), 0, kGrid - 1); };
+    for (std::uint32_t i = 0; i < a.domain.size(); ++i)
+      grid[std::size_t(cell_of(a.domain[i].y) * kGrid + cell_of(a.domain[i].x))].push_back(i);
+    for (std::size_t i = 0; i < b.domain.size(); ++i) {
+      const glm::vec2 q = b.domain[i];
+      const int cx = cell_of(q.x), cy = cell_of(q.y);
+      std::int64_t best = -1;
+      float best_d = INFINITY;
+      // Rings of cells outward until a found point is closer than any unvisited ring can be.
+      for (int r = 0; r < kGrid; ++r) {
+        for (int y = std::max(0, cy - r); y <= std::min(kGrid - 1, cy + r); ++y)
+          for (int x = std::max(0, cx - r); x <= std::min(kGrid - 1, cx + r); ++x) {
+            if (std::max(std::abs(x - cx), std::abs(y - cy)) != r) continue;
+            for (const std::uint32_t j : grid[std::size_t(y * kGrid + x)]) {
+              const float d = glm::length(a.domain[j] - q);
+              if (d < best_d) best_d = d, best = j;
+            }
+          }
+        if (best >= 0 && best_d <= float(r) / float(kGrid)) break;
+      }
+      glm::dvec2 sa, sb;
+      if (best >= 0 && screen(a.position[std::size_t(best)], sa) && screen(b.position[i], sb))
+        largest = std::max(largest, glm::length(sa - sb));
+    }
+  }
+  return largest;
+}
+
+int run_dolly(const DollyOptions& o) {
+  const Scheme scheme = scheme_option(o.scheme);
+  const ts::Partitioning partitioning = partitioning_option(o.partitioning);
+  if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
+  const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
+  const SubdModel model = load_model(cage, scheme);
+  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  const ViewSetup start = view_option(o.camera, model.cage);
+  const glm::vec3 from = start.camera.eye, target = start.camera.target;
+  const glm::vec3 to = o.to.empty() ? glm::mix(from, target, 0.5f) : parse_vec3(o.to, "--to");
+  if (glm::length(to - target) <= 0.0f) throw UsageError("--to: equal to the camera target");
+  Device device(device_options(o.threads));
+  std::string error;
+  auto fb = Framebuffer::create(start.width, start.height, ColorFormat::rgba8_unorm, &error);
+  if (!fb) throw UsageError(error);
+
+  using Clock = std::chrono::steady_clock;
+  Json frames = Json::array();
+  FramePoints before;
+  std::vector<double> moves, times;
+  const std::size_t quad_count = model.patches.quads.size();
+  for (int f = 0; f < o.frames; ++f) {
+    const float t = float(f) / float(o.frames - 1);
+    const glm::vec3 eye = glm::mix(from, to, t);
+    const ViewSetup view = view_at(o.camera, model.cage, eye, target);
+    SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
+    apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
+    const auto t0 = Clock::now();
+    device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
+    const DrawResult r = displacement ? render_displaced(device, model, *displacement, factors, partitioning,
+                                                         SubdView::shaded, view.camera, *fb)
+                                      : render_subd(device, model, factors, partitioning, SubdView::shaded,
+                                                    view.camera, *fb);
+    if (!r.ok()) throw InputError(cage + ": " + r.error);
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    // The same tessellation, streamed: where every vertex is.
+    FramePoints now(quad_count + model.patches.tris.size());
+    auto sink = [&](const auto& p, const PatchGroup& g) {
+      PatchPoints& pts = now[(g.domain == ts::Domain::tri ? quad_count : 0) + p.patch_id];
+      for (std::size_t i = 0; i < p.points.size(); ++i) {
+        pts.domain.emplace_back(p.domain[i].u, p.domain[i].v);
+        pts.position.push_back(p.points[i].position);
+      }
+    };
+    const DrawResult s =
+        displacement ? stream_displaced(device, model, *displacement, factors, partitioning, sink)
+                     : stream_subd(device, model, factors, partitioning, sink);
+    if (!s.ok()) throw InputError(cage + ": " + s.error);
+    const double move = f == 0 ? 0.0 : largest_move(before, now, view.camera.view_projection, view.width, view.height);
+    before = std::move(now);
+    if (f > 0) moves.push_back(move);
+    times.push_back(seconds);
+    frames.push_back({{"frame", f},
+                      {"eye", {json_float(eye.x), json_float(eye.y), json_float(eye.z)}},
+                      {"triangles", r.report.statistics.CInvocations},
+                      {"patches_culled", r.report.patches_culled},
+                      {"seconds", seconds},
+                      {"largest_move_pixels", move}});
+    log_debug("frame " + std::to_string(f) + ": " + std::to_string(r.report.statistics.CInvocations) +
+              " triangles, largest move " + std::to_string(move) + " px");
+  }
+  std::vector<double> sorted = moves;
+  std::sort(sorted.begin(), sorted.end());
+  const double max_move = sorted.back(), median_move = sorted[sorted.size() / 2];
+  std::sort(times.begin(), times.end());
+  if (o.json) {
+    const Json j = {{"scene", "dolly"},
+                    {"cage", cage},
+                    {"scheme", to_string(scheme)},
+                    {"partitioning", o.partitioning},
+                    {"lod", o.lod.mode},
+                    {"edge_pixels", json_float(o.lod.edge_pixels)},
+                    {"frames", o.frames},
+                    {"largest_move_pixels", max_move},
+                    {"median_move_pixels", median_move},
+                    {"median_frame_s", times[times.size() / 2]},
+                    {"per_frame", frames}};
+    std::cout << json_text(j) << "\n";
+  } else {
+    std::cout << cage << ", " << to_string(scheme) << ", " << o.partitioning << ", lod " << o.lod.mode << ", "
+              << o.frames << " frames: largest vertex move " << max_move << " px (median " << median_move
+              << "), median frame " << times[times.size() / 2] << " s\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Runner add_bench_dolly_command(CLI::App& bench) {
+  auto o = std::make_shared<DollyOptions>();
+  o->lod.mode = "screen";
+  CLI::App* cmd = bench.add_subcommand(
+      "dolly", "The camera moves toward its target with view-dependent LOD: per-frame triangles, time, vertex moves");
+  cmd->add_option("--cage", o->cage, "the cage (default: the monster frog shipped with tessera)");
+  add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_camera_options(*cmd, o->camera);
+  add_lod_options(*cmd, o->lod, "all");
+  cmd->add_option("--to", o->to, "x,y,z: where the camera ends (default: halfway to the target)");
+  cmd->add_option("--frames", o->frames, "frames along the path")->capture_default_str();
+  cmd->add_flag("--json", o->json, "print results (and every frame) as JSON");
+  add_displacement_options(*cmd, o->displacement);
+  cmd->fallthrough();
+  return [o, cmd]() -> int { return cmd->parsed() ? run_dolly(*o) : -1; };
+}
+
+}  // namespace tessera::cli
