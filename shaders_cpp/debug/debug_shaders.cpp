@@ -178,12 +178,20 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
 glm::vec4 DebugWirePS::operator()(const PixelInput<kDebugAttributes>& in) const {
   const auto& a = in.attributes;
   const std::size_t id = std::size_t(std::max(0.0f, a[6]) + 0.5f);
-  const float pixels = id < patches.size() ? patches[id].pixels_per_segment : 0.0f;
-  // Full strength from 8 pixels per segment, gone below 2: dense interiors fade, patch borders stay.
-  const float strength = 0.8f * std::clamp((pixels - 2.0f) / 6.0f, 0.0f, 1.0f);
+  const PatchInfo* p = id < patches.size() ? &patches[id] : nullptr;
   const glm::vec3 n = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
   const glm::vec3 under = paper ? glm::vec3(0.97f, 0.97f, 0.96f) : glm::vec3(clay(n, light, kClayColor));
-  return {glm::mix(under, glm::vec3(0.12f, 0.16f, 0.26f), strength), 1.0f};
+  // An edge on the patch boundary interpolates a domain coordinate that is exactly 0 (or 1) at both
+  // ends: it keeps the border's dark colour, so the wires do not lighten the surface pass's border.
+  constexpr float e = 1e-6f;
+  const bool border = p != nullptr && (p->tri ? (a[3] <= e || a[4] <= e || a[5] <= e)
+                                              : (a[3] <= e || a[4] <= e || a[3] >= 1.0f - e || a[4] >= 1.0f - e));
+  const glm::vec3 ink(0.08f, 0.09f, 0.12f);
+  if (border) return {glm::mix(under, ink, 0.85f), 1.0f};
+  // Full strength from 12 pixels per segment, gone below 3: dense interiors fade, patch borders stay.
+  const float pixels = p != nullptr ? p->pixels_per_segment : 0.0f;
+  const float strength = 0.55f * std::clamp((pixels - 3.0f) / 9.0f, 0.0f, 1.0f);
+  return {glm::mix(under, glm::vec3(0.16f, 0.22f, 0.36f), strength), 1.0f};
 }
 
 }  // namespace tessera

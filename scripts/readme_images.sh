@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Writes the README's example image of each `tessera render --view` into docs/images/ (1280x720),
+# from the bundled displaced monster frog. Run after building (scripts/test.sh or scripts/run.sh).
+#
+#   scripts/readme_images.sh [BUILD_DIR]     (default build/)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${1:-$root/build}/bin/tessera
+out="$root/docs/images"
+mkdir -p "$out"
+frog="$root/tests/data/sdk-cages/monsterfrog_mapped_00.obj"
+disp=(--displacement "$root/tests/data/sdk-cages/monsterfrog.dds" --displacement-channel A
+      --displacement-scale 1.2 --displacement-bias -0.6)
+mid=(--camera-position 48,15,66 --camera-target -3,-2.5,2 --resolution 1280x720)
+lod=(--lod screen --edge-pixels 8 --partitioning fractional_odd)
+r() { "$bin" -q render "$frog" --scheme gregory "$@" >/dev/null; }
+r "${disp[@]}" "${mid[@]}" "${lod[@]}" --view shaded -o "$out/view-shaded.png"
+r "${mid[@]}" --factor 4 --view wireframe -o "$out/view-wireframe.png"
+r "${disp[@]}" "${mid[@]}" --factor 6 --partitioning fractional_odd --view wire-on-shaded -o "$out/view-wire-on-shaded.png"
+for v in factors density patch-type combination patch-id normals uv displacement cage cracks; do
+  r "${disp[@]}" "${mid[@]}" "${lod[@]}" --view "$v" -o "$out/view-$v.png"
+done
+r "${disp[@]}" "${lod[@]}" --camera-position 20,5,12 --camera-target -3,-2.5,2 --resolution 1280x720 \
+  --view culled -o "$out/view-culled.png"
+echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2
