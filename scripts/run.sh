@@ -4,7 +4,8 @@
 # with the DDS's normal map (1920x1080, factor 16), its crack check with displacement (acc, gregory,
 # exact; fractional factors varying per edge), the undisplaced surface rendered, tessellated and
 # measured against the limit; then the benchmark torus through the whole pipeline (image, D3D11
-# statistics, stage times, memory), debug pictures of tessellation patterns and the tessellator's speed.
+# statistics, stage times, memory), debug pictures of tessellation patterns and the tessellator's speed;
+# view-dependent LOD with culling, its statistics, factor view, crack check and dolly.
 #
 #   scripts/run.sh [OUT_DIR]      (default out/)
 set -euo pipefail
@@ -20,6 +21,14 @@ disp=(--displacement "$root/tests/data/sdk-cages/monsterfrog.dds" --displacement
 camera=(--camera-position 48,15,66 --camera-target -3,-2.5,2)
 "$bin" render "$frog" --scheme gregory --factor 16 "${disp[@]}" "${camera[@]}" -o "$out/frog_displaced.png" --stats "$out/frog_displaced_stats.json"
 "$bin" render "$frog" --scheme gregory --factor 3 "${disp[@]}" "${camera[@]}" --view wire-on-shaded -o "$out/frog_displaced_wire.png"
+# View-dependent LOD (8 pixels per segment, fractional_odd) from a camera inside the frog, with culling,
+# per-patch statistics, the factor view, and the crack check under the same factors.
+near=(--camera-position 20,5,12 --camera-target -3,-2.5,2)
+lod=(--lod screen --edge-pixels 8 --partitioning fractional_odd)
+"$bin" render "$frog" --scheme gregory "${lod[@]}" "${disp[@]}" "${near[@]}" -o "$out/frog_lod_near.png" --stats "$out/frog_lod_near_stats.json"
+"$bin" render "$frog" --scheme gregory "${lod[@]}" "${disp[@]}" "${camera[@]}" --view factors -o "$out/frog_lod_factors.png"
+"$bin" tessellate "$frog" --scheme gregory "${lod[@]}" "${disp[@]}" "${near[@]}" --check-watertight | tee "$out/frog_lod_watertight.txt"
+"$bin" bench dolly "${disp[@]}" "${camera[@]}" --frames 30 | tee "$out/bench_dolly.txt"
 for scheme in acc gregory exact; do
   "$bin" tessellate "$frog" --scheme "$scheme" --factor 5.5 --partitioning fractional_odd --vary-factors 1.5 "${disp[@]}" --check-watertight
 done | tee "$out/frog_displaced_watertight.txt"

@@ -59,11 +59,11 @@ TEST_CASE("Edge LOD: symmetric in the end points, clamped to [1, 64], falling wi
     CHECK(std::bit_cast<std::uint32_t>(f) == std::bit_cast<std::uint32_t>(edge_lod_factor(b, a, s)));
     CHECK(f >= 1.0f);
     CHECK(f <= 64.0f);
-    // Twice as far: half the factor (both rules are 1/d before clamping).
+    // Twice as far: half the factor (distance is 1/d; screen 1/sqrt(d^2 - r^2), about 1/d for r << d).
     const glm::vec3 mid = 0.5f * (a + b);
     LodSettings far = s;
     far.camera.eye = mid + 2.0f * (s.camera.eye - mid);
-    CHECK(edge_lod_factor(a, b, far) == Approx(f / 2.0f).epsilon(1e-5));
+    CHECK(edge_lod_factor(a, b, far) == Approx(f / 2.0f).epsilon(mode == LodMode::screen ? 1e-2 : 1e-5));
     // Very far: 1; inside the sphere or at the midpoint: 64.
     far.camera.eye = mid + 1e6f * (s.camera.eye - mid);
     CHECK(edge_lod_factor(a, b, far) == 1.0f);
@@ -73,9 +73,12 @@ TEST_CASE("Edge LOD: symmetric in the end points, clamped to [1, 64], falling wi
   // Screen: the sphere's projected diameter over the target pixels; a displacement bound grows it.
   LodSettings s = screen_lod(glm::vec3(0, 0, 40), 4.0f);
   const glm::vec3 p0(-1, 0, 0), p1(1, 0, 0);
-  CHECK(edge_lod_factor(p0, p1, s) == Approx(2.0f * s.camera.pixels_per_unit / 40.0f / 4.0f));
+  CHECK(edge_lod_factor(p0, p1, s) == Approx(2.0 * s.camera.pixels_per_unit / std::sqrt(1600.0 - 1.0) / 4.0));
   s.bound = 0.5f;
-  CHECK(edge_lod_factor(p0, p1, s) == Approx(3.0f * s.camera.pixels_per_unit / 40.0f / 4.0f));
+  CHECK(edge_lod_factor(p0, p1, s) == Approx(3.0 * s.camera.pixels_per_unit / std::sqrt(1600.0 - 2.25) / 4.0));
+  // Continuous into the sphere: just outside it the factor is already 64.
+  s.camera.eye = glm::vec3(0, 0, 1.5001f);
+  CHECK(edge_lod_factor(p0, p1, s) == 64.0f);
   CHECK(parse_lod_mode("screen") == LodMode::screen);
   CHECK_FALSE(parse_lod_mode("bogus"));
 }

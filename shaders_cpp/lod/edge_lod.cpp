@@ -42,7 +42,10 @@ float edge_lod_factor(const glm::vec3& p0, const glm::vec3& p1, const LodSetting
   if (s.mode == LodMode::distance) return d > 0.0f ? clamp_factor(s.factor * s.lod_distance / d) : kMaxLodFactor;
   const float radius = 0.5f * glm::length(p1 - p0) + s.bound;
   if (!(d > radius)) return kMaxLodFactor;  // the eye is inside the sphere
-  const float diameter_pixels = 2.0f * radius * s.camera.pixels_per_unit / d;
+  // The sphere's silhouette seen from d: its half angle has tangent r / sqrt(d^2 - r^2), which grows
+  // without bound as the eye nears the sphere, so the factor reaches 64 before the eye enters it
+  // (r / d would jump to 64 there: a pop in a dolly).
+  const float diameter_pixels = 2.0f * radius * s.camera.pixels_per_unit / std::sqrt((d - radius) * (d + radius));
   return clamp_factor(diameter_pixels / s.edge_pixels);
 }
 

@@ -15,8 +15,10 @@
 //   ends, and is shorter than the cage edge except at creases; the chord is what both faces have
 //   without evaluating anything, and a sphere (rather than the projected chord) keeps an edge seen
 //   end-on, on a silhouette, from collapsing to factor 1 (OpenSubdiv's rule).
-//   The projected diameter is 2 r / d * pixels_per_unit, d the distance from the eye to the centre
-//   (rotation invariant: turning the camera does not retessellate); a camera inside the sphere gives 64.
+//   The projected diameter is 2 r / sqrt(d^2 - r^2) * pixels_per_unit (the silhouette's angular size),
+//   d the distance from the eye to the centre (rotation invariant: turning the camera does not
+//   retessellate); it grows without bound as the eye nears the sphere, so the factor reaches 64
+//   continuously, and an eye inside the sphere gives 64.
 // - The result is continuous in the camera position, so with fractional partitioning a moving camera
 //   changes the tessellation without popping.
 #pragma once
