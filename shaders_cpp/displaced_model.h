@@ -55,7 +55,10 @@ struct Displacement {
   // LOD and culling grow their bounds by it.
   float bound = 0.0f;
 
-  DisplacementParams params() const { return {&map->texture(), kind, scale, bias, shared_normals}; }
+  // Mip levels blended (view-dependent LOD: displaced_shaders.h, DisplacementParams::trilinear).
+  bool trilinear = false;
+
+  DisplacementParams params() const { return {&map->texture(), kind, scale, bias, shared_normals, trilinear}; }
 };
 
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& options);

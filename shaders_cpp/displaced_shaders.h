@@ -49,6 +49,10 @@ struct DisplacementParams {
   float scale = 1.0f, bias = 0.0f;
   // Test knob: false displaces every point along its own patch's normal (cracks for acc and gregory).
   bool shared_normals = true;
+  // Blend the two nearest mip levels (MIN_MAG_MIP_LINEAR) instead of taking the nearest
+  // (MIN_MAG_LINEAR_MIP_POINT): under view-dependent LOD the sampling LOD moves with the camera, and
+  // a nearest-level switch would move every displaced point of a patch at once (a pop).
+  bool trilinear = false;
 };
 
 struct DisplacedPatchConstants {
@@ -218,7 +222,7 @@ struct DisplacedDS {
     out.uv = uv;
 
     Sampler sampler;
-    sampler.filter = Filter::bilinear;
+    sampler.filter = params.trilinear ? Filter::trilinear : Filter::bilinear;
     sampler.address_u = sampler.address_v = AddressMode::clamp;
     const glm::vec4 texel = params.map->sample_level(sampler, uv, lod);
     switch (params.kind) {

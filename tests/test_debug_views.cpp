@@ -127,8 +127,8 @@ TEST_CASE("Overlay lines draw where they project, and stay hidden behind the dep
 }
 
 TEST_CASE("bench dolly: with fractional_odd, vertices move in proportion to the camera step", "[views][cli]") {
-  auto run = [&](int frames) {
-    const auto r = run_cli("bench dolly --cage " + kFrog +
+  auto run = [&](int frames, const std::string& extra) {
+    const auto r = run_cli("bench dolly --cage " + kFrog + extra +
                            " --camera-position 48,15,66 --camera-target -3,-2.5,2 --resolution 320x180 --frames " +
                            std::to_string(frames) + " --json");
     REQUIRE(r.exit_code == 0);
@@ -137,9 +137,12 @@ TEST_CASE("bench dolly: with fractional_odd, vertices move in proportion to the 
     CHECK(j["per_frame"][0]["largest_move_pixels"] == 0.0);
     return j["median_move_pixels"].get<double>();
   };
-  const double coarse = run(8), fine = run(16);
+  const double coarse = run(8, ""), fine = run(16, "");
   CHECK(coarse > 0.0);
   CHECK(fine < 0.75 * coarse);  // half the step, about half the move: no popping
+  // Displaced: the map's mip levels are blended, so the displaced points do not pop between levels.
+  const double displaced_coarse = run(8, kDisplaced), displaced_fine = run(16, kDisplaced);
+  CHECK(displaced_fine < 0.75 * displaced_coarse);
 }
 
 TEST_CASE("View, LOD and cull options: bad values are one-line usage errors", "[views][cli]") {

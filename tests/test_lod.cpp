@@ -103,13 +103,14 @@ TEST_CASE("Screen LOD keeps the frog watertight on exact bits: every scheme, par
   // Displaced, with the map's bound in the spheres.
   for (const Scheme scheme : {Scheme::acc, Scheme::exact}) {
     const SubdModel m = load_subd_model(kFrog, scheme);
-    const Displacement d = make_displacement(
+    Displacement d = make_displacement(
         m, DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 1.2f, .bias = -0.6f});
     // |1.2 a - 0.6| is at most 0.6; the frog's alpha spans most of [0, 1].
     CHECK(d.bound > 0.5f);
     CHECK(d.bound <= 0.6f);
     SubdFactors f;
     f.per_edge = edge_lod_factors(m.cage, *m.topology, screen_lod(eyes[0], 16.0f, d.bound));
+    d.trilinear = true;  // as the CLI samples under view-dependent LOD
     const auto r = weld(
         [&](auto&& sink) { return stream_displaced(device, m, d, f, ts::Partitioning::fractional_odd, sink); });
     CHECK(r.closed_manifold());

@@ -95,7 +95,8 @@ int run_dolly(const DollyOptions& o) {
   if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
-  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  match_displacement_to_lod(displacement, o.lod);
   const ViewSetup start = view_option(o.camera, model.cage);
   const glm::vec3 from = start.camera.eye, target = start.camera.target;
   const glm::vec3 to = o.to.empty() ? glm::mix(from, target, 0.5f) : parse_vec3(o.to, "--to");

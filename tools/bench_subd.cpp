@@ -35,7 +35,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
-  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  match_displacement_to_lod(displacement, o.lod);
   const ViewSetup view = view_option(o.camera, model.cage);
   const int w = view.width, h = view.height;
   const SubdCamera& camera = view.camera;

@@ -37,7 +37,8 @@ int run_render(const RenderOptions& o) {
   if (o.output.empty()) throw UsageError("-o out.png is required");
 
   const SubdModel model = load_model(o.cage, scheme);
-  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  match_displacement_to_lod(displacement, o.lod);
   const ViewSetup view = view_option(o.camera, model.cage);
   const LodResult lod =
       apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);

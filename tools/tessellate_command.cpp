@@ -38,7 +38,8 @@ int run_tessellate(const TessellateOptions& o) {
   if (o.output.empty() && !o.check) throw UsageError("nothing to do: give -o out.ply and/or --check-watertight");
 
   const SubdModel model = load_model(o.cage, scheme);
-  const std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  std::optional<Displacement> displacement = displacement_option(o.displacement, model);
+  match_displacement_to_lod(displacement, o.lod);
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +
              " faces are not regular and are drawn as Gregory patches");

@@ -60,6 +60,11 @@ void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) 
       ->capture_default_str();
 }
 
+void match_displacement_to_lod(std::optional<Displacement>& displacement, const LodCli& l) {
+  const auto mode = parse_lod_mode(l.mode);
+  if (displacement && mode && *mode != LodMode::uniform) displacement->trilinear = true;
+}
+
 LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, const SubdModel& model,
                             float displacement_bound, SubdFactors& factors) {
   LodResult r;

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "shaders_cpp/displaced_model.h"
 #include "shaders_cpp/lod/edge_lod.h"
 #include "shaders_cpp/lod/frustum_cull.h"
 #include "shaders_cpp/subd_model.h"
@@ -45,6 +46,10 @@ struct LodResult {
 };
 LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, const SubdModel& model,
                             float displacement_bound, SubdFactors& factors);
+
+// View-dependent LOD moves the displacement's sampling LOD with the camera: blend mip levels then
+// (DisplacementParams::trilinear), so the displaced surface does not pop between levels.
+void match_displacement_to_lod(std::optional<Displacement>& displacement, const LodCli& l);
 
 glm::vec3 parse_vec3(const std::string& text, const char* what);
 
