@@ -72,8 +72,8 @@ DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const
   const PatchGroup& g = m.patches.quads;
   if (g.patches.empty()) return {};
   const TessellatorState ts{g.domain, partitioning, ts::OutputPrimitive::triangle_cw};
-  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning}, d.texcoords, &d.frames,
-                       glm::vec2(float(d.map->width()), float(d.map->height()))};
+  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning}, d.texcoords,
+                       &d.frames, glm::vec2(float(d.map->width()), float(d.map->height()))};
   const DisplacedDS ds{SubdDS{g.patches, m.limit.get(), m.cage.tags.left_handed, false}, d.texcoords, d.params()};
   return draw(g, ts, hs, ds);
 }
@@ -89,6 +89,23 @@ DrawResult stream_displaced(Device& device, const SubdModel& m, const Displaceme
             m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
         return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) { sink(p, g); });
       });
+}
+
+// The draw's patch groups, displaced (with_displaced_group) when `d` is given, else plain
+// (for_each_patch_group): draw(group, tessellator_state, hs, ds) -> DrawResult with the matching shaders.
+template <class Draw>
+DrawResult for_each_surface_group(const SubdModel& m, const Displacement* d, const SubdFactors& factors,
+                                  ts::Partitioning partitioning, Draw&& draw) {
+  if (d != nullptr) return with_displaced_group(m, *d, factors, partitioning, draw);
+  return for_each_patch_group(m, factors, partitioning, draw);
+}
+
+// stream_displaced or stream_subd by `d`: the sink takes (PatchOutput<DisplacedPoint or SurfaceSample>, group).
+template <class Sink>
+DrawResult stream_surface(Device& device, const SubdModel& m, const Displacement* d, const SubdFactors& factors,
+                          ts::Partitioning partitioning, Sink&& sink) {
+  if (d != nullptr) return stream_displaced(device, m, *d, factors, partitioning, sink);
+  return stream_subd(device, m, factors, partitioning, sink);
 }
 
 }  // namespace tessera

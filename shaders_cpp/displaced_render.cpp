@@ -13,13 +13,7 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
           const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
           DisplacedHS pass_hs = hs;  // the frustum test sees the pass's depth bias
           pass_hs.base.factors.cull.z_bias = st.z_bias;
-          auto go = [&](const auto& ps) {
-            using Ps = std::decay_t<decltype(ps)>;
-            const PatchDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedProjectDS<DisplacedDS>, Ps> d{
-                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), pass_hs, project, ps, ts,
-                st.rasterizer,        st.depth,  st.viewport};
-            return device.draw(d, fb);
-          };
+          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
           if (wire) return go(ConstantPS<kDisplacedAttributes>{});
           DisplacedPS ps;
           ps.light = light;
@@ -34,6 +28,13 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
         });
   };
   return draw_view_passes(view, fb, pass);
+}
+
+DrawResult render_surface(Device& device, const SubdModel& model, const Displacement* displacement,
+                          const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
+                          const SubdCamera& camera, Framebuffer& fb) {
+  return displacement ? render_displaced(device, model, *displacement, factors, partitioning, view, camera, fb)
+                      : render_subd(device, model, factors, partitioning, view, camera, fb);
 }
 
 }  // namespace tessera

@@ -51,13 +51,7 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
           const ProjectDS<SubdDS> project{ds, camera.view_projection, st.z_bias};
           SubdHS pass_hs = hs;  // the frustum test sees the pass's depth bias
           pass_hs.factors.cull.z_bias = st.z_bias;
-          auto go = [&](const auto& ps) {
-            using Ps = std::decay_t<decltype(ps)>;
-            const PatchDraw<glm::vec3, SubdVS, SubdHS, ProjectDS<SubdDS>, Ps> d{
-                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), pass_hs, project, ps, ts,
-                st.rasterizer,        st.depth,  st.viewport};
-            return device.draw(d, fb);
-          };
+          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
           return wire ? go(ConstantPS<>{}) : go(ClayPS{light});
         });
   };

@@ -36,6 +36,16 @@ struct SubdPassState {
 };
 SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire);
 
+// One pass's draw of one patch group of the model, with the pass's fixed-function state.
+template <class Hs, class Ds, class Ps>
+DrawResult draw_group_pass(Device& device, const SubdModel& model, const PatchGroup& g, const TessellatorState& ts,
+                           const Hs& hs, const Ds& ds, const Ps& ps, const SubdPassState& st, Framebuffer& fb) {
+  const PatchDraw<glm::vec3, SubdVS, Hs, Ds, Ps> d{
+      model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, ds, ps, ts,
+      st.rasterizer,        st.depth,  st.viewport};
+  return device.draw(d, fb);
+}
+
 // Runs pass(wire) -> DrawResult for the passes `view` needs (the shaded pass, then the wireframe over
 // it) and sums their reports, with the framebuffer's bytes; stops at the first error.
 template <class Pass>

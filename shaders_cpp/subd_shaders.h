@@ -173,17 +173,20 @@ struct SubdHS {
       if (x >= 1.0f && x < kLow) x = kLow;
   }
 
-  // The frustum test on the patch's hull: its control points, or for `exact` (no control points) the
-  // box of its face's 1-ring.
+  // The frustum test on the patch's hull.
   bool outside_view(const SubdPatch& patch, std::span<const SubdControlPoint> cp) const {
     if (!factors.cull.enabled) return false;
-    if (patch.kind == PatchKind::exact) {
-      // The IA patch of `exact` is the face alone; its surface lies in the hull of the face's 1-ring.
-      if (std::size_t(patch.face) >= ring_boxes.size()) return false;
-      const Box3& box = ring_boxes[std::size_t(patch.face)];
-      return factors.cull.outside(8, [&](int i) { return box.corner(i); });
-    }
-    return factors.cull.outside(hull_points(patch.kind), [&](int i) { return cp[std::size_t(i)].p; });
+    return factors.cull.outside(hull_size(patch), [&](int i) { return hull_point(patch, cp, i); });
+  }
+  // The points whose convex hull holds the patch's surface: its control points, or for `exact`, whose
+  // IA patch is the face alone, the corners of the box of the face's 1-ring (none without the box).
+  int hull_size(const SubdPatch& patch) const {
+    if (patch.kind != PatchKind::exact) return hull_points(patch.kind);
+    return std::size_t(patch.face) < ring_boxes.size() ? 8 : 0;
+  }
+  glm::vec3 hull_point(const SubdPatch& patch, std::span<const SubdControlPoint> cp, int i) const {
+    if (patch.kind == PatchKind::exact) return ring_boxes[std::size_t(patch.face)].corner(i);
+    return cp[std::size_t(i)].p;
   }
   // How many of a patch kind's output control points carry positions whose hull holds the surface.
   static int hull_points(PatchKind k) {

@@ -37,11 +37,7 @@ SubdCamera near_camera(const Cage& cage, int w, int h) {
 template <class Stream>
 verify::WeldReport weld(Stream&& stream) {
   verify::WeldChecker w;
-  const DrawResult r = stream([&](const auto& out, const PatchGroup&) {
-    for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3)
-      w.add_triangle(out.points[out.indices[i]].position, out.points[out.indices[i + 1]].position,
-                     out.points[out.indices[i + 2]].position);
-  });
+  const DrawResult r = stream([&](const auto& out, const PatchGroup&) { verify::add_patch_triangles(w, out); });
   REQUIRE(r.ok());
   return w.report();
 }
@@ -111,13 +107,14 @@ TEST_CASE("Screen LOD keeps the frog watertight on exact bits: every scheme, par
     SubdFactors f;
     f.per_edge = edge_lod_factors(m.cage, *m.topology, screen_lod(eyes[0], 16.0f, d.bound));
     d.trilinear = true;  // as the CLI samples under view-dependent LOD
-    const auto r = weld(
-        [&](auto&& sink) { return stream_displaced(device, m, d, f, ts::Partitioning::fractional_odd, sink); });
+    const auto r =
+        weld([&](auto&& sink) { return stream_displaced(device, m, d, f, ts::Partitioning::fractional_odd, sink); });
     CHECK(r.closed_manifold());
   }
 }
 
-TEST_CASE("fractional_odd inside factors near 1 are lifted so no ring lands on, or folds along, the patch edges", "[lod]") {
+TEST_CASE("fractional_odd inside factors near 1 are lifted so no ring lands on, or folds along, the patch edges",
+          "[lod]") {
   // Edge factors at 1 and barely above it (as screen LOD makes them where it clamps) average to inside
   // factors within 2^-16 of 1; without the raise these weld open.
   const SubdModel m = load_subd_model(test::data("osd-shapes/catmark_cube.obj"), Scheme::gregory);

@@ -96,7 +96,7 @@ int run_dolly(const DollyOptions& o) {
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
-  match_displacement_to_lod(displacement, o.lod);
+  Displacement* d = displacement ? &*displacement : nullptr;
   const ViewSetup start = view_option(o.camera, model.cage);
   const glm::vec3 from = start.camera.eye, target = start.camera.target;
   const glm::vec3 to = o.to.empty() ? glm::mix(from, target, 0.5f) : parse_vec3(o.to, "--to");
@@ -116,13 +116,10 @@ int run_dolly(const DollyOptions& o) {
     const glm::vec3 eye = glm::mix(from, to, t);
     const ViewSetup view = view_at(o.camera, model.cage, eye, target);
     SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-    apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
+    apply_lod_options(o.lod, view, model, d, factors);
     const auto t0 = Clock::now();
     device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
-    const DrawResult r = displacement ? render_displaced(device, model, *displacement, factors, partitioning,
-                                                         SubdView::shaded, view.camera, *fb)
-                                      : render_subd(device, model, factors, partitioning, SubdView::shaded,
-                                                    view.camera, *fb);
+    const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, view.camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     // The same tessellation, streamed: where every vertex is.
@@ -134,9 +131,7 @@ int run_dolly(const DollyOptions& o) {
         pts.position.push_back(p.points[i].position);
       }
     };
-    const DrawResult s =
-        displacement ? stream_displaced(device, model, *displacement, factors, partitioning, sink)
-                     : stream_subd(device, model, factors, partitioning, sink);
+    const DrawResult s = stream_surface(device, model, d, factors, partitioning, sink);
     if (!s.ok()) throw InputError(cage + ": " + s.error);
     const double move = f == 0 ? 0.0 : largest_move(before, now, view.camera.view_projection, view.width, view.height);
     before = std::move(now);

@@ -36,11 +36,11 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
-  match_displacement_to_lod(displacement, o.lod);
   const ViewSetup view = view_option(o.camera, model.cage);
   const int w = view.width, h = view.height;
   const SubdCamera& camera = view.camera;
-  apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
+  Displacement* d = displacement ? &*displacement : nullptr;
+  apply_lod_options(o.lod, view, model, d, factors);
   Device device(device_options(o.threads));
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
@@ -52,10 +52,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   for (int f = 0; f < o.frames + 1; ++f) {  // one warm-up frame
     const auto start = Clock::now();
     device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
-    const DrawResult r =
-        displacement
-            ? render_displaced(device, model, *displacement, factors, partitioning, SubdView::shaded, camera, *fb)
-            : render_subd(device, model, factors, partitioning, SubdView::shaded, camera, *fb);
+    const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     last = r.report;
@@ -65,8 +62,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
   const auto discard = [](const auto&, const PatchGroup&) {};
   const auto start = Clock::now();
-  const DrawResult s = displacement ? stream_displaced(device, model, *displacement, factors, partitioning, discard)
-                                    : stream_subd(device, model, factors, partitioning, discard);
+  const DrawResult s = stream_surface(device, model, d, factors, partitioning, discard);
   const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
   std::sort(frame_s.begin(), frame_s.end());
   const double median = frame_s[frame_s.size() / 2];

@@ -38,20 +38,24 @@ int run_render(const RenderOptions& o) {
 
   const SubdModel model = load_model(o.cage, scheme);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
-  match_displacement_to_lod(displacement, o.lod);
   const ViewSetup view = view_option(o.camera, model.cage);
-  const LodResult lod =
-      apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
+  const LodResult lod = apply_lod_options(o.lod, view, model, displacement ? &*displacement : nullptr, factors);
 
   Device device(device_options(o.threads));
   std::string error;
   auto fb = Framebuffer::create(view.width, view.height, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);
-  const ViewInputs inputs{model,           displacement ? &*displacement : nullptr,
-                          factors,         partitioning,
-                          view,            o.camera.fov,
-                          o.lod.edge_pixels, o.factor_kind == "processed"};
-  const ViewOutput out = render_view(device, *kind, inputs, *fb);
+  const ViewInputs inputs{model,
+                          displacement ? &*displacement : nullptr,
+                          factors,
+                          partitioning,
+                          view,
+                          o.lod.edge_pixels,
+                          o.factor_kind == "processed"};
+  // Per-patch facts, replayed once for the view and the statistics.
+  std::optional<PatchTables> tables;
+  if (view_uses_patch_tables(*kind) || !o.stats.empty()) tables = view_patch_tables(inputs);
+  const ViewOutput out = render_view(device, *kind, inputs, tables ? &*tables : nullptr, *fb);
   if (!out.result.ok()) throw InputError(o.cage + ": " + out.result.error);
   const DrawReport& total = out.result.report;
   if (out.has_legend) {
@@ -64,8 +68,9 @@ int run_render(const RenderOptions& o) {
               {"times", to_json(total.times)},
               {"memory", to_json(total.memory)},
               {"peak_rss_bytes", peak_rss_bytes()}};
-    add_patch_statistics(s, device, inputs, lod);
-    if (*kind == ViewKind::cracks) s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};
+    add_patch_statistics(s, device, inputs, *tables, lod);
+    if (*kind == ViewKind::cracks)
+      s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};
     write_text_atomically(o.stats, json_text(s) + "\n");
   }
   std::cout << o.output << ": " << view.width << "x" << view.height << ", scheme " << to_string(scheme) << ", view "

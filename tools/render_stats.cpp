@@ -22,20 +22,6 @@ Json segments_json(const std::array<int, 4>& edge, int edges, const std::array<i
   return {{"edge", e}, {"inside", i}};
 }
 
-const char* kind_name(PatchKind k) {
-  switch (k) {
-    case PatchKind::bilinear: return "bilinear";
-    case PatchKind::linear: return "linear";
-    case PatchKind::acc: return "acc";
-    case PatchKind::gregory: return "gregory";
-    case PatchKind::gregory_triangle: return "gregory_triangle";
-    case PatchKind::pn_triangle: return "pn_triangle";
-    case PatchKind::pn_quad: return "pn_quad";
-    case PatchKind::exact: return "exact";
-  }
-  return "?";
-}
-
 // Histogram bins [2^k, 2^(k+1)) from 2^lo to 2^hi, with an underflow and an overflow bin.
 struct Log2Histogram {
   int lo, hi;
@@ -60,8 +46,8 @@ struct Log2Histogram {
 
 }  // namespace
 
-void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const LodResult& lod) {
-  const PatchTables tables = view_patch_tables(in);
+void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const PatchTables& tables,
+                          const LodResult& lod) {
   Json rows = Json::array();
   std::uint64_t triangles = 0, culled = 0, patches = 0;
   std::array<std::uint64_t, 64> factor_counts{};  // edge factors by [k, k+1), k = 1..63, 64 in the last
@@ -77,19 +63,20 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
         const int bin = std::isfinite(f) ? std::clamp(int(std::floor(f)), 1, 64) - 1 : 0;
         ++factor_counts[std::size_t(bin)];
       }
-      rows.push_back({{"domain", p.tri ? "tri" : "quad"},
-                      {"id", id},
-                      {"face", p.face},
-                      {"sub", p.sub},
-                      {"kind", kind_name(p.kind)},
-                      {"type", to_string(p.type)},
-                      {"combination", p.combination},
-                      {"raw", factors_json(p.raw.edge, edges, p.raw.inside, insides)},
-                      {"processed", factors_json(p.edge_processed, edges, p.inside_processed, insides)},
-                      {"segments", segments_json(p.edge_segments, edges, p.inside_segments, insides)},
-                      {"triangles", p.triangles},
-                      {"screen_pixels", std::isfinite(p.screen_pixels) ? Json(json_float(p.screen_pixels)) : Json(nullptr)},
-                      {"culled", p.culled ? Json("frustum") : Json(nullptr)}});
+      rows.push_back(
+          {{"domain", p.tri ? "tri" : "quad"},
+           {"id", id},
+           {"face", p.face},
+           {"sub", p.sub},
+           {"kind", to_string(p.kind)},
+           {"type", to_string(p.type)},
+           {"combination", p.combination},
+           {"raw", factors_json(p.raw.edge, edges, p.raw.inside, insides)},
+           {"processed", factors_json(p.edge_processed, edges, p.inside_processed, insides)},
+           {"segments", segments_json(p.edge_segments, edges, p.inside_segments, insides)},
+           {"triangles", p.triangles},
+           {"screen_pixels", std::isfinite(p.screen_pixels) ? Json(json_float(p.screen_pixels)) : Json(nullptr)},
+           {"culled", p.culled ? Json("frustum") : Json(nullptr)}});
     }
   }
   Json factor_bins = Json::array();
@@ -120,9 +107,7 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
       areas.add(0.5 * std::abs(e1.x * e2.y - e1.y * e2.x));
     }
   };
-  const DrawResult r =
-      in.displacement ? stream_displaced(device, in.model, *in.displacement, in.factors, in.partitioning, sink)
-                      : stream_subd(device, in.model, in.factors, in.partitioning, sink);
+  const DrawResult r = stream_surface(device, in.model, in.displacement, in.factors, in.partitioning, sink);
   if (!r.ok()) throw InputError(in.model.cage.name + ": " + r.error);
 
   stats["lod"] = {{"mode", to_string(lod.settings.mode)},
@@ -130,8 +115,11 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
                   {"lod_distance", json_float(lod.settings.lod_distance)},
                   {"displacement_bound", json_float(lod.settings.bound)},
                   {"cull", to_string(lod.cull)}};
-  stats["totals"] = {{"patches", patches},         {"patches_culled", culled}, {"triangles", triangles},
-                     {"triangles_streamed", streamed}, {"triangles_behind_eye", behind}};
+  stats["totals"] = {{"patches", patches},
+                     {"patches_culled", culled},
+                     {"triangles", triangles},
+                     {"triangles_streamed", streamed},
+                     {"triangles_behind_eye", behind}};
   stats["histograms"] = {{"edge_factors", factor_bins}, {"triangle_area_pixels", areas.json()}};
   stats["patches"] = rows;
 }

@@ -12,6 +12,8 @@
 
 namespace tessera::cli {
 
-void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const LodResult& lod);
+// `tables`: view_patch_tables(in).
+void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const PatchTables& tables,
+                          const LodResult& lod);
 
 }  // namespace tessera::cli

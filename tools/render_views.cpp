@@ -44,10 +44,9 @@ std::vector<glm::vec3> sample_ramp(F&& color) {
   return r;
 }
 
-DrawResult draw_shaded(Device& device, const ViewInputs& in, const SubdCamera& camera, Framebuffer& fb) {
-  return in.displacement ? render_displaced(device, in.model, *in.displacement, in.factors, in.partitioning,
-                                            SubdView::shaded, camera, fb)
-                         : render_subd(device, in.model, in.factors, in.partitioning, SubdView::shaded, camera, fb);
+DrawResult draw_shaded(Device& device, const ViewInputs& in, Framebuffer& fb) {
+  return render_surface(device, in.model, in.displacement, in.factors, in.partitioning, SubdView::shaded,
+                        in.view.camera, fb);
 }
 
 // A camera that sees the whole model and the view camera's position, from behind and above it, for
@@ -88,24 +87,28 @@ std::string view_names() {
 }
 
 PatchTables view_patch_tables(const ViewInputs& in) {
-  const PatchTableCamera camera{in.view.camera.eye, pixels_per_unit(in.view.height, in.fov)};
+  const DicingCamera camera{in.view.camera.eye, pixels_per_unit(in.view.height, in.view.fov)};
   return build_patch_tables(in.model, in.displacement, in.factors, in.partitioning, camera);
 }
 
-ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Framebuffer& fb) {
+bool view_uses_patch_tables(ViewKind kind) {
+  return kind != ViewKind::shaded && kind != ViewKind::cage && kind != ViewKind::cracks;
+}
+
+ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* given, Framebuffer& fb) {
   ViewOutput out;
   fb.clear(kBackground, 1.0f);
   const SubdCamera& camera = in.view.camera;
   const Scheme scheme = in.model.patches.scheme;
   if (kind == ViewKind::shaded) {
-    out.result = draw_shaded(device, in, camera, fb);
+    out.result = draw_shaded(device, in, fb);
     return out;
   }
   if (kind == ViewKind::displacement && !in.displacement)
     throw UsageError("--view displacement needs --displacement MAP");
 
   if (kind == ViewKind::cage || kind == ViewKind::cracks) {
-    out.result = draw_shaded(device, in, camera, fb);
+    out.result = draw_shaded(device, in, fb);
     if (!out.result.ok()) return out;
     out.has_legend = true;
     if (kind == ViewKind::cage) {
@@ -130,14 +133,9 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Fram
     }
     // Cracks: the tessellation welded on exact bits; open and non-manifold edges drawn thick.
     verify::WeldChecker weld;
-    auto sink = [&](const auto& p, const PatchGroup&) {
-      for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3)
-        weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
-                          p.points[p.indices[i + 2]].position);
-    };
     const DrawResult s =
-        in.displacement ? stream_displaced(device, in.model, *in.displacement, in.factors, in.partitioning, sink)
-                        : stream_subd(device, in.model, in.factors, in.partitioning, sink);
+        stream_surface(device, in.model, in.displacement, in.factors, in.partitioning,
+                       [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
     if (!s.ok()) return {s, {}, false, 0, 0};
     std::vector<OverlayLine> open, nonmanifold;
     for (const verify::WeldEdge& e : weld.bad_edges()) (e.nonmanifold ? nonmanifold : open).push_back({e.a, e.b});
@@ -147,10 +145,10 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Fram
                OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
     const verify::WeldReport r = weld.report();
     out.legend.title = "cracks: the tessellation welded on exact float bits";
-    out.legend.lines = {std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) +
-                            " welded vertices",
-                        std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
-                            " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
+    out.legend.lines = {
+        std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
+        std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
+            " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
     return out;
   }
 
@@ -161,7 +159,9 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Fram
     factors.cull.enabled = false;  // draw what the view culled, from outside
     draw_camera = overview_camera(in, fb.width(), fb.height());
   }
-  const PatchTables tables = view_patch_tables(in);
+  if (given == nullptr)
+    throw std::logic_error("render_view: --view " + std::string(to_string(kind)) + " needs the patch tables");
+  const PatchTables& tables = *given;
   DebugRender r;
   r.ps.light = glm::normalize(draw_camera.eye - draw_camera.target);
   r.ps.processed = in.processed;
@@ -218,7 +218,7 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Fram
     }
     case ViewKind::combination: {
       r.ps.view = DebugView::combination;
-      const TopologyCombinations combos = analyze_combinations(*in.model.topology);
+      const TopologyCombinations& combos = tables.combinations;
       legend.title = std::to_string(combos.combinations.size()) + " topology combinations (as tessera analyze)";
       std::vector<int> order(combos.combinations.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
@@ -270,8 +270,8 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Fram
       for (const auto* t : {&tables.quads, &tables.tris})
         for (const PatchInfo& p : *t) culled += p.culled ? 1 : 0, ++total;
       legend.title = "frustum culling, seen from outside the view";
-      legend.swatches = {{glm::vec3(0.92f, 0.25f, 0.18f), std::to_string(culled) + " of " + std::to_string(total) +
-                                                              " patches culled (zero factors)"},
+      legend.swatches = {{glm::vec3(0.92f, 0.25f, 0.18f),
+                          std::to_string(culled) + " of " + std::to_string(total) + " patches culled (zero factors)"},
                          {glm::vec3(0.1f, 0.1f, 0.1f), "the view camera's frustum"}};
       break;
     }

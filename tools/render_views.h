@@ -38,10 +38,12 @@ struct ViewInputs {
   SubdFactors factors;  // with the LOD's per-edge factors and the cull
   ts::Partitioning partitioning = ts::Partitioning::integer;
   const ViewSetup& view;
-  float fov = 35.0f;
   float edge_pixels = 8.0f;  // density's target
   bool processed = false;    // factors: processed rather than raw
 };
+
+// Whether render_view reads per-patch facts (PatchTables) for `kind`.
+bool view_uses_patch_tables(ViewKind kind);
 
 struct ViewOutput {
   DrawResult result;
@@ -53,8 +55,9 @@ struct ViewOutput {
 // The patch tables of the inputs' draw, measured from the view camera.
 PatchTables view_patch_tables(const ViewInputs& in);
 
-// Draws view `kind` into fb (cleared here). UsageError for a view the inputs cannot give (the
-// displacement view without a displacement).
-ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, Framebuffer& fb);
+// Draws view `kind` into fb (cleared here); `tables` (view_patch_tables of the same inputs) is needed
+// when view_uses_patch_tables(kind). UsageError for a view the inputs cannot give (the displacement
+// view without a displacement).
+ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* tables, Framebuffer& fb);
 
 }  // namespace tessera::cli

@@ -39,12 +39,11 @@ int run_tessellate(const TessellateOptions& o) {
 
   const SubdModel model = load_model(o.cage, scheme);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
-  match_displacement_to_lod(displacement, o.lod);
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +
              " faces are not regular and are drawn as Gregory patches");
   const ViewSetup view = view_option(o.camera, model.cage);
-  apply_lod_options(o.lod, view, o.camera.fov, model, displacement ? displacement->bound : 0.0f, factors);
+  apply_lod_options(o.lod, view, model, displacement ? &*displacement : nullptr, factors);
   log_debug(std::to_string(model.patches.quads.size() + model.patches.tris.size()) + " patches, " +
             std::to_string(model.patches.tables.size()) + " stencil tables");
 
@@ -75,8 +74,7 @@ int run_tessellate(const TessellateOptions& o) {
       triangles += faces;
       vertices += p.points.size();
     };
-    result = displacement ? stream_displaced(device, model, *displacement, factors, partitioning, sink)
-                          : stream_subd(device, model, factors, partitioning, sink);
+    result = stream_surface(device, model, displacement ? &*displacement : nullptr, factors, partitioning, sink);
     if (!result.ok()) throw InputError(o.cage + ": " + result.error);
   };
 

@@ -21,10 +21,19 @@ void add_camera_options(CLI::App& cmd, CameraCli& c) {
   cmd.add_option("--fov", c.fov, "vertical field of view, degrees")->capture_default_str();
 }
 
-ViewSetup view_option(const CameraCli& c, const Cage& cage) {
+namespace {
+// Resolution and field of view, checked.
+ViewSetup view_frame(const CameraCli& c) {
   ViewSetup v;
   std::tie(v.width, v.height) = parse_resolution(c.resolution);
   if (!(c.fov > 1.0f && c.fov < 179.0f)) throw UsageError("--fov: must be in (1, 179) degrees");
+  v.fov = c.fov;
+  return v;
+}
+}  // namespace
+
+ViewSetup view_option(const CameraCli& c, const Cage& cage) {
+  ViewSetup v = view_frame(c);
   std::optional<glm::vec3> eye, target;
   if (!c.eye.empty()) eye = parse_vec3(c.eye, "--camera-position");
   if (!c.target.empty()) target = parse_vec3(c.target, "--camera-target");
@@ -36,9 +45,7 @@ ViewSetup view_option(const CameraCli& c, const Cage& cage) {
 }
 
 ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target) {
-  CameraCli given = c;
-  given.eye.clear(), given.target.clear();
-  ViewSetup v = view_option(given, cage);  // resolution and fov checked
+  ViewSetup v = view_frame(c);
   if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
   v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
   return v;
@@ -60,13 +67,9 @@ void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) 
       ->capture_default_str();
 }
 
-void match_displacement_to_lod(std::optional<Displacement>& displacement, const LodCli& l) {
-  const auto mode = parse_lod_mode(l.mode);
-  if (displacement && mode && *mode != LodMode::uniform) displacement->trilinear = true;
-}
-
-LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, const SubdModel& model,
-                            float displacement_bound, SubdFactors& factors) {
+LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdModel& model, Displacement* displacement,
+                            SubdFactors& factors) {
+  const float displacement_bound = displacement ? displacement->bound : 0.0f;
   LodResult r;
   const auto mode = parse_lod_mode(l.mode);
   if (!mode) throw UsageError("--lod: '" + l.mode + "' is not uniform, distance or screen");
@@ -85,12 +88,13 @@ LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, c
   s.edge_pixels = l.edge_pixels;
   s.bound = displacement_bound;
   s.camera.eye = l.dicing_eye.empty() ? view.camera.eye : parse_vec3(l.dicing_eye, "--dicing-camera-position");
-  s.camera.pixels_per_unit = pixels_per_unit(view.height, fov);
+  s.camera.pixels_per_unit = pixels_per_unit(view.height, view.fov);
   s.lod_distance = l.lod_distance > 0.0f ? l.lod_distance : glm::length(view.camera.eye - view.camera.target);
   if (s.mode != LodMode::uniform) {
     if (factors.per_edge || factors.vary > 0.0f)
       throw UsageError("--lod " + l.mode + " sets every edge's factor: drop --factors-per-edge and --vary-factors");
     factors.per_edge = edge_lod_factors(model.cage, *model.topology, s);
+    if (displacement) displacement->trilinear = true;
   }
   if (r.cull == PatchCullMode::frustum) {
     factors.cull.enabled = true;

@@ -21,10 +21,11 @@ struct CameraCli {
 };
 void add_camera_options(CLI::App& cmd, CameraCli& c);
 
-// The view camera: WxH, and the camera that frames the cage unless given. UsageError for a bad
-// resolution, fov, or a position equal to the target.
+// The view camera: WxH, the vertical field of view, and the camera that frames the cage unless given.
+// UsageError for a bad resolution, fov, or a position equal to the target.
 struct ViewSetup {
   int width = 0, height = 0;
+  float fov = 35.0f;  // degrees
   SubdCamera camera;
 };
 ViewSetup view_option(const CameraCli& c, const Cage& cage);
@@ -38,18 +39,17 @@ struct LodCli {
 // --lod, --edge-pixels, --lod-distance, --dicing-camera-position, and --cull with its default.
 void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default);
 
-// Fills factors.per_edge from the LOD (nothing for uniform) and factors.cull from --cull, with the
-// view and a displacement bound. UsageError for bad values.
+// Fills factors.per_edge from the LOD (nothing for uniform) and factors.cull from --cull, for the view,
+// with the displacement's bound in every LOD sphere and cull bound. Under view-dependent LOD the
+// displacement's sampling LOD moves with the camera, so its mip levels are blended
+// (Displacement::trilinear) and the displaced surface does not pop between levels. UsageError for
+// bad values.
 struct LodResult {
   LodSettings settings;
   PatchCullMode cull = PatchCullMode::none;
 };
-LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, float fov, const SubdModel& model,
-                            float displacement_bound, SubdFactors& factors);
-
-// View-dependent LOD moves the displacement's sampling LOD with the camera: blend mip levels then
-// (DisplacementParams::trilinear), so the displaced surface does not pop between levels.
-void match_displacement_to_lod(std::optional<Displacement>& displacement, const LodCli& l);
+LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdModel& model, Displacement* displacement,
+                            SubdFactors& factors);
 
 glm::vec3 parse_vec3(const std::string& text, const char* what);
 

@@ -1,28 +1,18 @@
 #include "shaders_cpp/debug/debug_render.h"
 
 namespace tessera {
-namespace {
-
-// draw(group, tessellator state, hs, ds) over the draw's patch groups, displaced or not.
-template <class Draw>
-DrawResult for_each_draw_group(const SubdModel& m, const Displacement* d, const SubdFactors& factors,
-                               ts::Partitioning partitioning, Draw&& draw) {
-  if (d != nullptr) return with_displaced_group(m, *d, factors, partitioning, draw);
-  return for_each_patch_group(m, factors, partitioning, draw);
-}
-
-}  // namespace
 
 PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
-                               ts::Partitioning partitioning, const PatchTableCamera& camera) {
+                               ts::Partitioning partitioning, const DicingCamera& camera) {
   PatchTables tables;
-  const TopologyCombinations combos = analyze_combinations(*model.topology);
-  for_each_draw_group(model, displacement, factors, partitioning,
-                      [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto&) {
-                        auto rows = build_patch_table(model, g, hs, ts, combos, camera);
-                        (g.domain == ts::Domain::tri ? tables.tris : tables.quads) = std::move(rows);
-                        return DrawResult{};
-                      });
+  tables.combinations = analyze_combinations(*model.topology);
+  const std::vector<std::int64_t> seam_keys = uv_seam_edge_keys(model.cage, *model.topology);
+  for_each_surface_group(model, displacement, factors, partitioning,
+                         [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto&) {
+                           auto rows = build_patch_table(model, g, hs, ts, tables.combinations, seam_keys, camera);
+                           (g.domain == ts::Domain::tri ? tables.tris : tables.quads) = std::move(rows);
+                           return DrawResult{};
+                         });
   return tables;
 }
 
@@ -32,22 +22,15 @@ DrawResult render_debug(Device& device, const SubdModel& model, const Displaceme
   DrawResult total;
   for (const bool wire : {false, true}) {
     if (wire && !view.wire_pass) continue;
-    const DrawResult r = for_each_draw_group(
+    const DrawResult r = for_each_surface_group(
         model, displacement, factors, partitioning,
         [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto& ds) {
           const SubdPassState st = subd_pass_state(model, fb, wire);
           using Ds = std::decay_t<decltype(ds)>;
-          using Hs = std::decay_t<decltype(hs)>;
           // 0.2 % of the distance to the eye: enough to win the depth test against the surface the
           // edge lies on at the depth buffer's precision, far less than any surface the edge is behind.
           const DebugDS<Ds> debug_ds{ds, camera.view_projection, camera.eye, wire ? 2e-3f : 0.0f};
-          auto go = [&](const auto& ps) {
-            using Ps = std::decay_t<decltype(ps)>;
-            const PatchDraw<glm::vec3, SubdVS, Hs, DebugDS<Ds>, Ps> d{
-                model.cage.positions, g.indices, g.control_points, model.vertex_shader(), hs, debug_ds, ps, ts,
-                st.rasterizer,        st.depth,  st.viewport};
-            return device.draw(d, fb);
-          };
+          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, hs, debug_ds, ps, st, fb); };
           const std::vector<PatchInfo>& rows = tables.of(g.domain);
           if (wire) return go(DebugWirePS{rows, view.ps.light, view.ps.paper});
           DebugPS ps = view.ps;

@@ -14,17 +14,19 @@
 
 namespace tessera {
 
-// The rows of both patch groups (quad domain, tri domain), for one draw's factors.
+// The rows of both patch groups (quad domain, tri domain), for one draw's factors, and the cage's
+// topology combinations they index.
 struct PatchTables {
   std::vector<PatchInfo> quads, tris;
+  TopologyCombinations combinations;
   const std::vector<PatchInfo>& of(ts::Domain d) const { return d == ts::Domain::tri ? tris : quads; }
 };
 PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
-                               ts::Partitioning partitioning, const PatchTableCamera& camera);
+                               ts::Partitioning partitioning, const DicingCamera& camera);
 
 struct DebugRender {
-  DebugPS ps;             // the view and its parameters; `patches` is set per group
-  bool wire_pass = false; // draw the triangle edges over the surface
+  DebugPS ps;              // the view and its parameters; `patches` is set per group
+  bool wire_pass = false;  // draw the triangle edges over the surface
 };
 
 DrawResult render_debug(Device& device, const SubdModel& model, const Displacement* displacement,

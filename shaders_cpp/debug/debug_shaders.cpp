@@ -27,11 +27,11 @@ glm::vec3 hashed_color(std::uint32_t i) {
 }
 
 glm::vec3 category_color(int i) {
-  static constexpr std::array<glm::vec3, 10> palette = {
-      glm::vec3(0.36f, 0.62f, 0.85f), glm::vec3(0.95f, 0.55f, 0.20f), glm::vec3(0.35f, 0.75f, 0.38f),
-      glm::vec3(0.88f, 0.30f, 0.33f), glm::vec3(0.62f, 0.45f, 0.80f), glm::vec3(0.60f, 0.42f, 0.32f),
-      glm::vec3(0.92f, 0.55f, 0.78f), glm::vec3(0.55f, 0.55f, 0.55f), glm::vec3(0.78f, 0.78f, 0.25f),
-      glm::vec3(0.25f, 0.78f, 0.80f)};
+  static constexpr std::array<glm::vec3, 10> palette = {glm::vec3(0.36f, 0.62f, 0.85f), glm::vec3(0.95f, 0.55f, 0.20f),
+                                                        glm::vec3(0.35f, 0.75f, 0.38f), glm::vec3(0.88f, 0.30f, 0.33f),
+                                                        glm::vec3(0.62f, 0.45f, 0.80f), glm::vec3(0.60f, 0.42f, 0.32f),
+                                                        glm::vec3(0.92f, 0.55f, 0.78f), glm::vec3(0.55f, 0.55f, 0.55f),
+                                                        glm::vec3(0.78f, 0.78f, 0.25f), glm::vec3(0.25f, 0.78f, 0.80f)};
   if (i >= 0 && i < int(palette.size())) return palette[std::size_t(i)];
   return hashed_color(std::uint32_t(i));
 }
@@ -50,26 +50,17 @@ float line_coverage(float distance, float width) { return std::clamp(0.5f * widt
 // interior (-1). Ring widths are one inside segment (the triangle's rings: 2/3 of 1/inside in each
 // barycentric coordinate).
 int region_of(const PatchInfo& p, float u, float v, float w) {
-  std::array<float, 3> d{};
-  int n = 0;
+  // Distance to each domain edge in ring widths (SV_TessFactor order); below 1 is that edge's ring.
+  std::array<float, 4> rings;
   if (p.tri) {
     const float s = 1.5f * float(p.inside_segments[0]);
-    d = {u * s, v * s, w * s};
-    n = 3;
+    rings = {u * s, v * s, w * s, INFINITY};
   } else {
     const float su = float(p.inside_segments[0]), sv = float(p.inside_segments[1]);
-    const std::array<float, 4> q = {u * su, v * sv, (1.0f - u) * su, (1.0f - v) * sv};
-    int best = -1;
-    float nearest = 1.0f;
-    for (int k = 0; k < 4; ++k)
-      if (q[std::size_t(k)] < nearest) nearest = q[std::size_t(k)], best = k;
-    return best;
+    rings = {u * su, v * sv, (1.0f - u) * su, (1.0f - v) * sv};
   }
-  int best = -1;
-  float nearest = 1.0f;
-  for (int k = 0; k < n; ++k)
-    if (d[std::size_t(k)] < nearest) nearest = d[std::size_t(k)], best = k;
-  return best;
+  const auto nearest = std::min_element(rings.begin(), rings.end());
+  return *nearest < 1.0f ? int(nearest - rings.begin()) : -1;
 }
 
 }  // namespace
@@ -146,7 +137,8 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
                 : glm::mix(glm::mix(k[0], k[1], fu), glm::mix(k[3], k[2], fu), fv);
       }
       const int checks = int(std::floor(t.x * 16.0f)) + int(std::floor(t.y * 16.0f));
-      const glm::vec3 tint(0.45f + 0.5f * std::clamp(t.x, 0.0f, 1.0f), 0.45f + 0.5f * std::clamp(t.y, 0.0f, 1.0f), 0.6f);
+      const glm::vec3 tint(0.45f + 0.5f * std::clamp(t.x, 0.0f, 1.0f), 0.45f + 0.5f * std::clamp(t.y, 0.0f, 1.0f),
+                           0.6f);
       c = shade(tint * ((checks & 1) ? 1.0f : 0.6f));
       float seam = 0.0f;
       for (int e = 0; e < 4; ++e)
@@ -166,9 +158,7 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
       c = shade(diverging_color(0.5f + 0.5f * hgt / std::max(height_range, 1e-20f)));
       break;
     }
-    case DebugView::culled:
-      c = shade(p.culled ? glm::vec3(0.92f, 0.25f, 0.18f) : kClayColor);
-      break;
+    case DebugView::culled: c = shade(p.culled ? glm::vec3(0.92f, 0.25f, 0.18f) : kClayColor); break;
   }
   const float border = border_strength * line_coverage(boundary_px, border_width);
   c = glm::mix(c, glm::vec3(0.08f, 0.09f, 0.12f), border);

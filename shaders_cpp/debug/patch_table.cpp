@@ -35,7 +35,8 @@ namespace detail {
 PatchType patch_type(const SubdPatch& p, const Topology& t, const TopologyCombinations& combos, bool tri) {
   if (t.face_size(p.face) > 4) return PatchType::ngon_fan;
   if (tri) return PatchType::triangle;
-  const int c = std::size_t(p.face) < combos.face_combination.size() ? combos.face_combination[std::size_t(p.face)] : -1;
+  const int c =
+      std::size_t(p.face) < combos.face_combination.size() ? combos.face_combination[std::size_t(p.face)] : -1;
   if (c < 0) return PatchType::irregular;
   switch (combos.combinations[std::size_t(c)].patch_class) {
     case PatchClass::regular: return PatchType::regular;
@@ -46,8 +47,8 @@ PatchType patch_type(const SubdPatch& p, const Topology& t, const TopologyCombin
 }
 
 void finish_patch_info(PatchInfo& info, const SubdModel& m, const SubdPatch& patch, const TessFactors& raw,
-                       std::span<const glm::vec3> hull, const TessellatorState& ts_state,
-                       const PatchTableCamera& camera, const std::vector<std::int64_t>& seam_keys) {
+                       std::span<const glm::vec3> hull, const TessellatorState& ts_state, const DicingCamera& camera,
+                       const std::vector<std::int64_t>& seam_keys) {
   info.face = patch.face;
   info.sub = patch.sub;
   info.kind = patch.kind;
@@ -67,15 +68,14 @@ void finish_patch_info(PatchInfo& info, const SubdModel& m, const SubdPatch& pat
     most = std::max(most, info.inside_segments[std::size_t(k)]);
   }
   info.triangles = info.culled ? 0u : std::uint32_t(ts::primitive_count(pf, ts_state.output));
-  // The hull's bounding sphere (box centre, farthest point), projected as edge_lod.h projects an edge's.
+  // The hull's bounding sphere (box centre, farthest point), projected as an edge's LOD sphere is.
   Box3 b{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
   for (const glm::vec3& p : hull) b.lo = glm::min(b.lo, p), b.hi = glm::max(b.hi, p);
   info.bound = b;
   const glm::vec3 centre = 0.5f * (b.lo + b.hi);
   float radius = 0.0f;
   for (const glm::vec3& p : hull) radius = std::max(radius, glm::length(p - centre));
-  const float d = glm::length(centre - camera.eye);
-  info.screen_pixels = d > radius ? 2.0f * radius * camera.pixels_per_unit / d : INFINITY;
+  info.screen_pixels = projected_diameter(centre, radius, camera);
   info.pixels_per_segment = info.screen_pixels / float(most);
   for (int k = 0; k < edges; ++k) {
     const EdgeFactorKey& key = patch.edge_keys[std::size_t(k)];

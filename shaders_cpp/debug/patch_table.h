@@ -17,6 +17,7 @@
 
 #include "pipeline/stage_io.h"
 #include "shaders_cpp/cage/topology_combinations.h"
+#include "shaders_cpp/lod/edge_lod.h"
 #include "shaders_cpp/lod/frustum_cull.h"
 #include "shaders_cpp/subd_model.h"
 #include "tessellator/tessellator.h"
@@ -32,48 +33,43 @@ struct PatchInfo {
   int face = 0, sub = 0;
   PatchKind kind = PatchKind::gregory;
   PatchType type = PatchType::regular;
-  int combination = -1;  // TopologyCombinations index (-1: none)
-  bool tri = false;      // on the tri domain
-  bool culled = false;   // the hull shader gave it zero factors (outside the view)
-  TessFactors raw;       // what the hull shader would give without culling
+  int combination = -1;                   // TopologyCombinations index (-1: none)
+  bool tri = false;                       // on the tri domain
+  bool culled = false;                    // the hull shader gave it zero factors (outside the view)
+  TessFactors raw;                        // what the hull shader would give without culling
   std::array<float, 4> edge_processed{};  // after the partitioning's clamp and rounding
   std::array<float, 2> inside_processed{};
   std::array<int, 4> edge_segments{};
   std::array<int, 2> inside_segments{};
-  std::uint32_t triangles = 0;    // 0 when culled
-  float screen_pixels = 0.0f;     // projected diameter of the control points' bounding sphere
-  float pixels_per_segment = 0;   // screen_pixels over the patch's largest segment count
-  std::uint8_t seam_edges = 0;    // bit k: domain edge k (SV_TessFactor order) lies on a UV seam
+  std::uint32_t triangles = 0;           // 0 when culled
+  float screen_pixels = 0.0f;            // projected diameter of the hull's bounding sphere (edge_lod.h)
+  float pixels_per_segment = 0;          // screen_pixels over the patch's largest segment count
+  std::uint8_t seam_edges = 0;           // bit k: domain edge k (SV_TessFactor order) lies on a UV seam
   std::array<glm::vec2, 4> corner_uv{};  // the face frame's corners (fan: corner k, k+1, centre)
-  Box3 bound;                     // box of the hull the frustum test uses
+  Box3 bound;                            // box of the hull the frustum test uses
 };
 
-struct PatchTableCamera {
-  glm::vec3 eye{0.0f};
-  float pixels_per_unit = 1.0f;  // edge_lod.h's pixels_per_unit
-};
+// The cage edge keys of the UV seam edges, sorted (for PatchInfo::seam_edges).
+std::vector<std::int64_t> uv_seam_edge_keys(const Cage& cage, const Topology& topology);
 
-// The rows of one patch group, for the draw's HS over the model's cage.
+// The rows of one patch group, for the draw's HS over the model's cage; `seam_keys` from
+// uv_seam_edge_keys.
 template <class Hs>
 std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g, const Hs& hs,
                                          const TessellatorState& ts_state, const TopologyCombinations& combos,
-                                         const PatchTableCamera& camera);
-
-// Seam flags per cage edge key (for PatchInfo::seam_edges): true when the edge is a UV seam.
-std::vector<std::int64_t> uv_seam_edge_keys(const Cage& cage, const Topology& topology);
+                                         const std::vector<std::int64_t>& seam_keys, const DicingCamera& camera);
 
 namespace detail {
 PatchType patch_type(const SubdPatch& p, const Topology& t, const TopologyCombinations& combos, bool tri);
 void finish_patch_info(PatchInfo& info, const SubdModel& m, const SubdPatch& patch, const TessFactors& raw,
-                       std::span<const glm::vec3> hull, const TessellatorState& ts_state,
-                       const PatchTableCamera& camera, const std::vector<std::int64_t>& seam_keys);
+                       std::span<const glm::vec3> hull, const TessellatorState& ts_state, const DicingCamera& camera,
+                       const std::vector<std::int64_t>& seam_keys);
 }  // namespace detail
 
 template <class Hs>
 std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g, const Hs& hs,
                                          const TessellatorState& ts_state, const TopologyCombinations& combos,
-                                         const PatchTableCamera& camera) {
-  const auto seam_keys = uv_seam_edge_keys(m.cage, *m.topology);
+                                         const std::vector<std::int64_t>& seam_keys, const DicingCamera& camera) {
   const SubdVS vs = m.vertex_shader();
   const SubdHS& base = [&]() -> const SubdHS& {
     if constexpr (requires { hs.base; })
@@ -95,12 +91,7 @@ std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g
     PatchInfo& info = rows[p];
     info.culled = base.outside_view(patch, out);
     hull.clear();
-    if (patch.kind == PatchKind::exact) {
-      if (std::size_t(patch.face) < m.ring_boxes.size())
-        for (int i = 0; i < 8; ++i) hull.push_back(m.ring_boxes[std::size_t(patch.face)].corner(i));
-    } else {
-      for (int i = 0; i < SubdHS::hull_points(patch.kind); ++i) hull.push_back(out[std::size_t(i)].p);
-    }
+    for (int i = 0; i < base.hull_size(patch); ++i) hull.push_back(base.hull_point(patch, out, i));
     info.combination = std::size_t(patch.face) < combos.face_combination.size()
                            ? combos.face_combination[std::size_t(patch.face)]
                            : -1;

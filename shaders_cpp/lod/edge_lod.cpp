@@ -29,23 +29,29 @@ float pixels_per_unit(int viewport_height, float fov_y_degrees) {
 
 namespace {
 float clamp_factor(float f) {
-  // NaN (a degenerate camera was refused before; kept safe here) falls to 1.
+  // NaN (a degenerate camera was refused before; kept safe here) falls to 1; infinity to 64.
   return f >= 1.0f ? std::min(f, kMaxLodFactor) : 1.0f;
 }
 }  // namespace
+
+float projected_diameter(const glm::vec3& centre, float radius, const DicingCamera& camera) {
+  const float d = glm::length(centre - camera.eye);
+  if (!(d > radius)) return INFINITY;  // the eye is inside the sphere
+  // The silhouette's half angle has tangent r / sqrt(d^2 - r^2), which grows without bound as the eye
+  // nears the sphere, so an edge's factor reaches 64 before the eye enters it (r / d would jump to 64
+  // there: a pop in a dolly).
+  return 2.0f * radius * camera.pixels_per_unit / std::sqrt((d - radius) * (d + radius));
+}
 
 float edge_lod_factor(const glm::vec3& p0, const glm::vec3& p1, const LodSettings& s) {
   if (s.mode == LodMode::uniform) return s.factor;
   // p0 + p1 and |p1 - p0| are symmetric in the end points, so either direction gives the same bits.
   const glm::vec3 centre = 0.5f * (p0 + p1);
-  const float d = glm::length(centre - s.camera.eye);
-  if (s.mode == LodMode::distance) return d > 0.0f ? clamp_factor(s.factor * s.lod_distance / d) : kMaxLodFactor;
-  const float radius = 0.5f * glm::length(p1 - p0) + s.bound;
-  if (!(d > radius)) return kMaxLodFactor;  // the eye is inside the sphere
-  // The sphere's silhouette seen from d: its half angle has tangent r / sqrt(d^2 - r^2), which grows
-  // without bound as the eye nears the sphere, so the factor reaches 64 before the eye enters it
-  // (r / d would jump to 64 there: a pop in a dolly).
-  const float diameter_pixels = 2.0f * radius * s.camera.pixels_per_unit / std::sqrt((d - radius) * (d + radius));
+  if (s.mode == LodMode::distance) {
+    const float d = glm::length(centre - s.camera.eye);
+    return d > 0.0f ? clamp_factor(s.factor * s.lod_distance / d) : kMaxLodFactor;
+  }
+  const float diameter_pixels = projected_diameter(centre, 0.5f * glm::length(p1 - p0) + s.bound, s.camera);
   return clamp_factor(diameter_pixels / s.edge_pixels);
 }
 

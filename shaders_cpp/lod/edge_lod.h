@@ -60,6 +60,10 @@ struct LodSettings {
   DicingCamera camera;
 };
 
+// The diameter in pixels of the silhouette of a sphere seen from the camera: 2 r / sqrt(d^2 - r^2)
+// pixels per unit; infinite when the eye is inside the sphere.
+float projected_diameter(const glm::vec3& centre, float radius, const DicingCamera& camera);
+
 // The factor of the cage edge from p0 to p1 (either order gives the same bits).
 float edge_lod_factor(const glm::vec3& p0, const glm::vec3& p1, const LodSettings& s);
 

@@ -24,6 +24,20 @@ const char* to_string(Scheme s) {
   return "?";
 }
 
+const char* to_string(PatchKind k) {
+  switch (k) {
+    case PatchKind::bilinear: return "bilinear";
+    case PatchKind::linear: return "linear";
+    case PatchKind::acc: return "acc";
+    case PatchKind::gregory: return "gregory";
+    case PatchKind::gregory_triangle: return "gregory_triangle";
+    case PatchKind::pn_triangle: return "pn_triangle";
+    case PatchKind::pn_quad: return "pn_quad";
+    case PatchKind::exact: return "exact";
+  }
+  return "?";
+}
+
 std::optional<Scheme> parse_scheme(std::string_view name) {
   for (Scheme s : {Scheme::flat, Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn})
     if (name == to_string(s)) return s;

@@ -51,6 +51,7 @@ enum class PatchKind : std::uint8_t {
   pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
   exact,             // the limit surface (limit_surface.h), evaluated per domain point
 };
+const char* to_string(PatchKind k);  // "gregory_triangle", as the enumerator
 
 inline constexpr int kMaxPatchControlPoints = 32;
 

@@ -47,4 +47,13 @@ class WeldChecker {
   std::uint64_t triangles_ = 0, degenerate_ = 0;
 };
 
+// Adds a patch's triangles (a stream-output PatchOutput: `points` with a `position`, `indices` three per
+// triangle) to the weld.
+template <class PatchOut>
+void add_patch_triangles(WeldChecker& weld, const PatchOut& p) {
+  for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3)
+    weld.add_triangle(p.points[p.indices[i]].position, p.points[p.indices[i + 1]].position,
+                      p.points[p.indices[i + 2]].position);
+}
+
 }  // namespace tessera::verify
