@@ -7,11 +7,12 @@
 // so the camera's own motion does not count) to the nearest vertex, in domain space, of the same
 // patch in the previous frame. A vertex that appears where an old one was (fractional_odd's split
 // points) has moved 0; a vertex that appears in the middle of a segment (integer) has moved half a
-// segment. The nearest vertex is found in a 64 x 64 grid over each patch's domain.
+// segment. The nearest vertex is found in a 64 x 64 grid over each patch's domain (DomainGrid).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <span>
 #include <unordered_map>
 
 #include "shaders_cpp/displaced_render.h"
@@ -43,7 +44,35 @@ struct PatchPoints {
 };
 using FramePoints = std::vector<PatchPoints>;
 
-constexpr int kGrid = 64;
+// The points of one patch's domain in a 64 x 64 grid of cells, for nearest-point queries.
+class DomainGrid {
+ public:
+  explicit DomainGrid(std::span<const glm::vec2> points) : points_(points), cells_(std::size_t(kGrid * kGrid)) {
+    for (std::uint32_t i = 0; i < points.size(); ++i) cells_[cell(points[i])].push_back(i);
+  }
+  // The index of the point nearest q: rings of cells outward, until the nearest found is closer than
+  // any point of an unvisited ring can be (a point beyond ring r - 1 is at least (r - 1) / 64 away).
+  std::int64_t nearest(glm::vec2 q) const {
+    const int cx = coordinate(q.x), cy = coordinate(q.y);
+    std::int64_t best = -1;
+    float best_d = INFINITY;
+    for (int r = 0; r < kGrid && !(best >= 0 && best_d <= float(r - 1) / float(kGrid)); ++r)
+      for (int y = std::max(0, cy - r); y <= std::min(kGrid - 1, cy + r); ++y)
+        for (int x = std::max(0, cx - r); x <= std::min(kGrid - 1, cx + r); ++x) {
+          if (std::max(std::abs(x - cx), std::abs(y - cy)) != r) continue;  // ring r only
+          for (const std::uint32_t j : cells_[std::size_t(y * kGrid + x)])
+            if (const float d = glm::length(points_[j] - q); d < best_d) best_d = d, best = j;
+        }
+    return best;
+  }
+
+ private:
+  static constexpr int kGrid = 64;
+  static int coordinate(float x) { return std::clamp(int(x * float(kGrid)), 0, kGrid - 1); }
+  static std::size_t cell(glm::vec2 p) { return std::size_t(coordinate(p.y) * kGrid + coordinate(p.x)); }
+  std::span<const glm::vec2> points_;
+  std::vector<std::vector<std::uint32_t>> cells_;
+};
 
 // The largest screen distance from a vertex of `now` to its nearest (in domain space) vertex of the
 // same patch in `before`, both projected by `vp` into a w x h target.
@@ -55,34 +84,15 @@ double largest_move(const FramePoints& before, const FramePoints& now, const glm
     return true;
   };
   double largest = 0.0;
-  std::vector<std::vector<std::uint32_t>> grid(std::size_t(kGrid * kGrid));
   for (std::size_t p = 0; p < now.size() && p < before.size(); ++p) {
     const PatchPoints& a = before[p];
     const PatchPoints& b = now[p];
-    if (a.domain.empty() || b.domain.empty()) continue;
-    for (auto& cell : grid) cell.clear();
-    auto cell_of = [](float x) { return std::clamp(int(x * float(kGrid)), 0, kGrid - 1); };
-    for (std::uint32_t i = 0; i < a.domain.size(); ++i)
-      grid[std::size_t(cell_of(a.domain[i].y) * kGrid + cell_of(a.domain[i].x))].push_back(i);
+    if (a.domain.empty() || b.domain.empty()) continue;  // culled in one of the frames
+    const DomainGrid grid(a.domain);
     for (std::size_t i = 0; i < b.domain.size(); ++i) {
-      const glm::vec2 q = b.domain[i];
-      const int cx = cell_of(q.x), cy = cell_of(q.y);
-      std::int64_t best = -1;
-      float best_d = INFINITY;
-      // Rings of cells outward until a found point is closer than any unvisited ring can be.
-      for (int r = 0; r < kGrid; ++r) {
-        for (int y = std::max(0, cy - r); y <= std::min(kGrid - 1, cy + r); ++y)
-          for (int x = std::max(0, cx - r); x <= std::min(kGrid - 1, cx + r); ++x) {
-            if (std::max(std::abs(x - cx), std::abs(y - cy)) != r) continue;
-            for (const std::uint32_t j : grid[std::size_t(y * kGrid + x)]) {
-              const float d = glm::length(a.domain[j] - q);
-              if (d < best_d) best_d = d, best = j;
-            }
-          }
-        if (best >= 0 && best_d <= float(r) / float(kGrid)) break;
-      }
+      const std::int64_t j = grid.nearest(b.domain[i]);
       glm::dvec2 sa, sb;
-      if (best >= 0 && screen(a.position[std::size_t(best)], sa) && screen(b.position[i], sb))
+      if (j >= 0 && screen(a.position[std::size_t(j)], sa) && screen(b.position[i], sb))
         largest = std::max(largest, glm::length(sa - sb));
     }
   }
