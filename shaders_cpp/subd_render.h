@@ -11,6 +11,9 @@ namespace tessera {
 
 enum class SubdView { shaded, wireframe, wire_on_shaded };
 
+// The background the renders and benchmarks clear to.
+inline constexpr glm::vec4 kBackgroundColor{0.93f, 0.94f, 0.96f, 1.0f};
+
 struct SubdCamera {
   glm::vec3 eye{0.0f}, target{0.0f};
   glm::mat4 view_projection{1.0f};

@@ -128,7 +128,7 @@ int run_dolly(const DollyOptions& o) {
     SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
     apply_lod_options(o.lod, view, model, d, factors);
     const auto t0 = Clock::now();
-    device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
+    device.clear(*fb, kBackgroundColor, 1.0f);
     const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, view.camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -51,7 +51,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   DrawReport last;
   for (int f = 0; f < o.frames + 1; ++f) {  // one warm-up frame
     const auto start = Clock::now();
-    device.clear(*fb, glm::vec4(0.93f, 0.94f, 0.96f, 1.0f), 1.0f);
+    device.clear(*fb, kBackgroundColor, 1.0f);
     const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());

@@ -29,8 +29,6 @@ constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
     {ViewKind::culled, "culled"},
 }};
 
-const glm::vec4 kBackground(0.93f, 0.94f, 0.96f, 1.0f);
-
 std::string fixed(float x, int digits) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*f", digits, double(x));
@@ -95,75 +93,98 @@ bool view_uses_patch_tables(ViewKind kind) {
   return kind != ViewKind::shaded && kind != ViewKind::cage && kind != ViewKind::cracks;
 }
 
-ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* given, Framebuffer& fb) {
-  ViewOutput out;
-  fb.clear(kBackground, 1.0f);
-  const SubdCamera& camera = in.view.camera;
-  const Scheme scheme = in.model.patches.scheme;
-  if (kind == ViewKind::shaded) {
-    out.result = draw_shaded(device, in, fb);
-    return out;
-  }
-  if (kind == ViewKind::displacement && !in.displacement)
-    throw UsageError("--view displacement needs --displacement MAP");
+namespace {
 
-  if (kind == ViewKind::cage || kind == ViewKind::cracks) {
-    out.result = draw_shaded(device, in, fb);
-    if (!out.result.ok()) return out;
-    out.has_legend = true;
-    if (kind == ViewKind::cage) {
-      const Topology& t = *in.model.topology;
-      std::vector<OverlayLine> lines;
-      for (int e = 0; e < t.edge_count(); ++e) {
-        const int h = t.edge_half_edges(e)[0];
-        lines.push_back({in.model.cage.positions[std::size_t(t.origin(h))],
-                         in.model.cage.positions[std::size_t(t.destination(h))]});
-      }
-      // The cage lies off the surface; where the surface hides it, it is drawn faintly.
-      OverlayStyle hidden{glm::vec3(0.1f, 0.3f, 0.75f), 1.0f, 0.25f, false, 0.0f};
-      OverlayStyle visible{glm::vec3(0.1f, 0.3f, 0.75f), 1.6f, 0.9f, true, 1e-5f};
-      draw_lines(fb, camera.view_projection, lines, hidden);
-      draw_lines(fb, camera.view_projection, lines, visible);
-      visible.width = 4.0f;
-      draw_points(fb, camera.view_projection, in.model.cage.positions, visible);
-      out.legend.title = "control cage over the surface (" + std::string(to_string(scheme)) + ")";
-      out.legend.lines = {std::to_string(t.edge_count()) + " cage edges, " + std::to_string(t.vertex_count()) +
-                          " vertices; faint where the surface hides them"};
-      return out;
+// The control cage over the shaded surface (drawn already), depth-tested, faint where hidden.
+void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
+  const Topology& t = *in.model.topology;
+  const glm::mat4& vp = in.view.camera.view_projection;
+  std::vector<OverlayLine> lines;
+  for (int e = 0; e < t.edge_count(); ++e) {
+    const int h = t.edge_half_edges(e)[0];
+    lines.push_back(
+        {in.model.cage.positions[std::size_t(t.origin(h))], in.model.cage.positions[std::size_t(t.destination(h))]});
+  }
+  // The cage lies off the surface; where the surface hides it, it is drawn faintly.
+  OverlayStyle hidden{glm::vec3(0.1f, 0.3f, 0.75f), 1.0f, 0.25f, false, 0.0f};
+  OverlayStyle visible{glm::vec3(0.1f, 0.3f, 0.75f), 1.6f, 0.9f, true, 1e-5f};
+  draw_lines(fb, vp, lines, hidden);
+  draw_lines(fb, vp, lines, visible);
+  visible.width = 4.0f;
+  draw_points(fb, vp, in.model.cage.positions, visible);
+  legend.title = "control cage over the surface (" + std::string(to_string(in.model.patches.scheme)) + ")";
+  legend.lines = {std::to_string(t.edge_count()) + " cage edges, " + std::to_string(t.vertex_count()) +
+                  " vertices; faint where the surface hides them"};
+}
+
+// The tessellation welded on exact bits over the shaded surface (drawn already); open and non-manifold
+// edges drawn thick.
+void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, ViewOutput& out) {
+  verify::WeldChecker weld;
+  const DrawResult s = stream_surface(device, in.model, in.displacement, in.factors, in.partitioning,
+                                      [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
+  if (!s.ok()) {
+    out.result = s;
+    return;
+  }
+  std::vector<OverlayLine> open, nonmanifold;
+  for (const verify::WeldEdge& e : weld.bad_edges()) (e.nonmanifold ? nonmanifold : open).push_back({e.a, e.b});
+  out.open_edges = open.size(), out.nonmanifold_edges = nonmanifold.size();
+  const glm::mat4& vp = in.view.camera.view_projection;
+  draw_lines(fb, vp, open, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
+  draw_lines(fb, vp, nonmanifold, OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
+  const verify::WeldReport r = weld.report();
+  out.legend.title = "cracks: the tessellation welded on exact float bits";
+  out.legend.lines = {
+      std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
+      std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
+          " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
+}
+
+void factors_legend(const ViewInputs& in, const PatchTables& tables, Legend& legend) {
+  float lo = INFINITY, hi = -INFINITY;
+  tables.for_each([&](const PatchInfo& p) {
+    if (p.culled) return;
+    for (int k = 0; k < (p.tri ? 3 : 4); ++k) {
+      const float f = in.processed ? p.edge_processed[std::size_t(k)] : p.raw.edge[std::size_t(k)];
+      lo = std::min(lo, f), hi = std::max(hi, f);
     }
-    // Cracks: the tessellation welded on exact bits; open and non-manifold edges drawn thick.
-    verify::WeldChecker weld;
-    const DrawResult s =
-        stream_surface(device, in.model, in.displacement, in.factors, in.partitioning,
-                       [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
-    if (!s.ok()) return {s, {}, false, 0, 0};
-    std::vector<OverlayLine> open, nonmanifold;
-    for (const verify::WeldEdge& e : weld.bad_edges()) (e.nonmanifold ? nonmanifold : open).push_back({e.a, e.b});
-    out.open_edges = open.size(), out.nonmanifold_edges = nonmanifold.size();
-    draw_lines(fb, camera.view_projection, open, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
-    draw_lines(fb, camera.view_projection, nonmanifold,
-               OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
-    const verify::WeldReport r = weld.report();
-    out.legend.title = "cracks: the tessellation welded on exact float bits";
-    out.legend.lines = {
-        std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
-        std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
-            " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
-    return out;
-  }
+  });
+  legend.title = std::string("tessellation factor, ") + (in.processed ? "processed" : "raw") + " (" +
+                 std::string(ts::to_string(in.partitioning)) + ")";
+  legend.lines = {"outer rings: their edge's factor; interior: the larger inside factor",
+                  std::isfinite(lo) ? "edges drawn: " + fixed(lo, 2) + " to " + fixed(hi, 2) : "no patch drawn"};
+  legend.ramp = sample_ramp([](float t) { return heat_color(t); });
+  for (int k = 0; k <= 6; ++k) legend.ticks.emplace_back(float(k) / 6.0f, std::to_string(1 << k));
+}
 
-  // The debug shader views.
-  SubdFactors factors = in.factors;
-  SubdCamera draw_camera = camera;
-  if (kind == ViewKind::culled) {
-    factors.cull.enabled = false;  // draw what the view culled, from outside
-    draw_camera = overview_camera(in, fb.width(), fb.height());
+void patch_type_legend(Scheme scheme, const PatchTables& tables, Legend& legend) {
+  std::array<int, kPatchTypeCount> count{};
+  tables.for_each([&](const PatchInfo& p) { ++count[std::size_t(p.type)]; });
+  legend.title = "patch type, scheme " + std::string(to_string(scheme));
+  for (int k = 0; k < kPatchTypeCount; ++k)
+    if (count[std::size_t(k)] > 0)
+      legend.swatches.emplace_back(category_color(k), std::string(to_string(PatchType(k))) + ": " +
+                                                          std::to_string(count[std::size_t(k)]) + " patches");
+}
+
+void combination_legend(const TopologyCombinations& combos, Legend& legend) {
+  legend.title = std::to_string(combos.combinations.size()) + " topology combinations (as tessera analyze)";
+  std::vector<int> order(combos.combinations.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return combos.combinations[std::size_t(a)].count > combos.combinations[std::size_t(b)].count;
+  });
+  for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i) {
+    const Combination& c = combos.combinations[std::size_t(order[i])];
+    legend.swatches.emplace_back(category_color(order[i]), c.text + " : " + std::to_string(c.count));
   }
-  if (given == nullptr)
-    throw std::logic_error("render_view: --view " + std::string(to_string(kind)) + " needs the patch tables");
-  const PatchTables& tables = *given;
+  if (order.size() > 8) legend.lines = {"the 8 most frequent:"};
+}
+
+// The debug pixel shader's settings for `kind`, and its legend (none for the wireframes).
+DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTables& tables, ViewOutput& out) {
   DebugRender r;
-  r.ps.light = glm::normalize(draw_camera.eye - draw_camera.target);
   r.ps.processed = in.processed;
   r.ps.edge_pixels = in.edge_pixels;
   out.has_legend = true;
@@ -176,26 +197,11 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
       r.wire_pass = true;
       out.has_legend = false;
       break;
-    case ViewKind::factors: {
+    case ViewKind::factors:
       r.ps.view = DebugView::factors;
-      float lo = INFINITY, hi = -INFINITY;
-      for (const auto* t : {&tables.quads, &tables.tris})
-        for (const PatchInfo& p : *t) {
-          if (p.culled) continue;
-          for (int k = 0; k < (p.tri ? 3 : 4); ++k) {
-            const float f = in.processed ? p.edge_processed[std::size_t(k)] : p.raw.edge[std::size_t(k)];
-            lo = std::min(lo, f), hi = std::max(hi, f);
-          }
-        }
-      legend.title = std::string("tessellation factor, ") + (in.processed ? "processed" : "raw") + " (" +
-                     std::string(ts::to_string(in.partitioning)) + ")";
-      legend.lines = {"outer rings: their edge's factor; interior: the larger inside factor",
-                      std::isfinite(lo) ? "edges drawn: " + fixed(lo, 2) + " to " + fixed(hi, 2) : "no patch drawn"};
-      legend.ramp = sample_ramp([](float t) { return heat_color(t); });
-      for (int k = 0; k <= 6; ++k) legend.ticks.emplace_back(float(k) / 6.0f, std::to_string(1 << k));
+      factors_legend(in, tables, legend);
       break;
-    }
-    case ViewKind::density: {
+    case ViewKind::density:
       r.ps.view = DebugView::density;
       legend.title = "pixels per segment, target " + fixed(in.edge_pixels, 1) + " (--edge-pixels)";
       legend.lines = {"blue: finer than the target; red: coarser"};
@@ -203,35 +209,14 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
       for (int k = -3; k <= 3; ++k)
         legend.ticks.emplace_back(float(k + 3) / 6.0f, fixed(in.edge_pixels * std::exp2(float(k)), k < 0 ? 1 : 0));
       break;
-    }
-    case ViewKind::patch_type: {
+    case ViewKind::patch_type:
       r.ps.view = DebugView::patch_type;
-      std::array<int, kPatchTypeCount> count{};
-      for (const auto* t : {&tables.quads, &tables.tris})
-        for (const PatchInfo& p : *t) ++count[std::size_t(p.type)];
-      legend.title = "patch type, scheme " + std::string(to_string(scheme));
-      for (int k = 0; k < kPatchTypeCount; ++k)
-        if (count[std::size_t(k)] > 0)
-          legend.swatches.emplace_back(category_color(k), std::string(to_string(PatchType(k))) + ": " +
-                                                              std::to_string(count[std::size_t(k)]) + " patches");
+      patch_type_legend(in.model.patches.scheme, tables, legend);
       break;
-    }
-    case ViewKind::combination: {
+    case ViewKind::combination:
       r.ps.view = DebugView::combination;
-      const TopologyCombinations& combos = tables.combinations;
-      legend.title = std::to_string(combos.combinations.size()) + " topology combinations (as tessera analyze)";
-      std::vector<int> order(combos.combinations.size());
-      for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
-      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-        return combos.combinations[std::size_t(a)].count > combos.combinations[std::size_t(b)].count;
-      });
-      for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i) {
-        const Combination& c = combos.combinations[std::size_t(order[i])];
-        legend.swatches.emplace_back(category_color(order[i]), c.text + " : " + std::to_string(c.count));
-      }
-      if (order.size() > 8) legend.lines = {"the 8 most frequent:"};
+      combination_legend(tables.combinations, legend);
       break;
-    }
     case ViewKind::patch_id:
       r.ps.view = DebugView::patch_id;
       legend.title = "patch id (SV_PrimitiveID): one colour per patch";
@@ -247,8 +232,7 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
       if (!in.model.cage.has_uvs()) throw UsageError("--view uv: " + in.model.cage.name + " has no UVs");
       if (in.displacement) r.ps.height = &in.displacement->map->texture();
       std::size_t seams = 0;
-      for (const auto* t : {&tables.quads, &tables.tris})
-        for (const PatchInfo& p : *t) seams += std::size_t(std::popcount(unsigned(p.seam_edges)));
+      tables.for_each([&](const PatchInfo& p) { seams += std::size_t(std::popcount(unsigned(p.seam_edges))); });
       legend.title = "texture coordinates: 16 x 16 checks, red = u, green = v";
       legend.lines = {"UV seams in red (" + std::to_string(seams / 2) + " seam edges)"};
       break;
@@ -267,22 +251,53 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
     case ViewKind::culled: {
       r.ps.view = DebugView::culled;
       std::size_t culled = 0, total = 0;
-      for (const auto* t : {&tables.quads, &tables.tris})
-        for (const PatchInfo& p : *t) culled += p.culled ? 1 : 0, ++total;
+      tables.for_each([&](const PatchInfo& p) { culled += p.culled ? 1 : 0, ++total; });
       legend.title = "frustum culling, seen from outside the view";
-      legend.swatches = {{glm::vec3(0.92f, 0.25f, 0.18f),
-                          std::to_string(culled) + " of " + std::to_string(total) + " patches culled (zero factors)"},
-                         {glm::vec3(0.1f, 0.1f, 0.1f), "the view camera's frustum"}};
+      legend.swatches = {
+          {kCulledColor, std::to_string(culled) + " of " + std::to_string(total) + " patches culled (zero factors)"},
+          {glm::vec3(0.1f, 0.1f, 0.1f), "the view camera's frustum"}};
       break;
     }
-    default: break;
+    case ViewKind::shaded:
+    case ViewKind::cage:
+    case ViewKind::cracks: break;  // not debug-shader views
   }
-  const Displacement* d = in.displacement;
-  out.result = render_debug(device, in.model, d, factors, in.partitioning, r, tables, draw_camera, fb);
+  return r;
+}
+
+}  // namespace
+
+ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* given, Framebuffer& fb) {
+  ViewOutput out;
+  fb.clear(kBackgroundColor, 1.0f);
+  if (kind == ViewKind::displacement && !in.displacement)
+    throw UsageError("--view displacement needs --displacement MAP");
+  if (kind == ViewKind::shaded || kind == ViewKind::cage || kind == ViewKind::cracks) {
+    out.result = draw_shaded(device, in, fb);
+    if (!out.result.ok() || kind == ViewKind::shaded) return out;
+    out.has_legend = true;
+    if (kind == ViewKind::cage)
+      draw_cage_view(in, fb, out.legend);
+    else
+      draw_cracks_view(device, in, fb, out);
+    return out;
+  }
+  if (given == nullptr)
+    throw std::logic_error("render_view: --view " + std::string(to_string(kind)) + " needs the patch tables");
+  DebugRender r = debug_view_setup(kind, in, *given, out);
+  // The culled view draws what the view culled, from outside, with the view's frustum.
+  SubdFactors factors = in.factors;
+  SubdCamera camera = in.view.camera;
+  if (kind == ViewKind::culled) {
+    factors.cull.enabled = false;
+    camera = overview_camera(in, fb.width(), fb.height());
+  }
+  r.ps.light = glm::normalize(camera.eye - camera.target);
+  out.result = render_debug(device, in.model, in.displacement, factors, in.partitioning, r, *given, camera, fb);
   if (out.result.ok() && kind == ViewKind::culled) {
     std::vector<OverlayLine> lines;
-    frustum_lines(camera.view_projection, lines);
-    draw_lines(fb, draw_camera.view_projection, lines, OverlayStyle{glm::vec3(0.1f), 1.5f, 1.0f, false, 0.0f});
+    frustum_lines(in.view.camera.view_projection, lines);
+    draw_lines(fb, camera.view_projection, lines, OverlayStyle{glm::vec3(0.1f), 1.5f, 1.0f, false, 0.0f});
   }
   return out;
 }

@@ -20,6 +20,12 @@ struct PatchTables {
   std::vector<PatchInfo> quads, tris;
   TopologyCombinations combinations;
   const std::vector<PatchInfo>& of(ts::Domain d) const { return d == ts::Domain::tri ? tris : quads; }
+  // visit(const PatchInfo&) for every row, quad domain first.
+  template <class Visit>
+  void for_each(Visit&& visit) const {
+    for (const auto* group : {&quads, &tris})
+      for (const PatchInfo& p : *group) visit(p);
+  }
 };
 PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
                                ts::Partitioning partitioning, const DicingCamera& camera);

@@ -46,8 +46,7 @@ struct DebugDS {
     out.position = view_projection * glm::vec4(p, 1.0f);
     glm::vec2 uv(0.0f);
     if constexpr (requires { s.uv; }) uv = s.uv;
-    out.attributes = {s.normal.x, s.normal.y, s.normal.z, loc.u,  loc.v, loc.w,
-                      float(patch_id), s.u,   s.v,        uv.x,   uv.y};
+    out.attributes = {s.normal.x, s.normal.y, s.normal.z, loc.u, loc.v, loc.w, float(patch_id), s.u, s.v, uv.x, uv.y};
     return out;
   }
 };
@@ -65,6 +64,9 @@ enum class DebugView : std::uint8_t {
   culled,        // culled patches red, the rest clay (seen from an overview camera)
 };
 
+// The culled view's colour of a culled patch (and its legend swatch).
+inline constexpr glm::vec3 kCulledColor{0.92f, 0.25f, 0.18f};
+
 // Colour maps, t in [0, 1].
 glm::vec3 heat_color(float t);       // dark blue -> cyan -> green -> yellow -> red (a turbo-like ramp)
 glm::vec3 diverging_color(float t);  // blue -> white -> red, white at 0.5
@@ -75,8 +77,8 @@ struct DebugPS {
   DebugView view = DebugView::wire;
   std::span<const PatchInfo> patches;
   glm::vec3 light{0.0f, 0.0f, 1.0f};
-  bool processed = false;     // factors: processed rather than raw
-  float edge_pixels = 8.0f;   // density: the target
+  bool processed = false;             // factors: processed rather than raw
+  float edge_pixels = 8.0f;           // density: the target
   const Texture2D* height = nullptr;  // displacement: the map (channel 0 scalar)
   float height_scale = 1.0f, height_bias = 0.0f, height_range = 1.0f;
   bool paper = false;  // wire: a flat white surface (the wireframe view) instead of clay

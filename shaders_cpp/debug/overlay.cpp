@@ -76,8 +76,10 @@ bool clip_rect(ScreenPoint& a, ScreenPoint& b, glm::vec2 lo, glm::vec2 hi) {
       continue;
     }
     const float r = q[i] / p[i];
-    if (p[i] < 0.0f) t0 = std::max(t0, r);
-    else t1 = std::min(t1, r);
+    if (p[i] < 0.0f)
+      t0 = std::max(t0, r);
+    else
+      t1 = std::min(t1, r);
   }
   if (t0 > t1) return false;
   const ScreenPoint a0 = a;
