@@ -41,6 +41,7 @@
 #include "pipeline/primitive_setup.h"
 #include "pipeline/raster_tile.h"
 #include "pipeline/stage_io.h"
+#include "pipeline/patch_orientation.h"
 #include "pipeline/statistics.h"
 #include "pipeline/triangle_list_setup.h"
 
@@ -124,6 +125,7 @@ class Backend {
       for (std::size_t s = 0; s < n; ++s) {
         report.statistics += slots_[s].statistics;
         report.times += slots_[s].times;
+        report.patches_back_culled += slots_[s].patches_back_culled;
       }
       report.memory.chunks += n;
       std::size_t bytes = 0;
@@ -247,6 +249,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
+    const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
                    options_.chunk_primitives);
     std::size_t scratch_bytes_peak = 0;
@@ -257,6 +260,20 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
                                     ChunkBuffer<N>& chunk) {
       const auto start = detail::Clock::now();
       const ts::Pattern& pattern = w.pattern;
+      if constexpr (detail::HasOrientationBound<PatchConstants>) {
+        // Back-patch culling (patch_orientation.h): the pattern's shape is computed only for a bound
+        // that can hold, on a draw whose rasterizer culls one orientation.
+        const OrientationBound& bound = w.constants.orientation;
+        if (culls_an_orientation && bound.may_hold()) {
+          const ts::PatternShape& shape = local.patterns.shape(pattern);
+          const bool away = bound.holds(shape) && rasterizer_culls(setup, pattern_screen_sign(bound, shape));
+          chunk.times.tessellator += detail::seconds_since(start);
+          if (away) {
+            ++chunk.patches_back_culled;
+            return;
+          }
+        }
+      }
       auto& outs = local.domain_outputs;
       outs.resize(pattern.points.size());
       if constexpr (BatchDomainShader<Ds, PatchConstants, ControlPoint, N>) {

@@ -23,8 +23,20 @@ const ts::Pattern& PatternCache::get(const ts::ProcessedFactors& key, ts::Output
   slot->hash = h;
   slot->key = key;
   slot->output = output;
+  slot->shape.reset();
   ts::generate(key, output, slot->pattern);
   return slot->pattern;
+}
+
+const ts::PatternShape& PatternCache::shape(const ts::Pattern& pattern) {
+  for (Entry& e : entries_) {
+    if (&e.pattern != &pattern) continue;
+    if (!e.shape) e.shape = ts::pattern_shape(e.pattern);
+    return *e.shape;
+  }
+  // Not one of this cache's patterns: a programmer error, answered without a claim.
+  static const ts::PatternShape none{};
+  return none;
 }
 
 std::size_t PatternCache::bytes() const {

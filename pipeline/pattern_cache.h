@@ -7,8 +7,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "tessellator/pattern_shape.h"
 #include "tessellator/tessellator.h"
 
 namespace tessera {
@@ -19,6 +21,9 @@ class PatternCache {
 
   // The pattern for `key`; valid until the next call. `hit` tells whether it was cached.
   const ts::Pattern& get(const ts::ProcessedFactors& key, ts::OutputPrimitive output, bool& hit);
+  // The shape (pattern_shape.h) of a pattern get() returned last, computed once per entry when first
+  // asked for: only the back-patch test needs it.
+  const ts::PatternShape& shape(const ts::Pattern& pattern);
 
   std::uint64_t hits() const { return hits_; }
   std::uint64_t misses() const { return misses_; }
@@ -30,6 +35,7 @@ class PatternCache {
     ts::ProcessedFactors key;
     ts::OutputPrimitive output = ts::OutputPrimitive::triangle_cw;
     ts::Pattern pattern;
+    std::optional<ts::PatternShape> shape;
   };
   std::vector<Entry> entries_;
   std::size_t next_victim_ = 0;

@@ -61,7 +61,8 @@ struct MemoryStats {
 
 struct DrawReport {
   PipelineStatistics statistics;
-  std::uint64_t patches_culled = 0;  // patches the tessellator culled (a zero, negative or NaN factor)
+  std::uint64_t patches_culled = 0;       // patches the tessellator culled (a zero, negative or NaN factor)
+  std::uint64_t patches_back_culled = 0;  // patches proven to face away and skipped (patch_orientation.h)
   StageTimes times;
   MemoryStats memory;
 };

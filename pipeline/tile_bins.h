@@ -53,6 +53,7 @@ struct alignas(128) ChunkBuffer {
   std::vector<std::uint32_t> binned;                             // primitive indices grouped by tile
   PipelineStatistics statistics;
   StageTimes times;
+  std::uint64_t patches_back_culled = 0;  // patches skipped by the back-patch test (patch_orientation.h)
 
   void reset(int tile_count) {
     primitive_count = 0;
@@ -61,6 +62,7 @@ struct alignas(128) ChunkBuffer {
     tile_start.assign(std::size_t(tile_count) + 1, 0);
     statistics = {};
     times = {};
+    patches_back_culled = 0;
   }
   void finish_bins() {
     const std::size_t tiles = tile_start.size() - 1;

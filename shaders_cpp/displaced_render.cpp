@@ -13,6 +13,7 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
           const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
           DisplacedHS pass_hs = hs;  // the frustum test sees the pass's depth bias
           pass_hs.base.factors.cull.z_bias = st.z_bias;
+          pass_hs.base.factors.back.z_bias = st.z_bias;
           auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
           if (wire) return go(ConstantPS<kDisplacedAttributes>{});
           DisplacedPS ps;

@@ -162,7 +162,7 @@ struct DisplacedDS {
 
   DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
                             std::uint32_t patch_id) const {
-    const SurfaceSample s = base(SubdPatchConstants{pc.factors}, cp, loc, patch_id);
+    const SurfaceSample s = base(SubdPatchConstants{pc.factors, {}}, cp, loc, patch_id);
     const PatchTexcoords& tc = texcoords[patch_id];
     const bool exact = base.patches[patch_id].kind == PatchKind::exact;
     const float u = loc.u, v = loc.v;

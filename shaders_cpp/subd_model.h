@@ -41,6 +41,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme);
 inline void add_draw_report(DrawReport& total, const DrawReport& part) {
   total.statistics += part.statistics;
   total.patches_culled += part.patches_culled;
+  total.patches_back_culled += part.patches_back_culled;
   total.times += part.times;
   total.memory.geometry_peak_bytes = std::max(total.memory.geometry_peak_bytes, part.memory.geometry_peak_bytes);
 }

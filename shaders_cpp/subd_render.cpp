@@ -1,5 +1,7 @@
 #include "shaders_cpp/subd_render.h"
 
+#include "pipeline/patch_orientation.h"
+
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -27,13 +29,27 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
   return c;
 }
 
-SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire) {
-  SubdPassState st;
-  st.rasterizer.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
+RasterizerState subd_rasterizer(const SubdModel& model, bool wire) {
+  RasterizerState r;
+  r.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
   // Patches emit triangle_cw: counter-clockwise seen from outside a counter-clockwise cage, which
   // after the viewport's y flip is counter-clockwise on screen.
-  st.rasterizer.front_counter_clockwise = true;
-  if (wire) st.rasterizer.fill = FillMode::wireframe;
+  r.front_counter_clockwise = true;
+  if (wire) r.fill = FillMode::wireframe;
+  return r;
+}
+
+int subd_culled_screen_sign(const SubdModel& model) {
+  const RasterizerState state = subd_rasterizer(model, false);
+  SetupContext c;
+  c.cull = state.cull;
+  c.front_ccw = state.front_counter_clockwise;
+  return rasterizer_culls(c, 1) ? 1 : rasterizer_culls(c, -1) ? -1 : 0;
+}
+
+SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire) {
+  SubdPassState st;
+  st.rasterizer = subd_rasterizer(model, wire);
   st.depth.func = CompareFunc::less_equal;
   st.viewport = Viewport{0, 0, float(fb.width()), float(fb.height()), 0, 1};
   st.z_bias = wire ? 2e-4f : 0.0f;
@@ -51,6 +67,7 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
           const ProjectDS<SubdDS> project{ds, camera.view_projection, st.z_bias};
           SubdHS pass_hs = hs;  // the frustum test sees the pass's depth bias
           pass_hs.factors.cull.z_bias = st.z_bias;
+          pass_hs.factors.back.z_bias = st.z_bias;
           auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
           return wire ? go(ConstantPS<>{}) : go(ClayPS{light});
         });

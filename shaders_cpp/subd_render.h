@@ -38,6 +38,11 @@ struct SubdPassState {
   float z_bias = 0.0f;
 };
 SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire);
+// Its rasterizer state alone.
+RasterizerState subd_rasterizer(const SubdModel& model, bool wire);
+// The screen orientation (pipeline/patch_orientation.h: +1 clockwise) of the patches whose every
+// triangle the solid passes cull, for their triangle_cw patterns.
+int subd_culled_screen_sign(const SubdModel& model);
 
 // One pass's draw of one patch group of the model, with the pass's fixed-function state.
 template <class Hs, class Ds, class Ps>

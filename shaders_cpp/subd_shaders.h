@@ -20,6 +20,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders_cpp/lod/back_patch_cull.h"
 #include "shaders_cpp/lod/frustum_cull.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
@@ -58,12 +59,14 @@ struct SubdControlPoint {
 // an edge always agree. `vary` > 0 spreads factors over [factor, factor * (1 + vary)] by a hash of the
 // key (to test edges whose factors differ); inside factors average the edges of each direction.
 // `per_edge` (a --factors-per-edge file, or the view-dependent LOD of lod/edge_lod.h) overrides both
-// for the edges it lists. `cull` zeroes the factors of patches outside the view (lod/frustum_cull.h).
+// for the edges it lists. `cull` zeroes the factors of patches outside the view (lod/frustum_cull.h);
+// `back` bounds the screen orientation of a patch's triangles (lod/back_patch_cull.h).
 struct SubdFactors {
   float factor = 8.0f;
   float vary = 0.0f;
   std::shared_ptr<const std::unordered_map<std::int64_t, float>> per_edge;  // by cage_edge_key
   FrustumCull cull;
+  BackPatchCull back;
   // The factor of one cage edge (the base factor for key -1).
   float edge(std::int64_t key) const {
     if (key >= 0 && per_edge) {
@@ -87,6 +90,7 @@ struct SubdFactors {
 
 struct SubdPatchConstants {
   TessFactors factors;
+  OrientationBound orientation;  // back-patch culling (pipeline/patch_orientation.h); none by default
 };
 
 struct SubdHS {
@@ -142,7 +146,37 @@ struct SubdHS {
     SubdPatchConstants pc;
     if (outside_view(patch, cp)) return pc;  // zero factors: the tessellator culls the patch
     pc.factors = edge_and_inside_factors(patch);
+    pc.orientation = orientation_bound(patch, cp, pc.factors);
     return pc;
+  }
+
+  // The back-patch claim for the quad patches whose positions are a Bezier net (the others: none).
+  OrientationBound orientation_bound(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
+                                     const TessFactors& f) const {
+    if (!factors.back.enabled() || triangles) return {};
+    int segments = 64;
+    for (const float e : f.edge) segments = std::min(segments, max_edge_segments(e));
+    if (patch.kind == PatchKind::acc || patch.kind == PatchKind::pn_quad) {
+      std::array<glm::vec3, 16> net;
+      for (std::size_t i = 0; i < 16; ++i) net[i] = cp[i].p;
+      return factors.back.bound(net, 3, segments);
+    }
+    if (patch.kind == PatchKind::gregory) {
+      // Polynomial where each corner's face points coincide (bspline's regular faces): the Bezier
+      // net with those points inside. The blend of two equal points rounds by a few ulps at most.
+      std::array<glm::vec3, 20> g;
+      for (std::size_t i = 0; i < 20; ++i) g[i] = cp[i].p;
+      for (std::size_t k = 0; k < 4; ++k)
+        if (g[5 * k + 3] != g[5 * k + 4]) return {};
+      std::array<glm::vec3, 16> net = gregory_to_bezier(g, 0.5f, 0.5f);
+      net[5] = g[3], net[6] = g[8], net[10] = g[13], net[9] = g[18];
+      return factors.back.bound(net, 3, segments);
+    }
+    if (patch.kind == PatchKind::bilinear) {  // corners around the quad; the net is row by row
+      const std::array<glm::vec3, 4> net = {cp[0].p, cp[1].p, cp[3].p, cp[2].p};
+      return factors.back.bound(net, 1, segments);
+    }
+    return {};
   }
 
   // The factors of a patch that is not culled.

@@ -20,7 +20,7 @@ ALLOWED = {
     "shaders_cpp/cage": [],
     "shaders_cpp/subdiv": ["tessellator", "shaders_cpp/cage"],
     "shaders_cpp/displacement": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
-    "shaders_cpp/lod": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
+    "shaders_cpp/lod": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
                     "shaders_cpp/lod"],
     "shaders_cpp/debug": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv",

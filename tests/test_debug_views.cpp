@@ -35,9 +35,9 @@ TEST_CASE("Every render view draws the displaced frog; the views differ; bytes d
           "[views][cli]") {
   const fs::path dir = test::cli_temp_dir();
   std::set<std::string> images;
-  const std::vector<std::string> views = {"shaded", "wireframe", "wire-on-shaded", "factors", "density",
-                                          "patch-type", "combination", "patch-id", "normals", "uv",
-                                          "displacement", "cage", "cracks", "culled"};
+  const std::vector<std::string> views = {"shaded",       "wireframe",   "wire-on-shaded", "factors", "density",
+                                          "patch-type",   "combination", "patch-id",       "normals", "uv",
+                                          "displacement", "cage",        "cracks",         "culled"};
   for (const std::string& v : views) {
     const fs::path out = dir / ("view-" + v + ".png");
     const auto r = run_cli("render " + kFrog + " --scheme gregory --lod screen --partitioning fractional_odd" +
@@ -71,17 +71,22 @@ TEST_CASE("render --stats: a row per patch, totals that match the pipeline's cou
   const auto j = nlohmann::json::parse(bytes_of(stats));
   const auto& rows = j["patches"];
   REQUIRE(rows.size() == 1292);
-  std::uint64_t triangles = 0, culled = 0;
+  std::uint64_t triangles = 0, drawn = 0, culled = 0, away = 0;
   for (const auto& row : rows) {
     triangles += row["triangles"].get<std::uint64_t>();
-    culled += row["culled"].is_null() ? 0 : 1;
+    culled += row["culled"] == "frustum" ? 1 : 0;
+    away += row["culled"] == "backface" ? 1 : 0;
+    drawn += row["culled"] == "backface" ? 0 : row["triangles"].get<std::uint64_t>();
     CHECK(row["raw"]["edge"].size() == 4);
   }
   CHECK(culled > 0);
   CHECK(j["totals"]["patches_culled"] == culled);
+  CHECK(j["totals"]["patches_back_culled"] == away);
   CHECK(j["totals"]["triangles"] == triangles);
-  // The shaded view is one pass: the clipper saw exactly the table's triangles.
-  CHECK(j["statistics"]["CInvocations"] == triangles);
+  CHECK(j["totals"]["triangles_drawn"] == drawn);
+  // The shaded view is one pass: the clipper saw exactly the table's triangles, less the patches the
+  // back-patch test skipped.
+  CHECK(j["statistics"]["CInvocations"] == drawn);
   std::uint64_t binned = 0;
   for (const auto& b : j["histograms"]["triangle_area_pixels"]) binned += b["count"].get<std::uint64_t>();
   CHECK(binned + j["totals"]["triangles_behind_eye"].get<std::uint64_t>() == triangles);
@@ -116,9 +121,9 @@ TEST_CASE("Overlay lines draw where they project, and stay hidden behind the dep
   // Identity view-projection: clip = world. A horizontal segment at y = 0 (the middle row), depth 0.25.
   const std::vector<OverlayLine> front = {{glm::vec3(-0.5f, 0.0f, 0.25f), glm::vec3(0.5f, 0.0f, 0.25f)}};
   draw_lines(*fb, glm::mat4(1.0f), front, OverlayStyle{glm::vec3(0.0f), 2.0f, 1.0f, true, 0.0f});
-  CHECK(fb->color(32, 15).r < 0.1f);   // on the line
-  CHECK(fb->color(32, 4).r == 1.0f);   // far from it
-  CHECK(fb->color(4, 15).r == 1.0f);   // past its end
+  CHECK(fb->color(32, 15).r < 0.1f);  // on the line
+  CHECK(fb->color(32, 4).r == 1.0f);  // far from it
+  CHECK(fb->color(4, 15).r == 1.0f);  // past its end
   // The same line behind the depth buffer (depth 0.75 > 0.5): nothing is drawn.
   fb->clear(glm::vec4(1.0f), 0.5f);
   const std::vector<OverlayLine> behind = {{glm::vec3(-0.5f, 0.0f, 0.75f), glm::vec3(0.5f, 0.0f, 0.75f)}};

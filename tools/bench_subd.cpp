@@ -24,7 +24,7 @@ struct BenchSubdOptions {
   LodCli lod;
   float factor = 16.0f, vary = 0.0f;
   int threads = 0, frames = 5;
-  bool json = false;
+  bool json = false, compare_cull = false;
   DisplacementCli displacement;
 };
 
@@ -40,6 +40,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const int w = view.width, h = view.height;
   const SubdCamera& camera = view.camera;
   Displacement* d = displacement ? &*displacement : nullptr;
+  const SubdFactors base_factors = factors;
   apply_lod_options(o.lod, view, model, d, factors);
   Device device(device_options(o.threads));
   std::string error;
@@ -47,16 +48,57 @@ int run_bench_subd(const BenchSubdOptions& o) {
   if (!fb) throw UsageError(error);
 
   using Clock = std::chrono::steady_clock;
-  std::vector<double> frame_s;
-  DrawReport last;
-  for (int f = 0; f < o.frames + 1; ++f) {  // one warm-up frame
-    const auto start = Clock::now();
-    device.clear(*fb, kBackgroundColor, 1.0f);
-    const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, camera, *fb);
-    if (!r.ok()) throw InputError(cage + ": " + r.error);
-    if (f > 0) frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
-    last = r.report;
+  struct Timed {
+    std::vector<double> frame_s;  // sorted
+    DrawReport last;
+  };
+  const auto time_frames = [&](const SubdFactors& f) {
+    Timed t;
+    for (int k = 0; k < o.frames + 1; ++k) {  // one warm-up frame
+      const auto start = Clock::now();
+      device.clear(*fb, kBackgroundColor, 1.0f);
+      const DrawResult r = render_surface(device, model, d, f, partitioning, SubdView::shaded, camera, *fb);
+      if (!r.ok()) throw InputError(cage + ": " + r.error);
+      if (k > 0) t.frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+      t.last = r.report;
+    }
+    std::sort(t.frame_s.begin(), t.frame_s.end());
+    return t;
+  };
+
+  // --compare-cull: the same frames under each --cull mode, and whether the images are the same bytes.
+  Json cull_modes = Json::array();
+  if (o.compare_cull) {
+    std::vector<std::uint8_t> reference;
+    double none_median = 0.0;
+    for (const char* mode : {"none", "frustum", "backface", "all"}) {
+      LodCli lod = o.lod;
+      lod.cull = mode;
+      SubdFactors f = base_factors;
+      apply_lod_options(lod, view, model, d, f);
+      const Timed t = time_frames(f);
+      const double median = t.frame_s[t.frame_s.size() / 2];
+      std::vector<std::uint8_t> bytes = fb->color_bytes();
+      if (reference.empty()) reference = bytes, none_median = median;
+      cull_modes.push_back({{"cull", mode},
+                            {"median_s", median},
+                            {"min_s", t.frame_s.front()},
+                            {"saved_s", none_median - median},
+                            {"patches_culled", t.last.patches_culled},
+                            {"patches_back_culled", t.last.patches_back_culled},
+                            {"triangles", t.last.statistics.CInvocations},
+                            {"same_image", bytes == reference}});
+      if (!o.json)
+        std::cout << "--cull " << mode << ": median " << median << " s (min " << t.frame_s.front() << "), "
+                  << t.last.patches_culled << " patches outside the view, " << t.last.patches_back_culled
+                  << " facing away, " << t.last.statistics.CInvocations << " triangles, "
+                  << (bytes == reference ? "same image" : "IMAGE DIFFERS") << "\n";
+    }
   }
+
+  const Timed timed = time_frames(factors);
+  const std::vector<double>& frame_s = timed.frame_s;
+  const DrawReport& last = timed.last;
   if (!o.output.empty())
     if (auto e = fb->write_color(o.output); !e.empty()) throw InputError(e);
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
@@ -64,31 +106,32 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const auto start = Clock::now();
   const DrawResult s = stream_surface(device, model, d, factors, partitioning, discard);
   const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
-  std::sort(frame_s.begin(), frame_s.end());
   const double median = frame_s[frame_s.size() / 2];
   const auto& st = last.statistics;
   const double hs_rate = double(s.report.statistics.HSInvocations) / std::max(1e-9, s.report.times.hs);
   const double ds_rate = double(s.report.statistics.DSInvocations) / std::max(1e-9, s.report.times.ds);
   if (o.json) {
-    const Json j = {{"scene", "subd"},
-                    {"cage", cage},
-                    {"scheme", to_string(scheme)},
-                    {"displacement", displacement ? o.displacement.map : std::string()},
-                    {"factor", json_float(o.factor)},
-                    {"resolution", std::to_string(w) + "x" + std::to_string(h)},
-                    {"threads", device.threads()},
-                    {"frames", o.frames},
-                    {"lod", o.lod.mode},
-                    {"cull", o.lod.cull},
-                    {"patches_culled", last.patches_culled},
-                    {"triangles", st.CInvocations},
-                    {"median_s", median},
-                    {"min_s", frame_s.front()},
-                    {"triangles_per_s", double(st.CInvocations) / median},
-                    {"stream_s", stream_s},
-                    {"hs_patches_per_thread_s", hs_rate},
-                    {"ds_points_per_thread_s", ds_rate},
-                    {"times", to_json(last.times)}};
+    Json j = {{"scene", "subd"},
+              {"cage", cage},
+              {"scheme", to_string(scheme)},
+              {"displacement", displacement ? o.displacement.map : std::string()},
+              {"factor", json_float(o.factor)},
+              {"resolution", std::to_string(w) + "x" + std::to_string(h)},
+              {"threads", device.threads()},
+              {"frames", o.frames},
+              {"lod", o.lod.mode},
+              {"cull", o.lod.cull},
+              {"patches_culled", last.patches_culled},
+              {"patches_back_culled", last.patches_back_culled},
+              {"triangles", st.CInvocations},
+              {"median_s", median},
+              {"min_s", frame_s.front()},
+              {"triangles_per_s", double(st.CInvocations) / median},
+              {"stream_s", stream_s},
+              {"hs_patches_per_thread_s", hs_rate},
+              {"ds_points_per_thread_s", ds_rate},
+              {"times", to_json(last.times)}};
+    if (o.compare_cull) j["cull_modes"] = cull_modes;
     std::cout << json_text(j) << "\n";
   } else {
     char line[400];
@@ -117,6 +160,9 @@ Runner add_bench_subd_command(CLI::App& bench) {
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");
+  cmd->add_flag("--compare-cull", o->compare_cull,
+                "also time the frames under each --cull mode (none, frustum, backface, all): the time each "
+                "saves, and whether the images are the same bytes (JSON: cull_modes)");
   add_displacement_options(*cmd, o->displacement);
   cmd->fallthrough();
   return [o, cmd]() -> int { return cmd->parsed() ? run_bench_subd(*o) : -1; };

@@ -75,7 +75,8 @@ int run_render(const RenderOptions& o) {
   }
   std::cout << o.output << ": " << view.width << "x" << view.height << ", scheme " << to_string(scheme) << ", view "
             << to_string(*kind) << ", " << total.statistics.CInvocations << " triangles, " << total.patches_culled
-            << " patches culled, " << total.statistics.PSInvocations << " pixels shaded";
+            << " patches culled, " << total.patches_back_culled << " facing away, " << total.statistics.PSInvocations
+            << " pixels shaded";
   if (*kind == ViewKind::cracks) std::cout << ", " << out.open_edges << " open edges";
   std::cout << "\n";
   return kExitOk;

@@ -49,7 +49,7 @@ struct Log2Histogram {
 void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const PatchTables& tables,
                           const LodResult& lod) {
   Json rows = Json::array();
-  std::uint64_t triangles = 0, culled = 0, patches = 0;
+  std::uint64_t triangles = 0, drawn = 0, culled = 0, away = 0, patches = 0;
   std::array<std::uint64_t, 64> factor_counts{};  // edge factors by [k, k+1), k = 1..63, 64 in the last
   for (const auto* t : {&tables.quads, &tables.tris}) {
     for (std::size_t id = 0; id < t->size(); ++id) {
@@ -57,7 +57,9 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
       const int edges = p.tri ? 3 : 4, insides = p.tri ? 1 : 2;
       ++patches;
       triangles += p.triangles;
+      drawn += p.faces_away ? 0 : p.triangles;
       culled += p.culled ? 1 : 0;
+      away += p.faces_away ? 1 : 0;
       for (int k = 0; k < edges && !p.culled; ++k) {
         const float f = p.raw.edge[std::size_t(k)];
         const int bin = std::isfinite(f) ? std::clamp(int(std::floor(f)), 1, 64) - 1 : 0;
@@ -76,7 +78,9 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
            {"segments", segments_json(p.edge_segments, edges, p.inside_segments, insides)},
            {"triangles", p.triangles},
            {"screen_pixels", std::isfinite(p.screen_pixels) ? Json(json_float(p.screen_pixels)) : Json(nullptr)},
-           {"culled", p.culled ? Json("frustum") : Json(nullptr)}});
+           {"culled", p.culled       ? Json("frustum")
+                      : p.faces_away ? Json("backface")
+                                     : Json(nullptr)}});
     }
   }
   Json factor_bins = Json::array();
@@ -117,7 +121,9 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
                   {"cull", to_string(lod.cull)}};
   stats["totals"] = {{"patches", patches},
                      {"patches_culled", culled},
+                     {"patches_back_culled", away},
                      {"triangles", triangles},
+                     {"triangles_drawn", drawn},
                      {"triangles_streamed", streamed},
                      {"triangles_behind_eye", behind}};
   stats["histograms"] = {{"edge_factors", factor_bins}, {"triangle_area_pixels", areas.json()}};

@@ -250,11 +250,12 @@ DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTab
     }
     case ViewKind::culled: {
       r.ps.view = DebugView::culled;
-      std::size_t culled = 0, total = 0;
-      tables.for_each([&](const PatchInfo& p) { culled += p.culled ? 1 : 0, ++total; });
-      legend.title = "frustum culling, seen from outside the view";
+      std::size_t culled = 0, away = 0, total = 0;
+      tables.for_each([&](const PatchInfo& p) { culled += p.culled ? 1 : 0, away += p.faces_away ? 1 : 0, ++total; });
+      legend.title = "patch culling, seen from outside the view";
       legend.swatches = {
-          {kCulledColor, std::to_string(culled) + " of " + std::to_string(total) + " patches culled (zero factors)"},
+          {kCulledColor, std::to_string(culled) + " of " + std::to_string(total) + " patches outside the frustum"},
+          {kBackCulledColor, std::to_string(away) + " proven to face away (back-patch test)"},
           {glm::vec3(0.1f, 0.1f, 0.1f), "the view camera's frustum"}};
       break;
     }
@@ -290,6 +291,7 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
   SubdCamera camera = in.view.camera;
   if (kind == ViewKind::culled) {
     factors.cull.enabled = false;
+    factors.back = {};  // its claims are about the view camera, not this one
     camera = overview_camera(in, fb.width(), fb.height());
   }
   r.ps.light = glm::normalize(camera.eye - camera.target);

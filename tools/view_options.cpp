@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "shaders_cpp/subd_render.h"
 #include "tools/cli_common.h"
 
 namespace tessera::cli {
@@ -63,7 +64,8 @@ void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) 
   cmd.add_option("--dicing-camera-position", l.dicing_eye,
                  "x,y,z: measure LOD from here instead of the view camera (a frozen tessellation to fly around)");
   cmd.add_option("--cull", l.cull,
-                 "patch culling: none, frustum, or all (every test that cannot change a pixel: frustum)")
+                 "patch culling: none, frustum (the control-point hull outside the view), backface (every "
+                 "triangle proven to face away; undisplaced Bezier patches) or all (both; neither changes a pixel)")
       ->capture_default_str();
 }
 
@@ -74,7 +76,7 @@ LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdMo
   const auto mode = parse_lod_mode(l.mode);
   if (!mode) throw UsageError("--lod: '" + l.mode + "' is not uniform, distance or screen");
   const auto cull = parse_patch_cull_mode(l.cull);
-  if (!cull) throw UsageError("--cull: '" + l.cull + "' is not none, frustum or all");
+  if (!cull) throw UsageError("--cull: '" + l.cull + "' is not none, frustum, backface or all");
   r.cull = *cull;
   if (!(std::isfinite(l.edge_pixels) && l.edge_pixels >= 0.25f && l.edge_pixels <= 4096.0f))
     throw UsageError("--edge-pixels: " + float_text(l.edge_pixels) + " is not in [0.25, 4096]");
@@ -96,11 +98,14 @@ LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdMo
     factors.per_edge = edge_lod_factors(model.cage, *model.topology, s);
     if (displacement) displacement->trilinear = true;
   }
-  if (r.cull == PatchCullMode::frustum) {
+  if (culls_frustum(r.cull)) {
     factors.cull.enabled = true;
     factors.cull.view_projection = view.camera.view_projection;
     factors.cull.growth = displacement_bound;
   }
+  // Displaced patches carry no orientation claim (back_patch_cull.h): no test for them.
+  if (culls_backface(r.cull) && displacement == nullptr)
+    factors.back = BackPatchCull(view.camera.view_projection, view.width, view.height, subd_culled_screen_sign(model));
   return r;
 }
 

@@ -158,7 +158,7 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
       c = shade(diverging_color(0.5f + 0.5f * hgt / std::max(height_range, 1e-20f)));
       break;
     }
-    case DebugView::culled: c = shade(p.culled ? kCulledColor : kClayColor); break;
+    case DebugView::culled: c = shade(p.culled ? kCulledColor : p.faces_away ? kBackCulledColor : kClayColor); break;
   }
   const float border = border_strength * line_coverage(boundary_px, border_width);
   c = glm::mix(c, glm::vec3(0.08f, 0.09f, 0.12f), border);

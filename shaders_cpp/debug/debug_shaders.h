@@ -61,11 +61,13 @@ enum class DebugView : std::uint8_t {
   normals,       // world normal as RGB
   uv,            // checker of the texture coordinates, UV seams marked
   displacement,  // signed displacement height
-  culled,        // culled patches red, the rest clay (seen from an overview camera)
+  culled,        // frustum-culled patches red, back-culled blue, the rest clay (from an overview camera)
 };
 
 // The culled view's colour of a culled patch (and its legend swatch).
 inline constexpr glm::vec3 kCulledColor{0.92f, 0.25f, 0.18f};
+// ... and of a patch the back-patch test skipped.
+inline constexpr glm::vec3 kBackCulledColor{0.25f, 0.45f, 0.9f};
 
 // Colour maps, t in [0, 1].
 glm::vec3 heat_color(float t);       // dark blue -> cyan -> green -> yellow -> red (a turbo-like ramp)

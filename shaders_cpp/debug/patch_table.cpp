@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders_cpp/subd_render.h"
+#include "tessellator/pattern_shape.h"
+
 namespace tessera {
 
 const char* to_string(PatchType t) {
@@ -97,6 +100,17 @@ void finish_patch_info(PatchInfo& info, const SubdModel& m, const SubdPatch& pat
       info.corner_uv = {uv(patch.sub), uv(patch.sub + 1), centre_uv / float(n), glm::vec2(0.0f)};
     }
   }
+}
+
+bool proven_facing_away(const SubdModel& m, const OrientationBound& bound, const TessFactors& raw,
+                        const TessellatorState& ts_state) {
+  if (!bound.may_hold()) return false;
+  ts::Pattern pattern;
+  ts::generate(ts::process_factors(ts_state.partitioning, detail::factor_set(ts_state.domain, raw)), ts_state.output,
+               pattern);
+  const ts::PatternShape shape = ts::pattern_shape(pattern);
+  const int culled = subd_culled_screen_sign(m);
+  return bound.holds(shape) && culled != 0 && pattern_screen_sign(bound, shape) == culled;
 }
 
 }  // namespace detail

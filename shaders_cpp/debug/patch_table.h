@@ -36,12 +36,13 @@ struct PatchInfo {
   int combination = -1;                   // TopologyCombinations index (-1: none)
   bool tri = false;                       // on the tri domain
   bool culled = false;                    // the hull shader gave it zero factors (outside the view)
+  bool faces_away = false;                // not culled, but proven to face away: skipped before its DS
   TessFactors raw;                        // what the hull shader would give without culling
   std::array<float, 4> edge_processed{};  // after the partitioning's clamp and rounding
   std::array<float, 2> inside_processed{};
   std::array<int, 4> edge_segments{};
   std::array<int, 2> inside_segments{};
-  std::uint32_t triangles = 0;           // 0 when culled
+  std::uint32_t triangles = 0;           // what the tessellator makes of its factors: 0 when culled
   float screen_pixels = 0.0f;            // projected diameter of the hull's bounding sphere (edge_lod.h)
   float pixels_per_segment = 0;          // screen_pixels over the patch's largest segment count
   std::uint8_t seam_edges = 0;           // bit k: domain edge k (SV_TessFactor order) lies on a UV seam
@@ -64,6 +65,10 @@ PatchType patch_type(const SubdPatch& p, const Topology& t, const TopologyCombin
 void finish_patch_info(PatchInfo& info, const SubdModel& m, const SubdPatch& patch, const TessFactors& raw,
                        std::span<const glm::vec3> hull, const TessellatorState& ts_state, const DicingCamera& camera,
                        const std::vector<std::int64_t>& seam_keys);
+// Whether a draw of the model skips the patch as facing away (pipeline/patch_orientation.h), for the
+// pattern of its factors and the rasterizer state the model's passes use (subd_render.h).
+bool proven_facing_away(const SubdModel& m, const OrientationBound& bound, const TessFactors& raw,
+                        const TessellatorState& ts_state);
 }  // namespace detail
 
 template <class Hs>
@@ -96,7 +101,10 @@ std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g
                            ? combos.face_combination[std::size_t(patch.face)]
                            : -1;
     info.type = detail::patch_type(patch, *m.topology, combos, g.domain == ts::Domain::tri);
-    detail::finish_patch_info(info, m, patch, base.edge_and_inside_factors(patch), hull, ts_state, camera, seam_keys);
+    const TessFactors raw = base.edge_and_inside_factors(patch);
+    detail::finish_patch_info(info, m, patch, raw, hull, ts_state, camera, seam_keys);
+    info.faces_away =
+        !info.culled && detail::proven_facing_away(m, base.orientation_bound(patch, out, raw), raw, ts_state);
   }
   return rows;
 }

@@ -25,10 +25,13 @@
 
 namespace tessera {
 
-enum class PatchCullMode : std::uint8_t { none, frustum };
-// "all" names every test that cannot change a pixel; today that is the frustum test.
+// --cull: no test, one of them, or both (the frustum test here, the back-patch test of
+// back_patch_cull.h); neither can change a pixel.
+enum class PatchCullMode : std::uint8_t { none, frustum, backface, all };
 std::optional<PatchCullMode> parse_patch_cull_mode(std::string_view name);
 const char* to_string(PatchCullMode m);
+inline bool culls_frustum(PatchCullMode m) { return m == PatchCullMode::frustum || m == PatchCullMode::all; }
+inline bool culls_backface(PatchCullMode m) { return m == PatchCullMode::backface || m == PatchCullMode::all; }
 
 // An axis-aligned box (a face's 1-ring, for patches without control points).
 struct Box3 {
@@ -48,8 +51,8 @@ struct FrustumCull {
     // Clip-space rows as linear functions of (x, y, z, 1), in double (no rounding question in the test).
     std::array<glm::dvec4, 4> row;
     for (int i = 0; i < 4; ++i)
-      row[std::size_t(i)] = glm::dvec4(view_projection[0][i], view_projection[1][i], view_projection[2][i],
-                                       view_projection[3][i]);
+      row[std::size_t(i)] =
+          glm::dvec4(view_projection[0][i], view_projection[1][i], view_projection[2][i], view_projection[3][i]);
     row[2] -= double(z_bias) * row[3];
     const std::array<glm::dvec4, 6> planes = {row[3] + row[0], row[3] - row[0], row[3] + row[1],
                                               row[3] - row[1], row[2],          row[3] - row[2]};
