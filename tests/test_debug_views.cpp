@@ -97,6 +97,32 @@ TEST_CASE("render --stats: a row per patch, totals that match the pipeline's cou
   CHECK(j["lod"]["mode"] == "screen");
 }
 
+TEST_CASE("tessellate --stats: the rows and totals of the triangles it writes; --cull backface refused",
+          "[views][cli]") {
+  const fs::path dir = test::cli_temp_dir();
+  const fs::path stats = dir / "tessellate-stats.json";
+  const auto r = run_cli(
+      "tessellate " + kFrog +
+      " --lod screen --camera-position 20,5,12 --camera-target -3,-2.5,2 --cull all --json --stats " + stats.string());
+  REQUIRE(r.exit_code == 0);
+  const auto summary = nlohmann::json::parse(r.out);
+  const auto j = nlohmann::json::parse(bytes_of(stats));
+  REQUIRE(j["patches"].size() == 1292);
+  std::uint64_t triangles = 0, culled = 0;
+  for (const auto& row : j["patches"]) {
+    triangles += row["triangles"].get<std::uint64_t>();
+    culled += row["culled"] == "frustum" ? 1 : 0;
+    CHECK(row["culled"] != "backface");  // nothing is skipped: tessellate writes every patch
+  }
+  CHECK(culled > 0);
+  CHECK(triangles == summary["triangles"].get<std::uint64_t>());
+  CHECK(j["totals"]["triangles_streamed"] == triangles);
+  CHECK(j["statistics"]["DSInvocations"] == summary["ds_invocations"]);
+  const auto bad = run_cli("tessellate " + kFrog + " --cull backface --stats " + stats.string());
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("--cull backface") != std::string::npos);
+}
+
 TEST_CASE("The crack finder returns exactly the open and non-manifold edges", "[views]") {
   verify::WeldChecker w;
   const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(1, 1, 0);

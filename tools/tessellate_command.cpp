@@ -13,6 +13,7 @@
 #include "tools/commands.h"
 #include "tools/json_output.h"
 #include "tools/ply_writer.h"
+#include "tools/render_stats.h"
 #include "shaders_cpp/subd_model.h"
 #include "tools/tessellate_options.h"
 #include "tools/view_options.h"
@@ -22,7 +23,7 @@ namespace tessera::cli {
 namespace {
 
 struct TessellateOptions {
-  std::string cage, output, scheme = "gregory", partitioning = "integer", factors_file;
+  std::string cage, output, stats, scheme = "gregory", partitioning = "integer", factors_file;
   float factor = 8.0f, vary = 0.0f;
   int threads = 0;
   bool check = false, json = false;
@@ -35,7 +36,8 @@ int run_tessellate(const TessellateOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  if (o.output.empty() && !o.check) throw UsageError("nothing to do: give -o out.ply and/or --check-watertight");
+  if (o.output.empty() && !o.check && o.stats.empty())
+    throw UsageError("nothing to do: give -o out.ply, --check-watertight and/or --stats FILE.json");
 
   const SubdModel model = load_model(o.cage, scheme);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
@@ -43,7 +45,13 @@ int run_tessellate(const TessellateOptions& o) {
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +
              " faces are not regular and are drawn as Gregory patches");
   const ViewSetup view = view_option(o.camera, model.cage);
-  apply_lod_options(o.lod, view, model, displacement ? &*displacement : nullptr, factors);
+  const LodResult lod = apply_lod_options(o.lod, view, model, displacement ? &*displacement : nullptr, factors);
+  // Back-patch culling skips what a rasterizer would cull; tessellate writes every patch.
+  if (lod.cull == PatchCullMode::backface)
+    throw UsageError(
+        "--cull backface: tessellate writes every patch's triangles (nothing rasterizes them); "
+        "use none, frustum or all (= frustum here)");
+  factors.back = {};
   log_debug(std::to_string(model.patches.quads.size() + model.patches.tris.size()) + " patches, " +
             std::to_string(model.patches.tables.size()) + " stencil tables");
 
@@ -102,6 +110,18 @@ int run_tessellate(const TessellateOptions& o) {
     tessellate(nullptr);
   }
 
+  if (!o.stats.empty()) {
+    const ViewInputs inputs{
+        model, displacement ? &*displacement : nullptr, factors, partitioning, view, o.lod.edge_pixels, false};
+    const PatchTables tables = view_patch_tables(inputs);
+    Json s = {{"statistics", to_json(result.report.statistics)},
+              {"times", to_json(result.report.times)},
+              {"memory", to_json(result.report.memory)},
+              {"peak_rss_bytes", peak_rss_bytes()}};
+    add_patch_statistics(s, device, inputs, tables, lod);
+    write_text_atomically(o.stats, json_text(s) + "\n");
+  }
+
   const auto& st = result.report.statistics;
   std::ostringstream text;
   text << o.cage << ": scheme " << to_string(scheme) << ", " << model.patches.quads.size() + model.patches.tris.size()
@@ -140,6 +160,9 @@ Runner add_tessellate_command(CLI::App& app) {
   add_displacement_options(*cmd, o->displacement);
   add_camera_options(*cmd, o->camera);
   add_lod_options(*cmd, o->lod, "none");
+  cmd->add_option("--stats", o->stats,
+                  "write per-patch statistics (factors raw and processed, triangles, screen size, culling), "
+                  "histograms and totals as JSON (as render --stats; screen sizes for the --camera view)");
   cmd->add_flag("--check-watertight", o->check, "weld on exact bits and check for a closed 2-manifold (exit 1 if not)");
   cmd->add_flag("--json", o->json, "print the summary as JSON");
   return [o] { return run_tessellate(*o); };
