@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes the README's example image of each `tessera render --view` into docs/images/ (1280x720),
-# from the bundled displaced monster frog. Run after building (scripts/test.sh or scripts/run.sh).
+# from the bundled monster frog (displaced, but for the culled view). Run after building (scripts/test.sh or scripts/run.sh).
 #
 #   scripts/readme_images.sh [BUILD_DIR]     (default build/)
 set -euo pipefail
@@ -20,6 +20,7 @@ r "${disp[@]}" "${mid[@]}" --factor 6 --partitioning fractional_odd --view wire-
 for v in factors density patch-type combination patch-id normals uv displacement cage cracks; do
   r "${disp[@]}" "${mid[@]}" "${lod[@]}" --view "$v" -o "$out/view-$v.png"
 done
-r "${disp[@]}" "${lod[@]}" --camera-position 20,5,12 --camera-target -3,-2.5,2 --resolution 1280x720 \
-  --view culled -o "$out/view-culled.png"
+# Undisplaced acc: the back-patch test proves patches of Bezier nets only, so both colours show.
+"$bin" -q render "$frog" --scheme acc --factor 12 --camera-position 20,5,12 --camera-target -3,-2.5,2 \
+  --resolution 1280x720 --view culled -o "$out/view-culled.png" >/dev/null
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2

@@ -57,11 +57,16 @@ SubdCamera overview_camera(const ViewInputs& in, int w, int h) {
   lo = glm::min(lo, eye), hi = glm::max(hi, eye);
   const glm::vec3 centre = 0.5f * (lo + hi);
   const float radius = 0.5f * glm::length(hi - lo);
-  glm::vec3 back = glm::normalize(eye - target);
-  back = glm::normalize(back + glm::vec3(0.6f, 0.8f, 0.3f));
+  // From beyond the model, above and to the side, looking back toward the view camera: what faces away
+  // from the view (the back-patch test's patches) faces this camera, and the frustum reads as a
+  // pyramid.
+  const glm::vec3 back = glm::normalize(eye - target);
+  glm::vec3 side = glm::cross(glm::vec3(0, 1, 0), back);
+  side = glm::length(side) > 1e-3f ? glm::normalize(side) : glm::vec3(1, 0, 0);
+  const glm::vec3 direction = glm::normalize(0.5f * side + 0.5f * glm::vec3(0, 1, 0) - back);
   Cage frame;
   frame.positions = {lo, hi};
-  return frame_cage(frame, w, h, 35.0f, centre + back * (radius / std::tan(glm::radians(17.5f)) * 1.1f), centre);
+  return frame_cage(frame, w, h, 35.0f, centre + direction * (radius / std::tan(glm::radians(17.5f)) * 1.1f), centre);
 }
 
 }  // namespace
