@@ -10,7 +10,7 @@ shift || true
 
 packages=(
   build-essential cmake ninja-build pkg-config git python3 bc
-  libglm-dev libopenimageio-dev libtinygltf-dev catch2 libosd-dev libtbb-dev
+  libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev catch2 libosd-dev libtbb-dev
   libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev fonts-dejavu-core
   # Mesa llvmpipe and libepoxy: the oracle and benchmark peer in ../shared/bench.
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev

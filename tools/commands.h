@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace tessera::cli {
 
@@ -20,6 +22,9 @@ Runner add_tessellate_command(CLI::App& app);
 Runner add_render_command(CLI::App& app);
 Runner add_accuracy_command(CLI::App& app);
 Runner add_make_cage_command(CLI::App& app);
+Runner add_diff_command(CLI::App& app);
+// argv with `tessera diff`'s idiff spellings (-fail, -od, ...) turned into CLI11's (--fail, --od).
+std::vector<std::string> idiff_arguments(int argc, char** argv);
 // Registered under `bench`; its runner returns -1 when `bench torus` was not the chosen subcommand.
 Runner add_bench_torus_command(CLI::App& bench);
 Runner add_bench_subd_command(CLI::App& bench);

@@ -2,6 +2,7 @@
 // Exit codes: 0 ok, 1 bad input or a failed check, 2 usage error.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <map>
@@ -26,11 +27,16 @@ int main(int argc, char** argv) {
   runners["render"] = add_render_command(app);
   runners["accuracy"] = add_accuracy_command(app);
   runners["make-cage"] = add_make_cage_command(app);
+  runners["diff"] = add_diff_command(app);
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 
   try {
-    app.parse(argc, argv);
+    // CLI11 takes the arguments last to first.
+    std::vector<std::string> args = idiff_arguments(argc, argv);
+    args.erase(args.begin());
+    std::reverse(args.begin(), args.end());
+    app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
