@@ -2,6 +2,7 @@
 // an automatic camera that frames it (or one given), in one of the views of render_views.h: shaded,
 // wireframes, and the debug views of factors, density, patch types, UVs, the cage, cracks and culling.
 // --stats writes the pipeline statistics and a row per patch (render_stats.h).
+#include <filesystem>
 #include <iostream>
 
 #include "tools/cli_common.h"
@@ -9,6 +10,7 @@
 #include "tools/json_output.h"
 #include "tools/render_stats.h"
 #include "tools/render_views.h"
+#include "tools/scene_file.h"
 #include "tools/tessellate_options.h"
 #include "tools/view_options.h"
 
@@ -16,32 +18,86 @@ namespace tessera::cli {
 namespace {
 
 struct RenderOptions {
-  std::string cage, output, scheme = "gregory", partitioning = "integer", factors_file, view = "shaded";
-  std::string factor_kind = "raw";
-  CameraCli camera;
-  LodCli lod;
-  float factor = 8.0f, vary = 0.0f;
-  int threads = 0;
-  std::string stats;
-  DisplacementCli displacement;
+  RenderSettings s;  // what a scene file holds
+  std::string output, stats, scene, print_scene;
+  bool scene_schema = false;
 };
 
-int run_render(const RenderOptions& o) {
-  const Scheme scheme = scheme_option(o.scheme);
-  const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
-  const auto kind = parse_view(o.view);
-  if (!kind) throw UsageError("--view: '" + o.view + "' is not one of " + view_names());
-  if (o.factor_kind != "raw" && o.factor_kind != "processed")
-    throw UsageError("--factor-kind: '" + o.factor_kind + "' is not raw or processed");
+// The options a scene file sets: given with --scene they would be ambiguous, so they are refused.
+constexpr const char* kSceneOptions[] = {"--scheme",
+                                         "--factor",
+                                         "--vary-factors",
+                                         "--factors-per-edge",
+                                         "--partitioning",
+                                         "--resolution",
+                                         "--camera-position",
+                                         "--camera-target",
+                                         "--fov",
+                                         "--lod",
+                                         "--edge-pixels",
+                                         "--lod-distance",
+                                         "--dicing-camera-position",
+                                         "--cull",
+                                         "--view",
+                                         "--factor-kind",
+                                         "--displacement",
+                                         "--displacement-channel",
+                                         "--displacement-scale",
+                                         "--displacement-bias",
+                                         "--displacement-space",
+                                         "--normal-map"};
+
+// The settings: the command line's, or the scene file's (with --threads still the command line's).
+RenderSettings settings_of(const RenderOptions& o, const CLI::App& cmd) {
+  if (o.scene.empty()) {
+    if (o.s.cage.empty()) throw UsageError("give a cage, or --scene FILE");
+    return o.s;
+  }
+  for (const char* name : kSceneOptions)
+    if (cmd.count(name) > 0)
+      throw UsageError(std::string(name) + " with --scene: the scene sets it (edit the scene, or drop --scene)");
+  if (!o.s.cage.empty()) throw UsageError("a cage and --scene: the scene names its asset");
+  RenderSettings s = read_scene(o.scene);
+  if (cmd.count("--threads") > 0) s.threads = o.s.threads;
+  return s;
+}
+
+int run_render(const RenderOptions& given, const CLI::App& cmd) {
+  if (given.scene_schema) {
+    std::cout << kSceneSchema;
+    return kExitOk;
+  }
+  RenderOptions o = given;
+  o.s = settings_of(given, cmd);
+  if (o.s.time != 0.0)
+    throw UsageError("time " + std::to_string(o.s.time) + " s: " + o.s.cage +
+                     " is not animated (OBJ cages are static; the time must be 0)");
+  if (!o.print_scene.empty()) {
+    // Paths relative to where the scene goes (absolute on stdout), so the file can move with them.
+    if (o.print_scene == "-") {
+      std::cout << scene_json(o.s, "").dump(2) << "\n";
+    } else {
+      const std::string dir = std::filesystem::path(o.print_scene).parent_path().string();
+      write_text_atomically(o.print_scene, scene_json(o.s, dir.empty() ? "." : dir).dump(2) + "\n");
+      log_info("wrote " + o.print_scene);
+    }
+    return kExitOk;
+  }
+  const Scheme scheme = scheme_option(o.s.scheme);
+  const ts::Partitioning partitioning = partitioning_option(o.s.partitioning);
+  SubdFactors factors = factors_option(o.s.factor, o.s.vary, o.s.factors_file);
+  const auto kind = parse_view(o.s.view);
+  if (!kind) throw UsageError("--view: '" + o.s.view + "' is not one of " + view_names());
+  if (o.s.factor_kind != "raw" && o.s.factor_kind != "processed")
+    throw UsageError("--factor-kind: '" + o.s.factor_kind + "' is not raw or processed");
   if (o.output.empty()) throw UsageError("-o out.png is required");
 
-  const SubdModel model = load_model(o.cage, scheme);
-  std::optional<Displacement> displacement = displacement_option(o.displacement, model);
-  const ViewSetup view = view_option(o.camera, model.cage);
-  const LodResult lod = apply_lod_options(o.lod, view, model, displacement ? &*displacement : nullptr, factors);
+  const SubdModel model = load_model(o.s.cage, scheme);
+  std::optional<Displacement> displacement = displacement_option(o.s.displacement, model);
+  const ViewSetup view = view_option(o.s.camera, model.cage);
+  const LodResult lod = apply_lod_options(o.s.lod, view, model, displacement ? &*displacement : nullptr, factors);
 
-  Device device(device_options(o.threads));
+  Device device(device_options(o.s.threads));
   std::string error;
   auto fb = Framebuffer::create(view.width, view.height, ColorFormat::rgba8_unorm, &error);
   if (!fb) throw UsageError(error);
@@ -50,13 +106,13 @@ int run_render(const RenderOptions& o) {
                           factors,
                           partitioning,
                           view,
-                          o.lod.edge_pixels,
-                          o.factor_kind == "processed"};
+                          o.s.lod.edge_pixels,
+                          o.s.factor_kind == "processed"};
   // Per-patch facts, replayed once for the view and the statistics.
   std::optional<PatchTables> tables;
   if (view_uses_patch_tables(*kind) || !o.stats.empty()) tables = view_patch_tables(inputs);
   const ViewOutput out = render_view(device, *kind, inputs, tables ? &*tables : nullptr, *fb);
-  if (!out.result.ok()) throw InputError(o.cage + ": " + out.result.error);
+  if (!out.result.ok()) throw InputError(o.s.cage + ": " + out.result.error);
   const DrawReport& total = out.result.report;
   if (out.has_legend) {
     write_with_legend(*fb, out.legend, o.output);
@@ -87,18 +143,25 @@ int run_render(const RenderOptions& o) {
 Runner add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "render a cage's subdivision surface to an image");
-  cmd->add_option("cage", o->cage, "the cage (OBJ, OpenSubdiv tags allowed)")->required();
+  cmd->add_option("cage", o->s.cage, "the cage (OBJ, OpenSubdiv tags allowed); or --scene");
   cmd->add_option("-o,--output", o->output, "output image (PNG or EXR)");
-  add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
-  add_camera_options(*cmd, o->camera);
-  add_lod_options(*cmd, o->lod, "all");
-  cmd->add_option("--view", o->view, view_names())->capture_default_str();
-  cmd->add_option("--factor-kind", o->factor_kind, "--view factors: raw (as the hull shader gave them) or processed")
+  add_scheme_options(*cmd, o->s.scheme, o->s.factor, o->s.vary, o->s.factors_file, o->s.partitioning, o->s.threads);
+  add_camera_options(*cmd, o->s.camera);
+  add_lod_options(*cmd, o->s.lod, "all");
+  cmd->add_option("--view", o->s.view, view_names())->capture_default_str();
+  cmd->add_option("--factor-kind", o->s.factor_kind, "--view factors: raw (as the hull shader gave them) or processed")
       ->capture_default_str();
-  add_displacement_options(*cmd, o->displacement);
+  add_displacement_options(*cmd, o->s.displacement);
+  cmd->add_option("--scene", o->scene,
+                  "render the scene file FILE (JSON: asset, scheme, partitioning, factor, lod, cull, displacement, "
+                  "camera, resolution, view, time, threads; relative paths from the file; schema: --scene-schema)");
+  cmd->add_option("--print-scene", o->print_scene,
+                  "write this command line's scene to FILE (paths relative to it) or to stdout (-, absolute "
+                  "paths) and render nothing");
+  cmd->add_flag("--scene-schema", o->scene_schema, "print the scene files' JSON Schema and exit");
   cmd->add_option("--stats", o->stats,
                   "write D3D11 pipeline statistics, stage times, memory, a row per patch and histograms as JSON");
-  return [o] { return run_render(*o); };
+  return [o, cmd] { return run_render(*o, *cmd); };
 }
 
 }  // namespace tessera::cli

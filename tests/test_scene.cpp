@@ -1,0 +1,194 @@
+// Scene files (tools/scene_file.h, docs/scene.schema.json): a printed scene renders the bytes its
+// command line does, settings survive a round trip bit for bit, paths resolve against the scene file,
+// the schema and the reader agree field for field, and bad scenes get one line naming file and field.
+#include <filesystem>
+#include <fstream>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "test_data.h"
+#include "tools/cli_common.h"
+#include "tools/scene_file.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kFrog = test::data("sdk-cages/monsterfrog_mapped_00.obj");
+const fs::path kSchema = fs::path(TESSERA_TEST_DATA_DIR).parent_path().parent_path() / "docs" / "scene.schema.json";
+
+fs::path write(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("A printed scene renders the same bytes as its command line", "[scene][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "scene-print";
+  fs::create_directories(dir / "scenes");
+  const std::string line = kFrog +
+                           " --scheme acc --lod screen --edge-pixels 6 --partitioning fractional_odd --camera-position "
+                           "48.1,15,66 --camera-target -3,-2.5,2 --fov 31.5 --resolution 240x135 --view factors "
+                           "--displacement " +
+                           test::data("sdk-cages/monsterfrog.dds") +
+                           " --displacement-channel A --displacement-scale 1.2 --displacement-bias -0.6";
+  REQUIRE(test::run_cli("render " + line + " -o " + (dir / "direct.png").string()).exit_code == 0);
+  REQUIRE(test::run_cli("render " + line + " --print-scene " + (dir / "scenes/frog.json").string()).exit_code == 0);
+  const auto scene = nlohmann::json::parse(test::slurp(dir / "scenes/frog.json"));
+  CHECK(scene["asset"].get<std::string>().rfind("../", 0) == 0);  // relative to the scene's directory
+  CHECK(scene["lod"]["edge_pixels"] == 6.0);
+  CHECK(scene["view"] == "factors");
+  // From another working directory, and with another thread count: the same bytes.
+  REQUIRE(test::run_cli("render --scene " + (dir / "scenes/frog.json").string() + " --threads 1 -o " +
+                        (dir / "scene.png").string())
+              .exit_code == 0);
+  CHECK(test::slurp(dir / "scene.png") == test::slurp(dir / "direct.png"));
+  // Printing to stdout gives absolute paths and renders nothing.
+  const auto out = test::run_cli("render " + line + " --print-scene -");
+  REQUIRE(out.exit_code == 0);
+  CHECK(fs::path(nlohmann::json::parse(out.out)["asset"].get<std::string>()).is_absolute());
+}
+
+TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
+  const fs::path dir = test::cli_temp_dir() / "scene-roundtrip";
+  cli::RenderSettings s;
+  s.cage = (dir / "assets/cage.obj").string();
+  s.scheme = "pn";
+  s.partitioning = "pow2";
+  s.factor = 7.3f;
+  s.vary = 0.1f;
+  s.factors_file = (dir / "factors.txt").string();
+  s.view = "density";
+  s.factor_kind = "processed";
+  s.camera = {"640x360", "0.1,-2.3e-5,1e6", "3,2,1", 29.7f};
+  s.lod.mode = "distance";
+  s.lod.cull = "backface";
+  s.lod.edge_pixels = 3.3f;
+  s.lod.lod_distance = 12.125f;
+  s.lod.dicing_eye = "1.5,0.2,-7";
+  s.threads = 3;
+  s.displacement = {(dir / "maps/h.exr").string(), "R,G,B", "object", (dir / "maps/n.png").string(), 0.7f, -0.35f};
+  const fs::path file = write(dir / "scenes/s.json", cli::scene_json(s, (dir / "scenes").string()).dump(2));
+  const cli::RenderSettings r = cli::read_scene(file.string());
+  CHECK(fs::path(r.cage).lexically_normal() == fs::path(s.cage).lexically_normal());
+  CHECK(r.scheme == s.scheme);
+  CHECK(r.partitioning == s.partitioning);
+  CHECK(r.factor == s.factor);
+  CHECK(r.vary == s.vary);
+  CHECK(fs::path(r.factors_file) == fs::path(s.factors_file).lexically_normal());
+  CHECK(r.view == s.view);
+  CHECK(r.factor_kind == s.factor_kind);
+  CHECK(r.camera.resolution == s.camera.resolution);
+  CHECK(cli::parse_float_list(r.camera.eye, "e") == cli::parse_float_list(s.camera.eye, "e"));
+  CHECK(cli::parse_float_list(r.camera.target, "t") == cli::parse_float_list(s.camera.target, "t"));
+  CHECK(r.camera.fov == s.camera.fov);
+  CHECK(r.lod.mode == s.lod.mode);
+  CHECK(r.lod.cull == s.lod.cull);
+  CHECK(r.lod.edge_pixels == s.lod.edge_pixels);
+  CHECK(r.lod.lod_distance == s.lod.lod_distance);
+  CHECK(cli::parse_float_list(r.lod.dicing_eye, "d") == cli::parse_float_list(s.lod.dicing_eye, "d"));
+  CHECK(r.threads == s.threads);
+  CHECK(fs::path(r.displacement.map) == fs::path(s.displacement.map).lexically_normal());
+  CHECK(fs::path(r.displacement.normal_map) == fs::path(s.displacement.normal_map).lexically_normal());
+  CHECK(r.displacement.channel == s.displacement.channel);
+  CHECK(r.displacement.space == s.displacement.space);
+  CHECK(r.displacement.scale == s.displacement.scale);
+  CHECK(r.displacement.bias == s.displacement.bias);
+}
+
+TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema", "[scene][cli]") {
+  const std::string text = test::slurp(kSchema);
+  CHECK(test::run_cli("render --scene-schema").out == text);
+  const auto schema = nlohmann::json::parse(text);
+  const fs::path dir = test::cli_temp_dir() / "scene-schema";
+  // Every property of the schema, at a value the schema allows, is read.
+  int accepted = 0;
+  for (const auto& [key, spec] : schema["properties"].items()) {
+    nlohmann::json scene = {{"tessera_scene", 1}, {"asset", kFrog}};
+    if (spec.contains("default"))
+      scene[key] = spec["default"];
+    else if (spec.contains("enum"))
+      scene[key] = spec["enum"][0];
+    else if (key == "factors_per_edge")
+      scene[key] = "f.txt";
+    else if (key == "lod")
+      scene[key] = {{"mode", "screen"}, {"dicing_camera_position", {1, 2, 3}}};
+    else if (key == "displacement")
+      scene[key] = {{"map", "h.exr"}, {"channel", "A"}, {"normal_map", "derived"}};
+    else if (key == "camera")
+      scene[key] = {{"position", {1, 2, 3}}, {"target", {0, 0, 0}}, {"fov", 40}};
+    else if (key != "tessera_scene" && key != "asset")
+      FAIL("no sample value for schema property " << key);
+    const fs::path file = write(dir / ("p-" + key + ".json"), scene.dump());
+    INFO(key << ": " << scene.dump());
+    CHECK_NOTHROW(cli::read_scene(file.string()));
+    ++accepted;
+  }
+  CHECK(accepted == int(schema["properties"].size()));
+  // Sub-objects: every property of lod, displacement and camera is known to the reader too.
+  for (const char* object : {"lod", "displacement", "camera"})
+    for (const auto& [key, spec] : schema["properties"][object]["properties"].items()) {
+      (void)spec;
+      nlohmann::json scene = {{"tessera_scene", 1}, {"asset", kFrog}};
+      nlohmann::json value = key == "mode"                                               ? nlohmann::json("screen")
+                             : key == "space"                                            ? nlohmann::json("object")
+                             : (key == "map" || key == "channel" || key == "normal_map") ? nlohmann::json("x.exr")
+                             : (key == "position" || key == "target" || key == "dicing_camera_position")
+                                 ? nlohmann::json::array({1, 2, 3})
+                                 : nlohmann::json(2.5);
+      scene[object] = {{key, value}};
+      if (std::string(object) == "displacement") scene[object]["map"] = "h.exr";
+      const fs::path file = write(dir / (std::string(object) + "-" + key + ".json"), scene.dump());
+      INFO(object << "." << key);
+      CHECK_NOTHROW(cli::read_scene(file.string()));
+    }
+  // And a field the schema does not have is refused.
+  const fs::path typo = write(dir / "typo.json", R"({"tessera_scene": 1, "asset": "a.obj", "camera": {"fav": 40}})");
+  CHECK_THROWS_WITH(cli::read_scene(typo.string()), Catch::Contains("\"camera.fav\": not a scene field"));
+}
+
+TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, no output", "[scene][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "scene-bad";
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"tessera_scene": 1, "asset": "a.obj", "factr": 3})", "\"factr\": not a scene field"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "factor": "8"})", "\"factor\": expected a number"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "scheme": "loop"})", "\"scheme\": 'loop' is not one of"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "resolution": [640]})", "\"resolution\": expected [width, height]"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "camera": {"position": [1, 2]}})",
+       "\"camera.position\": expected [x, y, z]"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "threads": -1})", "\"threads\": expected a count"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "displacement": {"scale": 2}})", "\"displacement.map\": missing"},
+      {R"({"tessera_scene": 2, "asset": "a.obj"})", "\"tessera_scene\": must be 1"},
+      {R"({"tessera_scene": 1})", "\"asset\": missing"},
+      {R"([1, 2])", "expected an object"},
+      {"{\"tessera_scene\": 1,\n  \"asset\": ", "line 2"}};
+  int n = 0;
+  for (const auto& [text, message] : cases) {
+    const fs::path file = write(dir / ("bad" + std::to_string(n++) + ".json"), text);
+    const fs::path out = dir / "out.png";
+    const auto r = test::run_cli("render --scene " + file.string() + " -o " + out.string());
+    INFO(text);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find(file.string()) != std::string::npos);
+    CHECK(r.err.find(message) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(out));
+  }
+  // The scene and the options it sets, together: refused; a time on a static cage: refused.
+  const fs::path good = write(dir / "good.json", nlohmann::json({{"tessera_scene", 1}, {"asset", kFrog}}).dump());
+  const auto both = test::run_cli("render --scene " + good.string() + " --factor 3 -o " + (dir / "x.png").string());
+  CHECK(both.exit_code == 2);
+  CHECK(both.err.find("--factor with --scene") != std::string::npos);
+  const fs::path timed =
+      write(dir / "timed.json", nlohmann::json({{"tessera_scene", 1}, {"asset", kFrog}, {"time", 1.5}}).dump());
+  const auto t = test::run_cli("render --scene " + timed.string() + " -o " + (dir / "x.png").string());
+  CHECK(t.exit_code == 2);
+  CHECK(t.err.find("not animated") != std::string::npos);
+  CHECK(test::run_cli("render --scene " + (dir / "missing.json").string() + " -o x.png").exit_code == 1);
+}
+
+}  // namespace tessera
