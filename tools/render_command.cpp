@@ -11,6 +11,7 @@
 #include "tools/render_stats.h"
 #include "tools/render_views.h"
 #include "tools/scene_file.h"
+#include "tools/scene_render.h"
 #include "tools/tessellate_options.h"
 #include "tools/view_options.h"
 
@@ -69,9 +70,6 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   }
   RenderOptions o = given;
   o.s = settings_of(given, cmd);
-  if (o.s.time != 0.0)
-    throw UsageError("time " + std::to_string(o.s.time) + " s: " + o.s.cage +
-                     " is not animated (OBJ cages are static; the time must be 0)");
   if (!o.print_scene.empty()) {
     // Paths relative to where the scene goes (absolute on stdout), so the file can move with them.
     if (o.print_scene == "-") {
@@ -83,57 +81,31 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     }
     return kExitOk;
   }
-  const Scheme scheme = scheme_option(o.s.scheme);
-  const ts::Partitioning partitioning = partitioning_option(o.s.partitioning);
-  SubdFactors factors = factors_option(o.s.factor, o.s.vary, o.s.factors_file);
-  const auto kind = parse_view(o.s.view);
-  if (!kind) throw UsageError("--view: '" + o.s.view + "' is not one of " + view_names());
-  if (o.s.factor_kind != "raw" && o.s.factor_kind != "processed")
-    throw UsageError("--factor-kind: '" + o.s.factor_kind + "' is not raw or processed");
   if (o.output.empty()) throw UsageError("-o out.png is required");
-
-  const SubdModel model = load_model(o.s.cage, scheme);
-  std::optional<Displacement> displacement = displacement_option(o.s.displacement, model);
-  const ViewSetup view = view_option(o.s.camera, model.cage);
-  const LodResult lod = apply_lod_options(o.s.lod, view, model, displacement ? &*displacement : nullptr, factors);
-
+  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
   Device device(device_options(o.s.threads));
-  std::string error;
-  auto fb = Framebuffer::create(view.width, view.height, ColorFormat::rgba8_unorm, &error);
-  if (!fb) throw UsageError(error);
-  const ViewInputs inputs{model,
-                          displacement ? &*displacement : nullptr,
-                          factors,
-                          partitioning,
-                          view,
-                          o.s.lod.edge_pixels,
-                          o.s.factor_kind == "processed"};
-  // Per-patch facts, replayed once for the view and the statistics.
-  std::optional<PatchTables> tables;
-  if (view_uses_patch_tables(*kind) || !o.stats.empty()) tables = view_patch_tables(inputs);
-  const ViewOutput out = render_view(device, *kind, inputs, tables ? &*tables : nullptr, *fb);
-  if (!out.result.ok()) throw InputError(o.s.cage + ": " + out.result.error);
+  const SceneImage image = render_scene(device, *scene, !o.stats.empty());
+  const ViewOutput& out = image.out;
   const DrawReport& total = out.result.report;
-  if (out.has_legend) {
-    write_with_legend(*fb, out.legend, o.output);
-  } else if (auto e = fb->write_color(o.output); !e.empty()) {
-    throw InputError(e);
-  }
+  write_scene_image(image, o.output);
+  const ViewKind kind = scene->kind;
+  const Scheme scheme = scene->scheme;
+  const ViewSetup& view = scene->view;
   if (!o.stats.empty()) {
     Json s = {{"statistics", to_json(total.statistics)},
               {"times", to_json(total.times)},
               {"memory", to_json(total.memory)},
               {"peak_rss_bytes", peak_rss_bytes()}};
-    add_patch_statistics(s, device, inputs, *tables, lod);
-    if (*kind == ViewKind::cracks)
+    add_patch_statistics(s, device, scene->inputs(), *image.tables, scene->lod);
+    if (kind == ViewKind::cracks)
       s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};
     write_text_atomically(o.stats, json_text(s) + "\n");
   }
   std::cout << o.output << ": " << view.width << "x" << view.height << ", scheme " << to_string(scheme) << ", view "
-            << to_string(*kind) << ", " << total.statistics.CInvocations << " triangles, " << total.patches_culled
+            << to_string(kind) << ", " << total.statistics.CInvocations << " triangles, " << total.patches_culled
             << " patches culled, " << total.patches_back_culled << " facing away, " << total.statistics.PSInvocations
             << " pixels shaded";
-  if (*kind == ViewKind::cracks) std::cout << ", " << out.open_edges << " open edges";
+  if (kind == ViewKind::cracks) std::cout << ", " << out.open_edges << " open edges";
   std::cout << "\n";
   return kExitOk;
 }

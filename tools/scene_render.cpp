@@ -1,0 +1,60 @@
+#include "tools/scene_render.h"
+
+#include "tools/cli_common.h"
+#include "tools/view_legend.h"
+
+namespace tessera::cli {
+
+ViewInputs PreparedScene::inputs() const {
+  return ViewInputs{model,
+                    displacement ? &*displacement : nullptr,
+                    factors,
+                    partitioning,
+                    view,
+                    settings.lod.edge_pixels,
+                    settings.factor_kind == "processed"};
+}
+
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
+  if (s.time != 0.0)
+    throw UsageError("time " + std::to_string(s.time) + " s: " + s.cage +
+                     " is not animated (OBJ cages are static; the time must be 0)");
+  auto p = std::make_unique<PreparedScene>();
+  p->settings = s;
+  p->scheme = scheme_option(s.scheme);
+  p->partitioning = partitioning_option(s.partitioning);
+  p->factors = factors_option(s.factor, s.vary, s.factors_file);
+  const auto kind = parse_view(s.view);
+  if (!kind) throw UsageError("--view: '" + s.view + "' is not one of " + view_names());
+  p->kind = *kind;
+  if (s.factor_kind != "raw" && s.factor_kind != "processed")
+    throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
+  p->model = load_model(s.cage, p->scheme);
+  p->displacement = displacement_option(s.displacement, p->model);
+  p->view = view_option(s.camera, p->model.cage);
+  p->lod = apply_lod_options(s.lod, p->view, p->model, p->displacement ? &*p->displacement : nullptr, p->factors);
+  return p;
+}
+
+SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables) {
+  SceneImage image;
+  std::string error;
+  image.fb = Framebuffer::create(scene.view.width, scene.view.height, ColorFormat::rgba8_unorm, &error);
+  if (!image.fb) throw UsageError(error);
+  const ViewInputs inputs = scene.inputs();
+  // Per-patch facts, replayed once for the view and the statistics.
+  if (view_uses_patch_tables(scene.kind) || want_tables) image.tables = view_patch_tables(inputs);
+  image.out = render_view(device, scene.kind, inputs, image.tables ? &*image.tables : nullptr, *image.fb);
+  if (!image.out.result.ok()) throw InputError(scene.settings.cage + ": " + image.out.result.error);
+  return image;
+}
+
+void write_scene_image(const SceneImage& image, const std::string& path) {
+  if (image.out.has_legend) {
+    write_with_legend(*image.fb, image.out.legend, path);
+  } else if (auto e = image.fb->write_color(path); !e.empty()) {
+    throw InputError(e);
+  }
+}
+
+}  // namespace tessera::cli

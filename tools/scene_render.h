@@ -1,0 +1,40 @@
+// One render's setup and image, shared by `tessera render` and `tessera check`: the settings
+// (scene_file.h) turned into a loaded model, displacement, view and factors, then drawn in the
+// settings' view, and written as `render -o` writes it (with the view's legend when it has one).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "tools/render_views.h"
+#include "tools/scene_file.h"
+
+namespace tessera::cli {
+
+// The settings, loaded and checked (UsageError for bad values, InputError for unreadable files).
+// Not movable: `inputs` refers to its members.
+struct PreparedScene {
+  RenderSettings settings;
+  Scheme scheme = Scheme::gregory;
+  ts::Partitioning partitioning = ts::Partitioning::integer;
+  ViewKind kind = ViewKind::shaded;
+  SubdModel model;
+  std::optional<Displacement> displacement;
+  ViewSetup view;
+  SubdFactors factors;
+  LodResult lod;
+  ViewInputs inputs() const;
+};
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
+
+struct SceneImage {
+  std::optional<Framebuffer> fb;
+  ViewOutput out;
+  std::optional<PatchTables> tables;  // when the view or the caller needed them
+};
+// Draws the scene; `want_tables` keeps the patch tables (for --stats) even when the view does not use them.
+SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables);
+void write_scene_image(const SceneImage& image, const std::string& path);
+
+}  // namespace tessera::cli
