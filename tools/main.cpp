@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   runners["accuracy"] = add_accuracy_command(app);
   runners["make-cage"] = add_make_cage_command(app);
   runners["diff"] = add_diff_command(app);
+  runners["check"] = add_check_command(app);
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 

@@ -1,0 +1,165 @@
+// `tessera check` (tools/check_suite.h, check_report.h): Tessera's own view goldens pass; a changed scene
+// fails with a diff picture, a JUnit failure and the golden untouched; --update (or
+// TESSERA_UPDATE_GOLDEN=1) rewrites only failed and new goldens and says which; shards merge into the
+// single run's report; bad suites get one line.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "test_data.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSuites = fs::path(TESSERA_GOLDEN_DIR) / "suites";
+
+// A copy of the shipped suite whose scenes name the assets by absolute path, in `dir`.
+fs::path copy_suite(const fs::path& dir) {
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(kSuites, dir, fs::copy_options::recursive);
+  const std::string data = fs::path(TESSERA_TEST_DATA_DIR).string();
+  for (const auto& e : fs::directory_iterator(dir / "scenes")) {
+    std::string text = test::slurp(e.path());
+    text = std::regex_replace(text, std::regex(R"("(\.\./)+tests/data)"), "\"" + data);
+    std::ofstream(e.path()) << text;
+  }
+  return dir / "views.json";
+}
+
+nlohmann::json summary_of(const fs::path& report) {
+  return nlohmann::json::parse(test::slurp(report / "summary.json"));
+}
+
+}  // namespace
+
+TEST_CASE("Tessera's own view goldens pass tessera check", "[check][cli]") {
+  const fs::path report = test::cli_temp_dir() / "check-own";
+  const auto r = test::run_cli("check " + (kSuites / "views.json").string() + " -o " + report.string());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  const auto s = summary_of(report);
+  CHECK(s["counts"]["pass"] == 4);
+  for (const auto& c : s["cases"]) {
+    CHECK(c["status"] == "pass");
+    CHECK(fs::exists(report / c["new_image"].get<std::string>()));
+  }
+  CHECK(fs::exists(report / "report.html"));
+  CHECK(test::slurp(report / "junit.xml").find("failures=\"0\"") != std::string::npos);
+}
+
+TEST_CASE("A changed scene fails with a diff and leaves the golden; --update rewrites and says which", "[check][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "check-change";
+  const fs::path suite = copy_suite(dir / "suite");
+  const fs::path scene = dir / "suite/scenes/frog-acc-wire.json";
+  std::string text = test::slurp(scene);
+  text = std::regex_replace(text, std::regex(R"("factor": 6\.0)"), "\"factor\": 7.0");
+  std::ofstream(scene) << text;
+  const fs::path golden = dir / "suite/views/frog-acc-wire.png";
+  const std::string before = test::slurp(golden);
+
+  const fs::path report = dir / "report";
+  const auto r = test::run_cli("check " + suite.string() + " -o " + report.string());
+  CHECK(r.exit_code == 1);
+  const auto s = summary_of(report);
+  CHECK(s["counts"]["fail"] == 1);
+  CHECK(s["counts"]["pass"] == 3);
+  const auto& c = s["cases"][1];
+  CHECK(c["name"] == "frog-acc-wire");
+  CHECK(c["status"] == "fail");
+  CHECK(c["checks"]["triangles"]["pass"] == false);
+  CHECK(c["compare"]["identical"] == false);
+  CHECK(fs::exists(report / c["diff_image"].get<std::string>()));
+  CHECK(c["command"].get<std::string>().find("tessera render --scene") == 0);
+  const std::string junit = test::slurp(report / "junit.xml");
+  CHECK(junit.find("<failure message=\"fail: image:") != std::string::npos);
+  CHECK(test::slurp(golden) == before);  // never written without a switch
+
+  const auto u = test::run_cli("check --update " + suite.string() + " -o " + report.string());
+  CHECK(u.exit_code == 0);
+  CHECK(u.err.find("updated the golden of frog-acc-wire") != std::string::npos);
+  CHECK(u.err.find("updated the golden of frog-displaced-screen") == std::string::npos);
+  CHECK(test::slurp(golden) != before);
+  CHECK(test::run_cli("check " + suite.string() + " -o " + report.string()).exit_code == 0);
+  // The environment switch: a new case (its golden removed) is written back.
+  fs::remove(dir / "suite/views/frog-pn-factors.png");
+  CHECK(test::run_cli("check " + suite.string() + " -o " + report.string()).exit_code == 1);
+  const int env = std::system(("TESSERA_UPDATE_GOLDEN=1 " + std::string(TESSERA_BIN) + " -q check " + suite.string() +
+                               " -o " + report.string() + " >/dev/null 2>&1")
+                                  .c_str());
+  CHECK(WEXITSTATUS(env) == 0);
+  CHECK(fs::exists(dir / "suite/views/frog-pn-factors.png"));
+}
+
+TEST_CASE("Shards merge into the single run's report", "[check][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "check-shards";
+  fs::remove_all(dir);
+  const std::string suite = (kSuites / "views.json").string();
+  REQUIRE(test::run_cli("check " + suite + " -o " + (dir / "all").string()).exit_code == 0);
+  REQUIRE(test::run_cli("check " + suite + " --shard 1/2 -o " + (dir / "s1").string()).exit_code == 0);
+  REQUIRE(test::run_cli("check " + suite + " --shard 2/2 -o " + (dir / "s2").string()).exit_code == 0);
+  CHECK(summary_of(dir / "s1")["cases"].size() == 2);
+  REQUIRE(test::run_cli("check --merge " + (dir / "s2").string() + " " + (dir / "s1").string() + " -o " +
+                        (dir / "merged").string())
+              .exit_code == 0);
+  const auto all = summary_of(dir / "all"), merged = summary_of(dir / "merged");
+  REQUIRE(all["cases"].size() == merged["cases"].size());
+  for (std::size_t i = 0; i < all["cases"].size(); ++i) {
+    CHECK(all["cases"][i]["name"] == merged["cases"][i]["name"]);
+    CHECK(all["cases"][i]["status"] == merged["cases"][i]["status"]);
+    CHECK(all["cases"][i]["compare"]["hash_new"] == merged["cases"][i]["compare"]["hash_new"]);
+    CHECK(test::slurp(dir / "all" / all["cases"][i]["new_image"].get<std::string>()) ==
+          test::slurp(dir / "merged" / merged["cases"][i]["new_image"].get<std::string>()));
+  }
+  // A case in two shards is refused.
+  const auto twice = test::run_cli("check --merge " + (dir / "s1").string() + " " + (dir / "s1").string() + " -o " +
+                                   (dir / "bad").string());
+  CHECK(twice.exit_code == 1);
+  CHECK(twice.err.find("in two of the merged reports") != std::string::npos);
+}
+
+TEST_CASE("Bad suites: one line naming the file and the field", "[check][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "check-bad";
+  fs::create_directories(dir);
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"tessera_suite": 1, "cases": [{"name": "a", "scene": "s.json", "colour": 1}]})",
+       "\"cases[0].colour\": not a case field"},
+      {R"({"tessera_suite": 1, "cases": [{"name": "a", "scene": "s.json"}, {"name": "a", "scene": "t.json"}]})",
+       "used twice"},
+      {R"({"tessera_suite": 1, "cases": [{"name": "a b", "scene": "s.json"}]})", "\"cases[0].name\""},
+      {R"({"tessera_suite": 1, "cases": [{"name": "a", "scene": "s.json", "compare": {"fial": 1}}]})",
+       "not an idiff threshold"},
+      {R"({"tessera_suite": 1, "cases": [{"name": "a", "scene": "s.json", "checks": ["speed"]}]})",
+       "is not watertight"},
+      {R"({"tessera_suite": 1, "cases": []})", "\"cases\": expected a non-empty list"},
+      {R"({"tessera_suite": 2, "cases": []})", "\"tessera_suite\": must be 1"},
+      {R"({"tessera_suite": 1,)", "not JSON"}};
+  int n = 0;
+  for (const auto& [text, message] : cases) {
+    const fs::path file = dir / ("bad" + std::to_string(n++) + ".json");
+    std::ofstream(file) << text;
+    const auto r = test::run_cli("check " + file.string() + " -o " + (dir / "report").string());
+    INFO(text);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find(file.string()) != std::string::npos);
+    CHECK(r.err.find(message) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  // A case whose scene is missing is an error case (the rest of the suite still runs), exit 1.
+  std::ofstream(dir / "missing.json") << R"({"tessera_suite": 1, "cases": [{"name": "a", "scene": "nope.json"}]})";
+  const auto r = test::run_cli("check " + (dir / "missing.json").string() + " -o " + (dir / "report").string());
+  CHECK(r.exit_code == 1);
+  CHECK(summary_of(dir / "report")["cases"][0]["status"] == "error");
+  CHECK(test::run_cli("check --shard 3/2 " + (dir / "missing.json").string()).exit_code == 2);
+}
+
+}  // namespace tessera
