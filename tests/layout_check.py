@@ -29,6 +29,8 @@ ALLOWED = {
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
               "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "tools/verify", "tools/measure"],
+    "python": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv", "shaders_cpp/displacement",
+               "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "tools/verify", "tools/measure", "tools"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 PUBLIC = re.compile(r"tessera_public_headers\(\s*\S+\s+([^)]*)\)", re.S)

@@ -139,9 +139,8 @@ Suite read_suite(const std::string& path) {
   Suite s;
   s.path = path;
   const fs::path dir = fs::path(path).parent_path();
-  const auto resolve = [&](const std::string& p) {
-    return fs::path(p).is_absolute() ? p : (dir / p).lexically_normal().string();
-  };
+  // Absolute: results name files the same way whatever the working directory (check, batch, merge).
+  const auto resolve = [&](const std::string& p) { return fs::absolute(dir / p).lexically_normal().string(); };
   s.name = root.contains("name") && root["name"].is_string() ? root["name"].get<std::string>()
                                                              : fs::path(path).stem().string();
   if (root.contains("golden") && !root["golden"].is_string()) suite_error(path, "golden", "expected a directory path");
@@ -201,7 +200,7 @@ Suite read_suite(const std::string& path) {
   return s;
 }
 
-CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir) {
+CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir, int threads) {
   const auto start = std::chrono::steady_clock::now();
   CaseResult r;
   r.name = c.name;
@@ -211,7 +210,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
   r.command = case_command(c, c.name + ".png");
   try {
     const std::unique_ptr<PreparedScene> scene = prepare_scene(read_scene(c.scene));
-    Device device(device_options(scene->settings.threads));
+    Device device(device_options(threads >= 0 ? threads : scene->settings.threads));
     const bool geometry = !c.checks.empty();
     const SceneImage image = render_scene(device, *scene, geometry);
     fs::create_directories(fs::path(new_path).parent_path());

@@ -66,7 +66,8 @@ struct CaseResult {
 
 // Renders the case into report_dir/new/<name>.png, compares with the golden (and draws
 // report_dir/diff/<name>.png when they differ), runs its checks. Errors become status `error`.
-CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir);
+// `threads` >= 0 overrides the scene's thread count (the bytes are the same for any count).
+CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir, int threads = -1);
 
 // Writes the case's golden image and digest from its new render (check --update).
 void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, const std::string& report_dir);
