@@ -124,4 +124,29 @@ std::string float_text(float x) {
   return std::string(buffer, r.ptr);
 }
 
+void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  const auto canonical = [](const std::string& p) {
+    std::error_code ec;
+    const fs::path c = fs::weakly_canonical(fs::absolute(p), ec);
+    return ec ? fs::absolute(p).lexically_normal() : c;
+  };
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const OutputPath& o = outputs[i];
+    if (o.path.empty()) continue;
+    if (o.path == "-") throw UsageError(o.option + " -: results go to files (give a path; stdout is not supported)");
+    const fs::path c = canonical(o.path);
+    if (fs::is_directory(c)) throw UsageError(o.option + " " + o.path + ": a directory, not a file");
+    const fs::path dir = c.parent_path();
+    if (!fs::is_directory(dir))
+      throw UsageError(o.option + " " + o.path + ": directory '" + dir.string() + "' does not exist");
+    for (std::size_t j = 0; j < i; ++j)
+      if (!outputs[j].path.empty() && canonical(outputs[j].path) == c)
+        throw UsageError(o.option + " and " + outputs[j].option + " name one file: " + o.path);
+    for (const std::string& in : inputs)
+      if (!in.empty() && canonical(in) == c)
+        throw UsageError(o.option + " " + o.path + ": that is an input of this command (it would be overwritten)");
+  }
+}
+
 }  // namespace tessera::cli

@@ -57,6 +57,14 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 // write_file_atomically for a text that is already complete in memory.
 void write_text_atomically(const std::string& path, const std::string& text);
 
+// Outputs of one command, refused before any work (UsageError naming the option): "-" (no command
+// writes its results to stdout through -o), two outputs on one path, an output that is one of the
+// command's inputs, and an output whose directory does not exist. Empty paths are skipped.
+struct OutputPath {
+  std::string option, path;
+};
+void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
+
 // A data file shipped with tessera (the default cage of `bench frog`): share/tessera/<name> beside
 // the binary's directory, in the build tree as in an installed tree. Throws InputError when absent,
 // naming the file and `option`, the option that names another file instead.

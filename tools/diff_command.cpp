@@ -54,8 +54,7 @@ int run_diff(const DiffOptions& o) {
       throw UsageError(std::string(name) + ": " + number(value) + " is not a finite value >= 0");
   if (std::isnan(o.t.hard_fail) || std::isnan(o.t.hard_warn)) throw UsageError("-hardfail/-hardwarn: NaN");
   if (!std::isfinite(o.scale)) throw UsageError("-scale: " + number(o.scale) + " is not finite");
-  if (!o.output.empty() && !o.heatmap.empty() && o.output == o.heatmap)
-    throw UsageError("-o and --heatmap name one file: " + o.output);
+  check_output_paths({{"-o", o.output}, {"--heatmap", o.heatmap}}, {o.a, o.b});
 
   verify::DiffImages images;
   const verify::DiffReport r = verify::diff_images(o.a, o.b, o.t, o.exact, &images);

@@ -33,8 +33,21 @@ int main(int argc, char** argv) {
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 
   try {
-    // CLI11 takes the arguments last to first.
     std::vector<std::string> args = idiff_arguments(argc, argv);
+    // Before CLI11, which reads "" as 0 for a number and calls an unknown command a missing one.
+    for (std::size_t i = 1; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      if (a.size() > 1 && a[0] == '-' && a.back() == '=')
+        throw CLI::ValidationError(a.substr(0, a.size() - 1) + ": an empty value");
+      if (a.empty() && i > 1 && args[i - 1].size() > 1 && args[i - 1][0] == '-')
+        throw CLI::ValidationError(args[i - 1] + ": an empty value");
+    }
+    if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' && !runners.count(args[1])) {
+      std::string names;
+      for (const auto& [name, runner] : runners) names += (names.empty() ? "" : ", ") + name;
+      throw CLI::ValidationError("'" + args[1] + "' is not a command (" + names + ")");
+    }
+    // CLI11 takes the arguments last to first.
     args.erase(args.begin());
     std::reverse(args.begin(), args.end());
     app.parse(args);

@@ -75,6 +75,8 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     if (o.print_scene == "-") {
       std::cout << scene_json(o.s, "").dump(2) << "\n";
     } else {
+      check_output_paths({{"--print-scene", o.print_scene}},
+                         {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
       const std::string dir = std::filesystem::path(o.print_scene).parent_path().string();
       write_text_atomically(o.print_scene, scene_json(o.s, dir.empty() ? "." : dir).dump(2) + "\n");
       log_info("wrote " + o.print_scene);
@@ -82,6 +84,8 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     return kExitOk;
   }
   if (o.output.empty()) throw UsageError("-o out.png is required");
+  check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
+                     {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
   Device device(device_options(o.s.threads));
   const SceneImage image = render_scene(device, *scene, !o.stats.empty());

@@ -39,6 +39,8 @@ int run_tessellate(const TessellateOptions& o) {
   if (o.output.empty() && !o.check && o.stats.empty())
     throw UsageError("nothing to do: give -o out.ply, --check-watertight and/or --stats FILE.json");
 
+  check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
+                     {o.cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
   const SubdModel model = load_model(o.cage, scheme);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   if (model.patches.fallback_faces > 0)
@@ -146,6 +148,10 @@ int run_tessellate(const TessellateOptions& o) {
     std::cout << text.str() << "\n";
     if (o.check) std::cout << w.summary() << "\n";
   }
+  // A failed check says so on stderr too, where -q leaves errors.
+  if (o.check && !w.closed_manifold())
+    std::cerr << "tessera tessellate: " << o.cage << ": not watertight (" << w.boundary_edges << " open edges, "
+              << w.nonmanifold_edges << " non-manifold edges)\n";
   return o.check && !w.closed_manifold() ? kExitFailure : kExitOk;
 }
 

@@ -1,0 +1,96 @@
+// Hostile command lines (issue 21's list): a command writes all of its outputs or none, never over one
+// of its inputs, never two outputs on one path, never to "-"; empty values and unknown commands are
+// named; a failed watertight check says so on stderr even with -q.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <catch2/catch.hpp>
+
+#include "cli_runner.h"
+#include "test_data.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCube = test::data("sdk-cages/cube.obj");
+
+void one_line(const test::CliResult& r, const std::string& message) {
+  INFO(r.err);
+  CHECK(r.err.find(message) != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+}
+
+}  // namespace
+
+TEST_CASE("Outputs: all or none, never over an input, never two on one path, never '-'", "[cli][outputs]") {
+  const fs::path dir = test::cli_temp_dir() / "outputs";
+  fs::create_directories(dir);
+  const std::string png = (dir / "out.png").string();
+  fs::remove(png);
+
+  auto r = test::run_cli("render " + kCube + " --resolution 64x64 -o " + png + " --stats " +
+                         (dir / "missing/s.json").string());
+  CHECK(r.exit_code == 2);
+  one_line(r, "directory '" + (dir / "missing").string() + "' does not exist");
+  CHECK_FALSE(fs::exists(png));  // nothing written
+
+  r = test::run_cli("render " + kCube + " --resolution 64x64 -o " + png + " --stats " + png);
+  CHECK(r.exit_code == 2);
+  one_line(r, "name one file");
+  CHECK_FALSE(fs::exists(png));
+
+  const fs::path cage = dir / "in.obj";
+  fs::copy_file(kCube, cage, fs::copy_options::overwrite_existing);
+  const std::string before = test::slurp(cage);
+  r = test::run_cli("tessellate " + cage.string() + " -o " + cage.string());
+  CHECK(r.exit_code == 2);
+  one_line(r, "that is an input of this command");
+  CHECK(test::slurp(cage) == before);
+  // The same file by another spelling is the same file.
+  r = test::run_cli("tessellate " + cage.string() + " -o " + (dir / "." / "in.obj").string());
+  CHECK(r.exit_code == 2);
+  CHECK(test::slurp(cage) == before);
+
+  r = test::run_cli("render " + kCube + " -o -");
+  CHECK(r.exit_code == 2);
+  one_line(r, "stdout is not supported");
+  CHECK_FALSE(fs::exists("-"));
+
+  r = test::run_cli("render " + kCube + " -o " + dir.string());
+  CHECK(r.exit_code == 2);
+  one_line(r, "a directory, not a file");
+
+  r = test::run_cli("bench torus --frames 1 --factor 2 --resolution 64x64 -o " + (dir / "nope/t.png").string());
+  CHECK(r.exit_code == 2);
+  one_line(r, "does not exist");
+
+  const std::string a = (dir / "a.png").string();
+  REQUIRE(test::run_cli("render " + kCube + " --resolution 32x32 -o " + a).exit_code == 0);
+  const std::string image = test::slurp(a);
+  r = test::run_cli("diff " + a + " " + a + " -o " + a);
+  CHECK(r.exit_code == 2);
+  CHECK(test::slurp(a) == image);
+}
+
+TEST_CASE("Empty values, unknown commands and quiet failures are named", "[cli][outputs]") {
+  auto r = test::run_cli("render " + kCube + " --factor \"\" -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "--factor: an empty value");
+  r = test::run_cli("render " + kCube + " --factor= -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "--factor: an empty value");
+  r = test::run_cli("frobnicate");
+  CHECK(r.exit_code == 2);
+  one_line(r, "'frobnicate' is not a command (");
+  r = test::run_cli("render " + kCube + " --factor 100 -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "--factor: 100 is not in (0, 64]");
+  // -q keeps errors: a failed watertight check says so on stderr.
+  r = test::run_cli("-q tessellate " + test::data("osd-shapes/catmark_edgeonly.obj") + " --check-watertight");
+  CHECK(r.exit_code == 1);
+  one_line(r, "not watertight (256 open edges");
+}
+
+}  // namespace tessera
