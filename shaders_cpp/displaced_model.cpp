@@ -42,7 +42,13 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     throw DisplacementMapError(o.map + ": displacement scale and bias must be finite");
   Displacement d;
   // One decode of the file serves the displacement and, with "auto", the normal map beside it.
-  const DisplacementImage image = DisplacementImage::read(o.map, DisplacementImage::Selection{o.channel, 0});
+  const DisplacementImage image = [&] {
+    try {
+      return DisplacementImage::read(o.map, DisplacementImage::Selection{o.channel, 0});
+    } catch (const DisplacementMapError& e) {
+      throw DisplacementMapError(std::string(e.what()) + " (displacement map)");
+    }
+  }();
   d.map = image.select(o.channel, 0);
   const bool vector = d.map->channels() == 3;
   // A height moves along the normal only: an object-space request would be silently meaningless.
@@ -80,7 +86,11 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
                          std::none_of(d.map->selected().begin(), d.map->selected().end(), is_rgb_name);
     if (!vector && has_rgb) d.normal_map = image.select("R,G,B", 3);
   } else if (o.normal_map != "derived") {
-    d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
+    try {
+      d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
+    } catch (const DisplacementMapError& e) {  // the same reader as the height's: say which map
+      throw DisplacementMapError(std::string(e.what()) + " (normal map)");
+    }
   }
 
   d.frames = build_patch_frames(cage, *model.topology, model.patches.quads, model.patches.scheme);

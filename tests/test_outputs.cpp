@@ -93,4 +93,36 @@ TEST_CASE("Empty values, unknown commands and quiet failures are named", "[cli][
   one_line(r, "not watertight (256 open edges");
 }
 
+TEST_CASE("Silent successes refused: cameras along the up axis, factor files that do not fit, maps named right",
+          "[cli][outputs]") {
+  const fs::path dir = test::cli_temp_dir() / "silent";
+  fs::create_directories(dir);
+  const std::string out = " --resolution 64x64 -o " + (dir / "x.png").string();
+  auto r = test::run_cli("render " + kCube + " --camera-position 0,10,0 --camera-target 0,0,0" + out);
+  CHECK(r.exit_code == 2);
+  one_line(r, "looks straight along the up axis");
+  CHECK_FALSE(fs::exists(dir / "x.png"));
+
+  r = test::run_cli("render " + kCube + " --factors-per-edge " + dir.string() + out);
+  CHECK(r.exit_code == 1);
+  one_line(r, "a directory, not a factors file");
+  std::ofstream(dir / "f.txt") << "# v0 v1 factor\n0 1 4\n0 99 4\n";
+  r = test::run_cli("render " + kCube + " --factors-per-edge " + (dir / "f.txt").string() + out);
+  CHECK(r.exit_code == 1);
+  one_line(r, "f.txt:3: 0 99 is not an edge of");
+  CHECK(r.err.find("indices count from 0") != std::string::npos);
+  std::ofstream(dir / "g.txt") << "0 1 4\n";
+  CHECK(test::run_cli("render " + kCube + " --factors-per-edge " + (dir / "g.txt").string() + out).exit_code == 0);
+
+  const std::string frog = test::data("sdk-cages/monsterfrog_mapped_00.obj");
+  const std::string map = test::data("sdk-cages/monsterfrog.dds");
+  r = test::run_cli("render " + frog + " --displacement " + map + " --displacement-channel A --normal-map " +
+                    (dir / "missing.png").string() + out);
+  CHECK(r.exit_code == 1);
+  one_line(r, "missing.png: no such file (normal map)");
+  r = test::run_cli("render " + frog + " --displacement " + dir.string() + out);
+  CHECK(r.exit_code == 1);
+  one_line(r, "a directory, not an image file (displacement map)");
+}
+
 }  // namespace tessera

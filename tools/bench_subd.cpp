@@ -36,6 +36,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   check_output_paths({{"-o", o.output}}, {cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
   const SubdModel model = load_model(cage, scheme);
+  check_factor_edges(o.factors_file, model);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   const ViewSetup view = view_option(o.camera, model.cage);
   const int w = view.width, h = view.height;

@@ -30,6 +30,7 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   if (s.factor_kind != "raw" && s.factor_kind != "processed")
     throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
   p->model = load_model(s.cage, p->scheme);
+  check_factor_edges(s.factors_file, p->model);
   p->displacement = displacement_option(s.displacement, p->model);
   p->view = view_option(s.camera, p->model.cage);
   p->lod = apply_lod_options(s.lod, p->view, p->model, p->displacement ? &*p->displacement : nullptr, p->factors);

@@ -42,6 +42,7 @@ int run_tessellate(const TessellateOptions& o) {
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
   const SubdModel model = load_model(o.cage, scheme);
+  check_factor_edges(o.factors_file, model);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +

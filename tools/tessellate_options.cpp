@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <filesystem>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -42,6 +44,7 @@ SubdFactors factors_option(float factor, float vary, const std::string& file) {
   f.factor = factor;
   f.vary = vary;
   if (!file.empty()) {
+    if (std::filesystem::is_directory(file)) throw InputError(file + ": a directory, not a factors file");
     std::ifstream in(file);
     if (!in) throw InputError(file + ": cannot open");
     auto map = std::make_shared<std::unordered_map<std::int64_t, float>>();
@@ -63,6 +66,29 @@ SubdFactors factors_option(float factor, float vary, const std::string& file) {
     f.per_edge = map;
   }
   return f;
+}
+
+void check_factor_edges(const std::string& file, const SubdModel& model) {
+  if (file.empty()) return;
+  std::set<std::int64_t> edges;
+  const Cage& c = model.cage;
+  for (int f = 0; f < c.face_count(); ++f)
+    for (int k = 0; k < c.face_sizes[std::size_t(f)]; ++k)
+      edges.insert(cage_edge_key(c.face_vertex(f, k), c.face_vertex(f, (k + 1) % c.face_sizes[std::size_t(f)])));
+  std::ifstream in(file);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    long long a = -1, b = -1;
+    s >> a >> b;
+    if (!edges.count(cage_edge_key(int(a), int(b))))
+      throw InputError(file + ":" + std::to_string(number) + ": " + std::to_string(a) + " " + std::to_string(b) +
+                       " is not an edge of " + c.name + " (" + std::to_string(c.vertex_count()) +
+                       " vertices; indices count from 0, OBJ's from 1)");
+  }
 }
 
 SubdModel load_model(const std::string& path, Scheme scheme) {

@@ -24,6 +24,8 @@ ts::Partitioning partitioning_option(const std::string& name);
 SubdFactors factors_option(float factor, float vary, const std::string& file);
 // load_subd_model with its CageError turned into the CLI's InputError (one line, exit 1).
 SubdModel load_model(const std::string& path, Scheme scheme);
+// Every line of a --factors-per-edge file names an edge of the model's cage (InputError naming the line).
+void check_factor_edges(const std::string& file, const SubdModel& model);
 
 // --displacement MAP and its companions (render, tessellate, bench frog).
 struct DisplacementCli {

@@ -33,6 +33,17 @@ ViewSetup view_frame(const CameraCli& c) {
 }
 }  // namespace
 
+// The view's up is +y: a camera looking along it has no defined orientation (lookAt divides by zero
+// and the image is empty), so it is refused rather than drawn as nothing.
+void check_camera_orientation(const SubdCamera& camera) {
+  const glm::dvec3 d = glm::dvec3(camera.target) - glm::dvec3(camera.eye);
+  const double across = glm::length(glm::cross(glm::normalize(d), glm::dvec3(0, 1, 0)));
+  if (!(across > 1e-4))
+    throw UsageError(
+        "--camera-position/--camera-target: the camera looks straight along the up axis (+y), "
+        "which leaves its orientation undefined; move it off that axis");
+}
+
 ViewSetup view_option(const CameraCli& c, const Cage& cage) {
   ViewSetup v = view_frame(c);
   std::optional<glm::vec3> eye, target;
@@ -42,6 +53,7 @@ ViewSetup view_option(const CameraCli& c, const Cage& cage) {
   v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
   if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
     throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
+  check_camera_orientation(v.camera);
   return v;
 }
 
@@ -49,6 +61,7 @@ ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3
   ViewSetup v = view_frame(c);
   if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
   v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
+  check_camera_orientation(v.camera);
   return v;
 }
 

@@ -22,7 +22,8 @@ std::string one_line(std::string s) {
 
 std::unique_ptr<OIIO::ImageInput> open(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file (displacement map)");
+  if (std::filesystem::is_directory(path, ec)) fail(path, "a directory, not an image file");
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
   auto in = OIIO::ImageInput::open(path);
   if (!in) fail(path, "cannot read as an image (" + one_line(OIIO::geterror()) + ")");
   return in;
