@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <OpenImageIO/imagebuf.h>
 #include <catch2/catch.hpp>
 
 #include "cli_runner.h"
@@ -123,6 +124,18 @@ TEST_CASE("Silent successes refused: cameras along the up axis, factor files tha
   r = test::run_cli("render " + frog + " --displacement " + dir.string() + out);
   CHECK(r.exit_code == 1);
   one_line(r, "a directory, not an image file (displacement map)");
+  // A NaN texel: refused, naming it (it would have displaced vertices to NaN).
+  OIIO::ImageBuf nan_map(OIIO::ImageSpec(8, 8, 1, OIIO::TypeFloat));
+  const float one = 0.5f, bad = NAN;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) nan_map.setpixel(x, y, x == 3 && y == 5 ? &bad : &one, 1);
+  REQUIRE(nan_map.write((dir / "nan.exr").string()));
+  r = test::run_cli("tessellate " + frog + " --displacement " + (dir / "nan.exr").string() + " -o " +
+                    (dir / "x.ply").string());
+  CHECK(r.exit_code == 1);
+  one_line(r, "texel (3, 5) of channel");
+  CHECK(r.err.find("is NaN") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "x.ply"));
 }
 
 }  // namespace tessera

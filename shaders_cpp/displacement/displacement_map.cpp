@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 
@@ -130,8 +131,15 @@ DisplacementMap DisplacementImage::select(std::string_view spec, int count) cons
   const std::size_t pixels = std::size_t(width_) * std::size_t(height_), stride = names_.size();
   std::vector<float> texels(pixels * chosen.size());
   for (std::size_t p = 0; p < pixels; ++p)
-    for (std::size_t k = 0; k < chosen.size(); ++k)
-      texels[p * chosen.size() + k] = texels_[p * stride + std::size_t(chosen[k])];
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+      const float v = texels_[p * stride + std::size_t(chosen[k])];
+      // A NaN or infinite texel would displace points to NaN (and a PLY of NaN vertices): refused.
+      if (!std::isfinite(v))
+        fail(path_, "texel (" + std::to_string(p % std::size_t(width_)) + ", " +
+                        std::to_string(p / std::size_t(width_)) + ") of channel " + names_[std::size_t(chosen[k])] +
+                        " is " + (std::isnan(v) ? "NaN" : "infinite") + "; a map must be finite");
+      texels[p * chosen.size() + k] = v;
+    }
   std::string error;
   auto t = Texture2D::create(width_, height_, int(chosen.size()), std::move(texels), true, &error);
   if (!t) fail(path_, error);
