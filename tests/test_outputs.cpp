@@ -138,4 +138,26 @@ TEST_CASE("Silent successes refused: cameras along the up axis, factor files tha
   CHECK_FALSE(fs::exists(dir / "x.ply"));
 }
 
+TEST_CASE("Edge cases that used to fail or write garbage: an all-culled tessellation, huge torus radii",
+          "[cli][outputs]") {
+  const fs::path dir = test::cli_temp_dir() / "edges";
+  fs::create_directories(dir);
+  // Every patch outside the view: an empty PLY, not "write failed".
+  const fs::path ply = dir / "empty.ply";
+  auto r =
+      test::run_cli("tessellate " + kCube +
+                    " --cull frustum --camera-position 100,100,100 --camera-target 200,200,200 -o " + ply.string());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  const std::string bytes = test::slurp(ply);
+  CHECK(bytes.find("element vertex 0\n") != std::string::npos);
+  CHECK(bytes.find("element face 0\n") != std::string::npos);
+  // Radii whose sum overflows float: refused, nothing written.
+  const fs::path big = dir / "big.obj";
+  r = test::run_cli("make-cage --major-radius 3e38 --minor-radius 1e38 --grid 4x4 -o " + big.string());
+  CHECK(r.exit_code != 0);
+  one_line(r, "overflow float coordinates");
+  CHECK_FALSE(fs::exists(big));
+}
+
 }  // namespace tessera

@@ -50,7 +50,8 @@ void PlyStreamWriter::finish(const std::vector<std::string>& comments) {
   out << "element face " << faces_ << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (const std::string& part : {vertex_path_, face_path_}) {
     std::ifstream in(part, std::ios::binary);
-    out << in.rdbuf();
+    // `out << rdbuf` sets failbit when it copies nothing: an empty part (every patch culled) is skipped.
+    if (in.peek() != std::ifstream::traits_type::eof()) out << in.rdbuf();
   }
   out.close();
   if (!out) throw std::runtime_error(label_ + ": write failed");

@@ -1,6 +1,7 @@
 #include "shaders_cpp/cage/cage_generators.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,10 @@ Cage torus_cage(int around, int across, float major, float minor) {
                                 " is outside 3..4096 faces per direction");
   if (!(minor > 0.0f && minor < major && std::isfinite(major)))
     throw std::invalid_argument("torus cage: radii must satisfy 0 < minor < major");
+  // The outermost vertex is at major + minor: beyond float's range it would be written as inf.
+  if (!(double(major) + double(minor) <= double(std::numeric_limits<float>::max())))
+    throw std::invalid_argument("torus cage: radii " + std::to_string(major) + " + " + std::to_string(minor) +
+                                " overflow float coordinates");
   Cage c;
   c.name = "torus " + std::to_string(around) + "x" + std::to_string(across);
   const double two_pi = 2.0 * std::numbers::pi;
