@@ -27,8 +27,8 @@ struct AccuracyOptions {
 int run_accuracy(const AccuracyOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   const SubdModel model = load_model(o.cage, scheme);
+  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::unique_ptr<LimitSurface> own_reference;
   try {
     if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(model.cage));

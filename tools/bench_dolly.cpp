@@ -105,6 +105,7 @@ int run_dolly(const DollyOptions& o) {
   if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   const SubdModel model = load_model(cage, scheme);
+  const SubdFactors base_factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   Displacement* d = displacement ? &*displacement : nullptr;
   const ViewSetup start = view_option(o.camera, model.cage);
@@ -125,7 +126,7 @@ int run_dolly(const DollyOptions& o) {
     const float t = float(f) / float(o.frames - 1);
     const glm::vec3 eye = glm::mix(from, to, t);
     const ViewSetup view = view_at(o.camera, model.cage, eye, target);
-    SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
+    SubdFactors factors = base_factors;
     apply_lod_options(o.lod, view, model, d, factors);
     const auto t0 = Clock::now();
     device.clear(*fb, kBackgroundColor, 1.0f);

@@ -31,12 +31,11 @@ struct BenchSubdOptions {
 int run_bench_subd(const BenchSubdOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   check_output_paths({{"-o", o.output}}, {cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
   const SubdModel model = load_model(cage, scheme);
-  check_factor_edges(o.factors_file, model);
+  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   const ViewSetup view = view_option(o.camera, model.cage);
   const int w = view.width, h = view.height;

@@ -223,11 +223,10 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
       is_new = true;
       problems.push_back("no golden image");
     } else {
-      r.diff = verify::diff_images(r.golden_image, new_path, c.thresholds, c.exact);
+      verify::DiffImages images;  // kept for the difference picture: the images are read once
+      r.diff = verify::diff_images(r.golden_image, new_path, c.thresholds, c.exact, &images);
       const verify::DiffVerdict v = r.diff->verdict;
       if (!r.diff->identical && v != verify::DiffVerdict::file_error && v != verify::DiffVerdict::different_sizes) {
-        verify::DiffImages images;
-        verify::diff_images(r.golden_image, new_path, c.thresholds, c.exact, &images);
         r.diff_image = "diff/" + c.name + ".png";
         const fs::path diff_path = fs::path(report_dir) / r.diff_image;
         fs::create_directories(diff_path.parent_path());

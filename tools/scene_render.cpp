@@ -23,14 +23,13 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   p->settings = s;
   p->scheme = scheme_option(s.scheme);
   p->partitioning = partitioning_option(s.partitioning);
-  p->factors = factors_option(s.factor, s.vary, s.factors_file);
   const auto kind = parse_view(s.view);
   if (!kind) throw UsageError("--view: '" + s.view + "' is not one of " + view_names());
   p->kind = *kind;
   if (s.factor_kind != "raw" && s.factor_kind != "processed")
     throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
   p->model = load_model(s.cage, p->scheme);
-  check_factor_edges(s.factors_file, p->model);
+  p->factors = factors_option(s.factor, s.vary, s.factors_file, p->model.cage);
   p->displacement = displacement_option(s.displacement, p->model);
   p->view = view_option(s.camera, p->model.cage);
   p->lod = apply_lod_options(s.lod, p->view, p->model, p->displacement ? &*p->displacement : nullptr, p->factors);

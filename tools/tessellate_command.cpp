@@ -35,14 +35,13 @@ struct TessellateOptions {
 int run_tessellate(const TessellateOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file);
   if (o.output.empty() && !o.check && o.stats.empty())
     throw UsageError("nothing to do: give -o out.ply, --check-watertight and/or --stats FILE.json");
 
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
   const SubdModel model = load_model(o.cage, scheme);
-  check_factor_edges(o.factors_file, model);
+  SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   if (model.patches.fallback_faces > 0)
     log_info("bspline: " + std::to_string(model.patches.fallback_faces) +

@@ -36,59 +36,46 @@ ts::Partitioning partitioning_option(const std::string& name) {
   throw UsageError("--partitioning: '" + name + "' is not one of integer, pow2, fractional_odd, fractional_even");
 }
 
-SubdFactors factors_option(float factor, float vary, const std::string& file) {
+SubdFactors factors_option(float factor, float vary, const std::string& file, const Cage& cage) {
   if (!std::isfinite(factor) || factor <= 0.0f || factor > 64.0f)
     throw UsageError("--factor: " + float_text(factor) + " is not in (0, 64]");
   if (!std::isfinite(vary) || vary < 0.0f || vary > 63.0f) throw UsageError("--vary-factors: must be in [0, 63]");
   SubdFactors f;
   f.factor = factor;
   f.vary = vary;
-  if (!file.empty()) {
-    if (std::filesystem::is_directory(file)) throw InputError(file + ": a directory, not a factors file");
-    std::ifstream in(file);
-    if (!in) throw InputError(file + ": cannot open");
-    auto map = std::make_shared<std::unordered_map<std::int64_t, float>>();
-    std::string line;
-    int number = 0;
-    while (std::getline(in, line)) {
-      ++number;
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream s(line);
-      long long a = -1, b = -1;
-      std::string value;
-      if (!(s >> a >> b >> value) || a < 0 || b < 0 || a > 0x7fffffff || b > 0x7fffffff)
-        throw InputError(file + ":" + std::to_string(number) + ": expected 'v0 v1 factor'");
-      const auto x = parse_float(value);
-      if (!x) throw InputError(file + ":" + std::to_string(number) + ": '" + value + "' is not a number");
-      // D3D11 rules apply to the value (NaN or <= 0 culls the patch, > 64 clamps): passed through as is.
-      (*map)[cage_edge_key(int(a), int(b))] = *x;
-    }
-    f.per_edge = map;
-  }
-  return f;
-}
-
-void check_factor_edges(const std::string& file, const SubdModel& model) {
-  if (file.empty()) return;
-  std::set<std::int64_t> edges;
-  const Cage& c = model.cage;
-  for (int f = 0; f < c.face_count(); ++f)
-    for (int k = 0; k < c.face_sizes[std::size_t(f)]; ++k)
-      edges.insert(cage_edge_key(c.face_vertex(f, k), c.face_vertex(f, (k + 1) % c.face_sizes[std::size_t(f)])));
+  if (file.empty()) return f;
+  if (std::filesystem::is_directory(file)) throw InputError(file + ": a directory, not a factors file");
   std::ifstream in(file);
+  if (!in) throw InputError(file + ": cannot open");
+  std::set<std::int64_t> edges;
+  for (int face = 0; face < cage.face_count(); ++face) {
+    const int n = cage.face_sizes[std::size_t(face)];
+    for (int k = 0; k < n; ++k)
+      edges.insert(cage_edge_key(cage.face_vertex(face, k), cage.face_vertex(face, (k + 1) % n)));
+  }
+  auto map = std::make_shared<std::unordered_map<std::int64_t, float>>();
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line[0] == '#') continue;
+    const std::string where = file + ":" + std::to_string(number);
     std::istringstream s(line);
     long long a = -1, b = -1;
-    s >> a >> b;
-    if (!edges.count(cage_edge_key(int(a), int(b))))
-      throw InputError(file + ":" + std::to_string(number) + ": " + std::to_string(a) + " " + std::to_string(b) +
-                       " is not an edge of " + c.name + " (" + std::to_string(c.vertex_count()) +
-                       " vertices; indices count from 0, OBJ's from 1)");
+    std::string value;
+    if (!(s >> a >> b >> value) || a < 0 || b < 0 || a > 0x7fffffff || b > 0x7fffffff)
+      throw InputError(where + ": expected 'v0 v1 factor'");
+    const auto x = parse_float(value);
+    if (!x) throw InputError(where + ": '" + value + "' is not a number");
+    const std::int64_t key = cage_edge_key(int(a), int(b));
+    if (!edges.count(key))
+      throw InputError(where + ": " + std::to_string(a) + " " + std::to_string(b) + " is not an edge of " + cage.name +
+                       " (" + std::to_string(cage.vertex_count()) + " vertices; indices count from 0, OBJ's from 1)");
+    // D3D11 rules apply to the value (NaN or <= 0 culls the patch, > 64 clamps): passed through as is.
+    (*map)[key] = *x;
   }
+  f.per_edge = map;
+  return f;
 }
 
 SubdModel load_model(const std::string& path, Scheme scheme) {

@@ -20,12 +20,11 @@ void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float
 Scheme scheme_option(const std::string& name, const std::string& what = "--scheme");
 ts::Partitioning partitioning_option(const std::string& name);
 // --factor, --vary-factors and --factors-per-edge FILE (lines "v0 v1 factor", cage vertex indices from
-// 0; edges not listed take --factor).
-SubdFactors factors_option(float factor, float vary, const std::string& file);
+// 0; edges not listed take --factor), read once; a line that is not an edge of `cage` is an InputError
+// naming it.
+SubdFactors factors_option(float factor, float vary, const std::string& file, const Cage& cage);
 // load_subd_model with its CageError turned into the CLI's InputError (one line, exit 1).
 SubdModel load_model(const std::string& path, Scheme scheme);
-// Every line of a --factors-per-edge file names an edge of the model's cage (InputError naming the line).
-void check_factor_edges(const std::string& file, const SubdModel& model);
 
 // --displacement MAP and its companions (render, tessellate, bench frog).
 struct DisplacementCli {
