@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "shaders_cpp/lod/frustum_cull.h"
+
 namespace tessera {
 
 namespace {
@@ -166,16 +168,11 @@ OrientationBound BackPatchCull::bound(std::span<const glm::vec3> points, int n, 
 
   // The clip-space planes, z moved as clip_position() does; every point of the hull, grown by eps,
   // strictly inside all of them: w > 0 (the orientation rule needs it) and no triangle is clipped.
-  std::array<glm::dvec4, 4> row;
-  const glm::dmat4& vp = view_projection_;
-  for (int i = 0; i < 4; ++i) row[std::size_t(i)] = glm::dvec4(vp[0][i], vp[1][i], vp[2][i], vp[3][i]);
-  row[2] -= double(z_bias) * row[3];
+  const ClipPlanes clip = clip_planes(glm::mat4(view_projection_), z_bias);
   double w_max = 0.0;
-  for (const glm::dvec3& p : net) w_max = std::max(w_max, glm::dot(glm::dvec3(row[3]), p) + row[3].w);
+  for (const glm::dvec3& p : net) w_max = std::max(w_max, glm::dot(glm::dvec3(clip.w), p) + clip.w.w);
   const double eps = extent * kEvaluationError + (extent + glm::length(eye_)) * kProjectionError + pixel_world_ * w_max;
-  const std::array<glm::dvec4, 6> planes = {row[3] + row[0], row[3] - row[0], row[3] + row[1],
-                                            row[3] - row[1], row[2],          row[3] - row[2]};
-  for (const glm::dvec4& plane : planes) {
+  for (const glm::dvec4& plane : clip.planes) {
     const double reach = eps * glm::length(glm::dvec3(plane));
     for (const glm::dvec3& p : net)
       if (!(glm::dot(glm::dvec3(plane), p) + plane.w - reach > 0.0)) return {};

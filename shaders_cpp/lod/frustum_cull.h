@@ -39,6 +39,22 @@ struct Box3 {
   glm::vec3 corner(int i) const { return {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z}; }
 };
 
+// D3D's clip volume (-w <= x, y <= w, 0 <= z <= w, z moved by -z_bias * w as clip_position() does) as six
+// planes, each a linear function of the world position (x, y, z, 1) that is >= 0 inside, in double;
+// `w` is the clip-space w row.
+struct ClipPlanes {
+  std::array<glm::dvec4, 6> planes;
+  glm::dvec4 w;
+};
+inline ClipPlanes clip_planes(const glm::mat4& view_projection, float z_bias) {
+  std::array<glm::dvec4, 4> row;
+  for (int i = 0; i < 4; ++i)
+    row[std::size_t(i)] =
+        glm::dvec4(view_projection[0][i], view_projection[1][i], view_projection[2][i], view_projection[3][i]);
+  row[2] -= double(z_bias) * row[3];
+  return {{row[3] + row[0], row[3] - row[0], row[3] + row[1], row[3] - row[1], row[2], row[3] - row[2]}, row[3]};
+}
+
 struct FrustumCull {
   bool enabled = false;
   glm::mat4 view_projection{1.0f};
@@ -48,14 +64,8 @@ struct FrustumCull {
   template <class PointAt>
   bool outside(int count, PointAt&& point_at) const {
     if (!enabled || count <= 0) return false;
-    // Clip-space rows as linear functions of (x, y, z, 1), in double (no rounding question in the test).
-    std::array<glm::dvec4, 4> row;
-    for (int i = 0; i < 4; ++i)
-      row[std::size_t(i)] =
-          glm::dvec4(view_projection[0][i], view_projection[1][i], view_projection[2][i], view_projection[3][i]);
-    row[2] -= double(z_bias) * row[3];
-    const std::array<glm::dvec4, 6> planes = {row[3] + row[0], row[3] - row[0], row[3] + row[1],
-                                              row[3] - row[1], row[2],          row[3] - row[2]};
+    // In double: no rounding question in the test.
+    const std::array<glm::dvec4, 6> planes = clip_planes(view_projection, z_bias).planes;
     double extent = 0.0;
     for (int i = 0; i < count; ++i) {
       const glm::vec3 p = point_at(i);
