@@ -12,7 +12,8 @@ the client writes the report.
 
 Faults: a worker that dies mid-task loses nothing -- Dask reschedules the task on another worker. A case
 that kills workers is reported as an error once the scheduler gives up on it
-(distributed.scheduler.allowed-failures; --local sets it to 1), not retried forever.
+(distributed.scheduler.allowed-failures; --local sets it to 1, with worker-saturation 1 so that only the
+task a worker runs is counted when it dies), not retried forever.
 
 Fault injection for tests only: TESSERA_BATCH_CRASH_CASE=NAME makes the worker running that case exit;
 TESSERA_BATCH_DELAY=SECONDS makes every task wait first.
@@ -110,7 +111,7 @@ def run(suite, client, report, threads, log):
                 shutil.copyfile(result["golden_image"], dest)
         except Exception as e:  # a task that killed its workers (KilledWorker), or one that raised
             what = type(e).__name__
-            message = ("crashed %s worker(s) and was not retried further" % "its") if what == "KilledWorker" else str(e)
+            message = "crashed its workers and was not retried further" if what == "KilledWorker" else str(e)
             result = {"name": name, "status": "error", "message": "%s: %s" % (what, message),
                       "new_image": "", "golden_image": "", "diff_image": "", "checks": {},
                       "command": "", "seconds": 0.0, "index": names.index(name), "report_golden": False}
@@ -151,7 +152,10 @@ def main(argv=None):
 
     os.makedirs(a.report, exist_ok=True)
     if a.local is not None:
-        with dask.config.set({"distributed.scheduler.allowed-failures": 1}):
+        # worker-saturation 1: a worker holds only the task it runs, so when a case kills its worker
+        # no innocent case queued there is counted against allowed-failures with it.
+        with dask.config.set({"distributed.scheduler.allowed-failures": 1,
+                              "distributed.scheduler.worker-saturation": 1.0}):
             with LocalCluster(n_workers=a.local, threads_per_worker=1, processes=True, host="127.0.0.1",
                               dashboard_address=None) as cluster, Client(cluster) as client:
                 summary = run(a.suite, client, a.report, a.threads, log)
