@@ -20,3 +20,13 @@ if(NOT TARGET tessera::osd)
   target_include_directories(tessera::osd SYSTEM INTERFACE ${TESSERA_OSD_INCLUDE_DIR})
   target_link_libraries(tessera::osd INTERFACE ${TESSERA_OSD_CPU_LIBRARY})
 endif()
+
+# tinygltf (libtinygltf-dev): a plain header and shared library; imported the same way so a consumer of
+# the installed static libraries needs no TinyGLTF config of its own.
+if(NOT TARGET tessera::tinygltf)
+  find_path(TESSERA_TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
+  find_library(TESSERA_TINYGLTF_LIBRARY tinygltf REQUIRED)
+  add_library(tessera::tinygltf INTERFACE IMPORTED)
+  target_include_directories(tessera::tinygltf SYSTEM INTERFACE ${TESSERA_TINYGLTF_INCLUDE_DIR})
+  target_link_libraries(tessera::tinygltf INTERFACE ${TESSERA_TINYGLTF_LIBRARY})
+endif()

@@ -8,9 +8,12 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "shaders_cpp/animation/animation_sampler.h"
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/gltf/gltf_cage.h"
 #include "tools/check_report.h"
 #include "tools/check_suite.h"
 #include "tools/cli_common.h"
@@ -61,10 +64,25 @@ PYBIND11_MODULE(_tessera, m) {
 
   m.def(
       "load_cage",
-      [](const std::string& path) {
+      [](const std::string& path, std::optional<double> time, const std::string& animation, const std::string& mesh) {
         Cage c;
         try {
-          c = load_obj_cage(path);
+          if (is_gltf_path(path)) {
+            GltfSelection selection;
+            selection.mesh = mesh;
+            GltfCage g = load_gltf_cage(path, selection);
+            c = std::move(g.cage);
+            if (time) {
+              if (!g.rig) throw UsageError(path + " is not animated");
+              int a = g.rig->animations.empty() ? -1 : 0;
+              if (!animation.empty() && (a = find_animation(*g.rig, animation)) < 0)
+                throw UsageError(path + " has no animation '" + animation + "'");
+              c.positions = pose_positions(*g.rig, pose_at(*g.rig, a, *time));
+            }
+          } else {
+            if (time || !animation.empty() || !mesh.empty()) throw UsageError(path + ": OBJ cages are static");
+            c = load_obj_cage(path);
+          }
         } catch (const CageError& e) {
           throw InputError(e.what());
         }
@@ -80,7 +98,9 @@ PYBIND11_MODULE(_tessera, m) {
         d["warnings"] = c.warnings;
         return d;
       },
-      py::arg("path"), "A cage (OBJ): positions (N x 3 float32), face_sizes, face_vertices, warnings.");
+      py::arg("path"), py::arg("time") = py::none(), py::arg("animation") = "", py::arg("mesh") = "",
+      "A cage (OBJ or glTF): positions (N x 3 float32; a glTF asset posed at `time` seconds of `animation` when "
+      "given, else its rest pose), face_sizes, face_vertices, warnings.");
 
   m.def(
       "render",

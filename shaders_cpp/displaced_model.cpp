@@ -72,7 +72,9 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
                     " cannot be displaced (its patches carry no 1-ring for the shared normals); use acc, gregory, "
                     "bspline or exact");
   // Texture coordinates first: it checks that the cage has UVs and only quads (CageError).
-  d.texcoords = build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v);
+  // glTF's texture v already points down the image; OBJ's is flipped.
+  d.texcoords =
+      build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v && !cage.uv_v_down);
   for (std::size_t i = 0; i < cage.uvs.size(); ++i) {
     const glm::vec2 uv = cage.uvs[i];
     if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))

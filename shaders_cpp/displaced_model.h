@@ -33,7 +33,7 @@ struct DisplacementOptions {
   float scale = 1.0f, bias = 0.0f;
   DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only
   std::string normal_map = "auto";
-  bool flip_v = true;  // the cage's UVs have v up (OBJ); watertight_uv.h
+  bool flip_v = true;  // OBJ UVs have v up: flipped for the texture (glTF cages are not); watertight_uv.h
   // Test knobs (the negative tests): per-face UVs, and each patch's own normals.
   UvOwnership ownership = UvOwnership::owned;
   bool shared_normals = true;
@@ -45,8 +45,8 @@ struct Displacement {
   DisplacementKind kind = DisplacementKind::scalar;
   float scale = 1.0f, bias = 0.0f;
   bool shared_normals = true;
-  // The UVs were flipped (v up, OBJ). Texture V then runs down the image, and a normal map's green,
-  // which follows the cage's v, points along −V: the pixel shader flips it.
+  // A normal map's green points up the image, along −V (OBJ's v, the OpenGL and glTF convention):
+  // the pixel shader flips it. (The UVs themselves are flipped only for OBJ cages: Cage::uv_v_down.)
   bool flip_v = true;
   std::vector<PatchTexcoords> texcoords;  // per quad patch
   PatchFrames frames;                     // per quad patch
@@ -86,7 +86,7 @@ DrawResult stream_displaced(Device& device, const SubdModel& m, const Displaceme
       m, d, factors, partitioning,
       [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
         const StreamDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedDS> draw{
-            m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
+            m.vertex_buffer(), g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
         return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) { sink(p, g); });
       });
 }

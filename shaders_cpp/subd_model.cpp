@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
@@ -64,8 +65,31 @@ SubdModel make_subd_model(Cage cage, Scheme scheme) {
   return m;
 }
 
-SubdModel load_subd_model(const std::string& path, Scheme scheme) {
-  return make_subd_model(load_obj_cage(path), scheme);
+void set_pose(SubdModel& m, RigPose pose) {
+  if (!m.rig) throw std::logic_error("set_pose: the model of " + m.cage.name + " has no rig");
+  m.posed_positions = pose_positions(*m.rig, pose);
+  m.pose = std::move(pose);
+  // The passes before the draw see the cage the vertex shader will output.
+  Cage posed = m.cage;
+  posed.positions = m.posed_positions;
+  if (!m.normals.empty()) m.normals = vertex_normals(posed, *m.topology);
+  if (m.limit) {
+    // OpenSubdiv's Bfr surfaces hold their control points: the exact scheme rebuilds them per pose.
+    m.limit = std::make_unique<LimitSurface>(LimitSurface::create(posed, m.limit->approx_level()));
+    m.ring_boxes = face_ring_boxes(posed, *m.topology);
+  }
+}
+
+Cage load_cage(const std::string& path, const GltfSelection& selection) {
+  return is_gltf_path(path) ? load_gltf_cage(path, selection).cage : load_obj_cage(path);
+}
+
+SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection) {
+  if (!is_gltf_path(path)) return make_subd_model(load_obj_cage(path), scheme);
+  GltfCage g = load_gltf_cage(path, selection);
+  SubdModel m = make_subd_model(std::move(g.cage), scheme);
+  m.rig = std::move(g.rig);
+  return m;
 }
 
 }  // namespace tessera

@@ -8,9 +8,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "shaders_cpp/cage/cage.h"
+#include "shaders_cpp/gltf/gltf_cage.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "pipeline/stream_output.h"
 #include "shaders_cpp/subdiv/subd_patches.h"
@@ -20,22 +23,41 @@
 namespace tessera {
 
 struct SubdModel {
-  Cage cage;
+  Cage cage;  // the rest pose
   std::unique_ptr<Topology> topology;
   SubdPatches patches;
-  std::unique_ptr<LimitSurface> limit;  // exact scheme only
-  std::vector<glm::vec3> normals;       // pn only: per cage vertex (pn_patch.h)
+  std::unique_ptr<LimitSurface> limit;  // exact scheme only (of the posed cage)
+  std::vector<glm::vec3> normals;       // pn only: per cage vertex (pn_patch.h), of the posed cage
   std::vector<Box3> ring_boxes;         // exact only: per face, the box of its 1-ring (frustum culling)
-  // The vertex shader: no animation; the normals as a second vertex stream.
+  // Animation (glTF): the rig, and once set_pose ran, the pose the vertex shader applies and its
+  // result over every control point, for the passes that need positions before the draw.
+  std::shared_ptr<const CageRig> rig;
+  std::optional<RigPose> pose;
+  std::vector<glm::vec3> posed_positions;
+
+  // The control points as the vertex shader outputs them (the posed cage, or the cage).
+  const std::vector<glm::vec3>& positions() const { return pose ? posed_positions : cage.positions; }
+  // What the input assembler reads: bind positions when posed, else the cage's.
+  std::span<const glm::vec3> vertex_buffer() const {
+    return pose ? std::span<const glm::vec3>(rig->bind_positions) : std::span<const glm::vec3>(cage.positions);
+  }
+  // The vertex shader: the pose, if any; the normals as a second vertex stream.
   SubdVS vertex_shader() const {
     SubdVS vs;
     vs.normals = normals;
+    if (pose) vs.rig = rig.get(), vs.pose = &*pose;
     return vs;
   }
 };
 
-SubdModel load_subd_model(const std::string& path, Scheme scheme);
+// The cage of an OBJ file, or of a glTF one (`.gltf`, `.glb`; its rest pose).
+Cage load_cage(const std::string& path, const GltfSelection& selection = {});
+// Reads an OBJ cage, or a glTF one (`.gltf`, `.glb`: gltf_cage.h with `selection`, its rig kept).
+SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection = {});
 SubdModel make_subd_model(Cage cage, Scheme scheme);
+// Poses an animated model: the vertex shader will apply `pose`, and what depends on positions before
+// the draw (PN normals, the exact limit surface, culling boxes) follows it. The model must have a rig.
+void set_pose(SubdModel& m, RigPose pose);
 
 // Adds one draw's report to a total: statistics and stage times summed, geometry peak the largest.
 inline void add_draw_report(DrawReport& total, const DrawReport& part) {
@@ -73,7 +95,7 @@ DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& fa
   return for_each_patch_group(m, factors, partitioning,
                               [&](const PatchGroup& g, const TessellatorState& ts, const SubdHS& hs, const SubdDS& ds) {
                                 const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{
-                                    m.cage.positions, g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
+                                    m.vertex_buffer(), g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
                                 return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, g); });
                               });
 }

@@ -1,6 +1,7 @@
 // The subdivision schemes as shader functors (pipeline/stage_io.h shapes):
-// - SubdVS: animation at control-point rate (an affine transform of the cage; identity by default),
-//   and the per-vertex normal (`pn` only) read by SV_VertexID from a second vertex stream.
+// - SubdVS: animation at control-point rate (glTF skins and morph targets posing each cage vertex,
+//   rig_pose.h; or an affine transform; identity by default), and the per-vertex normal (`pn` only)
+//   read by SV_VertexID from a second vertex stream.
 // - SubdHS: control-point phase = the patch's stencil table applied to its 1-ring, summed in vertex
 //   index order, or for `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
 //   tessellation factors per cage edge (SubdFactors).
@@ -20,6 +21,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders_cpp/animation/rig_pose.h"
 #include "shaders_cpp/lod/back_patch_cull.h"
 #include "shaders_cpp/lod/frustum_cull.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
@@ -39,9 +41,13 @@ struct SubdVS {
   glm::mat4 transform{1.0f};
   glm::mat3 normal_transform{1.0f};  // the inverse transpose of transform's upper 3x3
   bool identity = true;
-  std::span<const glm::vec3> normals;  // per cage vertex (pn); empty otherwise
+  std::span<const glm::vec3> normals;  // per cage vertex (pn, of the posed cage); empty otherwise
+  // An animated cage (glTF): the vertex buffer holds bind positions, posed here (rig_pose.h).
+  const CageRig* rig = nullptr;
+  const RigPose* pose = nullptr;
   SubdVertex operator()(const glm::vec3& p, std::uint32_t id) const {
     SubdVertex out{p, id < normals.size() ? normals[id] : glm::vec3(0.0f)};
+    if (rig) out.position = pose_vertex(*rig, *pose, id, p);
     if (identity) return out;
     out.position = glm::vec3(transform * glm::vec4(p, 1.0f));
     out.normal = glm::normalize(normal_transform * out.normal);

@@ -89,7 +89,7 @@ TEST_CASE("Screen LOD keeps the frog watertight on exact bits: every scheme, par
                            ts::Partitioning::fractional_even}) {
         INFO(to_string(scheme) << " " << ts::to_string(p) << " eye " << eye.x);
         SubdFactors f;
-        f.per_edge = edge_lod_factors(m.cage, *m.topology, screen_lod(eye, 16.0f));
+        f.per_edge = edge_lod_factors(m.positions(), *m.topology, screen_lod(eye, 16.0f));
         const auto r = weld([&](auto&& sink) { return stream_subd(device, m, f, p, sink); });
         CHECK(r.closed_manifold());
         CHECK(r.boundary_edges == 0);
@@ -105,7 +105,7 @@ TEST_CASE("Screen LOD keeps the frog watertight on exact bits: every scheme, par
     CHECK(d.bound > 0.5f);
     CHECK(d.bound <= 0.6f);
     SubdFactors f;
-    f.per_edge = edge_lod_factors(m.cage, *m.topology, screen_lod(eyes[0], 16.0f, d.bound));
+    f.per_edge = edge_lod_factors(m.positions(), *m.topology, screen_lod(eyes[0], 16.0f, d.bound));
     d.trilinear = true;  // as the CLI samples under view-dependent LOD
     const auto r =
         weld([&](auto&& sink) { return stream_displaced(device, m, d, f, ts::Partitioning::fractional_odd, sink); });

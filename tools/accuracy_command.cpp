@@ -18,6 +18,7 @@ namespace tessera::cli {
 namespace {
 
 struct AccuracyOptions {
+  AssetCli asset;
   std::string cage, scheme = "gregory", partitioning = "integer", factors_file;
   float factor = 7.0f, vary = 0.0f;
   int threads = 0;
@@ -27,7 +28,7 @@ struct AccuracyOptions {
 int run_accuracy(const AccuracyOptions& o) {
   const Scheme scheme = scheme_option(o.scheme);
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  const SubdModel model = load_model(o.cage, scheme);
+  const SubdModel model = load_model(o.cage, scheme, o.asset);
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::unique_ptr<LimitSurface> own_reference;
   try {
@@ -106,8 +107,9 @@ int run_accuracy(const AccuracyOptions& o) {
 Runner add_accuracy_command(CLI::App& app) {
   auto o = std::make_shared<AccuracyOptions>();
   CLI::App* cmd = app.add_subcommand("accuracy", "distance of a scheme's surface to the exact limit surface");
-  cmd->add_option("cage", o->cage, "the cage (OBJ, OpenSubdiv tags allowed)")->required();
+  cmd->add_option("cage", o->cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb)")->required();
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_asset_options(*cmd, o->asset);
   cmd->add_flag("--json", o->json, "print the result as JSON");
   return [o] { return run_accuracy(*o); };
 }

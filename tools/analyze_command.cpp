@@ -14,6 +14,7 @@
 
 #include "tools/analyze_memory.h"
 #include "shaders_cpp/cage/cage_obj.h"
+#include "tools/tessellate_options.h"
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "shaders_cpp/cage/topology.h"
@@ -23,6 +24,7 @@ namespace tessera::cli {
 namespace {
 
 struct AnalyzeOptions {
+  AssetCli asset;
   std::string cage;
   bool json = false;
   MemoryOptions memory;
@@ -157,7 +159,7 @@ int run_analyze(const AnalyzeOptions& o) {
     throw UsageError("--displacement, --levels, --measure and the other memory-table options need --memory");
   std::optional<CageAnalysis> a;
   try {
-    Cage cage = load_obj_cage(o.cage);
+    Cage cage = load_cage(o.cage, gltf_selection(o.cage, o.asset));
     Topology topology(cage);
     TopologyCombinations combinations = analyze_combinations(topology);
     a.emplace(CageAnalysis{std::move(cage), std::move(topology), std::move(combinations), std::nullopt});
@@ -181,7 +183,8 @@ Runner add_analyze_command(CLI::App& app) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* cmd =
       app.add_subcommand("analyze", "Describe a control cage (OBJ): topology, tags, UVs, patch combinations");
-  cmd->add_option("cage", o->cage, "the cage, a Wavefront OBJ file (OpenSubdiv tags accepted)")->required();
+  cmd->add_option("cage", o->cage, "the cage: OBJ (OpenSubdiv tags accepted) or glTF (.gltf, .glb)")->required();
+  add_asset_options(*cmd, o->asset, false);
   cmd->add_flag("--json", o->json, "print one JSON object instead of text");
   add_memory_options(*cmd, o->memory);
   return [o]() { return run_analyze(*o); };

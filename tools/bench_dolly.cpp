@@ -27,6 +27,7 @@ namespace tessera::cli {
 namespace {
 
 struct DollyOptions {
+  AssetCli asset;
   std::string cage, scheme = "gregory", partitioning = "fractional_odd", factors_file, to;
   CameraCli camera;
   LodCli lod;
@@ -104,7 +105,7 @@ int run_dolly(const DollyOptions& o) {
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
-  const SubdModel model = load_model(cage, scheme);
+  const SubdModel model = load_model(cage, scheme, o.asset);
   const SubdFactors base_factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   Displacement* d = displacement ? &*displacement : nullptr;
@@ -191,6 +192,7 @@ Runner add_bench_dolly_command(CLI::App& bench) {
       "dolly", "The camera moves toward its target with view-dependent LOD: per-frame triangles, time, vertex moves");
   cmd->add_option("--cage", o->cage, "the cage (default: the monster frog shipped with tessera)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_asset_options(*cmd, o->asset);
   add_camera_options(*cmd, o->camera);
   add_lod_options(*cmd, o->lod, "all");
   cmd->add_option("--to", o->to, "x,y,z: where the camera ends (default: halfway to the target)");

@@ -18,6 +18,7 @@ namespace tessera::cli {
 namespace {
 
 struct BenchSubdOptions {
+  AssetCli asset;
   std::string cage;  // empty: the monster frog shipped beside the binary (shared_data_file)
   std::string scheme = "gregory", partitioning = "integer", factors_file, output;
   CameraCli camera;
@@ -34,7 +35,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const std::string cage = o.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.cage;
   check_output_paths({{"-o", o.output}}, {cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
-  const SubdModel model = load_model(cage, scheme);
+  const SubdModel model = load_model(cage, scheme, o.asset);
   SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   const ViewSetup view = view_option(o.camera, model.cage);
@@ -156,6 +157,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
       bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
   cmd->add_option("--cage", o->cage, "the cage (default: the monster frog shipped with tessera)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_asset_options(*cmd, o->asset);
   add_camera_options(*cmd, o->camera);
   add_lod_options(*cmd, o->lod, "all");
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();

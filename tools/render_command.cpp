@@ -46,7 +46,11 @@ constexpr const char* kSceneOptions[] = {"--scheme",
                                          "--displacement-scale",
                                          "--displacement-bias",
                                          "--displacement-space",
-                                         "--normal-map"};
+                                         "--normal-map",
+                                         "--time",
+                                         "--animation",
+                                         "--mesh",
+                                         "--scene-index"};
 
 // The settings: the command line's, or the scene file's (with --threads still the command line's).
 RenderSettings settings_of(const RenderOptions& o, const CLI::App& cmd) {
@@ -119,7 +123,7 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
 Runner add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "render a cage's subdivision surface to an image");
-  cmd->add_option("cage", o->s.cage, "the cage (OBJ, OpenSubdiv tags allowed); or --scene");
+  cmd->add_option("cage", o->s.cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb); or --scene");
   cmd->add_option("-o,--output", o->output, "output image (PNG or EXR)");
   add_scheme_options(*cmd, o->s.scheme, o->s.factor, o->s.vary, o->s.factors_file, o->s.partitioning, o->s.threads);
   add_camera_options(*cmd, o->s.camera);
@@ -128,6 +132,7 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--factor-kind", o->s.factor_kind, "--view factors: raw (as the hull shader gave them) or processed")
       ->capture_default_str();
   add_displacement_options(*cmd, o->s.displacement);
+  add_asset_options(*cmd, o->s.asset);
   cmd->add_option("--scene", o->scene,
                   "render the scene file FILE (JSON: asset, scheme, partitioning, factor, lod, cull, displacement, "
                   "camera, resolution, view, time, threads; relative paths from the file; schema: --scene-schema)");

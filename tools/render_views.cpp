@@ -108,7 +108,7 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
   for (int e = 0; e < t.edge_count(); ++e) {
     const int h = t.edge_half_edges(e)[0];
     lines.push_back(
-        {in.model.cage.positions[std::size_t(t.origin(h))], in.model.cage.positions[std::size_t(t.destination(h))]});
+        {in.model.positions()[std::size_t(t.origin(h))], in.model.positions()[std::size_t(t.destination(h))]});
   }
   // The cage lies off the surface; where the surface hides it, it is drawn faintly.
   OverlayStyle hidden{glm::vec3(0.1f, 0.3f, 0.75f), 1.0f, 0.25f, false, 0.0f};
@@ -116,7 +116,7 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
   draw_lines(fb, vp, lines, hidden);
   draw_lines(fb, vp, lines, visible);
   visible.width = 4.0f;
-  draw_points(fb, vp, in.model.cage.positions, visible);
+  draw_points(fb, vp, in.model.positions(), visible);
   legend.title = "control cage over the surface (" + std::string(to_string(in.model.patches.scheme)) + ")";
   legend.lines = {std::to_string(t.edge_count()) + " cage edges, " + std::to_string(t.vertex_count()) +
                   " vertices; faint where the surface hides them"};

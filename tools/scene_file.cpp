@@ -101,7 +101,7 @@ RenderSettings read_scene(const std::string& path) {
   const SceneReader r(path);
   r.only(root, "",
          {"tessera_scene", "asset", "scheme", "partitioning", "factor", "vary_factors", "factors_per_edge", "lod",
-          "cull", "displacement", "camera", "resolution", "view", "factor_kind", "time", "threads"});
+          "cull", "displacement", "camera", "resolution", "view", "factor_kind", "time", "animation", "mesh", "scene_index", "threads"});
   if (!root.contains("tessera_scene") || root["tessera_scene"] != 1)
     r.fail("tessera_scene", "must be 1 (this format's version)");
   if (!root.contains("asset")) r.fail("asset", "missing: the cage to render");
@@ -162,7 +162,15 @@ RenderSettings read_scene(const std::string& path) {
   if (root.contains("factor_kind")) s.factor_kind = r.one_of(root["factor_kind"], "factor_kind", {"raw", "processed"});
   if (root.contains("time")) {
     if (!root["time"].is_number()) r.fail("time", "expected seconds, got " + root["time"].dump());
-    s.time = root["time"].get<double>();
+    s.asset.time = root["time"].get<double>();
+  }
+  if (root.contains("animation")) s.asset.animation = r.text(root["animation"], "animation");
+  if (root.contains("mesh")) s.asset.mesh = r.text(root["mesh"], "mesh");
+  if (root.contains("scene_index")) {
+    const Json& v = root["scene_index"];
+    if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > 1000000)
+      r.fail("scene_index", "expected a glTF scene index >= 0, got " + v.dump());
+    s.asset.scene_index = int(v.get<long long>());
   }
   if (root.contains("threads")) {
     const Json& t = root["threads"];
@@ -207,7 +215,10 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   j["resolution"] = {w, h};
   j["view"] = s.view;
   j["factor_kind"] = s.factor_kind;
-  j["time"] = s.time;
+  j["time"] = s.asset.time;
+  if (!s.asset.animation.empty()) j["animation"] = s.asset.animation;
+  if (!s.asset.mesh.empty()) j["mesh"] = s.asset.mesh;
+  if (s.asset.scene_index >= 0) j["scene_index"] = s.asset.scene_index;
   j["threads"] = s.threads;
   return j;
 }

@@ -27,7 +27,7 @@ struct RenderSettings {
   CameraCli camera;
   LodCli lod;
   float factor = 8.0f, vary = 0.0f;
-  double time = 0.0;
+  AssetCli asset;  // glTF: scene, mesh, animation, time
   int threads = 0;
   DisplacementCli displacement;
 };

@@ -16,9 +16,6 @@ ViewInputs PreparedScene::inputs() const {
 }
 
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
-  if (s.time != 0.0)
-    throw UsageError("time " + std::to_string(s.time) + " s: " + s.cage +
-                     " is not animated (OBJ cages are static; the time must be 0)");
   auto p = std::make_unique<PreparedScene>();
   p->settings = s;
   p->scheme = scheme_option(s.scheme);
@@ -28,7 +25,7 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   p->kind = *kind;
   if (s.factor_kind != "raw" && s.factor_kind != "processed")
     throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
-  p->model = load_model(s.cage, p->scheme);
+  p->model = load_model(s.cage, p->scheme, s.asset);
   p->factors = factors_option(s.factor, s.vary, s.factors_file, p->model.cage);
   p->displacement = displacement_option(s.displacement, p->model);
   p->view = view_option(s.camera, p->model.cage);

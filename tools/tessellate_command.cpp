@@ -17,12 +17,15 @@
 #include "shaders_cpp/subd_model.h"
 #include "tools/tessellate_options.h"
 #include "tools/view_options.h"
+#include "tools/glb_writer.h"
 #include "tools/verify/weld_check.h"
 
 namespace tessera::cli {
 namespace {
 
 struct TessellateOptions {
+  AssetCli asset;
+  std::string format;  // ply or glb; empty: from the output's extension
   std::string cage, output, stats, scheme = "gregory", partitioning = "integer", factors_file;
   float factor = 8.0f, vary = 0.0f;
   int threads = 0;
@@ -37,10 +40,18 @@ int run_tessellate(const TessellateOptions& o) {
   const ts::Partitioning partitioning = partitioning_option(o.partitioning);
   if (o.output.empty() && !o.check && o.stats.empty())
     throw UsageError("nothing to do: give -o out.ply, --check-watertight and/or --stats FILE.json");
+  std::string format = o.format;
+  if (format.empty()) {
+    std::string ext = std::filesystem::path(o.output).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    format = ext == ".glb" ? "glb" : "ply";
+  }
+  if (format != "ply" && format != "glb") throw UsageError("--format: '" + o.format + "' is not ply or glb");
+  if (!o.format.empty() && o.output.empty()) throw UsageError("--format needs -o FILE");
 
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.cage, o.factors_file, o.displacement.map, o.displacement.normal_map});
-  const SubdModel model = load_model(o.cage, scheme);
+  const SubdModel model = load_model(o.cage, scheme, o.asset);
   SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::optional<Displacement> displacement = displacement_option(o.displacement, model);
   if (model.patches.fallback_faces > 0)
@@ -62,10 +73,17 @@ int run_tessellate(const TessellateOptions& o) {
   std::uint64_t vertices = 0, triangles = 0;
   DrawResult result;
   std::string vbuf, fbuf;  // one patch's vertex and face records
-  auto tessellate = [&](PlyStreamWriter* ply) {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<std::uint32_t> glb_triangles;
+  auto tessellate = [&](PlyStreamWriter* ply, GlbStreamWriter* glb) {
     auto sink = [&](const auto& p, const PatchGroup&) {
       const std::uint64_t base = vertices;
       vbuf.clear(), fbuf.clear();
+      if (glb) {
+        positions.clear(), normals.clear(), glb_triangles.assign(p.indices.begin(), p.indices.end());
+        for (const auto& s : p.points) positions.push_back(s.position), normals.push_back(s.normal);
+        glb->append(positions, normals, glb_triangles);
+      }
       if (ply)
         for (const auto& s : p.points) {
           PlyStreamWriter::put(vbuf, s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z,
@@ -88,7 +106,25 @@ int run_tessellate(const TessellateOptions& o) {
     if (!result.ok()) throw InputError(o.cage + ": " + result.error);
   };
 
-  if (!o.output.empty()) {
+  const std::string made_by =
+      "tessera tessellate " + std::filesystem::path(o.cage).filename().string() + " scheme " + to_string(scheme) +
+      (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string()
+                    : std::string()) +
+      " factor " + float_text(o.factor) + " lod " + o.lod.mode + " partitioning " + o.partitioning;
+  if (!o.output.empty() && format == "glb") {
+    write_file_atomically(o.output, [&](const std::string& temp) {
+      GlbStreamWriter glb(temp, o.output);
+      tessellate(nullptr, &glb);
+      // The settings, without the asset's name, so OBJ and glTF inputs of one cage give the same bytes.
+      const Json extras = {{"scheme", to_string(scheme)},
+                           {"factor", json_float(o.factor)},
+                           {"lod", o.lod.mode},
+                           {"partitioning", o.partitioning},
+                           {"displaced", displacement.has_value()},
+                           {"note", "each patch writes its own vertices (weld on exact bits to join them)"}};
+      glb.finish("tessera tessellate", extras.dump());
+    });
+  } else if (!o.output.empty()) {
     write_file_atomically(o.output, [&](const std::string& temp) {
       PlyStreamWriter ply(temp, o.output,
                           {{"float", "x"},
@@ -100,16 +136,11 @@ int run_tessellate(const TessellateOptions& o) {
                            {"int", "face"},
                            {"float", "u"},
                            {"float", "v"}});
-      tessellate(&ply);
-      const std::string made_by =
-          "tessera tessellate " + std::filesystem::path(o.cage).filename().string() + " scheme " + to_string(scheme) +
-          (displacement ? " displacement " + std::filesystem::path(o.displacement.map).filename().string()
-                        : std::string()) +
-          " factor " + float_text(o.factor) + " lod " + o.lod.mode + " partitioning " + o.partitioning;
+      tessellate(&ply, nullptr);
       ply.finish({made_by, "each patch writes its own vertices; face = base face, u v = domain location"});
     });
   } else {
-    tessellate(nullptr);
+    tessellate(nullptr, nullptr);
   }
 
   if (!o.stats.empty()) {
@@ -160,9 +191,12 @@ int run_tessellate(const TessellateOptions& o) {
 Runner add_tessellate_command(CLI::App& app) {
   auto o = std::make_shared<TessellateOptions>();
   CLI::App* cmd = app.add_subcommand("tessellate", "run IA..DS over a cage and write the DS output as PLY");
-  cmd->add_option("cage", o->cage, "the cage (OBJ, OpenSubdiv tags allowed)")->required();
-  cmd->add_option("-o,--output", o->output, "output PLY (binary; each patch its own vertices)");
+  cmd->add_option("cage", o->cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb)")->required();
+  cmd->add_option("-o,--output", o->output,
+                  "output PLY (binary; each patch its own vertices), or binary glTF (.glb) for any glTF viewer");
+  cmd->add_option("--format", o->format, "ply or glb (default: from the output's extension, .glb or else PLY)");
   add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_asset_options(*cmd, o->asset);
   add_displacement_options(*cmd, o->displacement);
   add_camera_options(*cmd, o->camera);
   add_lod_options(*cmd, o->lod, "none");

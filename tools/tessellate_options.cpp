@@ -7,6 +7,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "shaders_cpp/animation/animation_sampler.h"
 #include "tools/cli_common.h"
 
 namespace tessera::cli {
@@ -78,12 +79,68 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
   return f;
 }
 
-SubdModel load_model(const std::string& path, Scheme scheme) {
+void add_asset_options(CLI::App& cmd, AssetCli& a, bool with_time) {
+  cmd.add_option("--scene-index", a.scene_index, "glTF: the scene to read (default: the file's default scene)");
+  cmd.add_option("--mesh", a.mesh, "glTF: read only the mesh (or node) of this name");
+  if (!with_time) return;
+  cmd.add_option("--animation", a.animation, "glTF: the animation to play, by name or index (default: the first)");
+  cmd.add_option("--time", a.time, "glTF: seconds into the animation; skins and morph targets pose the cage")
+      ->capture_default_str();
+}
+
+void pose_model(SubdModel& m, const AssetCli& asset, double time) {
+  if (!std::isfinite(time) || std::abs(time) > 1e9)
+    throw UsageError("--time: " + std::to_string(time) + " is not a finite time in seconds");
+  int animation = m.rig->animations.empty() ? -1 : 0;
+  if (!asset.animation.empty()) {
+    animation = find_animation(*m.rig, asset.animation);
+    if (animation < 0) {
+      std::string names;
+      for (std::size_t a = 0; a < m.rig->animations.size(); ++a)
+        names += (a ? ", " : "") + std::to_string(a) +
+                 (m.rig->animations[a].name.empty() ? "" : " (" + m.rig->animations[a].name + ")");
+      throw UsageError("--animation: " + m.cage.name + " has no animation '" + asset.animation +
+                       "' (it has: " + (names.empty() ? "none" : names) + ")");
+    }
+  }
   try {
-    return load_subd_model(path, scheme);
+    set_pose(m, pose_at(*m.rig, animation, time));
+  } catch (const CageError& e) {
+    throw InputError(e.what());  // the exact scheme's limit surface of this pose
+  }
+  for (const glm::vec3& p : m.posed_positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(m.cage.name + ": the pose at " + std::to_string(time) + " s moves a vertex to infinity");
+}
+
+GltfSelection gltf_selection(const std::string& path, const AssetCli& a) {
+  if (!is_gltf_path(path) && (a.scene_index >= 0 || !a.mesh.empty() || !a.animation.empty()))
+    throw UsageError("--scene-index, --mesh and --animation apply to glTF assets; " + path + " is not one");
+  GltfSelection selection;
+  if (a.scene_index >= 0) selection.scene = a.scene_index;
+  selection.mesh = a.mesh;
+  return selection;
+}
+
+SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& asset) {
+  const bool gltf = is_gltf_path(path);
+  const GltfSelection selection = gltf_selection(path, asset);
+  SubdModel m;
+  try {
+    m = load_subd_model(path, scheme, selection);
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
+  for (const std::string& w : m.cage.warnings) log_info("warning: " + w);
+  if (m.rig) {
+    pose_model(m, asset, asset.time);
+  } else if (asset.time != 0.0) {
+    throw UsageError("--time " + float_text(float(asset.time)) + ": " + path + " is not animated" +
+                     (gltf ? " (no skin, morph target or animation)" : " (OBJ cages are static)"));
+  } else if (!asset.animation.empty()) {
+    throw UsageError("--animation: " + path + " has no animations");
+  }
+  return m;
 }
 
 void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {

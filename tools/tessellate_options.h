@@ -23,8 +23,24 @@ ts::Partitioning partitioning_option(const std::string& name);
 // 0; edges not listed take --factor), read once; a line that is not an edge of `cage` is an InputError
 // naming it.
 SubdFactors factors_option(float factor, float vary, const std::string& file, const Cage& cage);
-// load_subd_model with its CageError turned into the CLI's InputError (one line, exit 1).
-SubdModel load_model(const std::string& path, Scheme scheme);
+// Which part of a glTF asset, and when: --scene-index, --mesh, --animation, --time.
+struct AssetCli {
+  int scene_index = -1;  // -1: the file's default scene
+  std::string mesh, animation;
+  double time = 0.0;  // seconds
+  friend bool operator==(const AssetCli&, const AssetCli&) = default;
+};
+// `with_time`: also --animation and --time (commands that draw a pose).
+void add_asset_options(CLI::App& cmd, AssetCli& a, bool with_time = true);
+// --scene-index and --mesh as a GltfSelection; UsageError for an OBJ path.
+GltfSelection gltf_selection(const std::string& path, const AssetCli& a);
+// load_subd_model with its CageError turned into the CLI's InputError (one line, exit 1), its
+// warnings logged; an animated glTF asset is posed at `asset.time` (pose_model). Asset options on an
+// OBJ cage, or a non-zero time on a static asset, are UsageErrors.
+SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& asset = {});
+// Poses an animated model at `time` seconds of the animation `asset.animation` names (default: the
+// first); a time that is not finite or an unknown animation is a UsageError.
+void pose_model(SubdModel& m, const AssetCli& asset, double time);
 
 // --displacement MAP and its companions (render, tessellate, bench frog).
 struct DisplacementCli {

@@ -108,7 +108,7 @@ LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdMo
   if (s.mode != LodMode::uniform) {
     if (factors.per_edge || factors.vary > 0.0f)
       throw UsageError("--lod " + l.mode + " sets every edge's factor: drop --factors-per-edge and --vary-factors");
-    factors.per_edge = edge_lod_factors(model.cage, *model.topology, s);
+    factors.per_edge = edge_lod_factors(model.positions(), *model.topology, s);
     if (displacement) displacement->trilinear = true;
   }
   if (culls_frustum(r.cull)) {

@@ -62,6 +62,8 @@ struct Cage {
   // Face-varying texture coordinates: empty, or one index per entry of face_vertices into uvs.
   std::vector<glm::vec2> uvs;
   std::vector<int> face_uvs;
+  // Texture v points down the image (glTF); OBJ's points up. Maps are sampled accordingly.
+  bool uv_v_down = false;
   CageTags tags;
   // What the loader read but did not use (unsupported tags such as OpenSubdiv's hierarchical edits,
   // unknown OBJ statements), one line each naming the file and line. Not errors: the cage is usable.

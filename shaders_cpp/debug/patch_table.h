@@ -90,7 +90,7 @@ std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g
     const SubdPatch& patch = g.patches[p];
     for (std::size_t i = 0; i < in.size(); ++i) {
       const std::uint32_t v = g.indices[p * in.size() + i];
-      in[i] = vs(m.cage.positions[v], v);
+      in[i] = vs(m.vertex_buffer()[v], v);
     }
     for (int i = 0; i < Hs::kOutputControlPoints; ++i) out[std::size_t(i)] = hs.control_point(in, i, std::uint32_t(p));
     PatchInfo& info = rows[p];

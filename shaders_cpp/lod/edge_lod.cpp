@@ -55,14 +55,14 @@ float edge_lod_factor(const glm::vec3& p0, const glm::vec3& p1, const LodSetting
   return clamp_factor(diameter_pixels / s.edge_pixels);
 }
 
-std::shared_ptr<const EdgeFactorTable> edge_lod_factors(const Cage& cage, const Topology& topology,
+std::shared_ptr<const EdgeFactorTable> edge_lod_factors(std::span<const glm::vec3> positions, const Topology& topology,
                                                         const LodSettings& s) {
   auto table = std::make_shared<EdgeFactorTable>();
   table->reserve(std::size_t(topology.edge_count()));
   for (int e = 0; e < topology.edge_count(); ++e) {
     const int h = topology.edge_half_edges(e)[0];
     const int a = topology.origin(h), b = topology.destination(h);
-    (*table)[cage_edge_key(a, b)] = edge_lod_factor(cage.positions[std::size_t(a)], cage.positions[std::size_t(b)], s);
+    (*table)[cage_edge_key(a, b)] = edge_lod_factor(positions[std::size_t(a)], positions[std::size_t(b)], s);
   }
   return table;
 }

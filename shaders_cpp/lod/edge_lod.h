@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <unordered_map>
 
@@ -67,9 +68,10 @@ float projected_diameter(const glm::vec3& centre, float radius, const DicingCame
 // The factor of the cage edge from p0 to p1 (either order gives the same bits).
 float edge_lod_factor(const glm::vec3& p0, const glm::vec3& p1, const LodSettings& s);
 
-// Every cage edge's factor, keyed by cage_edge_key(origin, destination).
+// Every cage edge's factor, keyed by cage_edge_key(origin, destination), from the control points as
+// the vertex shader outputs them (SubdModel::positions(): the posed cage when animated).
 using EdgeFactorTable = std::unordered_map<std::int64_t, float>;
-std::shared_ptr<const EdgeFactorTable> edge_lod_factors(const Cage& cage, const Topology& topology,
+std::shared_ptr<const EdgeFactorTable> edge_lod_factors(std::span<const glm::vec3> positions, const Topology& topology,
                                                         const LodSettings& s);
 
 }  // namespace tessera
