@@ -44,7 +44,9 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   // One decode of the file serves the displacement and, with "auto", the normal map beside it.
   const DisplacementImage image = [&] {
     try {
-      return DisplacementImage::read(o.map, DisplacementImage::Selection{o.channel, 0});
+      const DisplacementImage::Selection selection{o.channel, 0};
+      return o.map_bytes.empty() ? DisplacementImage::read(o.map, selection)
+                                 : DisplacementImage::read_encoded(o.map, o.map_bytes, o.map_format, selection);
     } catch (const DisplacementMapError& e) {
       throw DisplacementMapError(std::string(e.what()) + " (displacement map)");
     }
@@ -89,7 +91,9 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     if (!vector && has_rgb) d.normal_map = image.select("R,G,B", 3);
   } else if (o.normal_map != "derived") {
     try {
-      d.normal_map = DisplacementMap::load(o.normal_map, "R,G,B", 3);
+      d.normal_map = o.normal_map_bytes.empty()
+                         ? DisplacementMap::load(o.normal_map, "R,G,B", 3)
+                         : DisplacementMap::load_encoded(o.normal_map, o.normal_map_bytes, o.normal_map_format, "R,G,B", 3);
     } catch (const DisplacementMapError& e) {  // the same reader as the height's: say which map
       throw DisplacementMapError(std::string(e.what()) + " (normal map)");
     }

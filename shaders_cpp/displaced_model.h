@@ -28,7 +28,10 @@ namespace tessera {
 enum class DisplacementSpace : std::uint8_t { tangent, object };
 
 struct DisplacementOptions {
-  std::string map;      // path
+  std::string map;      // path (or, with map_bytes, the name of an embedded image)
+  // An encoded image in memory (a glTF's embedded texture) and its format as an extension (".png").
+  std::vector<std::uint8_t> map_bytes{}, normal_map_bytes{};
+  std::string map_format{}, normal_map_format{};
   std::string channel;  // displacement_map.h's selection; 1 channel = scalar, 3 = vector
   float scale = 1.0f, bias = 0.0f;
   DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only

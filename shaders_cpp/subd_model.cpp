@@ -89,6 +89,7 @@ SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSele
   GltfCage g = load_gltf_cage(path, selection);
   SubdModel m = make_subd_model(std::move(g.cage), scheme);
   m.rig = std::move(g.rig);
+  m.material = std::move(g.maps);
   return m;
 }
 

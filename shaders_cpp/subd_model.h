@@ -34,6 +34,8 @@ struct SubdModel {
   std::shared_ptr<const CageRig> rig;
   std::optional<RigPose> pose;
   std::vector<glm::vec3> posed_positions;
+  // glTF: the material's normal and displacement maps (the CLI's defaults for --displacement).
+  GltfMaterialMaps material;
 
   // The control points as the vertex shader outputs them (the posed cage, or the cage).
   const std::vector<glm::vec3>& positions() const { return pose ? posed_positions : cage.positions; }

@@ -2,7 +2,10 @@
 // an automatic camera that frames it (or one given), in one of the views of render_views.h: shaded,
 // wireframes, and the debug views of factors, density, patch types, UVs, the cage, cracks and culling.
 // --stats writes the pipeline statistics and a row per patch (render_stats.h).
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <regex>
 #include <iostream>
 
 #include "tools/cli_common.h"
@@ -22,7 +25,69 @@ struct RenderOptions {
   RenderSettings s;  // what a scene file holds
   std::string output, stats, scene, print_scene;
   bool scene_schema = false;
+  int frames = 1;
+  double fps = 24.0;
 };
+
+// Frame `i`'s path: the pattern's one printf integer field (%d, %4d, %04d) replaced by i.
+std::string frame_path(const std::string& pattern, int i) {
+  const std::regex field(R"(%(0?)([1-9]?)d)");
+  std::smatch m;
+  if (!std::regex_search(pattern, m, field) || std::count(pattern.begin(), pattern.end(), '%') != 1)
+    throw UsageError("--frames: -o " + pattern + " needs one frame-number field such as %04d (frame_%04d.png)");
+  std::string number = std::to_string(i);
+  const std::size_t width = m[2].length() ? std::size_t(std::stoi(m[2])) : 0;
+  if (number.size() < width) number.insert(0, width - number.size(), m[1].length() ? '0' : ' ');
+  return m.prefix().str() + number + m.suffix().str();
+}
+
+// Renders --frames N of an animated asset: the asset loaded once, posed per frame (time + i / fps).
+// Every frame is written beside its final name first and renamed at the end: all frames or none.
+int render_frames(const RenderOptions& o) {
+  if (o.frames < 1 || o.frames > 100000) throw UsageError("--frames: " + std::to_string(o.frames) + " is not in 1..100000");
+  if (!(std::isfinite(o.fps) && o.fps > 0.0 && o.fps <= 10000.0))
+    throw UsageError("--fps: " + std::to_string(o.fps) + " is not in (0, 10000]");
+  if (!o.stats.empty()) throw UsageError("--stats describes one frame; drop --frames or --stats");
+  std::vector<std::string> paths;
+  for (int i = 0; i < o.frames; ++i) {
+    paths.push_back(frame_path(o.output, i));
+    if (i > 0 && paths[std::size_t(i)] == paths[0]) throw UsageError("--frames: -o " + o.output + " names one file");
+  }
+  check_output_paths({{"-o", paths.front()}, {"-o", paths.back()}},
+                     {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
+  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
+  if (!scene->model.rig)
+    throw UsageError("--frames: " + o.s.cage + " is not animated (no skin, morph target or animation)");
+  Device device(device_options(o.s.threads));
+  std::vector<std::string> partial;
+  auto remove_partial = [&] {
+    for (const std::string& p : partial) {
+      std::error_code ignored;
+      std::filesystem::remove(p, ignored);
+    }
+  };
+  try {
+    for (int i = 0; i < o.frames; ++i) {
+      const double time = o.s.asset.time + double(i) / o.fps;
+      pose_scene(*scene, time);
+      const SceneImage image = render_scene(device, *scene, false);
+      const std::filesystem::path final_path(paths[std::size_t(i)]);
+      partial.push_back((final_path.parent_path() / (".tessera-partial-" + final_path.filename().string())).string());
+      write_scene_image(image, partial.back());
+      const DrawReport& total = image.out.result.report;
+      std::cout << paths[std::size_t(i)] << ": t " << float_text(float(time)) << " s, "
+                << total.statistics.CInvocations << " triangles, " << total.statistics.PSInvocations
+                << " pixels shaded, VS " << float_text(float(total.times.ia_vs * 1e3)) << " ms, DS "
+                << float_text(float(total.times.ds * 1e3)) << " ms\n";
+      log_info("frame " + std::to_string(i + 1) + "/" + std::to_string(o.frames));
+    }
+    for (std::size_t i = 0; i < paths.size(); ++i) std::filesystem::rename(partial[i], paths[i]);
+  } catch (...) {
+    remove_partial();
+    throw;
+  }
+  return kExitOk;
+}
 
 // The options a scene file sets: given with --scene they would be ambiguous, so they are refused.
 constexpr const char* kSceneOptions[] = {"--scheme",
@@ -88,6 +153,7 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     return kExitOk;
   }
   if (o.output.empty()) throw UsageError("-o out.png is required");
+  if (cmd.count("--frames") > 0 || cmd.count("--fps") > 0) return render_frames(o);
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
@@ -133,6 +199,10 @@ Runner add_render_command(CLI::App& app) {
       ->capture_default_str();
   add_displacement_options(*cmd, o->s.displacement);
   add_asset_options(*cmd, o->s.asset);
+  cmd->add_option("--frames", o->frames,
+                  "render N frames of the animation from --time, 1/fps apart, to -o frame_%04d.png")
+      ->capture_default_str();
+  cmd->add_option("--fps", o->fps, "frames per second of --frames")->capture_default_str();
   cmd->add_option("--scene", o->scene,
                   "render the scene file FILE (JSON: asset, scheme, partitioning, factor, lod, cull, displacement, "
                   "camera, resolution, view, time, threads; relative paths from the file; schema: --scene-schema)");

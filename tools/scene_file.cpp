@@ -199,8 +199,8 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
     const DisplacementCli& d = s.displacement;
     Json dj = {{"map", relative_to(d.map, dir)}};
     if (!d.channel.empty()) dj["channel"] = d.channel;
-    dj["scale"] = json_float(d.scale);
-    dj["bias"] = json_float(d.bias);
+    if (d.scale) dj["scale"] = json_float(*d.scale);
+    if (d.bias) dj["bias"] = json_float(*d.bias);
     dj["space"] = d.space;
     dj["normal_map"] =
         d.normal_map == "auto" || d.normal_map == "derived" ? d.normal_map : relative_to(d.normal_map, dir);

@@ -26,11 +26,18 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   if (s.factor_kind != "raw" && s.factor_kind != "processed")
     throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
   p->model = load_model(s.cage, p->scheme, s.asset);
-  p->factors = factors_option(s.factor, s.vary, s.factors_file, p->model.cage);
+  p->base_factors = factors_option(s.factor, s.vary, s.factors_file, p->model.cage);
+  p->factors = p->base_factors;
   p->displacement = displacement_option(s.displacement, p->model);
   p->view = view_option(s.camera, p->model.cage);
   p->lod = apply_lod_options(s.lod, p->view, p->model, p->displacement ? &*p->displacement : nullptr, p->factors);
   return p;
+}
+
+void pose_scene(PreparedScene& p, double time) {
+  pose_model(p.model, p.settings.asset, time);
+  p.factors = p.base_factors;
+  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
 }
 
 SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables) {

@@ -22,11 +22,15 @@ struct PreparedScene {
   SubdModel model;
   std::optional<Displacement> displacement;
   ViewSetup view;
+  SubdFactors base_factors;  // before LOD and culling (pose_scene starts again from them)
   SubdFactors factors;
   LodResult lod;
   ViewInputs inputs() const;
 };
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
+// Poses an animated scene's model at `time` seconds and recomputes what follows the pose (LOD factors,
+// culling); the camera stays where prepare_scene put it (framing the rest pose).
+void pose_scene(PreparedScene& scene, double time);
 
 struct SceneImage {
   std::optional<Framebuffer> fb;

@@ -144,12 +144,14 @@ SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& ass
 }
 
 void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
-  cmd.add_option("--displacement", d.map, "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs");
+  cmd.add_option("--displacement", d.map,
+                 "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs; default: a glTF "
+                 "material's KHR_materials_displacement texture; none: no displacement");
   cmd.add_option("--displacement-channel", d.channel,
                  "channel(s) of the map: a name or letter (A, height) for a scalar, three (RGB, 'X,Y,Z') for a vector");
-  cmd.add_option("--displacement-scale", d.scale, "displacement = scale * texel + bias (object units)")
-      ->capture_default_str();
-  cmd.add_option("--displacement-bias", d.bias, "added after scaling")->capture_default_str();
+  cmd.add_option("--displacement-scale", d.scale,
+                 "displacement = scale * texel + bias (object units; default 1, or a glTF material's factor)");
+  cmd.add_option("--displacement-bias", d.bias, "added after scaling (default 0, or a glTF material's offset)");
   cmd.add_option("--displacement-space", d.space, "vector maps: tangent or object")->capture_default_str();
   cmd.add_option(
          "--normal-map", d.normal_map,
@@ -158,22 +160,58 @@ void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
       ->capture_default_str();
 }
 
+namespace {
+
+// An encoded glTF image's decoder, as the extension OpenImageIO picks it by.
+std::string format_of(const GltfImage& image) {
+  if (image.mime_type == "image/png") return ".png";
+  if (image.mime_type == "image/jpeg") return ".jpg";
+  const auto& b = image.bytes;
+  if (b.size() >= 4 && b[0] == 0x89 && b[1] == 'P') return ".png";
+  if (b.size() >= 2 && b[0] == 0xFF && b[1] == 0xD8) return ".jpg";
+  if (b.size() >= 4 && b[0] == 'D' && b[1] == 'D' && b[2] == 'S') return ".dds";
+  if (b.size() >= 4 && b[0] == 0x76 && b[1] == 0x2F && b[2] == 0x31 && b[3] == 0x01) return ".exr";
+  return ".png";
+}
+
+}  // namespace
+
 std::optional<Displacement> displacement_option(const DisplacementCli& d, const SubdModel& model) {
-  if (d.map.empty()) {
-    if (!(d == DisplacementCli{}))  // a companion option given without the map
+  const GltfMaterialMaps& material = model.material;
+  const bool none = d.map == "none";
+  const bool from_material = d.map.empty() && material.displacement.has_value();
+  if ((d.map.empty() && !from_material) || none) {
+    DisplacementCli companions = d;
+    companions.map.clear();
+    if (!(companions == DisplacementCli{}))  // a companion option given without the map
       throw UsageError("--displacement-* and --normal-map need --displacement MAP");
     return std::nullopt;
   }
   if (d.space != "tangent" && d.space != "object")
     throw UsageError("--displacement-space: '" + d.space + "' is not tangent or object");
-  if (!std::isfinite(d.scale) || !std::isfinite(d.bias)) throw UsageError("--displacement-scale/-bias: not finite");
   DisplacementOptions o;
+  o.scale = d.scale.value_or(from_material ? material.displacement_factor : 1.0f);
+  o.bias = d.bias.value_or(from_material ? material.displacement_offset : 0.0f);
+  if (!std::isfinite(o.scale) || !std::isfinite(o.bias)) throw UsageError("--displacement-scale/-bias: not finite");
   o.map = d.map;
   o.channel = d.channel;
-  o.scale = d.scale;
-  o.bias = d.bias;
+  if (from_material) {
+    const GltfImage& image = *material.displacement;
+    o.map = image.path;
+    o.map_bytes = image.bytes;
+    o.map_format = format_of(image);
+    // The proposal reads the red channel.
+    if (o.channel.empty()) o.channel = "R";
+    log_info("displacement: " + image.path + " (the material's displacementGeometryTexture, scale " +
+             float_text(o.scale) + ", offset " + float_text(o.bias) + ")");
+  }
   o.space = d.space == "object" ? DisplacementSpace::object : DisplacementSpace::tangent;
   o.normal_map = d.normal_map;
+  if (d.normal_map == "auto" && material.normal) {
+    o.normal_map = material.normal->path;
+    o.normal_map_bytes = material.normal->bytes;
+    o.normal_map_format = format_of(*material.normal);
+  }
   try {
     return make_displacement(model, o);
   } catch (const DisplacementMapError& e) {

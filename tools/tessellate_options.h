@@ -45,12 +45,16 @@ void pose_model(SubdModel& m, const AssetCli& asset, double time);
 // --displacement MAP and its companions (render, tessellate, bench frog).
 struct DisplacementCli {
   std::string map, channel, space = "tangent", normal_map = "auto";
-  float scale = 1.0f, bias = 0.0f;
+  // Not given: 1 and 0, or a glTF material's displacementGeometryFactor and Offset.
+  std::optional<float> scale, bias;
   friend bool operator==(const DisplacementCli&, const DisplacementCli&) = default;
 };
 void add_displacement_options(CLI::App& cmd, DisplacementCli& d);
-// Nothing without --displacement; otherwise the loaded displacement, its errors turned into InputError
-// (one line naming the file) and bad option values into UsageError.
+// Nothing without --displacement (or with `--displacement none`), unless the asset is a glTF whose
+// material has a KHR_materials_displacement texture: then that map (its R channel, scaled by the
+// factor and offset; the options given replace each), with its normalTexture as the normal map. The
+// loaded displacement, its errors turned into InputError (one line naming the file) and bad option
+// values into UsageError.
 std::optional<Displacement> displacement_option(const DisplacementCli& d, const SubdModel& model);
 
 }  // namespace tessera::cli

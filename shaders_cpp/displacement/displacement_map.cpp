@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace tessera {
@@ -107,8 +108,26 @@ std::vector<int> select_channels(const std::string& path, const std::vector<std:
 
 }  // namespace
 
+struct DisplacementImageDecoder {
+  static DisplacementImage decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path,
+                                  std::optional<DisplacementImage::Selection> check);
+};
+
 DisplacementImage DisplacementImage::read(const std::string& path, std::optional<Selection> check) {
-  auto in = open(path);
+  return DisplacementImageDecoder::decode(open(path), path, check);
+}
+
+DisplacementImage DisplacementImage::read_encoded(const std::string& name, std::span<const std::uint8_t> bytes,
+                                                  const std::string& format, std::optional<Selection> check) {
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  // The extension picks the decoder; OpenImageIO reads through the proxy instead of a file.
+  auto in = OIIO::ImageInput::create("embedded" + format, true, nullptr, &reader);
+  if (!in) fail(name, "cannot decode the embedded image as " + format + " (" + one_line(OIIO::geterror()) + ")");
+  return DisplacementImageDecoder::decode(std::move(in), name, check);
+}
+
+DisplacementImage DisplacementImageDecoder::decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path,
+                                                   std::optional<DisplacementImage::Selection> check) {
   const OIIO::ImageSpec s = in->spec();
   if (s.width < 1 || s.height < 1 || s.width > kMaxTextureSize || s.height > kMaxTextureSize)
     fail(path, "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1.." +
@@ -146,6 +165,12 @@ DisplacementMap DisplacementImage::select(std::string_view spec, int count) cons
   std::vector<std::string> selected;
   for (int c : chosen) selected.push_back(names_[std::size_t(c)]);
   return DisplacementMap(std::move(*t), path_, std::move(selected));
+}
+
+DisplacementMap DisplacementMap::load_encoded(const std::string& name, std::span<const std::uint8_t> bytes,
+                                              const std::string& format, std::string_view spec, int count) {
+  return DisplacementImage::read_encoded(name, bytes, format, DisplacementImage::Selection{spec, count})
+      .select(spec, count);
 }
 
 DisplacementMap DisplacementMap::load(const std::string& path, std::string_view spec, int count) {

@@ -21,6 +21,8 @@
 
 #include <stdexcept>
 #include <optional>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +39,9 @@ class DisplacementMap {
  public:
   // DisplacementImage::read(path).select(spec, count).
   static DisplacementMap load(const std::string& path, std::string_view spec = {}, int count = 0);
+  // DisplacementImage::read_encoded(name, bytes, format).select(spec, count).
+  static DisplacementMap load_encoded(const std::string& name, std::span<const std::uint8_t> bytes,
+                                      const std::string& format, std::string_view spec = {}, int count = 0);
 
   const Texture2D& texture() const { return texture_; }
   const std::string& path() const { return path_; }
@@ -71,11 +76,16 @@ class DisplacementImage {
   // channel names before the pixels are decoded: a wrong channel fails at once, not after a large
   // image has been read.
   static DisplacementImage read(const std::string& path, std::optional<Selection> check = std::nullopt);
+  // The same for an encoded image held in memory (a glTF's embedded image): `name` names it in
+  // messages, `format` is a file extension that picks the decoder (".png", ".jpg", ".exr", ...).
+  static DisplacementImage read_encoded(const std::string& name, std::span<const std::uint8_t> bytes,
+                                        const std::string& format, std::optional<Selection> check = std::nullopt);
   DisplacementMap select(std::string_view spec = {}, int count = 0) const;
   // Every channel name of the file, in order.
   const std::vector<std::string>& channel_names() const { return names_; }
 
  private:
+  friend struct DisplacementImageDecoder;  // the OpenImageIO side, in the .cpp
   std::string path_;
   int width_ = 0, height_ = 0;
   std::vector<std::string> names_;
