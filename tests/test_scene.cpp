@@ -121,6 +121,10 @@ TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema
       scene[key] = {{"map", "h.exr"}, {"channel", "A"}, {"normal_map", "derived"}};
     else if (key == "camera")
       scene[key] = {{"position", {1, 2, 3}}, {"target", {0, 0, 0}}, {"fov", 40}};
+    else if (key == "animation" || key == "mesh")
+      scene[key] = "bend";
+    else if (key == "scene_index")
+      scene[key] = 0;
     else if (key != "tessera_scene" && key != "asset")
       FAIL("no sample value for schema property " << key);
     const fs::path file = write(dir / ("p-" + key + ".json"), scene.dump());
