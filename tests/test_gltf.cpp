@@ -518,3 +518,87 @@ TEST_CASE("glTF: skin weights that do not sum to one are normalised with a warni
 }
 
 }  // namespace tessera
+
+namespace tessera {
+
+TEST_CASE("glTF: accuracy, scene files and external buffers work on posed assets", "[gltf][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "posed";
+  fs::create_directories(dir);
+  // accuracy compares the posed surface with the exact limit of the posed cage.
+  const auto a = run_cli("accuracy " + kSkinned + " --time 1 --factor 6 --json");
+  REQUIRE(a.exit_code == 0);
+  const Json acc = Json::parse(a.out);
+  CHECK(acc["max_relative"].get<double>() < 0.01);
+  // A scene file naming the asset, its animation and a time renders what the command line does.
+  write_json(dir / "scene.json", {{"tessera_scene", 1}, {"asset", kSkinned}, {"time", 0.75}, {"animation", "bend"},
+                                  {"resolution", {320, 180}}});
+  REQUIRE(run_cli("render --scene " + (dir / "scene.json").string() + " -o " + (dir / "s.png").string()).exit_code == 0);
+  REQUIRE(run_cli("render " + kSkinned + " --time 0.75 --resolution 320x180 -o " + (dir / "c.png").string()).exit_code == 0);
+  CHECK(bytes_of(dir / "s.png") == bytes_of(dir / "c.png"));
+  const auto printed = run_cli("render " + kSkinned + " --time 0.75 --animation 0 --print-scene -");
+  REQUIRE(printed.exit_code == 0);
+  CHECK(Json::parse(printed.out)["time"] == 0.75);
+  CHECK(Json::parse(printed.out)["animation"] == "0");
+  // The same cube with its buffer in an external file (a URI with an escaped space).
+  Json j = gltf_of(load_obj_cage(data("osd-shapes/catmark_cube.obj")));
+  const std::string uri = j["buffers"][0]["uri"];
+  std::string raw;
+  {
+    // Decode our own base64 back to bytes.
+    const std::string b64 = uri.substr(uri.find(',') + 1);
+    auto value = [](char c) -> int {
+      if (c >= 'A' && c <= 'Z') return c - 'A';
+      if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+      if (c >= '0' && c <= '9') return c - '0' + 52;
+      return c == '+' ? 62 : 63;
+    };
+    for (std::size_t i = 0; i + 3 < b64.size(); i += 4) {
+      const int n = value(b64[i]) << 18 | value(b64[i + 1]) << 12 | (b64[i + 2] == '=' ? 0 : value(b64[i + 2]) << 6) |
+                    (b64[i + 3] == '=' ? 0 : value(b64[i + 3]));
+      raw += char(n >> 16);
+      if (b64[i + 2] != '=') raw += char((n >> 8) & 255);
+      if (b64[i + 3] != '=') raw += char(n & 255);
+    }
+  }
+  std::ofstream(dir / "cube data.bin", std::ios::binary) << raw;
+  j["buffers"][0]["uri"] = "cube%20data.bin";
+  write_json(dir / "cube-external.gltf", j);
+  const GltfCage external = load_gltf_cage((dir / "cube-external.gltf").string());
+  const Cage obj = load_obj_cage(data("osd-shapes/catmark_cube.obj"));
+  CHECK(external.cage.positions == obj.positions);
+  CHECK(external.cage.face_vertices == obj.face_vertices);
+}
+
+TEST_CASE("glTF: eight influences through JOINTS_1 and WEIGHTS_1 skin as the sum of both sets", "[gltf]") {
+  // The skinned frog with its two influences moved into the second set (JOINTS_1/WEIGHTS_1), the
+  // first set zero: the same pose, to the bit (influences are summed in order and zeros are skipped).
+  Json j = Json::parse(bytes_of(kSkinned));
+  Json& attributes = j["meshes"][0]["primitives"][0]["attributes"];
+  const int count = j["accessors"][int(attributes["POSITION"])]["count"];
+  std::string joints, weights;
+  for (int i = 0; i < count; ++i) {
+    append(joints, std::array<std::uint8_t, 4>{0, 0, 0, 0});
+    append(weights, std::array<float, 4>{0, 0, 0, 0});
+  }
+  j["buffers"].push_back({{"byteLength", joints.size() + weights.size()},
+                          {"uri", "data:application/octet-stream;base64," + base64(joints + weights)}});
+  const int buffer = int(j["buffers"].size()) - 1, view = int(j["bufferViews"].size());
+  j["bufferViews"].push_back({{"buffer", buffer}, {"byteLength", joints.size()}});
+  j["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", joints.size()}, {"byteLength", weights.size()}});
+  const int first = int(j["accessors"].size());
+  j["accessors"].push_back({{"bufferView", view}, {"componentType", 5121}, {"count", count}, {"type", "VEC4"}});
+  j["accessors"].push_back({{"bufferView", view + 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC4"}});
+  attributes["JOINTS_1"] = attributes["JOINTS_0"];
+  attributes["WEIGHTS_1"] = attributes["WEIGHTS_0"];
+  attributes["JOINTS_0"] = first;
+  attributes["WEIGHTS_0"] = first + 1;
+  const fs::path path = test::cli_temp_dir() / "eight.gltf";
+  write_json(path, j);
+  const GltfCage a = load_gltf_cage(kSkinned), b = load_gltf_cage(path.string());
+  REQUIRE(b.rig);
+  CHECK(b.rig->weights[100][5] == a.rig->weights[100][1]);
+  const auto pa = pose_positions(*a.rig, pose_at(*a.rig, 0, 1.0)), pb = pose_positions(*b.rig, pose_at(*b.rig, 0, 1.0));
+  CHECK(pa == pb);
+}
+
+}  // namespace tessera

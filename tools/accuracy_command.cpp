@@ -32,7 +32,10 @@ int run_accuracy(const AccuracyOptions& o) {
   const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
   std::unique_ptr<LimitSurface> own_reference;
   try {
-    if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(model.cage));
+    // The limit of the cage the vertex shader outputs (the posed cage of an animated asset).
+    Cage posed = model.cage;
+    posed.positions = model.positions();
+    if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(posed));
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
