@@ -48,7 +48,7 @@ TEST_CASE("Tessera's own view goldens pass tessera check", "[check][cli]") {
   INFO(r.err);
   CHECK(r.exit_code == 0);
   const auto s = summary_of(report);
-  CHECK(s["counts"]["pass"] == 4);
+  CHECK(s["counts"]["pass"] == 5);
   for (const auto& c : s["cases"]) {
     CHECK(c["status"] == "pass");
     CHECK(fs::exists(report / c["new_image"].get<std::string>()));
@@ -107,7 +107,7 @@ TEST_CASE("Shards merge into the single run's report", "[check][cli]") {
   REQUIRE(test::run_cli("check " + suite + " -o " + (dir / "all").string()).exit_code == 0);
   REQUIRE(test::run_cli("check " + suite + " --shard 1/2 -o " + (dir / "s1").string()).exit_code == 0);
   REQUIRE(test::run_cli("check " + suite + " --shard 2/2 -o " + (dir / "s2").string()).exit_code == 0);
-  CHECK(summary_of(dir / "s1")["cases"].size() == 2);
+  CHECK(summary_of(dir / "s1")["cases"].size() == 3);
   REQUIRE(test::run_cli("check --merge " + (dir / "s2").string() + " " + (dir / "s1").string() + " -o " +
                         (dir / "merged").string())
               .exit_code == 0);
