@@ -358,6 +358,8 @@ TEST_CASE("glTF: render --frames writes a sequence whose frames equal single ren
   REQUIRE(run_cli("render " + kSkinned + " --time 0.5 --resolution 320x180 -o " + (dir / "one.png").string()).exit_code == 0);
   CHECK(bytes_of(dir / "f_001.png") == bytes_of(dir / "one.png"));
   CHECK(bytes_of(dir / "f_000.png") != bytes_of(dir / "f_001.png"));
+  CHECK(run_cli("render " + kSkinned + " --frames 1 --resolution 32x18 -o " + (dir / "one_%d.png").string()).exit_code == 0);
+  CHECK(fs::exists(dir / "one_0.png"));
   // Refused before anything is written: a static asset, a path without a frame field.
   fs::remove_all(dir);
   fs::create_directories(dir);

@@ -53,8 +53,10 @@ int render_frames(const RenderOptions& o) {
     paths.push_back(frame_path(o.output, i));
     if (i > 0 && paths[std::size_t(i)] == paths[0]) throw UsageError("--frames: -o " + o.output + " names one file");
   }
-  check_output_paths({{"-o", paths.front()}, {"-o", paths.back()}},
-                     {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
+  // Each frame's path is checked (no collision with an input, its directory exists).
+  for (const std::string& p : paths)
+    check_output_paths({{"-o", p}},
+                       {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
   if (!scene->model.rig)
     throw UsageError("--frames: " + o.s.cage + " is not animated (no skin, morph target or animation)");
