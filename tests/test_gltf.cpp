@@ -73,7 +73,8 @@ Json gltf_of(const Cage& c) {
   for (int f = 0; f < c.face_count(); ++f) {
     std::vector<int> face;
     for (int k = 0; k < c.face_sizes[std::size_t(f)]; ++k) {
-      const int v = c.face_vertex(f, k), t = c.has_uvs() ? c.face_uvs[std::size_t(c.face_offsets[std::size_t(f)] + k)] : 0;
+      const int v = c.face_vertex(f, k),
+                t = c.has_uvs() ? c.face_uvs[std::size_t(c.face_offsets[std::size_t(f)] + k)] : 0;
       if (verts[std::size_t(v)].second < 0) verts[std::size_t(v)].second = t;
       const auto key = std::make_pair(v, t);
       if (verts[std::size_t(v)].second == t) {
@@ -123,8 +124,11 @@ Json gltf_of(const Cage& c) {
   j["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}},
                     {{"bufferView", 1}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}},
                     {{"bufferView", 2}, {"componentType", 5125}, {"count", count}, {"type", "SCALAR"}}};
-  Json prim = {{"attributes", {{"POSITION", 0}}}, {"indices", 2}, {"mode", 4},
-               {"extensions", {{"FB_ngon_encoding", Json::object()}}}, {"extras", {{"rotatedFaces", rotated}}}};
+  Json prim = {{"attributes", {{"POSITION", 0}}},
+               {"indices", 2},
+               {"mode", 4},
+               {"extensions", {{"FB_ngon_encoding", Json::object()}}},
+               {"extras", {{"rotatedFaces", rotated}}}};
   if (c.has_uvs()) prim["attributes"]["TEXCOORD_0"] = 1;
   j["meshes"] = {{{"primitives", {prim}}}};
   return j;
@@ -202,8 +206,10 @@ TEST_CASE("glTF: a triangle mesh without FB_ngon_encoding is a triangle cage, we
 TEST_CASE("glTF: OBJ and glTF inputs of one cage render and tessellate to the same bytes", "[gltf][cli]") {
   const fs::path dir = test::cli_temp_dir();
   for (const std::string scheme : {"gregory", "pn", "exact"}) {
-    const auto a = run_cli("render " + kFrog + " --scheme " + scheme + " --resolution 480x270 -o " + (dir / "g.png").string());
-    const auto b = run_cli("render " + kFrogObj + " --scheme " + scheme + " --resolution 480x270 -o " + (dir / "o.png").string());
+    const auto a =
+        run_cli("render " + kFrog + " --scheme " + scheme + " --resolution 480x270 -o " + (dir / "g.png").string());
+    const auto b =
+        run_cli("render " + kFrogObj + " --scheme " + scheme + " --resolution 480x270 -o " + (dir / "o.png").string());
     REQUIRE(a.exit_code == 0);
     REQUIRE(b.exit_code == 0);
     CHECK(bytes_of(dir / "g.png") == bytes_of(dir / "o.png"));
@@ -211,7 +217,9 @@ TEST_CASE("glTF: OBJ and glTF inputs of one cage render and tessellate to the sa
   // Displaced: a glTF whose UVs are float(1 - v) as the OBJ path computes them gives the same bytes.
   write_json(dir / "frog-float-uv.gltf", gltf_of(load_obj_cage(kFrogObj)));
   const std::string maps = " --displacement " + kFrogMap + " --displacement-channel A --resolution 480x270";
-  REQUIRE(run_cli("render " + (dir / "frog-float-uv.gltf").string() + maps + " -o " + (dir / "g.png").string()).exit_code == 0);
+  REQUIRE(
+      run_cli("render " + (dir / "frog-float-uv.gltf").string() + maps + " -o " + (dir / "g.png").string()).exit_code ==
+      0);
   REQUIRE(run_cli("render " + kFrogObj + maps + " -o " + (dir / "o.png").string()).exit_code == 0);
   CHECK(bytes_of(dir / "g.png") == bytes_of(dir / "o.png"));
 
@@ -237,14 +245,16 @@ TEST_CASE("glTF: skins and morph targets pose the cage as their closed forms say
     const std::vector<glm::vec3> posed = pose_positions(rig, pose_at(rig, 0, t));
     const std::vector<glm::dvec3> expected = skinned_frog_closed_form(rig, t);
     double worst = 0.0;
-    for (std::size_t v = 0; v < posed.size(); ++v) worst = std::max(worst, glm::length(glm::dvec3(posed[v]) - expected[v]));
+    for (std::size_t v = 0; v < posed.size(); ++v)
+      worst = std::max(worst, glm::length(glm::dvec3(posed[v]) - expected[v]));
     INFO("t = " << t);
     CHECK(worst <= 2e-6 * diagonal);
   }
   // The bend moves the far end by about 13 units at t = 1 (the asset's README).
   const std::vector<glm::vec3> bent = pose_positions(rig, pose_at(rig, 0, 1.0));
   double moved = 0.0;
-  for (std::size_t v = 0; v < bent.size(); ++v) moved = std::max(moved, double(glm::length(bent[v] - g.cage.positions[v])));
+  for (std::size_t v = 0; v < bent.size(); ++v)
+    moved = std::max(moved, double(glm::length(bent[v] - g.cage.positions[v])));
   CHECK(moved == Approx(13.18).margin(0.01));
 
   const GltfCage m = load_gltf_cage(kMorph);
@@ -314,8 +324,10 @@ TEST_CASE("glTF: the skinned, displaced frog is watertight in every pose, the sa
       CHECK(r.exit_code == 0);
       CHECK(r.out.find(" 0 open edges, 0 non-manifold edges") != std::string::npos);
     }
-  const auto m = run_cli("tessellate " + kMorph + " --time 0.7 --lod screen --camera-position 10,30,60 "
-                         "--partitioning fractional_even --check-watertight" + maps);
+  const auto m = run_cli("tessellate " + kMorph +
+                         " --time 0.7 --lod screen --camera-position 10,30,60 "
+                         "--partitioning fractional_even --check-watertight" +
+                         maps);
   CHECK(m.exit_code == 0);
   const fs::path dir = test::cli_temp_dir();
   std::string first;
@@ -336,7 +348,9 @@ TEST_CASE("glTF: a posed frame equals the same pose written as OBJ, within float
   for (std::size_t v = 0; v < expected.size(); ++v) posed.positions[v] = glm::vec3(expected[v]);
   const fs::path dir = test::cli_temp_dir();
   std::ofstream(dir / "posed.obj") << format_obj_cage(posed);
-  REQUIRE(run_cli("tessellate " + (dir / "posed.obj").string() + " --factor 4 -o " + (dir / "a.glb").string()).exit_code == 0);
+  REQUIRE(
+      run_cli("tessellate " + (dir / "posed.obj").string() + " --factor 4 -o " + (dir / "a.glb").string()).exit_code ==
+      0);
   REQUIRE(run_cli("tessellate " + kSkinned + " --time 1 --factor 4 -o " + (dir / "b.glb").string()).exit_code == 0);
   const GltfCage a = load_gltf_cage((dir / "a.glb").string()), b = load_gltf_cage((dir / "b.glb").string());
   REQUIRE(a.cage.vertex_count() == b.cage.vertex_count());
@@ -351,14 +365,19 @@ TEST_CASE("glTF: render --frames writes a sequence whose frames equal single ren
   const fs::path dir = test::cli_temp_dir() / "frames";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const auto r = run_cli("render " + kSkinned + " --frames 3 --fps 2 --resolution 320x180 -o " + (dir / "f_%03d.png").string());
+  const auto r =
+      run_cli("render " + kSkinned + " --frames 3 --fps 2 --resolution 320x180 -o " + (dir / "f_%03d.png").string());
   REQUIRE(r.exit_code == 0);
   CHECK(fs::exists(dir / "f_000.png"));
   CHECK(fs::exists(dir / "f_002.png"));
-  REQUIRE(run_cli("render " + kSkinned + " --time 0.5 --resolution 320x180 -o " + (dir / "one.png").string()).exit_code == 0);
+  REQUIRE(
+      run_cli("render " + kSkinned + " --time 0.5 --resolution 320x180 -o " + (dir / "one.png").string()).exit_code ==
+      0);
   CHECK(bytes_of(dir / "f_001.png") == bytes_of(dir / "one.png"));
   CHECK(bytes_of(dir / "f_000.png") != bytes_of(dir / "f_001.png"));
-  CHECK(run_cli("render " + kSkinned + " --frames 1 --resolution 32x18 -o " + (dir / "one_%d.png").string()).exit_code == 0);
+  CHECK(
+      run_cli("render " + kSkinned + " --frames 1 --resolution 32x18 -o " + (dir / "one_%d.png").string()).exit_code ==
+      0);
   CHECK(fs::exists(dir / "one_0.png"));
   // Refused before anything is written: a static asset, a path without a frame field.
   fs::remove_all(dir);
@@ -380,7 +399,8 @@ TEST_CASE("glTF: material maps (external and embedded) displace as the same map 
   const int n = 64;
   std::vector<std::uint8_t> px(std::size_t(n * n));
   for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) px[std::size_t(y * n + x)] = std::uint8_t((x * 3 + y * 2 + ((x / 8 + y / 8) % 2) * 60) % 256);
+    for (int x = 0; x < n; ++x)
+      px[std::size_t(y * n + x)] = std::uint8_t((x * 3 + y * 2 + ((x / 8 + y / 8) % 2) * 60) % 256);
   {
     auto out = OIIO::ImageOutput::create((dir / "height.png").string());
     REQUIRE(out);
@@ -413,14 +433,19 @@ TEST_CASE("glTF: material maps (external and embedded) displace as the same map 
     CHECK(bytes_of(dir / (std::string(name) + ".png")) == bytes_of(dir / "cli.png"));
   }
   // --displacement none turns the material's map off; --displacement-scale replaces its factor.
-  REQUIRE(run_cli("render " + (dir / "external.gltf").string() + opts + " --displacement none -o " + (dir / "none.png").string()).exit_code == 2);
-  REQUIRE(run_cli("render " + (dir / "external.gltf").string() + " --resolution 320x180 --displacement none -o " + (dir / "none.png").string()).exit_code == 0);
+  REQUIRE(run_cli("render " + (dir / "external.gltf").string() + opts + " --displacement none -o " +
+                  (dir / "none.png").string())
+              .exit_code == 2);
+  REQUIRE(run_cli("render " + (dir / "external.gltf").string() + " --resolution 320x180 --displacement none -o " +
+                  (dir / "none.png").string())
+              .exit_code == 0);
   REQUIRE(run_cli("render " + kFrogObj + " --resolution 320x180 -o " + (dir / "plain.png").string()).exit_code == 0);
   CHECK(bytes_of(dir / "none.png") == bytes_of(dir / "plain.png"));
   // A missing image is an error naming it.
   j["images"] = {{{"uri", "missing.png"}}};
   write_json(dir / "missing.gltf", j);
-  const auto m = run_cli("render " + (dir / "missing.gltf").string() + " --resolution 64x64 -o " + (dir / "x.png").string());
+  const auto m =
+      run_cli("render " + (dir / "missing.gltf").string() + " --resolution 64x64 -o " + (dir / "x.png").string());
   CHECK(m.exit_code == 1);
   CHECK(m.err.find("missing.png") != std::string::npos);
   CHECK(m.err.find("material 0") != std::string::npos);
@@ -439,13 +464,17 @@ TEST_CASE("glTF: bad files get one line naming the file and the element, never a
       {"missing-buffer", "nowhere.bin", [](Json& j) { j["buffers"][0]["uri"] = "nowhere.bin"; }},
       {"index-range", "index 2 is 3, but POSITION has 3 elements",
        [](Json& j) { j["accessors"][0]["count"] = 3, j["accessors"][1]["count"] = 3; }},
-      {"count-mismatch", "TEXCOORD_0 and POSITION have different counts", [](Json& j) { j["accessors"][1]["count"] = 3; }},
+      {"count-mismatch", "TEXCOORD_0 and POSITION have different counts",
+       [](Json& j) { j["accessors"][1]["count"] = 3; }},
       {"accessor-past-end", "reads past the end", [](Json& j) { j["accessors"][1]["byteOffset"] = 48; }},
       {"no-triangles", "no triangles", [](Json& j) { j["meshes"][0]["primitives"][0]["mode"] = 0; }},
       {"required-extension", "requires KHR_draco_mesh_compression",
        [](Json& j) { j["extensionsRequired"] = {"KHR_draco_mesh_compression"}; }},
       {"bad-node", "node 0: child 7 does not exist", [](Json& j) { j["nodes"][0]["children"] = {7}; }},
-      {"nan-scale", "not finite", [](Json& j) { j["nodes"][0]["scale"] = {1e308, 1e308, 1e308}; }},
+      {"nan-scale", "not finite",
+       [](Json& j) {
+         j["nodes"][0]["scale"] = {1e308, 1e308, 1e308};
+       }},
   };
   for (const Case& c : cases) {
     const fs::path p = dir / (c.name + ".gltf");
@@ -499,7 +528,8 @@ TEST_CASE("glTF: skin weights that do not sum to one are normalised with a warni
   const int view = int(j["bufferViews"].size());
   j["buffers"].push_back({{"byteLength", buf.size()}, {"uri", "data:application/octet-stream;base64," + base64(buf)}});
   j["bufferViews"].push_back({{"buffer", int(j["buffers"].size()) - 1}, {"byteLength", buf.size()}});
-  j["accessors"].push_back({{"bufferView", view}, {"componentType", 5121}, {"normalized", true}, {"count", count}, {"type", "VEC4"}});
+  j["accessors"].push_back(
+      {{"bufferView", view}, {"componentType", 5121}, {"normalized", true}, {"count", count}, {"type", "VEC4"}});
   j["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = int(j["accessors"].size()) - 1;
   write_json(dir / "heavy.gltf", j);
   const GltfCage g = load_gltf_cage((dir / "heavy.gltf").string());
@@ -508,7 +538,8 @@ TEST_CASE("glTF: skin weights that do not sum to one are normalised with a warni
   CHECK(g.rig->weights[0][1] == 0.5f);
   REQUIRE(!g.cage.warnings.empty());
   CHECK(g.cage.warnings[0].find("do not sum to 1; normalised") != std::string::npos);
-  const auto r = run_cli("render " + (dir / "heavy.gltf").string() + " --resolution 64x64 -o " + (dir / "h.png").string());
+  const auto r =
+      run_cli("render " + (dir / "heavy.gltf").string() + " --resolution 64x64 -o " + (dir / "h.png").string());
   CHECK(r.exit_code == 0);
   CHECK(r.err.find("warning:") != std::string::npos);
 
@@ -532,10 +563,14 @@ TEST_CASE("glTF: accuracy, scene files and external buffers work on posed assets
   const Json acc = Json::parse(a.out);
   CHECK(acc["max_relative"].get<double>() < 0.01);
   // A scene file naming the asset, its animation and a time renders what the command line does.
-  write_json(dir / "scene.json", {{"tessera_scene", 1}, {"asset", kSkinned}, {"time", 0.75}, {"animation", "bend"},
-                                  {"resolution", {320, 180}}});
-  REQUIRE(run_cli("render --scene " + (dir / "scene.json").string() + " -o " + (dir / "s.png").string()).exit_code == 0);
-  REQUIRE(run_cli("render " + kSkinned + " --time 0.75 --resolution 320x180 -o " + (dir / "c.png").string()).exit_code == 0);
+  write_json(
+      dir / "scene.json",
+      {{"tessera_scene", 1}, {"asset", kSkinned}, {"time", 0.75}, {"animation", "bend"}, {"resolution", {320, 180}}});
+  REQUIRE(run_cli("render --scene " + (dir / "scene.json").string() + " -o " + (dir / "s.png").string()).exit_code ==
+          0);
+  REQUIRE(
+      run_cli("render " + kSkinned + " --time 0.75 --resolution 320x180 -o " + (dir / "c.png").string()).exit_code ==
+      0);
   CHECK(bytes_of(dir / "s.png") == bytes_of(dir / "c.png"));
   const auto printed = run_cli("render " + kSkinned + " --time 0.75 --animation 0 --print-scene -");
   REQUIRE(printed.exit_code == 0);

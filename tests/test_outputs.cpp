@@ -161,3 +161,54 @@ TEST_CASE("Edge cases that used to fail or write garbage: an all-culled tessella
 }
 
 }  // namespace tessera
+
+namespace tessera {
+
+TEST_CASE("Truncated images fail in one line: a DDS shorter than its header implies, a cut PNG", "[cli][outputs]") {
+  const fs::path dir = test::cli_temp_dir() / "truncated";
+  fs::create_directories(dir);
+  const std::string frog = test::data("sdk-cages/monsterfrog_mapped_00.obj");
+  std::ifstream in(test::data("sdk-cages/monsterfrog.dds"), std::ios::binary);
+  const std::string dds{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  for (const std::size_t keep : {std::size_t(4096), std::size_t(128), std::size_t(60), dds.size() - 1}) {
+    const fs::path cut = dir / ("cut-" + std::to_string(keep) + ".dds");
+    std::ofstream(cut, std::ios::binary) << dds.substr(0, keep);
+    const auto r = test::run_cli("render " + frog + " --displacement " + cut.string() +
+                                 " --displacement-channel A --resolution 64x64 -o " + (dir / "x.png").string());
+    INFO(keep << ": " << r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("truncated DDS") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  // A PNG cut in its pixel data: libpng's own line is not printed before ours.
+  REQUIRE(test::run_cli("render " + frog + " --resolution 256x256 -o " + (dir / "whole.png").string()).exit_code == 0);
+  std::ifstream png_in(dir / "whole.png", std::ios::binary);
+  const std::string png{std::istreambuf_iterator<char>(png_in), std::istreambuf_iterator<char>()};
+  std::ofstream(dir / "cut.png", std::ios::binary) << png.substr(0, png.size() / 2);
+  const auto r = test::run_cli("render " + frog + " --displacement " + (dir / "cut.png").string() +
+                               " --displacement-channel R --resolution 64x64 -o " + (dir / "x.png").string());
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.rfind("tessera render: ", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(r.err.find("libpng error") == std::string::npos);
+  const auto d = test::run_cli("diff " + (dir / "cut.png").string() + " " + (dir / "whole.png").string());
+  CHECK(d.exit_code != 0);
+  CHECK(d.err.find("libpng error") == std::string::npos);
+  CHECK(!fs::exists(dir / "x.png"));
+}
+
+TEST_CASE("A 10 MB bad token is not echoed whole: errors stay one short line", "[cli][outputs]") {
+  const fs::path dir = test::cli_temp_dir();
+  {
+    std::ofstream out(dir / "huge-token.obj");
+    out << "v 1 2 " << std::string(10'000'000, 'x') << "\nf 1 2 3\n";
+  }
+  const auto r = test::run_cli("analyze " + (dir / "huge-token.obj").string());
+  CHECK(r.exit_code == 1);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(r.err.size() < 700);
+  CHECK(r.err.find("huge-token.obj:1") != std::string::npos);  // the head: file and line
+  CHECK(r.err.find("bytes ...]") != std::string::npos);        // the cut says so
+}
+
+}  // namespace tessera

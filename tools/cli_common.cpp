@@ -20,6 +20,23 @@ int g_verbosity = 0;  // set once by main before any command runs
 
 void set_verbosity(int level) { g_verbosity = level; }
 int verbosity() { return g_verbosity; }
+std::string one_line_message(std::string_view message) {
+  std::string s;
+  for (const char c : message) {
+    if (c == '\n' || c == '\r') {
+      if (!s.empty() && s.back() != ' ') s += "; ";
+    } else {
+      s += c;
+    }
+  }
+  while (!s.empty() && (s.back() == ' ' || s.back() == ';')) s.pop_back();
+  constexpr std::size_t kMax = 600, kKeep = 280;
+  if (s.size() > kMax)
+    s = s.substr(0, kKeep) + " [... " + std::to_string(s.size() - 2 * kKeep) + " bytes ...] " +
+        s.substr(s.size() - kKeep);
+  return s;
+}
+
 void log_info(std::string_view message) {
   if (g_verbosity >= 0) std::cerr << "tessera: " << message << "\n";
 }

@@ -38,6 +38,11 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An error message as the CLI prints it: one line (line breaks become "; ") of at most 600 bytes, a
+// longer one cut in the middle with the count of bytes left out (a 10 MB bad token in a cage must not
+// become a 10 MB "line").
+std::string one_line_message(std::string_view message);
+
 // -q: -1, default 0, -v: 1. Logs go to stderr.
 void set_verbosity(int level);
 int verbosity();

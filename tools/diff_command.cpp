@@ -10,6 +10,7 @@
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
+#include "pipeline/stderr_capture.h"
 #include "tools/verify/image_diff.h"
 
 namespace tessera::cli {
@@ -57,7 +58,10 @@ int run_diff(const DiffOptions& o) {
   check_output_paths({{"-o", o.output}, {"--heatmap", o.heatmap}}, {o.a, o.b});
 
   verify::DiffImages images;
-  const verify::DiffReport r = verify::diff_images(o.a, o.b, o.t, o.exact, &images);
+  const verify::DiffReport r = [&] {
+    const StderrCapture quiet;  // libpng's own error line: the report says it once
+    return verify::diff_images(o.a, o.b, o.t, o.exact, &images);
+  }();
   if (r.verdict == verify::DiffVerdict::file_error) {
     std::cerr << "tessera diff: " << r.error << "\n";
     return int(r.verdict);

@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "tessera: " << e.what() << " (see tessera --help)\n";
+    std::cerr << "tessera: " << one_line_message(e.what()) << " (see tessera --help)\n";
     return kExitUsage;
   }
   set_verbosity(quiet ? -1 : verbose ? 1 : 0);
@@ -66,13 +66,13 @@ int main(int argc, char** argv) {
   try {
     return runners.at(name)();
   } catch (const UsageError& e) {
-    std::cerr << "tessera " << name << ": " << e.what() << "\n";
+    std::cerr << "tessera " << name << ": " << one_line_message(e.what()) << "\n";
     return kExitUsage;
   } catch (const InputError& e) {
-    std::cerr << "tessera " << name << ": " << e.what() << "\n";
+    std::cerr << "tessera " << name << ": " << one_line_message(e.what()) << "\n";
     return kExitFailure;
   } catch (const std::exception& e) {
-    std::cerr << "tessera " << name << ": " << e.what() << "\n";
+    std::cerr << "tessera " << name << ": " << one_line_message(e.what()) << "\n";
     return kExitFailure;
   }
 }

@@ -44,7 +44,8 @@ std::string frame_path(const std::string& pattern, int i) {
 // Renders --frames N of an animated asset: the asset loaded once, posed per frame (time + i / fps).
 // Every frame is written beside its final name first and renamed at the end: all frames or none.
 int render_frames(const RenderOptions& o) {
-  if (o.frames < 1 || o.frames > 100000) throw UsageError("--frames: " + std::to_string(o.frames) + " is not in 1..100000");
+  if (o.frames < 1 || o.frames > 100000)
+    throw UsageError("--frames: " + std::to_string(o.frames) + " is not in 1..100000");
   if (!(std::isfinite(o.fps) && o.fps > 0.0 && o.fps <= 10000.0))
     throw UsageError("--fps: " + std::to_string(o.fps) + " is not in (0, 10000]");
   if (!o.stats.empty()) throw UsageError("--stats describes one frame; drop --frames or --stats");
@@ -77,10 +78,10 @@ int render_frames(const RenderOptions& o) {
       partial.push_back((final_path.parent_path() / (".tessera-partial-" + final_path.filename().string())).string());
       write_scene_image(image, partial.back());
       const DrawReport& total = image.out.result.report;
-      std::cout << paths[std::size_t(i)] << ": t " << float_text(float(time)) << " s, "
-                << total.statistics.CInvocations << " triangles, " << total.statistics.PSInvocations
-                << " pixels shaded, VS " << float_text(float(total.times.ia_vs * 1e3)) << " ms, DS "
-                << float_text(float(total.times.ds * 1e3)) << " ms\n";
+      std::cout << paths[std::size_t(i)] << ": t " << float_text(float(time)) << " s, " << total.statistics.CInvocations
+                << " triangles, " << total.statistics.PSInvocations << " pixels shaded, VS "
+                << float_text(float(total.times.ia_vs * 1e3)) << " ms, DS " << float_text(float(total.times.ds * 1e3))
+                << " ms\n";
       log_info("frame " + std::to_string(i + 1) + "/" + std::to_string(o.frames));
     }
     for (std::size_t i = 0; i < paths.size(); ++i) std::filesystem::rename(partial[i], paths[i]);

@@ -1,9 +1,13 @@
 #include "shaders_cpp/displacement/displacement_map.h"
 
+#include "pipeline/stderr_capture.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include <OpenImageIO/filesystem.h>
@@ -22,10 +26,74 @@ std::string one_line(std::string s) {
   return s;
 }
 
+std::uint32_t le32(const unsigned char* p) {
+  return std::uint32_t(p[0]) | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24;
+}
+
+// Bytes per 4x4 block of a block-compressed DXGI format (BC1..BC7), or per pixel of a common
+// uncompressed one (negative); 0 when unknown.
+int dxgi_size(std::uint32_t format) {
+  if ((format >= 70 && format <= 72) || (format >= 79 && format <= 81)) return 8;  // BC1, BC4
+  if ((format >= 73 && format <= 78) || (format >= 82 && format <= 84) || (format >= 94 && format <= 99)) return 16;
+  if (format == 2) return -16;                                  // R32G32B32A32_FLOAT
+  if (format == 10 || format == 11 || format == 16) return -8;  // R16G16B16A16, R32G32
+  if ((format >= 27 && format <= 29) || format == 41 || (format >= 87 && format <= 91)) return -4;
+  if (format == 54 || format == 56 || format == 34 || format == 35) return -2;  // R16, R8G8
+  if (format == 61 || format == 62) return -1;                                  // R8
+  return 0;
+}
+
+// OpenImageIO reads a truncated DDS as zeros without an error: the size its header implies (every mip
+// level it declares) is checked against the file's.
+// `h` holds the file's first `got` bytes (up to 148), `file_size` its size.
+void check_dds_header(const std::string& path, const unsigned char* h, std::size_t got, std::uintmax_t file_size) {
+  if (got < 4 || std::memcmp(h, "DDS ", 4) != 0) return;  // not a DDS: the codec decides
+  if (got < 128) fail(path, "truncated DDS: " + std::to_string(file_size) + " bytes, shorter than its 128-byte header");
+  const std::uint32_t flags = le32(h + 8), height = le32(h + 12), width = le32(h + 16), mips = le32(h + 28);
+  const std::uint32_t pf_flags = le32(h + 80), four_cc = le32(h + 84), bits = le32(h + 88);
+  std::uint64_t header = 128;
+  int block = 0;  // > 0: bytes per 4x4 block; < 0: bytes per pixel
+  auto cc = [](const char* s) { return le32(reinterpret_cast<const unsigned char*>(s)); };
+  if ((pf_flags & 0x4u) != 0) {  // DDPF_FOURCC
+    if (four_cc == cc("DX10")) {
+      header += 20;
+      if (got < 148) fail(path, "truncated DDS: " + std::to_string(file_size) + " bytes, shorter than its DX10 header");
+      block = dxgi_size(le32(h + 128));
+    } else if (four_cc == cc("DXT1") || four_cc == cc("ATI1") || four_cc == cc("BC4U")) {
+      block = 8;
+    } else if (four_cc == cc("DXT2") || four_cc == cc("DXT3") || four_cc == cc("DXT4") || four_cc == cc("DXT5") ||
+               four_cc == cc("ATI2") || four_cc == cc("BC5U")) {
+      block = 16;
+    }
+  } else if (bits % 8 == 0 && bits >= 8 && bits <= 128) {
+    block = -int(bits / 8);
+  }
+  if (block == 0 || width == 0 || height == 0) return;  // a layout this check does not know: OIIO decides
+  const std::uint32_t levels = (flags & 0x20000u) != 0 && mips > 0 ? std::min(mips, 32u) : 1u;
+  std::uint64_t need = header;
+  for (std::uint32_t l = 0; l < levels; ++l) {
+    const std::uint64_t w = std::max<std::uint64_t>(1, width >> l), hgt = std::max<std::uint64_t>(1, height >> l);
+    need += block > 0 ? ((w + 3) / 4) * ((hgt + 3) / 4) * std::uint64_t(block) : w * hgt * std::uint64_t(-block);
+    if (need > (std::uint64_t(1) << 40)) break;
+  }
+  if (file_size < need)
+    fail(path, "truncated DDS: its header (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
+                   std::to_string(levels) + " level(s)) implies " + std::to_string(need) + " bytes, the file has " +
+                   std::to_string(file_size));
+}
+
+void check_dds_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[148] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  check_dds_header(path, h, std::size_t(in.gcount()), std::filesystem::file_size(path));
+}
+
 std::unique_ptr<OIIO::ImageInput> open(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, "a directory, not an image file");
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
+  check_dds_size(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) fail(path, "cannot read as an image (" + one_line(OIIO::geterror()) + ")");
   return in;
@@ -114,11 +182,14 @@ struct DisplacementImageDecoder {
 };
 
 DisplacementImage DisplacementImage::read(const std::string& path, std::optional<Selection> check) {
+  const StderrCapture quiet;  // the codec's own error lines: our message says it once
   return DisplacementImageDecoder::decode(open(path), path, check);
 }
 
 DisplacementImage DisplacementImage::read_encoded(const std::string& name, std::span<const std::uint8_t> bytes,
                                                   const std::string& format, std::optional<Selection> check) {
+  const StderrCapture quiet;
+  check_dds_header(name, bytes.data(), std::min<std::size_t>(bytes.size(), 148), bytes.size());
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   // The extension picks the decoder; OpenImageIO reads through the proxy instead of a file.
   auto in = OIIO::ImageInput::create("embedded" + format, true, nullptr, &reader);
@@ -133,6 +204,11 @@ DisplacementImage DisplacementImageDecoder::decode(std::unique_ptr<OIIO::ImageIn
     fail(path, "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1.." +
                    std::to_string(kMaxTextureSize));
   if (s.depth > 1) fail(path, "is a volume image; a displacement map is 2D");
+  // Texels are held as float: a header claiming more than 2^28 of them (1 GiB) is refused before any
+  // allocation (a corrupt or hostile header otherwise asks for up to 16 GiB).
+  if (std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(std::max(1, s.nchannels)) > (1ull << 28))
+    fail(path, std::to_string(s.width) + "x" + std::to_string(s.height) + " with " + std::to_string(s.nchannels) +
+                   " channels is more than 2^28 texel values, the most a map may hold");
   DisplacementImage image;
   image.path_ = path;
   image.width_ = s.width, image.height_ = s.height;

@@ -613,18 +613,29 @@ GltfCage load_gltf_cage(const std::string& path, const GltfSelection& selection)
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw CageError(path + ": a directory, not a glTF file");
   if (!fs::is_regular_file(path, ec)) throw CageError(path + ": no such file");
-  char magic[4] = {};
-  {
-    std::ifstream f(path, std::ios::binary);
-    f.read(magic, 4);
-  }
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw CageError(path + ": cannot read");
+  if (size > kMaxGltfFileBytes)
+    throw CageError(path + ": " + std::to_string(size) + " bytes, more than a glTF reader takes (2 GiB)");
+  std::vector<std::uint8_t> bytes(size);
+  std::ifstream f(path, std::ios::binary);
+  f.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size));
+  if (!f) throw CageError(path + ": cannot read");
+  return parse_gltf_cage(bytes, path, selection);
+}
+
+GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string& path, const GltfSelection& selection) {
+  if (bytes.size() > kMaxGltfFileBytes) throw CageError(path + ": more than a glTF reader takes (2 GiB)");
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded, nullptr);
   tinygltf::Model m;
   std::string err, warn;
-  const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const std::string base = fs::path(path).parent_path().string();
+  const auto length = static_cast<unsigned int>(bytes.size());
   const bool ok =
-      binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path) : loader.LoadASCIIFromFile(&m, &err, &warn, path);
+      binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), length, base)
+             : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length, base);
   if (!ok) throw CageError(path + ": not a readable glTF 2.0 file (" + one_line(err.empty() ? warn : err) + ")");
   const Reader r(path, m);
   for (const std::string& e : m.extensionsRequired)

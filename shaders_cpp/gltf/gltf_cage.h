@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,10 @@ struct GltfCage {
 };
 
 GltfCage load_gltf_cage(const std::string& path, const GltfSelection& selection = {});
+// The same from the file's bytes; `path` names it in messages and its directory resolves external URIs.
+GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string& path,
+                         const GltfSelection& selection = {});
+inline constexpr std::size_t kMaxGltfFileBytes = std::size_t(1) << 31;
 
 // True for a path ending in .gltf or .glb (any case).
 bool is_gltf_path(const std::string& path);

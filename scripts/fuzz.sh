@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Runs one libFuzzer harness for a while: scripts/fuzz.sh TARGET MINUTES [JOBS]
+#   TARGET: obj, gltf, maps, factors or scene (tests/fuzz/fuzz_TARGET.cpp)
+# Builds the `fuzz` preset (clang, ASan + UBSan) in build-fuzz/ if needed, seeds a working corpus in
+# build-fuzz/corpus/TARGET from tests/data (and the seeds of tests/fuzz/seeds), runs libFuzzer for
+# MINUTES, and prints the executions, the coverage and any crash. A crash input is copied to
+# tests/fuzz/regressions/TARGET/ so that ctest replays it from then on (fix it, then commit it).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target=${1:?usage: scripts/fuzz.sh obj|gltf|maps|factors|scene MINUTES [JOBS]}
+minutes=${2:?usage: scripts/fuzz.sh TARGET MINUTES [JOBS]}
+jobs=${3:-1}
+case "$target" in obj|gltf|maps|factors|scene) ;; *) echo "fuzz.sh: unknown target '$target'" >&2; exit 2;; esac
+command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ is missing (scripts/setup.sh installs clang)" >&2; exit 2; }
+
+[ -f build-fuzz/build.ninja ] || cmake --preset fuzz >/dev/null
+cmake --build build-fuzz --target "fuzz_$target" >&2
+
+corpus=build-fuzz/corpus/$target
+crashes=build-fuzz/crashes/$target
+mkdir -p "$corpus" "$crashes" "tests/fuzz/regressions/$target"
+if [ -z "$(ls -A "$corpus")" ]; then
+  case "$target" in
+    obj) cp tests/data/osd-shapes/*.obj tests/data/sdk-cages/*.obj "$corpus"/ ;;
+    gltf) cp tests/data/gltf-cages/*.gltf tests/data/gltf-samples/*.gltf "$corpus"/ ;;
+    maps) cp tests/fuzz/seeds/maps/* "$corpus"/ ;;
+    factors) cp tests/fuzz/seeds/factors/* "$corpus"/ ;;
+    scene) cp golden/suites/scenes/*.json "$corpus"/ ;;
+  esac
+fi
+dict=()
+[ -f "tests/fuzz/$target.dict" ] && dict=(-dict="tests/fuzz/$target.dict")
+log=build-fuzz/fuzz-$target.log
+echo "fuzz.sh: $target for $minutes min on $jobs job(s); log $log" >&2
+set +e
+ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
+  "build-fuzz/tests/fuzz/fuzz_$target" "$corpus" "${dict[@]}" -max_total_time=$((minutes * 60)) \
+  -rss_limit_mb=2560 -timeout=20 -max_len=1048576 -artifact_prefix="$crashes/" -print_final_stats=1 \
+  -jobs="$jobs" -workers="$jobs" >"$log" 2>&1
+status=$?
+set -e
+[ "$jobs" -gt 1 ] && cat fuzz-*.log >>"$log" 2>/dev/null && rm -f fuzz-*.log
+grep -E "^#[0-9]+.*(DONE|cov:)" "$log" | tail -1 >&2 || true
+grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" >&2 || true
+found=$(ls "$crashes" 2>/dev/null | wc -l)
+if [ "$found" -gt 0 ]; then
+  cp "$crashes"/* "tests/fuzz/regressions/$target/"
+  echo "fuzz.sh: $found crash input(s) copied to tests/fuzz/regressions/$target/ (see $log)" >&2
+  exit 1
+fi
+echo "fuzz.sh: no crash (exit $status)" >&2
