@@ -386,6 +386,9 @@ TEST_CASE("tessera bench frog finds its default cage beside the binary, and says
   const auto dir = test::cli_temp_dir() / "lone";
   std::filesystem::create_directories(dir / "bin");
   std::filesystem::copy_file(TESSERA_BIN, dir / "bin" / "tessera", std::filesystem::copy_options::overwrite_existing);
+  const auto module = std::filesystem::path(TESSERA_BIN).parent_path() / "tessera-commands.so";
+  std::filesystem::copy_file(module, dir / "bin" / "tessera-commands.so",
+                             std::filesystem::copy_options::overwrite_existing);
   const std::string cmd = (dir / "bin" / "tessera").string() + " bench frog --frames 1 2>" + (dir / "err").string();
   const int status = std::system(cmd.c_str());
   CHECK(WIFEXITED(status));
@@ -394,6 +397,33 @@ TEST_CASE("tessera bench frog finds its default cage beside the binary, and says
   CHECK(err.find("share/tessera/monsterfrog_mapped_00.obj") != std::string::npos);
   CHECK(err.find("--cage") != std::string::npos);
   CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+}
+
+TEST_CASE("The launcher runs --version and pattern without its commands module, and names the module when missing",
+          "[cli]") {
+  const auto dir = test::cli_temp_dir() / "launcher-alone";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(TESSERA_BIN, dir / "tessera", std::filesystem::copy_options::overwrite_existing);
+  const std::string exe = (dir / "tessera").string();
+  const auto run = [&](const std::string& args) {
+    const int status =
+        std::system((exe + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string()).c_str());
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1,
+                          test::slurp(dir / "out") + test::slurp(dir / "err"));
+  };
+  CHECK(run("--version").second.rfind("tessera 0.1.0", 0) == 0);
+  const auto p = run("-q pattern --domain tri --outer 3,2,5 --inner 4 --json");
+  CHECK(p.first == 0);
+  CHECK(nlohmann::json::parse(p.second)["points"].size() > 3);
+  // Anything else needs the module: one line that names where it looked.
+  const auto r = run("render x.obj -o x.png");
+  CHECK(r.first == 1);
+  CHECK(r.second.find("commands module is missing") != std::string::npos);
+  CHECK(r.second.find("tessera-commands.so") != std::string::npos);
+  CHECK(std::count(r.second.begin(), r.second.end(), '\n') == 1);
+  const auto image = run("pattern --domain quad --outer 2,2,2,2 --inner 2,2 --image " + (dir / "p.png").string());
+  CHECK(image.first == 1);
+  CHECK(!std::filesystem::exists(dir / "p.png"));
 }
 
 TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on both of its faces", "[cli]") {

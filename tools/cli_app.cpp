@@ -1,6 +1,4 @@
-// tessera: the command-line tool. Results go to stdout or files, logs to stderr.
-// Exit codes: 0 ok, 1 bad input or a failed check, 2 usage error.
-#include <CLI/CLI.hpp>
+#include "tools/cli_app.h"
 
 #include <algorithm>
 #include <exception>
@@ -8,32 +6,26 @@
 #include <map>
 
 #include "tools/cli_common.h"
-#include "tools/commands.h"
 
-int main(int argc, char** argv) {
-  using namespace tessera::cli;
+namespace tessera::cli {
+
+std::string version_line() { return std::string("tessera 0.1.0 (") + kBuildIsa + ")"; }
+
+int run_app(int argc, char** argv, std::span<const CommandEntry> commands,
+            const std::function<std::vector<std::string>(int, char**)>& arguments) {
   CLI::App app{"tessera: a deterministic CPU implementation of the Direct3D 11 tessellation pipeline"};
   app.require_subcommand(1);
   bool quiet = false, verbose = false;
   app.add_flag("-q,--quiet", quiet, "only errors on stderr");
   app.add_flag("-v,--verbose", verbose, "more detail on stderr");
-  app.set_version_flag("--version", std::string("tessera 0.1.0 (") + kBuildIsa + ")");
+  app.set_version_flag("--version", version_line());
   std::map<std::string, Runner> runners;
-  runners["pattern"] = add_pattern_command(app);
-  runners["oracle-compare"] = add_oracle_command(app);
-  runners["bench"] = add_bench_command(app);
-  runners["analyze"] = add_analyze_command(app);
-  runners["tessellate"] = add_tessellate_command(app);
-  runners["render"] = add_render_command(app);
-  runners["accuracy"] = add_accuracy_command(app);
-  runners["make-cage"] = add_make_cage_command(app);
-  runners["diff"] = add_diff_command(app);
-  runners["check"] = add_check_command(app);
+  for (const CommandEntry& c : commands) runners[c.name] = c.add(app);
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 
   try {
-    std::vector<std::string> args = idiff_arguments(argc, argv);
+    std::vector<std::string> args = arguments(argc, argv);
     // Before CLI11, which reads "" as 0 for a number and calls an unknown command a missing one.
     for (std::size_t i = 1; i < args.size(); ++i) {
       const std::string& a = args[i];
@@ -76,3 +68,5 @@ int main(int argc, char** argv) {
     return kExitFailure;
   }
 }
+
+}  // namespace tessera::cli
