@@ -2,6 +2,7 @@
 // of its inputs, never two outputs on one path, never to "-"; empty values and unknown commands are
 // named; a failed watertight check says so on stderr even with -q.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -209,6 +210,29 @@ TEST_CASE("A 10 MB bad token is not echoed whole: errors stay one short line", "
   CHECK(r.err.size() < 700);
   CHECK(r.err.find("huge-token.obj:1") != std::string::npos);  // the head: file and line
   CHECK(r.err.find("bytes ...]") != std::string::npos);        // the cut says so
+}
+
+}  // namespace tessera
+
+namespace tessera {
+
+TEST_CASE("The exact scheme refuses a valence beyond its documented limit at once", "[cli][outputs]") {
+  // A double cone over 200 segments: both apexes have valence 200 (OpenSubdiv's time around a vertex
+  // grows as valence^2.4).
+  const fs::path path = test::cli_temp_dir() / "valence-200.obj";
+  {
+    std::ofstream out(path);
+    const int n = 200;
+    out << "v 0 1 0\nv 0 -1 0\n";
+    for (int i = 0; i < n; ++i) out << "v " << std::cos(6.283185307 * i / n) << " 0 " << -std::sin(6.283185307 * i / n) << "\n";
+    for (int i = 0; i < n; ++i) {
+      out << "f 1 " << 3 + i << " " << 3 + (i + 1) % n << "\n";
+      out << "f 2 " << 3 + (i + 1) % n << " " << 3 + i << "\n";
+    }
+  }
+  const auto r = test::run_cli("tessellate " + path.string() + " --scheme exact --factor 2 --check-watertight");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("vertex 0 has valence 200; the exact limit surface takes at most 128") != std::string::npos);
 }
 
 }  // namespace tessera

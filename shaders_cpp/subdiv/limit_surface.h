@@ -65,6 +65,10 @@ struct ReferenceSample {
   glm::dvec3 normal{0.0};
 };
 
+// The largest vertex valence the exact surface takes (OpenSubdiv's own limit is far higher, but its
+// cost around a vertex grows as about valence^2.4; at 128 a cage's surface builds in about 0.2 s).
+inline constexpr int kMaxExactValence = 128;
+
 class LimitSurface {
  public:
   // Bfr represents the surface exactly (B-spline patches) except within 2^-level (in face
@@ -75,8 +79,9 @@ class LimitSurface {
   static constexpr int kDefaultApproxLevel = 10;
   static constexpr int kMaxApproxLevel = 10;  // OpenSubdiv 3.5 crashes above 10
 
-  // Throws CageError (one line) for cages that fail validate_cage or exceed OpenSubdiv's limits, or
-  // whose limit is not finite; std::invalid_argument for a level outside 1..kMaxApproxLevel.
+  // Throws CageError (one line) for cages that fail validate_cage or exceed OpenSubdiv's limits or
+  // kMaxExactValence, or whose limit is not finite; std::invalid_argument for a level outside
+  // 1..kMaxApproxLevel.
   static LimitSurface create(const Cage& cage, int approx_level = kDefaultApproxLevel);
 
   LimitSurface(LimitSurface&&) noexcept;
