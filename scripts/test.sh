@@ -13,5 +13,5 @@ if [ "${TESSERA_ASAN:-0}" = 1 ]; then
   asan=${build%/}-asan
   "$root/scripts/setup.sh" "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DTESSERA_SANITIZE=address;undefined"
   cmake --build "$asan" --parallel "$(nproc)"
-  LSAN_OPTIONS="suppressions=$root/tests/lsan.supp" ctest --test-dir "$asan" --output-on-failure -j "$(nproc)"
+  LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0" ctest --test-dir "$asan" --output-on-failure -j "$(nproc)"
 fi
