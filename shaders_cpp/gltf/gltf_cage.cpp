@@ -53,6 +53,12 @@ class Reader {
     throw CageError(path_ + ": " + where + ": " + what);
   }
 
+  const tinygltf::Accessor& accessor(int a, const std::string& where) const {
+    if (a < 0 || a >= int(m_.accessors.size()))
+      fail(where, "names accessor " + std::to_string(a) + ", but the file has " + std::to_string(m_.accessors.size()));
+    return m_.accessors[std::size_t(a)];
+  }
+
   // Accessor `a`'s elements as `want` components each, as double (normalised integers scaled to
   // [0, 1] or [-1, 1] when the accessor says so). `what` names the use for messages.
   std::vector<double> read(int a, int want, const std::string& where, const std::string& what) const {
@@ -116,8 +122,9 @@ class Reader {
     return f;
   }
 
-  int component_type(int a) const { return m_.accessors[std::size_t(a)].componentType; }
-  std::size_t count(int a) const { return m_.accessors[std::size_t(a)].count; }
+  // An accessor's component type and count; an index that names no accessor fails naming `where`.
+  int component_type(int a, const std::string& where) const { return accessor(a, where).componentType; }
+  std::size_t count(int a, const std::string& where) const { return accessor(a, where).count; }
   const std::string& path() const { return path_; }
 
  private:
@@ -263,7 +270,7 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
   };
   const int pos_acc = attr("POSITION");
   if (pos_acc < 0) r_.fail(where, "has no POSITION");
-  if (r_.component_type(pos_acc) != TINYGLTF_COMPONENT_TYPE_FLOAT && pos_acc < int(m_.accessors.size()))
+  if (r_.component_type(pos_acc, where) != TINYGLTF_COMPONENT_TYPE_FLOAT)
     r_.fail(where, "POSITION is not float (quantized positions are not read)");
   const std::vector<float> pos = r_.read_floats(pos_acc, 3, where, "POSITION");
   const std::size_t n = pos.size() / 3;
@@ -294,7 +301,7 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
                             : "has TEXCOORD_0 while the cage's first primitive has none");
   const int uv_base = int(cage_.uvs.size());
   if (uv_acc >= 0) {
-    if (r_.count(uv_acc) != n) r_.fail(where, "TEXCOORD_0 and POSITION have different counts");
+    if (r_.count(uv_acc, where) != n) r_.fail(where, "TEXCOORD_0 and POSITION have different counts");
     const std::vector<float> uv = r_.read_floats(uv_acc, 2, where, "TEXCOORD_0");
     for (std::size_t i = 0; i < n; ++i) cage_.uvs.push_back({uv[2 * i], uv[2 * i + 1]});
   }
@@ -316,7 +323,8 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
                 "has JOINTS_" + std::to_string(set) + " without WEIGHTS_" + std::to_string(set) + " or the reverse");
       if (ja < 0) continue;
       any = true;
-      if (r_.count(ja) != n || r_.count(wa) != n) r_.fail(where, "JOINTS/WEIGHTS and POSITION have different counts");
+      if (r_.count(ja, where) != n || r_.count(wa, where) != n)
+        r_.fail(where, "JOINTS/WEIGHTS and POSITION have different counts");
       const std::vector<double> j = r_.read(ja, 4, where, "JOINTS_" + std::to_string(set));
       const std::vector<double> w = r_.read(wa, 4, where, "WEIGHTS_" + std::to_string(set));
       for (std::size_t i = 0; i < n; ++i)
@@ -369,7 +377,7 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
     deltas.resize(rig_.bind_positions.size(), glm::vec3(0.0f));
     const auto it = prim.targets[std::size_t(t)].find("POSITION");
     if (it == prim.targets[std::size_t(t)].end()) continue;
-    if (r_.count(it->second) != n)
+    if (r_.count(it->second, where) != n)
       r_.fail(where, "morph target " + std::to_string(t) + " and POSITION have different counts");
     const std::vector<float> d = r_.read_floats(it->second, 3, where, "target " + std::to_string(t) + " POSITION");
     for (std::size_t i = 0; i < n; ++i)
@@ -380,7 +388,7 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
   if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) return;  // the caller warned
   std::vector<std::uint32_t> index;
   if (prim.indices >= 0) {
-    const int type = r_.component_type(prim.indices);
+    const int type = r_.component_type(prim.indices, where);
     if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
       r_.fail(where, "indices are not unsigned integers");
