@@ -29,17 +29,20 @@ if [ -z "$(ls -A "$corpus")" ]; then
   esac
 fi
 dict=()
-[ -f "tests/fuzz/$target.dict" ] && dict=(-dict="tests/fuzz/$target.dict")
+[ -f "tests/fuzz/$target.dict" ] && dict=(-dict="../tests/fuzz/$target.dict")
 log=build-fuzz/fuzz-$target.log
 echo "fuzz.sh: $target for $minutes min on $jobs job(s); log $log" >&2
 set +e
-ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
-  "build-fuzz/tests/fuzz/fuzz_$target" "$corpus" "${dict[@]}" -max_total_time=$((minutes * 60)) \
-  -rss_limit_mb=2560 -timeout=20 -max_len=1048576 -artifact_prefix="$crashes/" -print_final_stats=1 \
-  -jobs="$jobs" -workers="$jobs" >"$log" 2>&1
+parallel=()
+# libFuzzer's -jobs writes each job's log as fuzz-N.log in the working directory: run in build-fuzz/.
+[ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
+(cd build-fuzz && ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
+  "tests/fuzz/fuzz_$target" "corpus/$target" "${dict[@]}" -max_total_time=$((minutes * 60)) \
+  -rss_limit_mb=2560 -timeout=20 -max_len=1048576 -artifact_prefix="crashes/$target/" -print_final_stats=1 \
+  "${parallel[@]}") >"$log" 2>&1
 status=$?
 set -e
-[ "$jobs" -gt 1 ] && cat fuzz-*.log >>"$log" 2>/dev/null && rm -f fuzz-*.log
+if [ "$jobs" -gt 1 ]; then cat build-fuzz/fuzz-*.log >>"$log" 2>/dev/null || true; rm -f build-fuzz/fuzz-*.log; fi
 grep -E "^#[0-9]+.*(DONE|cov:)" "$log" | tail -1 >&2 || true
 grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" >&2 || true
 found=$(ls "$crashes" 2>/dev/null | wc -l)
