@@ -45,10 +45,15 @@ set -e
 if [ "$jobs" -gt 1 ]; then cat build-fuzz/fuzz-*.log >>"$log" 2>/dev/null || true; rm -f build-fuzz/fuzz-*.log; fi
 grep -E "^#[0-9]+.*(DONE|cov:)" "$log" | tail -1 >&2 || true
 grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" >&2 || true
-found=$(ls "$crashes" 2>/dev/null | wc -l)
+found=0
+for f in "$crashes"/*; do
+  [ -f "$f" ] || continue
+  [ -f "tests/fuzz/regressions/$target/$(basename "$f")" ] && continue  # found by an earlier run
+  cp "$f" "tests/fuzz/regressions/$target/"
+  found=$((found + 1))
+done
 if [ "$found" -gt 0 ]; then
-  cp "$crashes"/* "tests/fuzz/regressions/$target/"
-  echo "fuzz.sh: $found crash input(s) copied to tests/fuzz/regressions/$target/ (see $log)" >&2
+  echo "fuzz.sh: $found new crash input(s) copied to tests/fuzz/regressions/$target/ (see $log)" >&2
   exit 1
 fi
 echo "fuzz.sh: no crash (exit $status)" >&2
