@@ -245,10 +245,10 @@ struct WeldHash {
 // Everything an instance's primitives add to the cage and the rig.
 class InstanceBuilder {
  public:
-  InstanceBuilder(const Reader& r, const tinygltf::Model& m, Cage& cage, CageRig& rig, int node, int instance)
-      : r_(r), m_(m), cage_(cage), rig_(rig), node_(node), instance_(instance) {}
+  InstanceBuilder(const Reader& r, const tinygltf::Model& m, Cage& cage, CageRig& rig, int instance)
+      : r_(r), m_(m), cage_(cage), rig_(rig), instance_(instance) {}
 
-  void add_primitive(int mesh, int p, bool first_primitive_with_uvs_decided, bool want_uvs);
+  void add_primitive(int mesh, int p, bool want_uvs);
   int gltf_vertices = 0;
 
  private:
@@ -256,11 +256,11 @@ class InstanceBuilder {
   const tinygltf::Model& m_;
   Cage& cage_;
   CageRig& rig_;
-  int node_, instance_;
+  int instance_;
   std::unordered_map<WeldKey, int, WeldHash> weld_;
 };
 
-void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
+void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
   const tinygltf::Mesh& gm = m_.meshes[std::size_t(mesh)];
   const tinygltf::Primitive& prim = gm.primitives[std::size_t(p)];
   const std::string where = named("mesh", mesh, gm.name) + " primitive " + std::to_string(p);
@@ -435,7 +435,6 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool, bool want_uvs) {
       if (uv_acc >= 0) cage_.face_uvs.push_back(uv_base + int(i));
     }
   }
-  (void)node_;
 }
 
 // A relative URI's path: %XX escapes decoded (glTF §2.8 uses RFC 3986 URIs).
@@ -711,7 +710,7 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
     }
     const int instance = int(rig->instances.size());
     rig->instances.push_back(inst);
-    InstanceBuilder builder(r, m, cage, *rig, n, instance);
+    InstanceBuilder builder(r, m, cage, *rig, instance);
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
       if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
@@ -723,7 +722,7 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
         want_uvs = prim.attributes.count("TEXCOORD_0") > 0, decided = true;
         out.maps = material_maps(r, m, prim.material);
       }
-      builder.add_primitive(node.mesh, int(p), decided, want_uvs);
+      builder.add_primitive(node.mesh, int(p), want_uvs);
       any_selected = true;
     }
     out.gltf_vertices += builder.gltf_vertices;
