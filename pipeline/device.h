@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -54,6 +55,11 @@ struct DeviceOptions {
   int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
   int chunks_in_flight = 8;             // chunks produced before they are flushed to the rasterizer
 };
+
+// Called on the drawing thread after each round of chunks of a patch draw: the draw's patches done
+// (through the last chunk rasterized) and its total. For progress displays; it sees no pixels and
+// cannot change any result.
+using DrawProgress = std::function<void(std::size_t patches_done, std::size_t patches_total)>;
 
 // A draw of a patch list (D3D11_PRIMITIVE_TOPOLOGY_n_CONTROL_POINT_PATCHLIST, n = control_points).
 template <class Vertex, class Vs, class Hs, class Ds, class Ps>
@@ -109,9 +115,9 @@ class Backend {
   const SetupContext& setup() const { return setup_; }
 
   // Produces chunks [0, count) with produce(chunk, ChunkBuffer&) in parallel, `slots` at a time, and
-  // rasterizes each round before the next.
-  template <class Produce>
-  void run(std::size_t count, Produce&& produce, DrawReport& report) {
+  // rasterizes each round before the next; after_round(chunks done) follows each round.
+  template <class Produce, class AfterRound>
+  void run(std::size_t count, Produce&& produce, DrawReport& report, AfterRound&& after_round) {
     for (std::size_t first = 0; first < count; first += slots_.size()) {
       const std::size_t n = std::min(slots_.size(), count - first);
       detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const auto& r) {
@@ -131,7 +137,12 @@ class Backend {
       std::size_t bytes = 0;
       for (const auto& s : slots_) bytes += s.capacity_bytes();
       chunk_bytes_peak_ = std::max(chunk_bytes_peak_, bytes);
+      after_round(first + n);
     }
+  }
+  template <class Produce>
+  void run(std::size_t count, Produce&& produce, DrawReport& report) {
+    run(count, std::forward<Produce>(produce), report, [](std::size_t) {});
   }
 
   std::size_t chunk_bytes_peak() const { return chunk_bytes_peak_; }
@@ -195,6 +206,8 @@ class Device {
 
   int threads() const { return threads_; }
   const DeviceOptions& options() const { return options_; }
+  // Sets (or, with an empty function, removes) the progress hook of the draws that follow.
+  void set_progress(DrawProgress progress) { progress_ = std::move(progress); }
   // The arena the device's work runs in (stream_output.h runs there too).
   tbb::task_arena& arena() const { return *arena_; }
 
@@ -219,6 +232,7 @@ class Device {
   }
 
   DeviceOptions options_;
+  DrawProgress progress_;
   int threads_ = 1;
   std::mutex draw_mutex_;                                     // one draw at a time: they share the slots
   std::map<std::size_t, std::shared_ptr<void>> chunk_slots_;  // by attribute count N
@@ -320,7 +334,10 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
             front.for_each_patch(c, local.patterns, chunk.times.tessellator,
                                  [&](const typename FrontEnd::Work& w) { patch_to_chunk(w, local, chunk); });
           },
-          report);
+          report,
+          [&](std::size_t chunks_done) {
+            if (progress_) progress_(front.patches_through_chunk(chunks_done - 1), front.patch_count());
+          });
       std::size_t bytes = 0;
       for (const auto& s : scratch) bytes += s.bytes();
       scratch_bytes_peak = std::max(scratch_bytes_peak, bytes);

@@ -10,6 +10,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "pipeline/atomic_file.h"
+#include "pipeline/image_metadata.h"
 
 namespace tessera {
 
@@ -84,6 +85,7 @@ std::string write_image_atomically(const std::string& path, int width, int heigh
     OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     if (is_float && !out->supports("channelformats") && std::filesystem::path(path).extension() == ".png")
       spec.set_format(OIIO::TypeDesc::UINT8);
+    omit_capture_time(spec);
     bool ok = out->open(temp, spec);
     if (ok) ok = out->write_image(is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, pixels);
     if (ok) ok = out->close();

@@ -231,6 +231,9 @@ class PatchFrontEnd {
   }
 
   std::size_t chunk_count() const { return chunks_.size(); }
+  std::size_t patch_count() const { return indices_.size() / n_in_; }
+  // Patches of the draw before the end of the current window's chunk `c` (for progress reports).
+  std::size_t patches_through_chunk(std::size_t c) const { return first_ + chunks_[c].second; }
 
   // Calls visit(const Work&) for each patch of the current window's chunk `c` that is not culled, in
   // draw order. Patterns come from `cache`; the time of a miss is added to `tessellator_seconds`.

@@ -8,8 +8,23 @@
 
 namespace tessera {
 
+glm::vec3 default_view_direction(glm::vec3 up) {
+  const glm::vec3 y_up = glm::normalize(glm::vec3(0.35f, 0.25f, 1.0f));
+  const glm::vec3 y(0.0f, 1.0f, 0.0f);
+  const float c = glm::dot(y, up);
+  if (c > 0.9999f) return y_up;
+  // Rotating +y onto -y has no single shortest arc: half a turn about z (x and y change sign).
+  if (c < -0.9999f) return {-y_up.x, -y_up.y, y_up.z};
+  // Rodrigues' rotation about y x up by the angle between them, in double (then one rounding).
+  const glm::dvec3 axis = glm::normalize(glm::cross(glm::dvec3(y), glm::dvec3(up)));
+  const double cos_a = double(c), sin_a = std::sqrt(std::max(0.0, 1.0 - cos_a * cos_a));
+  const glm::dvec3 v(y_up);
+  const glm::dvec3 r = v * cos_a + glm::cross(axis, v) * sin_a + axis * glm::dot(axis, v) * (1.0 - cos_a);
+  return glm::vec3(glm::normalize(r));
+}
+
 SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees, std::optional<glm::vec3> eye,
-                      std::optional<glm::vec3> target) {
+                      std::optional<glm::vec3> target, glm::vec3 up) {
   glm::vec3 lo(INFINITY), hi(-INFINITY);
   for (const auto& p : cage.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const glm::vec3 centre = 0.5f * (lo + hi);
@@ -20,10 +35,11 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
   SubdCamera c;
   c.target = target.value_or(centre);
   // The limit surface lies well inside the cage's bounding sphere: frame 80 % of it.
-  c.eye = eye.value_or(centre + glm::normalize(glm::vec3(0.35f, 0.25f, 1.0f)) * (radius / std::tan(0.5f * fit) * 0.8f));
+  c.up = up;
+  c.eye = eye.value_or(centre + default_view_direction(up) * (radius / std::tan(0.5f * fit) * 0.8f));
   const float distance = glm::length(c.eye - c.target);
   const float reach = distance + glm::length(centre - c.target) + radius;
-  const glm::mat4 view = glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0));
+  const glm::mat4 view = glm::lookAtRH(c.eye, c.target, up);
   const glm::mat4 proj = glm::perspectiveRH_ZO(fov, aspect, std::max(reach * 1e-4f, distance - reach), reach * 1.01f);
   c.view_projection = proj * view;
   return c;

@@ -16,13 +16,19 @@ inline constexpr glm::vec4 kBackgroundColor{0.93f, 0.94f, 0.96f, 1.0f};
 
 struct SubdCamera {
   glm::vec3 eye{0.0f}, target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};  // unit length; the image's up is its part across the view direction
   glm::mat4 view_projection{1.0f};
 };
 
 // Looks at the cage's bounding-box centre (or `target`) from `eye`, or from a default direction at a
 // distance that frames the bounding sphere; near and far planes enclose it. fov_degrees is vertical.
+// `up` (unit length) is the world's up: the default direction is the +y-up one, (0.35, 0.25, 1), turned
+// by the shortest rotation that takes +y to `up` (for +z up: from -y, slightly above, as a front view).
+// The caller checks that the view direction is not along `up` (the orientation would be undefined).
 SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees, std::optional<glm::vec3> eye,
-                      std::optional<glm::vec3> target);
+                      std::optional<glm::vec3> target, glm::vec3 up = {0.0f, 1.0f, 0.0f});
+// The default eye direction of frame_cage for the world's `up` (unit length), a unit vector.
+glm::vec3 default_view_direction(glm::vec3 up);
 
 // Draws the model into fb (not cleared here); returns the first draw error, statistics summed.
 DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors,

@@ -64,7 +64,7 @@ TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
   s.factors_file = (dir / "factors.txt").string();
   s.view = "density";
   s.factor_kind = "processed";
-  s.camera = {"640x360", "0.1,-2.3e-5,1e6", "3,2,1", 29.7f};
+  s.camera = {"640x360", "0.1,-2.3e-5,1e6", "3,2,1", "0,0,1", 29.7f};
   s.lod.mode = "distance";
   s.lod.cull = "backface";
   s.lod.edge_pixels = 3.3f;
@@ -141,7 +141,7 @@ TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema
       nlohmann::json value = key == "mode"                                               ? nlohmann::json("screen")
                              : key == "space"                                            ? nlohmann::json("object")
                              : (key == "map" || key == "channel" || key == "normal_map") ? nlohmann::json("x.exr")
-                             : (key == "position" || key == "target" || key == "dicing_camera_position")
+                             : (key == "position" || key == "target" || key == "up" || key == "dicing_camera_position")
                                  ? nlohmann::json::array({1, 2, 3})
                                  : nlohmann::json(2.5);
       scene[object] = {{key, value}};

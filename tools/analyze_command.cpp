@@ -54,6 +54,30 @@ struct CageAnalysis {
   std::optional<MemoryAnalysis> memory;  // with --memory
 };
 
+// The axis-aligned box of the control points (subdivision limit surfaces lie inside their control
+// points' convex hull, so inside this box; a displacement map can push the surface out by its bound).
+// Cameras and scene files are written in these units.
+void bounding_box_section(Report& r, const Cage& c) {
+  if (c.positions.empty()) return;
+  glm::vec3 lo = c.positions[0], hi = c.positions[0];
+  for (const glm::vec3& p : c.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 size = hi - lo, centre = 0.5f * (lo + hi);
+  const float diagonal = float(glm::length(glm::dvec3(size)));
+  const auto text = [](glm::vec3 v) { return float_text(v.x) + ", " + float_text(v.y) + ", " + float_text(v.z); };
+  const auto json = [](glm::vec3 v) {
+    // float_text is the shortest text that reads back as the float: the JSON shows those digits.
+    const auto number = [](float x) { return std::stod(float_text(x)); };
+    return nlohmann::ordered_json::array({number(v.x), number(v.y), number(v.z)});
+  };
+  r.line("bounding box = (" + text(lo) + ") .. (" + text(hi) + "), size (" + text(size) + "), centre (" + text(centre) +
+         "), diagonal " + float_text(diagonal));
+  r.json()["bounding_box"] = {{"min", json(lo)},
+                              {"max", json(hi)},
+                              {"size", json(size)},
+                              {"centre", json(centre)},
+                              {"diagonal", std::stod(float_text(diagonal))}};
+}
+
 void cage_section(Report& r, const CageAnalysis& a) {
   const Cage& c = a.cage;
   const Topology& t = a.topology;
@@ -76,6 +100,7 @@ void cage_section(Report& r, const CageAnalysis& a) {
   r.line(std::string("uvs = ") + (c.has_uvs() ? std::to_string(c.uvs.size()) + " coordinates" : "none"));
   r.count("uv_seam_edges", "uv seam edge count", std::count(seams.begin(), seams.end(), true));
   r.count("isolated_vertices", "isolated vertex count", static_cast<long long>(t.isolated_vertices().size()));
+  bounding_box_section(r, c);
 
   std::map<int, int> valences;
   int max_valence = 0, boundary_vertices = 0;

@@ -79,16 +79,17 @@ MapFacts load_map_facts(const std::string& path, const std::string& channel, con
   }
 }
 
-// Runs this executable with `args` (argv[0] included), its stdout to /dev/null (its one-line summary
-// would mix into ours, which may be JSON; its stderr, errors, passes through). Returns the exit status
-// and sets the child's peak RSS from wait4.
-int run_child(std::vector<std::string> args, std::uint64_t& peak_rss_bytes) {
+// Runs this executable with `args` (argv[0] included), its stdout to `stdout_path` (its summary would
+// mix into ours, which may be JSON; its stderr, errors, passes through). Returns the exit status and
+// sets the child's peak RSS from wait4.
+int run_child(std::vector<std::string> args, const std::string& stdout_path, std::uint64_t& peak_rss_bytes) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   ::posix_spawn_file_actions_init(&actions);
-  int spawned = ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  int spawned = ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(),
+                                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
   pid_t pid = 0;
   if (spawned == 0) spawned = ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
   ::posix_spawn_file_actions_destroy(&actions);
@@ -112,7 +113,7 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
   std::vector<std::string> args = {"tessera",      "-q",         "render",    cage_path,
                                    "--scheme",     o.scheme,     "--factor",  std::to_string(level),
                                    "--resolution", o.resolution, "--threads", std::to_string(o.threads),
-                                   "-o",           image,        "--stats",   stats};
+                                   "-o",           image,        "--json"};
   if (!o.displacement.empty()) {
     args.insert(args.end(), {"--displacement", o.displacement});
     if (!o.channel.empty()) args.insert(args.end(), {"--displacement-channel", o.channel});
@@ -120,7 +121,7 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
   const auto start = std::chrono::steady_clock::now();
   MeasuredMemory m;
   // The peak from wait4, as for the process base row: both from the operating system, the same way.
-  const int status = run_child(args, m.peak_rss_bytes);
+  const int status = run_child(args, stats, m.peak_rss_bytes);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::error_code ec;
   fs::remove(image, ec);
@@ -133,7 +134,7 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw InputError("--measure: tessera render at level " + std::to_string(level) + " failed (its error is above)");
   if (j.is_discarded() || !j.contains("memory"))
-    throw InputError("--measure: tessera render at level " + std::to_string(level) + " wrote no memory statistics");
+    throw InputError("--measure: tessera render at level " + std::to_string(level) + " printed no memory statistics");
   m.geometry_peak_bytes = j["memory"].value("geometry_peak_bytes", std::uint64_t(0));
   m.framebuffer_bytes = j["memory"].value("framebuffer_bytes", std::uint64_t(0));
   m.seconds = seconds;
@@ -201,8 +202,9 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   }
   if (o.measure) {
     // What the process holds before it draws anything (shared libraries, allocator, thread pool):
-    // `tessera --version` loads the same libraries and exits.
-    run_child({"tessera", "--version"}, a.base_rss_bytes);
+    // `tessera render --help` loads the commands module and its libraries and exits (`--version` is
+    // answered by the launcher alone, without them).
+    run_child({"tessera", "render", "--help"}, "/dev/null", a.base_rss_bytes);
     for (int level : model.levels) {
       log_info("analyze --measure: rendering level " + std::to_string(level));
       a.measured.push_back(measure_render(cage_path, o, level));

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "pipeline/image_metadata.h"
 #include "tessellator/fnv1a.h"
 #include "tools/cli_common.h"
 #include "tools/scene_render.h"
@@ -230,7 +231,8 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
         r.diff_image = "diff/" + c.name + ".png";
         const fs::path diff_path = fs::path(report_dir) / r.diff_image;
         fs::create_directories(diff_path.parent_path());
-        const OIIO::ImageBuf heat = verify::heat_map_image(images, 1.0f);
+        OIIO::ImageBuf heat = verify::heat_map_image(images, 1.0f);
+        omit_capture_time(heat);
         if (!heat.write(diff_path.string())) throw InputError(diff_path.string() + ": cannot write the diff image");
       }
       if (v == verify::DiffVerdict::file_error)

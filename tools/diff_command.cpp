@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "pipeline/image_metadata.h"
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
@@ -34,7 +35,8 @@ std::string number(double v) {
 
 Json json_number(double v) { return std::isfinite(v) ? Json(v) : Json(number(v)); }
 
-void write_image(const OIIO::ImageBuf& img, const std::string& path) {
+void write_image(OIIO::ImageBuf img, const std::string& path) {
+  omit_capture_time(img);
   write_file_atomically(path, [&](const std::string& temp) {
     const std::string ext = std::filesystem::path(path).extension().string();
     if (!img.write(temp, OIIO::TypeUnknown, ext.empty() ? std::string() : ext.substr(1)))

@@ -3,6 +3,7 @@
 // wireframes, and the debug views of factors, density, patch types, UVs, the cage, cracks and culling.
 // --stats writes the pipeline statistics and a row per patch (render_stats.h).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <regex>
@@ -11,6 +12,7 @@
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
+#include "tools/progress.h"
 #include "tools/render_stats.h"
 #include "tools/render_views.h"
 #include "tools/scene_file.h"
@@ -24,43 +26,74 @@ namespace {
 struct RenderOptions {
   RenderSettings s;  // what a scene file holds
   std::string output, stats, scene, print_scene;
-  bool scene_schema = false;
-  int frames = 1;
+  bool scene_schema = false, json = false;
+  int frames = 1, orbit = 0;
   double fps = 24.0;
 };
 
-// Frame `i`'s path: the pattern's one printf integer field (%d, %4d, %04d) replaced by i.
-std::string frame_path(const std::string& pattern, int i) {
+// Image `i`'s path: the pattern's one printf integer field (%d, %4d, %04d) replaced by i.
+std::string frame_path(const std::string& pattern, int i, const std::string& option) {
   const std::regex field(R"(%(0?)([1-9]?)d)");
   std::smatch m;
   if (!std::regex_search(pattern, m, field) || std::count(pattern.begin(), pattern.end(), '%') != 1)
-    throw UsageError("--frames: -o " + pattern + " needs one frame-number field such as %04d (frame_%04d.png)");
+    throw UsageError(option + ": -o " + pattern + " needs one frame-number field such as %04d (frame_%04d.png)");
   std::string number = std::to_string(i);
   const std::size_t width = m[2].length() ? std::size_t(std::stoi(m[2])) : 0;
   if (number.size() < width) number.insert(0, width - number.size(), m[1].length() ? '0' : ' ');
   return m.prefix().str() + number + m.suffix().str();
 }
 
-// Renders --frames N of an animated asset: the asset loaded once, posed per frame (time + i / fps).
-// Every frame is written beside its final name first and renamed at the end: all frames or none.
-int render_frames(const RenderOptions& o) {
-  if (o.frames < 1 || o.frames > 100000)
-    throw UsageError("--frames: " + std::to_string(o.frames) + " is not in 1..100000");
+// The summary of one rendered image, for --json.
+Json image_json(const std::string& path, const PreparedScene& scene, const SceneImage& image) {
+  const DrawReport& total = image.out.result.report;
+  Json j = {{"output", path},
+            {"width", scene.view.width},
+            {"height", scene.view.height},
+            {"scheme", to_string(scene.scheme)},
+            {"view", to_string(scene.kind)},
+            {"camera",
+             {{"position",
+               {json_float(scene.view.camera.eye.x), json_float(scene.view.camera.eye.y),
+                json_float(scene.view.camera.eye.z)}},
+              {"target",
+               {json_float(scene.view.camera.target.x), json_float(scene.view.camera.target.y),
+                json_float(scene.view.camera.target.z)}}}},
+            {"patches", scene.model.patches.quads.size() + scene.model.patches.tris.size()},
+            {"patches_culled", total.patches_culled},
+            {"patches_facing_away", total.patches_back_culled},
+            {"triangles", total.statistics.CInvocations},
+            {"pixels_shaded", total.statistics.PSInvocations},
+            {"statistics", to_json(total.statistics)},
+            {"times", to_json(total.times)},
+            {"memory", to_json(total.memory)}};
+  if (scene.kind == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  return j;
+}
+
+// Renders a sequence from one load of the asset: --frames N of an animation (frame i at time + i / fps)
+// or --orbit N views around the model (view i turned by 2 pi i / N about the up axis). Every image is
+// written beside its final name first and renamed at the end: all images or none.
+int render_sequence(const RenderOptions& o) {
+  const bool orbit = o.orbit > 0;
+  const int count = orbit ? o.orbit : o.frames;
+  const std::string option = orbit ? "--orbit" : "--frames";
+  if (count < 1 || count > 100000) throw UsageError(option + ": " + std::to_string(count) + " is not in 1..100000");
   if (!(std::isfinite(o.fps) && o.fps > 0.0 && o.fps <= 10000.0))
     throw UsageError("--fps: " + std::to_string(o.fps) + " is not in (0, 10000]");
-  if (!o.stats.empty()) throw UsageError("--stats describes one frame; drop --frames or --stats");
+  if (!o.stats.empty()) throw UsageError("--stats describes one image; drop " + option + " or --stats");
   std::vector<std::string> paths;
-  for (int i = 0; i < o.frames; ++i) {
-    paths.push_back(frame_path(o.output, i));
-    if (i > 0 && paths[std::size_t(i)] == paths[0]) throw UsageError("--frames: -o " + o.output + " names one file");
+  for (int i = 0; i < count; ++i) {
+    paths.push_back(frame_path(o.output, i, option));
+    if (i > 0 && paths[std::size_t(i)] == paths[0]) throw UsageError(option + ": -o " + o.output + " names one file");
   }
-  // Each frame's path is checked (no collision with an input, its directory exists).
+  // Each image's path is checked (no collision with an input, its directory exists).
   for (const std::string& p : paths)
     check_output_paths({{"-o", p}},
                        {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
-  if (!scene->model.rig)
+  if (!orbit && !scene->model.rig)
     throw UsageError("--frames: " + o.s.cage + " is not animated (no skin, morph target or animation)");
+  const ViewSetup base = scene->view;
   Device device(device_options(o.s.threads));
   std::vector<std::string> partial;
   auto remove_partial = [&] {
@@ -69,26 +102,41 @@ int render_frames(const RenderOptions& o) {
       std::filesystem::remove(p, ignored);
     }
   };
+  Json summaries = Json::array();
+  Progress progress(orbit ? "orbit" : "frames", "images", std::uint64_t(count));
   try {
-    for (int i = 0; i < o.frames; ++i) {
-      const double time = o.s.asset.time + double(i) / o.fps;
-      pose_scene(*scene, time);
+    for (int i = 0; i < count; ++i) {
+      const double time = orbit ? o.s.asset.time : o.s.asset.time + double(i) / o.fps;
+      if (orbit)
+        view_scene(*scene, orbit_view(o.s.camera, scene->model.cage, base, i, count));
+      else
+        pose_scene(*scene, time);
       const SceneImage image = render_scene(device, *scene, false);
       const std::filesystem::path final_path(paths[std::size_t(i)]);
       partial.push_back((final_path.parent_path() / (".tessera-partial-" + final_path.filename().string())).string());
       write_scene_image(image, partial.back());
       const DrawReport& total = image.out.result.report;
-      std::cout << paths[std::size_t(i)] << ": t " << float_text(float(time)) << " s, " << total.statistics.CInvocations
-                << " triangles, " << total.statistics.PSInvocations << " pixels shaded, VS "
-                << float_text(float(total.times.ia_vs * 1e3)) << " ms, DS " << float_text(float(total.times.ds * 1e3))
-                << " ms\n";
-      log_info("frame " + std::to_string(i + 1) + "/" + std::to_string(o.frames));
+      if (o.json) {
+        Json j = image_json(paths[std::size_t(i)], *scene, image);
+        j["time"] = time;
+        summaries.push_back(std::move(j));
+      } else {
+        std::cout << paths[std::size_t(i)] << ": ";
+        if (orbit) std::cout << "view " << i + 1 << "/" << count << ", ";
+        std::cout << "t " << float_text(float(time)) << " s, " << total.statistics.CInvocations << " triangles, "
+                  << total.statistics.PSInvocations << " pixels shaded, VS "
+                  << float_text(float(total.times.ia_vs * 1e3)) << " ms, DS " << float_text(float(total.times.ds * 1e3))
+                  << " ms\n";
+      }
+      progress.advance(1);
     }
     for (std::size_t i = 0; i < paths.size(); ++i) std::filesystem::rename(partial[i], paths[i]);
   } catch (...) {
     remove_partial();
     throw;
   }
+  progress.finish();
+  if (o.json) std::cout << json_text(Json{{"images", summaries}}) << "\n";
   return kExitOk;
 }
 
@@ -102,6 +150,7 @@ constexpr const char* kSceneOptions[] = {"--scheme",
                                          "--camera-position",
                                          "--camera-target",
                                          "--fov",
+                                         "--camera-up",
                                          "--lod",
                                          "--edge-pixels",
                                          "--lod-distance",
@@ -156,12 +205,22 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     return kExitOk;
   }
   if (o.output.empty()) throw UsageError("-o out.png is required");
-  if (cmd.count("--frames") > 0 || cmd.count("--fps") > 0) return render_frames(o);
+  if (cmd.count("--orbit") > 0 && (cmd.count("--frames") > 0 || cmd.count("--fps") > 0))
+    throw UsageError("--orbit and --frames: render a turntable or an animation, not both");
+  if (cmd.count("--frames") > 0 || cmd.count("--fps") > 0 || cmd.count("--orbit") > 0) return render_sequence(o);
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
+  const auto load_start = std::chrono::steady_clock::now();
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
+  log_debug(describe_scene(*scene) + ", prepared in " +
+            float_text(float(std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count())) +
+            " s");
+  Progress progress("render", "patches", 0);
   Device device(device_options(o.s.threads));
+  device.set_progress([&](std::size_t done, std::size_t total) { progress.update(done, total); });
   const SceneImage image = render_scene(device, *scene, !o.stats.empty());
+  progress.finish();
+  log_debug(describe_times(image.out.result.report));
   const ViewOutput& out = image.out;
   const DrawReport& total = out.result.report;
   write_scene_image(image, o.output);
@@ -169,14 +228,20 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   const Scheme scheme = scene->scheme;
   const ViewSetup& view = scene->view;
   if (!o.stats.empty()) {
-    Json s = {{"statistics", to_json(total.statistics)},
-              {"times", to_json(total.times)},
-              {"memory", to_json(total.memory)},
-              {"peak_rss_bytes", peak_rss_bytes()}};
+    // Counts only: the same bytes for the same input on any thread count. Times and memory, which
+    // are measurements, are in the --json summary.
+    Json s = {{"statistics", to_json(total.statistics)}};
     add_patch_statistics(s, device, scene->inputs(), *image.tables, scene->lod);
     if (kind == ViewKind::cracks)
       s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};
     write_text_atomically(o.stats, json_text(s) + "\n");
+  }
+  if (o.json) {
+    Json j = image_json(o.output, *scene, image);
+    j["peak_rss_bytes"] = peak_rss_bytes();
+    if (!o.stats.empty()) j["stats"] = o.stats;
+    std::cout << json_text(j) << "\n";
+    return kExitOk;
   }
   std::cout << o.output << ": " << view.width << "x" << view.height << ", scheme " << to_string(scheme) << ", view "
             << to_string(kind) << ", " << total.statistics.CInvocations << " triangles, " << total.patches_culled
@@ -206,6 +271,9 @@ Runner add_render_command(CLI::App& app) {
                   "render N frames of the animation from --time, 1/fps apart, to -o frame_%04d.png")
       ->capture_default_str();
   cmd->add_option("--fps", o->fps, "frames per second of --frames")->capture_default_str();
+  cmd->add_option("--orbit", o->orbit,
+                  "render N views around the model (a turntable about the up axis, from the camera position or "
+                  "the framing one) to -o view_%02d.png, loading the asset once");
   cmd->add_option("--scene", o->scene,
                   "render the scene file FILE (JSON: asset, scheme, partitioning, factor, lod, cull, displacement, "
                   "camera, resolution, view, time, threads; relative paths from the file; schema: --scene-schema)");
@@ -214,7 +282,11 @@ Runner add_render_command(CLI::App& app) {
                   "paths) and render nothing");
   cmd->add_flag("--scene-schema", o->scene_schema, "print the scene files' JSON Schema and exit");
   cmd->add_option("--stats", o->stats,
-                  "write D3D11 pipeline statistics, stage times, memory, a row per patch and histograms as JSON");
+                  "write D3D11 pipeline statistics, a row per patch and histograms as JSON (the same bytes for the "
+                  "same input; times and memory are in --json)");
+  cmd->add_flag("--json", o->json,
+                "print a JSON summary on stdout: output, size, patches, triangles, pixels shaded, statistics, "
+                "stage times, memory");
   return [o, cmd] { return run_render(*o, *cmd); };
 }
 

@@ -144,9 +144,10 @@ RenderSettings read_scene(const std::string& path) {
   }
   if (root.contains("camera")) {
     const Json& c = root["camera"];
-    r.only(c, "camera", {"position", "target", "fov"});
+    r.only(c, "camera", {"position", "target", "up", "fov"});
     if (c.contains("position")) s.camera.eye = r.vec3(c["position"], "camera.position");
     if (c.contains("target")) s.camera.target = r.vec3(c["target"], "camera.target");
+    if (c.contains("up")) s.camera.up = r.vec3(c["up"], "camera.up");
     if (c.contains("fov")) s.camera.fov = r.number(c["fov"], "camera.fov");
   }
   if (root.contains("resolution")) {
@@ -209,6 +210,7 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   Json camera = Json::object();
   if (!s.camera.eye.empty()) camera["position"] = vec3_json(s.camera.eye);
   if (!s.camera.target.empty()) camera["target"] = vec3_json(s.camera.target);
+  if (!s.camera.up.empty()) camera["up"] = vec3_json(s.camera.up);
   camera["fov"] = json_float(s.camera.fov);
   j["camera"] = camera;
   const auto [w, h] = parse_size(s.camera.resolution, "resolution", 1, 65536);

@@ -40,6 +40,39 @@ void pose_scene(PreparedScene& p, double time) {
   p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
 }
 
+void view_scene(PreparedScene& p, const ViewSetup& view) {
+  p.view = view;
+  p.factors = p.base_factors;
+  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
+}
+
+std::string describe_scene(const PreparedScene& p) {
+  const Cage& cage = p.model.cage;
+  const auto vec = [](glm::vec3 v) { return float_text(v.x) + "," + float_text(v.y) + "," + float_text(v.z); };
+  std::string s = "loaded " + p.settings.cage + ": " + std::to_string(cage.vertex_count()) + " vertices, " +
+                  std::to_string(cage.face_count()) + " faces, " +
+                  std::to_string(p.model.patches.quads.size() + p.model.patches.tris.size()) + " patches (" +
+                  std::to_string(p.model.patches.quads.size()) + " quad, " +
+                  std::to_string(p.model.patches.tris.size()) + " triangle), scheme " + to_string(p.scheme);
+  if (p.model.rig) s += ", animated (t " + float_text(float(p.settings.asset.time)) + " s)";
+  if (p.displacement && p.displacement->map)
+    s += ", displacement " + std::to_string(p.displacement->map->width()) + "x" +
+         std::to_string(p.displacement->map->height()) + " (bound " + float_text(p.displacement->bound) + ")";
+  if (p.displacement && p.displacement->normal_map) s += ", normal map";
+  s += "; view " + std::to_string(p.view.width) + "x" + std::to_string(p.view.height) + " from " +
+       vec(p.view.camera.eye) + " to " + vec(p.view.camera.target) + ", up " + vec(p.view.camera.up);
+  return s;
+}
+
+std::string describe_times(const DrawReport& r) {
+  const StageTimes& t = r.times;
+  const auto ms = [](double s) { return float_text(float(s * 1e3)); };
+  return "draw " + ms(t.wall) + " ms wall; thread-ms: IA+VS " + ms(t.ia_vs) + ", HS " + ms(t.hs) + ", tessellator " +
+         ms(t.tessellator) + ", DS " + ms(t.ds) + ", setup " + ms(t.setup) + ", raster+PS " + ms(t.raster) + "; " +
+         std::to_string(r.statistics.CInvocations) + " triangles, " + std::to_string(r.statistics.PSInvocations) +
+         " pixels shaded, geometry peak " + std::to_string(r.memory.geometry_peak_bytes / 1024) + " KiB";
+}
+
 SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables) {
   SceneImage image;
   std::string error;

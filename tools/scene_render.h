@@ -31,12 +31,20 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
 // Poses an animated scene's model at `time` seconds and recomputes what follows the pose (LOD factors,
 // culling); the camera stays where prepare_scene put it (framing the rest pose).
 void pose_scene(PreparedScene& scene, double time);
+// Moves the scene's view camera to `view` and recomputes what follows the camera (LOD factors, culling);
+// a dicing camera given in the settings stays where it is.
+void view_scene(PreparedScene& scene, const ViewSetup& view);
 
 struct SceneImage {
   std::optional<Framebuffer> fb;
   ViewOutput out;
   std::optional<PatchTables> tables;  // when the view or the caller needed them
 };
+// What was loaded, for -v: the asset's counts, scheme, maps, view and camera, on one line.
+std::string describe_scene(const PreparedScene& scene);
+// Where a draw's time went, for -v: wall time and each stage's thread-seconds, on one line.
+std::string describe_times(const DrawReport& report);
+
 // Draws the scene; `want_tables` keeps the patch tables (for --stats) even when the view does not use them.
 SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables);
 void write_scene_image(const SceneImage& image, const std::string& path);

@@ -20,6 +20,7 @@ void add_camera_options(CLI::App& cmd, CameraCli& c) {
   cmd.add_option("--camera-position", c.eye, "x,y,z (default: framing the model)");
   cmd.add_option("--camera-target", c.target, "x,y,z (default: the model's centre)");
   cmd.add_option("--fov", c.fov, "vertical field of view, degrees")->capture_default_str();
+  cmd.add_option("--camera-up", c.up, "x,y,z: the world's up direction (default 0,1,0; 0,0,1 for z-up assets)");
 }
 
 namespace {
@@ -33,15 +34,25 @@ ViewSetup view_frame(const CameraCli& c) {
 }
 }  // namespace
 
-// The view's up is +y: a camera looking along it has no defined orientation (lookAt divides by zero
-// and the image is empty), so it is refused rather than drawn as nothing.
-void check_camera_orientation(const SubdCamera& camera) {
+// --camera-up as a unit vector (+y when not given).
+glm::vec3 up_option(const CameraCli& c) {
+  if (c.up.empty()) return {0.0f, 1.0f, 0.0f};
+  const glm::vec3 up = parse_vec3(c.up, "--camera-up");
+  const double length = glm::length(glm::dvec3(up));
+  if (!(length > 1e-12) || !std::isfinite(length))
+    throw UsageError("--camera-up: " + c.up + " has no direction (give a non-zero x,y,z)");
+  return glm::vec3(glm::dvec3(up) / length);
+}
+
+// A camera looking along its up axis has no defined orientation (lookAt divides by zero and the image
+// is empty), so it is refused rather than drawn as nothing.
+void check_camera_orientation(const SubdCamera& camera, const CameraCli& c) {
   const glm::dvec3 d = glm::dvec3(camera.target) - glm::dvec3(camera.eye);
-  const double across = glm::length(glm::cross(glm::normalize(d), glm::dvec3(0, 1, 0)));
+  const double across = glm::length(glm::cross(glm::normalize(d), glm::dvec3(camera.up)));
   if (!(across > 1e-4))
-    throw UsageError(
-        "--camera-position/--camera-target: the camera looks straight along the up axis (+y), "
-        "which leaves its orientation undefined; move it off that axis");
+    throw UsageError("--camera-position/--camera-target: the camera looks straight along the up axis (" +
+                     (c.up.empty() ? std::string("+y") : c.up) +
+                     "), which leaves its orientation undefined; move it off that axis or give --camera-up");
 }
 
 ViewSetup view_option(const CameraCli& c, const Cage& cage) {
@@ -50,19 +61,30 @@ ViewSetup view_option(const CameraCli& c, const Cage& cage) {
   if (!c.eye.empty()) eye = parse_vec3(c.eye, "--camera-position");
   if (!c.target.empty()) target = parse_vec3(c.target, "--camera-target");
   if (eye && target && glm::length(*eye - *target) <= 0.0f) throw UsageError("camera position and target coincide");
-  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
+  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target, up_option(c));
   if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
     throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
-  check_camera_orientation(v.camera);
+  check_camera_orientation(v.camera, c);
   return v;
 }
 
 ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target) {
   ViewSetup v = view_frame(c);
   if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
-  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target);
-  check_camera_orientation(v.camera);
+  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target, up_option(c));
+  check_camera_orientation(v.camera, c);
   return v;
+}
+
+ViewSetup orbit_view(const CameraCli& c, const Cage& cage, const ViewSetup& base, int i, int n) {
+  if (i == 0) return base;
+  // In double, the angle from the integers, so view i is the same for any n that names the same angle.
+  const glm::dvec3 up(base.camera.up), target(base.camera.target);
+  const glm::dvec3 offset = glm::dvec3(base.camera.eye) - target;
+  const double angle = 2.0 * 3.14159265358979323846 * double(i) / double(n);
+  const double cos_a = std::cos(angle), sin_a = std::sin(angle);
+  const glm::dvec3 turned = offset * cos_a + glm::cross(up, offset) * sin_a + up * glm::dot(up, offset) * (1.0 - cos_a);
+  return view_at(c, cage, glm::vec3(target + turned), base.camera.target);
 }
 
 void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) {

@@ -16,13 +16,14 @@
 namespace tessera::cli {
 
 struct CameraCli {
-  std::string resolution = "1920x1080", eye, target;
+  std::string resolution = "1920x1080", eye, target, up;  // up: empty for +y
   float fov = 35.0f;
 };
 void add_camera_options(CLI::App& cmd, CameraCli& c);
 
 // The view camera: WxH, the vertical field of view, and the camera that frames the cage unless given.
-// UsageError for a bad resolution, fov, or a position equal to the target.
+// UsageError for a bad resolution, fov, up vector, a position equal to the target, or a view direction
+// along the up vector.
 struct ViewSetup {
   int width = 0, height = 0;
   float fov = 35.0f;  // degrees
@@ -31,6 +32,9 @@ struct ViewSetup {
 ViewSetup view_option(const CameraCli& c, const Cage& cage);
 // The same with the camera's position and target given (a path of cameras).
 ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target);
+// View i of n around `base`'s target: its eye turned by 2 pi i / n about the up axis through the target
+// (counter-clockwise seen from above), at the same distance and height. View 0 is `base` itself.
+ViewSetup orbit_view(const CameraCli& c, const Cage& cage, const ViewSetup& base, int i, int n);
 
 struct LodCli {
   std::string mode = "uniform", dicing_eye, cull;

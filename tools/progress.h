@@ -1,0 +1,39 @@
+// Progress of long work on stderr, as command-line tools show it: a bar redrawn in place when stderr is
+// a terminal, a plain line every few seconds otherwise (CI logs), nothing with -q. Work that ends within
+// its first half second shows nothing at all, so short commands stay quiet; with -v all of it shows.
+// A log gets a last line when the work is done.
+//
+// Not thread-safe: updates come from one thread (the Device calls its progress hook on the drawing
+// thread, between rounds of chunks). Progress only reads counters; it cannot change a result.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace tessera::cli {
+
+class Progress {
+ public:
+  // `what` names the work ("render", "frames"); `unit` what is counted ("patches", "images").
+  Progress(std::string what, std::string unit, std::uint64_t total);
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  ~Progress() { finish(); }
+
+  // `done` of `total` (a new total restarts the count: a render may draw several passes).
+  void update(std::uint64_t done, std::uint64_t total);
+  void advance(std::uint64_t n) { update(done_ + n, total_); }
+  // Erases the bar (the terminal's line is left clean for what follows). Idempotent.
+  void finish();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::string what_, unit_;
+  std::uint64_t done_ = 0, total_ = 0;
+  int pass_ = 1;
+  Clock::time_point start_ = Clock::now(), last_shown_{};
+  bool terminal_ = false, shown_ = false, finished_ = false;
+};
+
+}  // namespace tessera::cli
