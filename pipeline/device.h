@@ -260,7 +260,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
-        make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
+        make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
     const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
@@ -367,7 +367,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
-        make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size);
+        make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;

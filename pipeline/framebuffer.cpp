@@ -11,31 +11,49 @@
 
 #include "pipeline/atomic_file.h"
 #include "pipeline/image_metadata.h"
+#include "pipeline/sample_pattern.h"
 
 namespace tessera {
 
-Framebuffer::Framebuffer(int w, int h, ColorFormat f)
+Framebuffer::Framebuffer(int w, int h, ColorFormat f, int samples)
     : width_(w),
       height_(h),
+      samples_(samples),
       format_(f),
-      color_(std::size_t(w) * std::size_t(h) * (f == ColorFormat::rgba8_unorm ? 4u : 16u)),
-      depth_(std::size_t(w) * std::size_t(h), 1.0f) {}
+      color_(std::size_t(w) * std::size_t(h) * std::size_t(samples) * (f == ColorFormat::rgba8_unorm ? 4u : 16u)),
+      depth_(std::size_t(w) * std::size_t(h) * std::size_t(samples), 1.0f) {}
 
-std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorFormat format, std::string* error) {
+std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorFormat format, std::string* error,
+                                               int samples) {
+  if (!valid_sample_count(samples)) {
+    if (error) *error = "sample count " + std::to_string(samples) + " is not 1, 2, 4, 8 or 16";
+    return std::nullopt;
+  }
   if (width < 1 || height < 1 || width > kMaxRenderTargetSize || height > kMaxRenderTargetSize) {
     if (error)
       *error = "render target " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." +
                std::to_string(kMaxRenderTargetSize) + " per side";
     return std::nullopt;
   }
-  return Framebuffer(width, height, format);
+  // The samples' storage with the target's: refuse what would not fit in memory rather than fail on it.
+  const std::uint64_t bytes = std::uint64_t(width) * std::uint64_t(height) * std::uint64_t(samples) *
+                              (format == ColorFormat::rgba8_unorm ? 8u : 20u);
+  if (bytes > (std::uint64_t(16) << 30)) {
+    if (error)
+      *error = "render target " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+               std::to_string(samples) + " samples needs " + std::to_string(bytes >> 30) + " GiB (limit 16)";
+    return std::nullopt;
+  }
+  return Framebuffer(width, height, format, samples);
 }
 
 void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
   y0 = std::clamp(y0, 0, height_);
   y1 = std::clamp(y1, y0, height_);
   if (y0 == y1) return;
-  std::fill(depth_.begin() + std::ptrdiff_t(index(0, y0)), depth_.begin() + std::ptrdiff_t(index(0, y1)), d);
+  for (int s = 0; s < samples_; ++s)
+    std::fill(depth_.begin() + std::ptrdiff_t(index(0, y0) + plane_offset(s)),
+              depth_.begin() + std::ptrdiff_t(index(0, y1) + plane_offset(s)), d);
   const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
   std::uint8_t px[16];
   if (format_ == ColorFormat::rgba8_unorm) {
@@ -50,9 +68,55 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
   std::uint8_t* first = &color_[index(0, y0) * pixel_bytes];
   for (std::size_t i = 0; i < row_bytes; i += pixel_bytes) std::memcpy(first + i, px, pixel_bytes);
   for (int y = y0 + 1; y < y1; ++y) std::memcpy(&color_[index(0, y) * pixel_bytes], first, row_bytes);
+  for (int s = 1; s < samples_; ++s)
+    for (int y = y0; y < y1; ++y) std::memcpy(&color_[(index(0, y) + plane_offset(s)) * pixel_bytes], first, row_bytes);
+}
+
+Framebuffer Framebuffer::resolve() const {
+  Framebuffer out(width_, height_, format_, 1);
+  const std::size_t n = plane_pixels();
+  for (std::size_t i = 0; i < n; ++i) {
+    float nearest = depth_[i];
+    for (int s = 1; s < samples_; ++s) nearest = std::min(nearest, depth_[i + plane_offset(s)]);
+    out.depth_[i] = nearest;
+  }
+  if (format_ == ColorFormat::rgba8_unorm) {
+    const unsigned half = unsigned(samples_) / 2;
+    for (std::size_t i = 0; i < n * 4; ++i) {
+      unsigned sum = 0;
+      for (int s = 0; s < samples_; ++s) sum += color_[i + plane_offset(s) * 4];
+      out.color_[i] = std::uint8_t((sum + half) / unsigned(samples_));
+    }
+  } else {
+    for (std::size_t i = 0; i < n * 4; ++i) {
+      float sum = 0.0f, v = 0.0f;
+      for (int s = 0; s < samples_; ++s) {
+        std::memcpy(&v, &color_[(i + plane_offset(s) * 4) * 4], 4);
+        sum += v;
+      }
+      const float mean = sum / float(samples_);
+      std::memcpy(&out.color_[i * 4], &mean, 4);
+    }
+  }
+  return out;
 }
 
 glm::vec4 Framebuffer::color(int x, int y) const {
+  if (samples_ > 1) {
+    glm::vec4 sum(0.0f);
+    for (int s = 0; s < samples_; ++s) {
+      const std::size_t i = index(x, y) + plane_offset(s);
+      if (format_ == ColorFormat::rgba8_unorm) {
+        const std::uint8_t* p = &color_[i * 4];
+        sum += glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
+      } else {
+        float px[4];
+        std::memcpy(px, &color_[i * 16], 16);
+        sum += glm::vec4(px[0], px[1], px[2], px[3]);
+      }
+    }
+    return sum / float(samples_);
+  }
   const std::size_t i = index(x, y);
   if (format_ == ColorFormat::rgba8_unorm) {
     const std::uint8_t* p = &color_[i * 4];
@@ -64,10 +128,12 @@ glm::vec4 Framebuffer::color(int x, int y) const {
 }
 
 std::string Framebuffer::write_color(const std::string& path) const {
+  if (samples_ > 1) return resolve().write_color(path);
   return write_image_atomically(path, width_, height_, 4, format_ == ColorFormat::rgba32_float, color_.data());
 }
 
 std::string Framebuffer::write_depth(const std::string& path) const {
+  if (samples_ > 1) return resolve().write_depth(path);
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".exr" || ext == ".EXR" || ext == ".tif" || ext == ".tiff")
     return write_image_atomically(path, width_, height_, 1, true, depth_.data());

@@ -1,5 +1,9 @@
 // Render targets: one colour buffer (RGBA8 UNORM or RGBA32F) and one D32F depth buffer, row-major with
-// row 0 at the top (D3D's y-down window coordinates).
+// row 0 at the top (D3D's y-down window coordinates), with 1, 2, 4, 8 or 16 samples per pixel.
+//
+// A multisampled target keeps each sample as a plane of its own (sample s of every pixel is the image
+// at plane s), so the rasterizer's quad forms address a sample's 2x2 pixels as they address a pixel
+// quad of a single-sampled target. resolve() averages the samples into a single-sampled target.
 //
 // Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target);
 // writes to an image file go through OpenImageIO into a temporary beside the target, renamed over it
@@ -39,22 +43,45 @@ inline std::uint8_t float_to_unorm8(float x) {
 class Framebuffer {
  public:
   // Returns nullopt and a one-line reason for an unsupported size.
-  static std::optional<Framebuffer> create(int width, int height, ColorFormat format, std::string* error);
+  static std::optional<Framebuffer> create(int width, int height, ColorFormat format, std::string* error,
+                                           int samples = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
   ColorFormat format() const { return format_; }
+  int samples() const { return samples_; }
+
+  // The single-sampled target of the average of each pixel's samples (D3D11's ResolveSubresource with a
+  // box filter): RGBA8 as the rounded mean of the samples' bytes, RGBA32F as their mean summed in sample
+  // order; depth is the nearest sample's (overlays test against it). A copy when samples() == 1.
+  Framebuffer resolve() const;
 
   void clear(glm::vec4 color, float depth) { clear_rows(0, height_, color, depth); }
   // Clears rows [y0, y1) only: disjoint row ranges may be cleared by different threads
   // (Device::clear does).
   void clear_rows(int y0, int y1, glm::vec4 color, float depth);
 
-  // Output merger writes (the caller owns the pixel; different threads write different pixels).
+  // Output merger writes (the caller owns the pixel; different threads write different pixels). These
+  // per-pixel forms read sample 0 and write every sample of the pixel (lines, points and overlays are
+  // drawn at pixel rate).
   float depth(int x, int y) const { return depth_[index(x, y)]; }
-  void set_depth(int x, int y, float d) { depth_[index(x, y)] = d; }
+  void set_depth(int x, int y, float d) {
+    for (int s = 0; s < samples_; ++s) depth_[index(x, y) + plane_offset(s)] = d;
+  }
   void set_color(int x, int y, glm::vec4 c) {
-    const std::size_t i = index(x, y);
+    for (int s = 0; s < samples_; ++s) set_sample_color(index(x, y) + plane_offset(s), c);
+  }
+  // The pixel's colour: sample 0's, or the mean of its samples on a multisampled target.
+  glm::vec4 color(int x, int y) const;
+
+  // Sample s's plane: the pixel index i of sample 0 becomes i + plane_offset(s).
+  std::size_t plane_offset(int s) const { return std::size_t(s) * plane_pixels(); }
+  std::size_t plane_pixels() const { return std::size_t(width_) * std::size_t(height_); }
+  float sample_depth(int x, int y, int s) const { return depth_[index(x, y) + plane_offset(s)]; }
+  void set_sample_depth(int x, int y, int s, float d) { depth_[index(x, y) + plane_offset(s)] = d; }
+
+ private:
+  void set_sample_color(std::size_t i, glm::vec4 c) {
     if (format_ == ColorFormat::rgba8_unorm) {
       std::uint8_t* p = &color_[i * 4];
       p[0] = float_to_unorm8(c.r);
@@ -66,8 +93,8 @@ class Framebuffer {
       std::memcpy(&color_[i * 16], px, 16);
     }
   }
-  glm::vec4 color(int x, int y) const;
 
+ public:
   // The 2x2 quad whose top-left pixel is (x, y) lies wholly inside the target: the quad forms below
   // then read and write its two row pairs directly.
   bool quad_inside(int x, int y) const { return x + 1 < width_ && y + 1 < height_; }
@@ -80,6 +107,8 @@ class Framebuffer {
     const std::size_t i = index(x, y);
     return {i, i + std::size_t(width_)};
   }
+  // The same quad in sample s's plane.
+  QuadSite sample_site(QuadSite q, int s) const { return {q.top + plane_offset(s), q.bottom + plane_offset(s)}; }
   // Depth of the quad's pixels in lanes k = 0 (x, y), 1 (x + 1, y), 2 (x, y + 1), 3 (x + 1, y + 1).
   simd::F4 depth_quad(QuadSite q) const { return simd::F4::load_pairs(&depth_[q.top], &depth_[q.bottom]); }
   void set_depth_quad(QuadSite q, simd::F4 d) { d.store_pairs(&depth_[q.top], &depth_[q.bottom]); }
@@ -110,6 +139,14 @@ class Framebuffer {
 #endif
     write_pixels(q, mask, c);
   }
+  // A quad at `q` (of any plane) that is inside the target or not.
+  [[gnu::always_inline]] void write_quad(QuadSite q, bool inside, unsigned mask,
+                                         const std::array<std::array<float, 4>, 4>& c) {
+    if (inside)
+      write_quad(q, mask, c);
+    else
+      write_pixels(q, mask, c);
+  }
   [[gnu::always_inline]] void write_quad(int x, int y, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
     // Past the last row or column the site's pixels do not exist, and are not in `mask`.
     const QuadSite q = quad_site(x, y);
@@ -124,14 +161,15 @@ class Framebuffer {
   const std::vector<float>& depth_values() const { return depth_; }
   std::size_t bytes() const { return color_.size() + depth_.size() * sizeof(float); }
 
-  // Writes the colour buffer: PNG (8-bit), EXR (half/float), or anything else OpenImageIO knows by
-  // extension. Returns an empty string on success, else a one-line error naming the file.
+  // Writes the colour buffer (resolved, when multisampled): PNG (8-bit), EXR (half/float), or anything
+  // else OpenImageIO knows by extension. Returns an empty string on success, else a one-line error
+  // naming the file.
   std::string write_color(const std::string& path) const;
   // Writes the depth buffer as a one-channel float EXR (or 16-bit PNG, depth scaled to 0..65535).
   std::string write_depth(const std::string& path) const;
 
  private:
-  Framebuffer(int w, int h, ColorFormat f);
+  Framebuffer(int w, int h, ColorFormat f, int samples);
   std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
 
 #if defined(__SSE2__)
@@ -173,7 +211,7 @@ class Framebuffer {
     }
   }
 
-  int width_ = 0, height_ = 0;
+  int width_ = 0, height_ = 0, samples_ = 1;
   ColorFormat format_ = ColorFormat::rgba8_unorm;
   std::vector<std::uint8_t> color_;
   std::vector<float> depth_;

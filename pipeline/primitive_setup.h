@@ -305,6 +305,35 @@ template <std::size_t N>
   }
 }
 
+// setup_snapped_triangle on a multisampled target: the box of the pixels whose samples the triangle's
+// box may reach (samples lie within half a pixel of their pixel's centre), the vertices kept for the
+// rasterizer's per-sample edge tests, no pixel-centre rejection. Out of line: single-sampled draws never
+// take it.
+template <std::size_t N>
+[[gnu::noinline]] void setup_multisample_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
+                                                  const SetupVertex<N>& b, const SetupVertex<N>& d, std::int64_t area,
+                                                  bool front, std::int32_t lx, std::int32_t hx, std::int32_t ly,
+                                                  std::int32_t hy, std::uint32_t primitive_id) {
+  const std::int32_t h = kSubpixelOne / 2;
+  const PixelBox<> box = clipped_pixel_box(c, lx - h, hx + h, ly - h, hy + h);
+  if (box.empty()) return;
+  const SetupVertex<N>* const v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};
+  const std::int32_t vx[3] = {v[0]->x, v[1]->x, v[2]->x}, vy[3] = {v[0]->y, v[1]->y, v[2]->y};
+  ScreenPrimitive<N>& p = chunk.append_primitive();
+  p.kind = PrimitiveKind::triangle;
+  p.min_x = box.min_x, p.max_x = box.max_x, p.min_y = box.min_y, p.max_y = box.max_y;
+  for (int i = 0; i < 3; ++i) {
+    p.xy.x[i] = vx[i];
+    p.xy.y[i] = vy[i];
+  }
+  p.edges32 = false;
+  p.box_coverage = 0;
+  set_triangle_planes(p, v, vx, vy);
+  p.front_face = front;
+  p.primitive_id = primitive_id;
+  bin_last(c.tiles, chunk);
+}
+
 // A triangle whose three vertices are snapped: culling, bounding box, edges and coverage, planes,
 // binning. `a`, `b`, `d` are in the primitive's order.
 template <std::size_t N>
@@ -319,6 +348,10 @@ template <std::size_t N>
   // The box test comes before the primitive is built: most micro-triangles stop here.
   const std::int32_t lx = std::min(std::min(a.x, b.x), d.x), hx = std::max(std::max(a.x, b.x), d.x);
   const std::int32_t ly = std::min(std::min(a.y, b.y), d.y), hy = std::max(std::max(a.y, b.y), d.y);
+  if (c.samples > 1) {
+    setup_multisample_triangle(c, chunk, a, b, d, area, front, lx, hx, ly, hy, primitive_id);
+    return;
+  }
   const PixelBox<> box = clipped_pixel_box(c, lx, hx, ly, hy);
   if (box.empty()) return;
   // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.

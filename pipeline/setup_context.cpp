@@ -6,8 +6,9 @@
 namespace tessera {
 
 SetupContext make_setup_context(const Viewport& vp, const RasterizerState& rs, int target_width, int target_height,
-                                int tile_size) {
+                                int tile_size, int samples) {
   SetupContext c;
+  c.samples = samples;
   c.scale_x = vp.width * 0.5f;
   c.offset_x = vp.x + vp.width * 0.5f;
   c.scale_y = -vp.height * 0.5f;  // NDC y up, window y down

@@ -20,9 +20,12 @@ struct SetupContext {
   bool front_ccw = false;
   FillMode fill = FillMode::solid;
   TileGrid tiles;
+  // The render target's samples per pixel: above 1, triangles keep the boxes of their samples and
+  // their vertices (raster_tile.h tests each sample), not those of their pixel centres.
+  int samples = 1;
 };
 
 SetupContext make_setup_context(const Viewport& vp, const RasterizerState& rs, int target_width, int target_height,
-                                int tile_size);
+                                int tile_size, int samples = 1);
 
 }  // namespace tessera

@@ -92,7 +92,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   using V = SetupVertex<N>;
   static_assert(sizeof(V) >= offsetof(V, finite) + 4 && sizeof(V) % 4 == 0);
   // Gathers address vertices by byte offsets in signed 32-bit lanes.
-  const bool lanes = c.fill == FillMode::solid && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
+  const bool lanes = c.fill == FillMode::solid && c.samples == 1 && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
   const char* const base = reinterpret_cast<const char*>(vertices);
   const auto gather = [&](std::size_t field, __m256i offsets) {
     return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + field), offsets, 1);

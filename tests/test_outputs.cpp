@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <catch2/catch.hpp>
 
 #include "cli_runner.h"
@@ -195,6 +196,25 @@ TEST_CASE("Truncated images fail in one line: a DDS shorter than its header impl
   const auto d = test::run_cli("diff " + (dir / "cut.png").string() + " " + (dir / "whole.png").string());
   CHECK(d.exit_code != 0);
   CHECK(d.err.find("libpng error") == std::string::npos);
+  CHECK(!fs::exists(dir / "x.png"));
+  // An uncompressed TIFF whose header claims more pixels than the file holds (the maps fuzzer's find:
+  // OpenImageIO spent seconds filling them), refused at once.
+  {
+    OIIO::ImageBuf big(OIIO::ImageSpec(512, 512, 1, OIIO::TypeDesc::UINT8));
+    OIIO::ImageBufAlgo::fill(big, {0.5f});
+    big.specmod().attribute("compression", "none");
+    REQUIRE(big.write((dir / "whole.tif").string()));
+    std::ifstream tif_in(dir / "whole.tif", std::ios::binary);
+    const std::string tif{std::istreambuf_iterator<char>(tif_in), std::istreambuf_iterator<char>()};
+    std::ofstream(dir / "cut.tif", std::ios::binary) << tif.substr(0, tif.size() / 3);
+  }
+  const auto t = test::run_cli("render " + frog + " --displacement " + (dir / "cut.tif").string() +
+                               " --resolution 64x64 -o " + (dir / "x.png").string());
+  INFO(t.err);
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find("cut.tif: truncated: its header (512x512, uncompressed) implies 262144 bytes") !=
+        std::string::npos);
+  CHECK(std::count(t.err.begin(), t.err.end(), '\n') == 1);
   CHECK(!fs::exists(dir / "x.png"));
 }
 

@@ -92,6 +92,7 @@ TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
   CHECK(r.lod.lod_distance == s.lod.lod_distance);
   CHECK(cli::parse_float_list(r.lod.dicing_eye, "d") == cli::parse_float_list(s.lod.dicing_eye, "d"));
   CHECK(r.threads == s.threads);
+  CHECK(r.msaa == s.msaa);
   CHECK(fs::path(r.displacement.map) == fs::path(s.displacement.map).lexically_normal());
   CHECK(fs::path(r.displacement.normal_map) == fs::path(s.displacement.normal_map).lexically_normal());
   CHECK(r.displacement.channel == s.displacement.channel);
@@ -165,6 +166,7 @@ TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, 
       {R"({"tessera_scene": 1, "asset": "a.obj", "camera": {"position": [1, 2]}})",
        "\"camera.position\": expected [x, y, z]"},
       {R"({"tessera_scene": 1, "asset": "a.obj", "threads": -1})", "\"threads\": expected a count"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "msaa": 3})", "\"msaa\": expected 1, 2, 4, 8 or 16"},
       {R"({"tessera_scene": 1, "asset": "a.obj", "displacement": {"scale": 2}})", "\"displacement.map\": missing"},
       {R"({"tessera_scene": 2, "asset": "a.obj"})", "\"tessera_scene\": must be 1"},
       {R"({"tessera_scene": 1})", "\"asset\": missing"},

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "pipeline/sample_pattern.h"
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
@@ -24,7 +25,7 @@ struct BenchSubdOptions {
   CameraCli camera;
   LodCli lod;
   float factor = 16.0f, vary = 0.0f;
-  int threads = 0, frames = 5;
+  int threads = 0, frames = 5, msaa = 1;
   bool json = false, compare_cull = false;
   DisplacementCli displacement;
 };
@@ -46,8 +47,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   apply_lod_options(o.lod, view, model, d, factors);
   Device device(device_options(o.threads));
   std::string error;
-  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
-  if (!fb) throw UsageError(error);
+  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.msaa);
+  if (!fb) throw UsageError((valid_sample_count(o.msaa) ? "--resolution: " : "--msaa: ") + error);
 
   using Clock = std::chrono::steady_clock;
   struct Timed {
@@ -61,6 +62,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
       device.clear(*fb, kBackgroundColor, 1.0f);
       const DrawResult r = render_surface(device, model, d, f, partitioning, SubdView::shaded, camera, *fb);
       if (!r.ok()) throw InputError(cage + ": " + r.error);
+      if (o.msaa > 1) (void)fb->resolve();  // a multisampled frame ends with its resolve
       if (k > 0) t.frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
       t.last = r.report;
     }
@@ -119,6 +121,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
               {"displacement", displacement ? o.displacement.map : std::string()},
               {"factor", json_float(o.factor)},
               {"resolution", std::to_string(w) + "x" + std::to_string(h)},
+              {"msaa", o.msaa},
               {"threads", device.threads()},
               {"frames", o.frames},
               {"lod", o.lod.mode},
@@ -161,6 +164,8 @@ Runner add_bench_subd_command(CLI::App& bench) {
   add_camera_options(*cmd, o->camera);
   add_lod_options(*cmd, o->lod, "all");
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
+  cmd->add_option("--msaa", o->msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
+      ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");
   cmd->add_flag("--compare-cull", o->compare_cull,

@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 
+#include "pipeline/sample_pattern.h"
 #include "tools/cli_common.h"
 #include "tools/commands.h"
 #include "pipeline/device.h"
@@ -32,6 +33,7 @@ struct TorusOptions {
   int frames = 5;
   int rounds = 1;
   int threads = 0;
+  int msaa = 1;
   std::string output;
   std::string stats;
   std::string llvmpipe;
@@ -103,8 +105,10 @@ int run_bench_torus(const TorusOptions& o) {
   dopt.chunk_primitives = o.chunk_primitives;
   Device device(dopt);
   std::string error;
-  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
-  if (!fb) throw UsageError("--resolution: " + error);
+  if (o.msaa != 1 && !o.llvmpipe.empty())
+    throw UsageError("--msaa with --llvmpipe: the harness draws single-sampled; compare at --msaa 1");
+  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.msaa);
+  if (!fb) throw UsageError((valid_sample_count(o.msaa) ? "--resolution: " : "--msaa: ") + error);
   log_info("building the torus scene");
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
   const auto draw = scenes::make_torus_draw(scene, o.factor, *partitioning, w, h);
@@ -122,6 +126,8 @@ int run_bench_torus(const TorusOptions& o) {
       const auto start = std::chrono::steady_clock::now();
       device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
       DrawResult r = device.draw(draw, *fb);
+      // A multisampled frame ends with its resolve, as a GPU's frame would before display.
+      if (o.msaa > 1) (void)fb->resolve();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (!r.ok()) throw InputError(r.error);
       if (frame > 0) round_times.push_back(s);  // frame 0 warms caches and allocations, as the harness does
@@ -180,6 +186,7 @@ int run_bench_torus(const TorusOptions& o) {
               {"factor", json_float(o.factor)},
               {"partitioning", o.partitioning},
               {"resolution", std::to_string(w) + "x" + std::to_string(h)},
+              {"msaa", o.msaa},
               {"isa", kBuildIsa},
               {"threads", device.threads()},
               {"frames", o.frames},
@@ -238,6 +245,8 @@ Runner add_bench_torus_command(CLI::App& bench) {
          "measure this many times, taking turns with --llvmpipe; its speedup is the median of the rounds' ratios")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads, 0 = all")->capture_default_str();
+  cmd->add_option("--msaa", o->msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
+      ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times and memory as JSON");
   cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");

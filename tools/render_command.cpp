@@ -151,6 +151,7 @@ constexpr const char* kSceneOptions[] = {"--scheme",
                                          "--camera-target",
                                          "--fov",
                                          "--camera-up",
+                                         "--msaa",
                                          "--lod",
                                          "--edge-pixels",
                                          "--lod-distance",
@@ -263,6 +264,10 @@ Runner add_render_command(CLI::App& app) {
   add_camera_options(*cmd, o->s.camera);
   add_lod_options(*cmd, o->s.lod, "all");
   cmd->add_option("--view", o->s.view, view_names())->capture_default_str();
+  cmd->add_option("--msaa", o->s.msaa,
+                  "samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard sample patterns; coverage and depth per "
+                  "sample, shading per pixel, a box-filter resolve)")
+      ->capture_default_str();
   cmd->add_option("--factor-kind", o->s.factor_kind, "--view factors: raw (as the hull shader gave them) or processed")
       ->capture_default_str();
   add_displacement_options(*cmd, o->s.displacement);

@@ -1,11 +1,13 @@
 #include "tools/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
+#include "pipeline/sample_pattern.h"
 #include "tools/cli_common.h"
 
 namespace tessera::cli {
@@ -99,9 +101,11 @@ RenderSettings read_scene(const std::string& path) {
                      ")");
   }
   const SceneReader r(path);
-  r.only(root, "",
-         {"tessera_scene", "asset", "scheme", "partitioning", "factor", "vary_factors", "factors_per_edge", "lod",
-          "cull", "displacement", "camera", "resolution", "view", "factor_kind", "time", "animation", "mesh", "scene_index", "threads"});
+  r.only(
+      root, "",
+      {"tessera_scene", "asset",     "scheme",       "partitioning", "factor",     "vary_factors", "factors_per_edge",
+       "lod",           "cull",      "displacement", "camera",       "resolution", "view",         "factor_kind",
+       "time",          "animation", "mesh",         "scene_index",  "threads",    "msaa"});
   if (!root.contains("tessera_scene") || root["tessera_scene"] != 1)
     r.fail("tessera_scene", "must be 1 (this format's version)");
   if (!root.contains("asset")) r.fail("asset", "missing: the cage to render");
@@ -179,6 +183,12 @@ RenderSettings read_scene(const std::string& path) {
       r.fail("threads", "expected a count in 0..4096 (0: all), got " + t.dump());
     s.threads = int(t.get<long long>());
   }
+  if (root.contains("msaa")) {
+    const Json& m = root["msaa"];
+    if (!m.is_number_integer() || !valid_sample_count(int(std::clamp<long long>(m.get<long long>(), 0, 64))))
+      r.fail("msaa", "expected 1, 2, 4, 8 or 16 samples per pixel, got " + m.dump());
+    s.msaa = int(m.get<long long>());
+  }
   return s;
 }
 
@@ -222,6 +232,7 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   if (!s.asset.mesh.empty()) j["mesh"] = s.asset.mesh;
   if (s.asset.scene_index >= 0) j["scene_index"] = s.asset.scene_index;
   j["threads"] = s.threads;
+  if (s.msaa != 1) j["msaa"] = s.msaa;
   return j;
 }
 

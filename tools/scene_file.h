@@ -29,6 +29,7 @@ struct RenderSettings {
   float factor = 8.0f, vary = 0.0f;
   AssetCli asset;  // glTF: scene, mesh, animation, time
   int threads = 0;
+  int msaa = 1;  // samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard patterns)
   DisplacementCli displacement;
 };
 

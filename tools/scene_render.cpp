@@ -1,5 +1,6 @@
 #include "tools/scene_render.h"
 
+#include "pipeline/sample_pattern.h"
 #include "tools/cli_common.h"
 #include "tools/view_legend.h"
 
@@ -16,6 +17,7 @@ ViewInputs PreparedScene::inputs() const {
 }
 
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
+  if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
   auto p = std::make_unique<PreparedScene>();
   p->settings = s;
   p->scheme = scheme_option(s.scheme);
@@ -76,13 +78,17 @@ std::string describe_times(const DrawReport& r) {
 SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables) {
   SceneImage image;
   std::string error;
-  image.fb = Framebuffer::create(scene.view.width, scene.view.height, ColorFormat::rgba8_unorm, &error);
+  image.fb =
+      Framebuffer::create(scene.view.width, scene.view.height, ColorFormat::rgba8_unorm, &error, scene.settings.msaa);
   if (!image.fb) throw UsageError(error);
   const ViewInputs inputs = scene.inputs();
   // Per-patch facts, replayed once for the view and the statistics.
   if (view_uses_patch_tables(scene.kind) || want_tables) image.tables = view_patch_tables(inputs);
   image.out = render_view(device, scene.kind, inputs, image.tables ? &*image.tables : nullptr, *image.fb);
   if (!image.out.result.ok()) throw InputError(scene.settings.cage + ": " + image.out.result.error);
+  // The overlays drew at pixel rate into every sample; what follows (legends, files, hashes) reads
+  // the resolved image.
+  if (image.fb->samples() > 1) image.fb = image.fb->resolve();
   return image;
 }
 
