@@ -129,7 +129,7 @@ TEST_CASE("render --json: the summary scripts read, with times and memory", "[cl
   CHECK(j["camera"]["position"].size() == 3);
 }
 
-TEST_CASE("--camera-up: z-up views, a reversed up turns the image over, degenerate ups are refused",
+TEST_CASE("Camera up vector (--camera-up): z-up views, a reversed up turns the image over, degenerate ups are refused",
           "[cli][camera][issue22]") {
   const fs::path dir = temp_dir("up");
   const std::string cam = " --factor 4 --resolution 160x120 --camera-position 40,20,60 --camera-target 0,3,0 -o ";
