@@ -18,10 +18,10 @@ namespace tessera {
 Framebuffer::Framebuffer(int w, int h, ColorFormat f, int samples)
     : width_(w),
       height_(h),
-      samples_(samples),
       format_(f),
       color_(std::size_t(w) * std::size_t(h) * std::size_t(samples) * (f == ColorFormat::rgba8_unorm ? 4u : 16u)),
-      depth_(std::size_t(w) * std::size_t(h) * std::size_t(samples), 1.0f) {}
+      depth_(std::size_t(w) * std::size_t(h) * std::size_t(samples), 1.0f),
+      samples_(samples) {}
 
 std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorFormat format, std::string* error,
                                                int samples) {
@@ -70,6 +70,14 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
   for (int y = y0 + 1; y < y1; ++y) std::memcpy(&color_[index(0, y) * pixel_bytes], first, row_bytes);
   for (int s = 1; s < samples_; ++s)
     for (int y = y0; y < y1; ++y) std::memcpy(&color_[(index(0, y) + plane_offset(s)) * pixel_bytes], first, row_bytes);
+}
+
+void Framebuffer::set_other_samples(int x, int y, float d) {
+  for (int s = 1; s < samples_; ++s) depth_[index(x, y) + plane_offset(s)] = d;
+}
+
+void Framebuffer::set_other_samples(int x, int y, glm::vec4 c) {
+  for (int s = 1; s < samples_; ++s) set_sample_color(index(x, y) + plane_offset(s), c);
 }
 
 Framebuffer Framebuffer::resolve() const {

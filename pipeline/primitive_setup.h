@@ -311,9 +311,15 @@ template <std::size_t N>
 // take it.
 template <std::size_t N>
 [[gnu::noinline]] void setup_multisample_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
-                                                  const SetupVertex<N>& b, const SetupVertex<N>& d, std::int64_t area,
-                                                  bool front, std::int32_t lx, std::int32_t hx, std::int32_t ly,
-                                                  std::int32_t hy, std::uint32_t primitive_id) {
+                                                  const SetupVertex<N>& b, const SetupVertex<N>& d,
+                                                  std::uint32_t primitive_id) {
+  // Signed area and culling as setup_snapped_triangle decides them.
+  const std::int64_t area = std::int64_t(b.x - a.x) * (d.y - a.y) - std::int64_t(d.x - a.x) * (b.y - a.y);
+  if (area == 0) return;
+  const bool front = (area > 0) != c.front_ccw;
+  if ((c.cull == CullMode::back && !front) || (c.cull == CullMode::front && front)) return;
+  const std::int32_t lx = std::min(std::min(a.x, b.x), d.x), hx = std::max(std::max(a.x, b.x), d.x);
+  const std::int32_t ly = std::min(std::min(a.y, b.y), d.y), hy = std::max(std::max(a.y, b.y), d.y);
   const std::int32_t h = kSubpixelOne / 2;
   const PixelBox<> box = clipped_pixel_box(c, lx - h, hx + h, ly - h, hy + h);
   if (box.empty()) return;
@@ -331,7 +337,13 @@ template <std::size_t N>
   set_triangle_planes(p, v, vx, vy);
   p.front_face = front;
   p.primitive_id = primitive_id;
-  bin_last(c.tiles, chunk);
+  // Binned with push_back, not bin_last: a new call site of the hot path's emplace_back made GCC stop
+  // inlining it into setup_triangle_list (a call per triangle of every single-sampled draw).
+  const std::uint32_t index = static_cast<std::uint32_t>(chunk.primitive_count - 1);
+  const TileGrid& g = c.tiles;
+  for (int ty = g.tile_of(p.min_y); ty <= g.tile_of(p.max_y); ++ty)
+    for (int tx = g.tile_of(p.min_x); tx <= g.tile_of(p.max_x); ++tx)
+      chunk.entries.push_back({std::uint32_t(ty * g.columns + tx), index});
 }
 
 // A triangle whose three vertices are snapped: culling, bounding box, edges and coverage, planes,
@@ -348,10 +360,6 @@ template <std::size_t N>
   // The box test comes before the primitive is built: most micro-triangles stop here.
   const std::int32_t lx = std::min(std::min(a.x, b.x), d.x), hx = std::max(std::max(a.x, b.x), d.x);
   const std::int32_t ly = std::min(std::min(a.y, b.y), d.y), hy = std::max(std::max(a.y, b.y), d.y);
-  if (c.samples > 1) {
-    setup_multisample_triangle(c, chunk, a, b, d, area, front, lx, hx, ly, hy, primitive_id);
-    return;
-  }
   const PixelBox<> box = clipped_pixel_box(c, lx, hx, ly, hy);
   if (box.empty()) return;
   // Stored with positive area: swap the last two vertices of a counter-clockwise triangle.
@@ -416,7 +424,10 @@ template <std::size_t N>
       }
       continue;
     }
-    setup_snapped_triangle(c, chunk, s[0], s[k], s[k + 1], primitive_id);
+    if (c.samples > 1)
+      setup_multisample_triangle(c, chunk, s[0], s[k], s[k + 1], primitive_id);
+    else
+      setup_snapped_triangle(c, chunk, s[0], s[k], s[k + 1], primitive_id);
   }
 }
 
@@ -433,7 +444,8 @@ template <std::size_t N>
   if (!v0.finite || !v1.finite || !v2.finite) return;
   if (v0.view_code & v1.view_code & v2.view_code) return;  // wholly outside one plane of the view volume
   const unsigned needs = v0.clip_code | v1.clip_code | v2.clip_code;
-  if (needs == 0 && c.fill == FillMode::solid) {
+  // Multisampled targets take the out-of-line path too (setup_multisample_triangle).
+  if (needs == 0 && c.fill == FillMode::solid && c.samples == 1) {
     ++chunk.statistics.CPrimitives;
     detail::setup_snapped_triangle(c, chunk, v0, v1, v2, primitive_id);
     return;
