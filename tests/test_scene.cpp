@@ -167,6 +167,8 @@ TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, 
        "\"camera.position\": expected [x, y, z]"},
       {R"({"tessera_scene": 1, "asset": "a.obj", "threads": -1})", "\"threads\": expected a count"},
       {R"({"tessera_scene": 1, "asset": "a.obj", "msaa": 3})", "\"msaa\": expected 1, 2, 4, 8 or 16"},
+      // A number past double's range (the scene fuzzer's find: nlohmann throws out_of_range, not parse_error).
+      {R"({"tessera_scene": 1, "asset": "a.obj", "factor": 1e999})", "not a JSON scene (number overflow"},
       {R"({"tessera_scene": 1, "asset": "a.obj", "displacement": {"scale": 2}})", "\"displacement.map\": missing"},
       {R"({"tessera_scene": 2, "asset": "a.obj"})", "\"tessera_scene\": must be 1"},
       {R"({"tessera_scene": 1})", "\"asset\": missing"},

@@ -63,7 +63,7 @@ int run_merge(const CheckOptions& o) {
     Json s;
     try {
       s = Json::parse(in);
-    } catch (const Json::parse_error&) {
+    } catch (const Json::exception&) {
       throw InputError(path.string() + ": not JSON");
     }
     if (!s.contains("cases") || !s.contains("suite")) throw InputError(path.string() + ": not a check summary");

@@ -39,7 +39,7 @@ Json read_json_file(const std::string& path, const char* what) {
   text << in.rdbuf();
   try {
     return Json::parse(text.str());
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, or out_of_range for a number past double
     const std::string w = e.what();
     const auto at = w.find("] ");
     throw InputError(path + ": not JSON (" + (at == std::string::npos ? w : w.substr(at + 2)) + ")");

@@ -93,7 +93,7 @@ RenderSettings read_scene(const std::string& path) {
   Json root;
   try {
     root = Json::parse(text.str());
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, or out_of_range for a number past double
     // nlohmann's message carries the line and column.
     std::string what = e.what();
     const auto colon = what.find("] ");

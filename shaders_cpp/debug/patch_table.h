@@ -84,7 +84,7 @@ std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g
   }();
   std::vector<PatchInfo> rows(g.patches.size());
   std::vector<SubdVertex> in(std::size_t(g.control_points));
-  std::vector<SubdControlPoint> out(std::size_t(Hs::kOutputControlPoints));
+  std::vector<SubdControlPoint> out(static_cast<std::size_t>(Hs::kOutputControlPoints));  // (not a declaration for clang)
   std::vector<glm::vec3> hull;
   for (std::size_t p = 0; p < g.patches.size(); ++p) {
     const SubdPatch& patch = g.patches[p];
