@@ -91,9 +91,8 @@ unsigned depth_pass_mask(simd::F4 z, simd::F4 stored) {
 
 // The pixel shader on the lanes `passed` of a quad whose q.z is set: perspective-correct attributes at
 // the four pixel centres (helpers included, for derivatives), then the shader, into `color`. dxk and
-// dyk are the centres' offsets from the primitive's origin. The multisample path's; shade_triangle_quad
-// keeps its own copy of these steps, written out in place (calling this from there cost the
-// single-sampled torus 12 % more rasterizer instructions).
+// dyk are the centres' offsets from the primitive's origin. Shared by the single-sampled and the
+// multisampled quad (inlined: the same instructions as written in place).
 template <std::size_t N, class Ps>
 [[gnu::always_inline]] inline void shade_quad_pixels(const ScreenPrimitive<N>& p, int qx, int qy, simd::F4 dxk,
                                                      simd::F4 dyk, unsigned passed, const Ps& ps, QuadInput<N>& q,
@@ -182,44 +181,8 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
     if (!passed) return 0;
   }
 
-  // Perspective-correct attributes at all four pixels (helpers included, for derivatives), in
-  // lanes: q.attributes[a][k].
-  const F4 inv_w = (F4::splat(p.inv_w[0]) + F4::splat(p.inv_w[1]) * dxk) + F4::splat(p.inv_w[2]) * dyk;
-  inv_w.store(q.inv_w);
-  const F4 w = F4::splat(1.0f) / inv_w;
-  for (std::size_t a = 0; a < N; ++a)
-    (((F4::splat(p.attributes[0][a]) + F4::splat(p.attributes[1][a]) * dxk) + F4::splat(p.attributes[2][a]) * dyk) * w)
-        .store(q.attributes[a]);
-  // float(qx + 1) + 0.5f is float(qx) + 1.5f: both exact for any pixel coordinate.
-  (F4::splat(float(qx)) + F4::lanes(0.5f, 1.5f, 0.5f, 1.5f)).store(q.x);
-  (F4::splat(float(qy)) + F4::lanes(0.5f, 0.5f, 1.5f, 1.5f)).store(q.y);
   QuadColor color;
-  if constexpr (QuadPixelShader<Ps, N>) {
-    q.front_face = p.front_face;
-    q.primitive_id = p.primitive_id;
-    q.mask = passed;
-    ps.shade_quad(static_cast<const QuadInput<N>&>(q), color);
-  } else {
-    // Coarse derivatives: along the quad's top row and down its left column (QuadInput::ddx/ddy
-    // compute the same for quad shaders; a test compares the two forms).
-    std::array<float, N> ddx, ddy;
-    for (std::size_t a = 0; a < N; ++a) {
-      ddx[a] = q.attributes[a][1] - q.attributes[a][0];
-      ddy[a] = q.attributes[a][2] - q.attributes[a][0];
-    }
-    PixelInput<N> in;
-    in.front_face = p.front_face;
-    in.primitive_id = p.primitive_id;
-    in.ddx_attributes = &ddx;
-    in.ddy_attributes = &ddy;
-    for (int k = 0; k < 4; ++k) {
-      if (!(passed & (1u << k))) continue;
-      for (std::size_t a = 0; a < N; ++a) in.attributes[a] = q.attributes[a][k];
-      in.position = glm::vec4(q.x[k], q.y[k], q.z[k], q.inv_w[k]);
-      const glm::vec4 c = ps(static_cast<const PixelInput<N>&>(in));
-      for (int ch = 0; ch < 4; ++ch) color.c[std::size_t(ch)][k] = c[ch];
-    }
-  }
+  shade_quad_pixels<N>(p, qx, qy, dxk, dyk, passed, ps, q, color);
   if (inside)
     fb.write_quad(site, passed, color.c);
   else
