@@ -12,8 +12,9 @@ the client writes the report.
 
 Faults: a worker that dies mid-task loses nothing -- Dask reschedules the task on another worker. A case
 that kills workers is reported as an error once the scheduler gives up on it
-(distributed.scheduler.allowed-failures; --local sets it to 1, with worker-saturation 1 so that only the
-task a worker runs is counted when it dies), not retried forever.
+(distributed.scheduler.allowed-failures; --local sets it to 1), not retried forever. The scheduler also
+charges a death to the cases merely queued on that worker, so each case that ends in KilledWorker is run
+once more alone at the end: the culprit kills again and is the error, an innocent case passes.
 
 Fault injection for tests only: TESSERA_BATCH_CRASH_CASE=NAME makes the worker running that case exit;
 TESSERA_BATCH_DELAY=SECONDS makes every task wait first.
@@ -84,6 +85,38 @@ def case_key(suite_path, name):
     return "tessera-case-%s-%s" % (name, h.hexdigest())
 
 
+def _error(name, names, what, message):
+    return {"name": name, "status": "error", "message": "%s: %s" % (what, message), "new_image": "",
+            "golden_image": "", "diff_image": "", "checks": {}, "command": "", "seconds": 0.0,
+            "index": names.index(name), "report_golden": False}
+
+
+def _outcome(future, name, names):
+    """(result, files) of a finished task -- an error case if it raised -- or None if it ended in KilledWorker."""
+    try:
+        return future.result()
+    except Exception as e:  # KilledWorker, or an exception the task raised
+        if type(e).__name__ == "KilledWorker":
+            return None
+        return _error(name, names, type(e).__name__, str(e)), {}
+
+
+def _keep(outcome, name, names, report, log, where):
+    """Writes a case's images into the report and returns its result."""
+    result, files = outcome
+    for rel, data in files.items():
+        path = os.path.join(report, rel)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb") as f:
+            f.write(data)
+    if result.get("report_golden"):
+        dest = os.path.join(report, "golden", name + ".png")
+        os.makedirs(os.path.dirname(dest), exist_ok=True)
+        shutil.copyfile(result["golden_image"], dest)
+    log("%s %s: %s%s" % (where, name, result["status"], " (%s)" % result["message"] if result["message"] else ""))
+    return result
+
+
 def run(suite, client, report, threads, log):
     names = _tessera.suite_cases(suite)
     suite_abs = os.path.abspath(suite)
@@ -95,29 +128,26 @@ def run(suite, client, report, threads, log):
 
     cases = {}
     done = 0
+    suspects = []  # cases whose worker died while they ran or waited there
     for future in as_completed(list(futures)):
         name = futures[future]
         done += 1
-        try:
-            result, files = future.result()
-            for rel, data in files.items():
-                path = os.path.join(report, rel)
-                os.makedirs(os.path.dirname(path), exist_ok=True)
-                with open(path, "wb") as f:
-                    f.write(data)
-            if result.get("report_golden"):
-                dest = os.path.join(report, "golden", name + ".png")
-                os.makedirs(os.path.dirname(dest), exist_ok=True)
-                shutil.copyfile(result["golden_image"], dest)
-        except Exception as e:  # a task that killed its workers (KilledWorker), or one that raised
-            what = type(e).__name__
-            message = "crashed its workers and was not retried further" if what == "KilledWorker" else str(e)
-            result = {"name": name, "status": "error", "message": "%s: %s" % (what, message),
-                      "new_image": "", "golden_image": "", "diff_image": "", "checks": {},
-                      "command": "", "seconds": 0.0, "index": names.index(name), "report_golden": False}
-        cases[name] = result
-        log("[%d/%d] %s: %s%s" % (done, len(names), name, result["status"],
-                                  " (%s)" % result["message"] if result["message"] else ""))
+        outcome = _outcome(future, name, names)
+        if outcome is None:
+            suspects.append(name)
+            log("[%d/%d] %s: its worker died; re-run alone at the end" % (done, len(names), name))
+            continue
+        cases[name] = _keep(outcome, name, names, report, log, "[%d/%d]" % (done, len(names)))
+    # A case queued on a worker that another case killed is charged with that death too, and with
+    # allowed-failures = 1 two such deaths give it KilledWorker although it never ran. Re-running each
+    # suspect alone, with nothing else in flight, tells the culprit (it kills again) from the innocent.
+    for name in suspects:
+        key = case_key(suite_abs, name) + "-alone"
+        future = client.submit(case_task, suite_abs, name, key, threads, key=key, pure=False, retries=0)
+        outcome = _outcome(future, name, names)
+        if outcome is None:
+            outcome = _error(name, names, "KilledWorker", "crashed its workers, also when run alone"), {}
+        cases[name] = _keep(outcome, name, names, report, log, "[alone]")
     ordered = sorted(cases.values(), key=lambda c: c["index"])
     summary = {"suite": _tessera.suite_name(suite), "suite_path": suite_abs, "shard": "dask",
                "cases": ordered, "seconds": sum(c["seconds"] for c in ordered)}
