@@ -1,5 +1,7 @@
 #include "shaders_cpp/displaced_model.h"
 
+#include "shaders_cpp/displacement/chart_padding.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -63,6 +65,8 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
                                                   : DisplacementKind::vector_tangent;
   d.scale = o.scale, d.bias = o.bias;
   d.shared_normals = o.shared_normals;
+  d.own_chart_shading = o.own_chart_shading;
+  d.seam_blending = o.seam_blending;
   d.flip_v = o.flip_v;
 
   const Cage& cage = model.cage;
@@ -91,14 +95,19 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     if (!vector && has_rgb) d.normal_map = image.select("R,G,B", 3);
   } else if (o.normal_map != "derived") {
     try {
-      d.normal_map = o.normal_map_bytes.empty()
-                         ? DisplacementMap::load(o.normal_map, "R,G,B", 3)
-                         : DisplacementMap::load_encoded(o.normal_map, o.normal_map_bytes, o.normal_map_format, "R,G,B", 3);
+      d.normal_map = o.normal_map_bytes.empty() ? DisplacementMap::load(o.normal_map, "R,G,B", 3)
+                                                : DisplacementMap::load_encoded(o.normal_map, o.normal_map_bytes,
+                                                                                o.normal_map_format, "R,G,B", 3);
     } catch (const DisplacementMapError& e) {  // the same reader as the height's: say which map
       throw DisplacementMapError(std::string(e.what()) + " (normal map)");
     }
   }
 
+  if (o.pad_charts && o.ownership == UvOwnership::owned) {
+    // The texels beyond and on each chart's border continue its inside (chart_padding.h): no ridge
+    // along the seams. Only the displacement map: a normal map's border texels are its bake's own.
+    d.map = d.map->padded(chart_coverage(d.texcoords, d.map->width(), d.map->height(), kChartBorderTexels));
+  }
   d.frames = build_patch_frames(cage, *model.topology, model.patches.quads, model.patches.scheme);
   d.bound = displacement_bound(d.map->texture(), d.kind, d.scale, d.bias);
   return d;

@@ -28,7 +28,7 @@ namespace tessera {
 enum class DisplacementSpace : std::uint8_t { tangent, object };
 
 struct DisplacementOptions {
-  std::string map;      // path (or, with map_bytes, the name of an embedded image)
+  std::string map;  // path (or, with map_bytes, the name of an embedded image)
   // An encoded image in memory (a glTF's embedded texture) and its format as an extension (".png").
   std::vector<std::uint8_t> map_bytes{}, normal_map_bytes{};
   std::string map_format{}, normal_map_format{};
@@ -37,10 +37,19 @@ struct DisplacementOptions {
   DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only
   std::string normal_map = "auto";
   bool flip_v = true;  // OBJ UVs have v up: flipped for the texture (glTF cages are not); watertight_uv.h
+  // Seams (issue 22): the displacement map padded beyond and on its charts' borders (chart_padding.h),
+  // shading from each patch's own chart, and normals blended across UV seams (DisplacedPS). Off: the
+  // map as the file holds it, and the shading of before (the seam test's "before").
+  bool pad_charts = true;
+  bool own_chart_shading = true;
+  bool seam_blending = true;
   // Test knobs (the negative tests): per-face UVs, and each patch's own normals.
   UvOwnership ownership = UvOwnership::owned;
   bool shared_normals = true;
 };
+
+// Texel rings of each chart's border rebuilt by padding (chart_padding.h).
+inline constexpr int kChartBorderTexels = 2;
 
 struct Displacement {
   std::optional<DisplacementMap> map;
@@ -48,6 +57,8 @@ struct Displacement {
   DisplacementKind kind = DisplacementKind::scalar;
   float scale = 1.0f, bias = 0.0f;
   bool shared_normals = true;
+  bool own_chart_shading = true;
+  bool seam_blending = true;
   // A normal map's green points up the image, along −V (OBJ's v, the OpenGL and glTF convention):
   // the pixel shader flips it. (The UVs themselves are flipped only for OBJ cages: Cage::uv_v_down.)
   bool flip_v = true;
@@ -61,7 +72,9 @@ struct Displacement {
   // Mip levels blended (view-dependent LOD: displaced_shaders.h, DisplacementParams::trilinear).
   bool trilinear = false;
 
-  DisplacementParams params() const { return {&map->texture(), kind, scale, bias, shared_normals, trilinear}; }
+  DisplacementParams params() const {
+    return {&map->texture(), kind, scale, bias, shared_normals, trilinear, own_chart_shading};
+  }
 };
 
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& options);

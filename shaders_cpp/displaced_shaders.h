@@ -53,6 +53,8 @@ struct DisplacementParams {
   // (MIN_MAG_LINEAR_MIP_POINT): under view-dependent LOD the sampling LOD moves with the camera, and
   // a nearest-level switch would move every displaced point of a patch at once (a pop).
   bool trilinear = false;
+  // Test knob: false shades from the sampled UV everywhere (the seam lines of DisplacedPoint's note).
+  bool own_chart_shading = true;
 };
 
 struct DisplacedPatchConstants {
@@ -132,8 +134,16 @@ struct DisplacedHS {
 };
 
 // A displaced domain point: the displaced position; the base surface's unit normal it moved along (shared
-// on edges and vertices); the base face and location (SurfaceSample's); the base surface's derivatives
-// with respect to the texture coordinates U and V and the UV itself (for tangent-space shading).
+// on edges and vertices); the base face and location (SurfaceSample's); the UV the map was sampled at
+// and the base surface's derivatives with respect to it (the owner's on edges and vertices: what makes
+// the position watertight); and the texture coordinate and derivatives the pixel shader reads.
+//
+// Why two: on a UV seam the owner's UV lies in the other face's chart. Interpolated across a triangle
+// whose other vertices lie in this patch's chart, it would sweep the texture between the two charts and
+// shade the row of triangles along every seam from texels of neither (the seam lines of issue 22). So
+// where the owner's chart is not this patch's (the non-owner side of a seam edge, a seam vertex owned
+// by another chart), shading takes the patch's own UV and its own derivatives; everywhere else it takes
+// exactly the sampling data, whose bits both sides of an ordinary edge share.
 struct DisplacedPoint {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f};
@@ -141,6 +151,9 @@ struct DisplacedPoint {
   float u = 0, v = 0;
   glm::vec3 dpdu{0.0f}, dpdv{0.0f};
   glm::vec2 uv{0.0f};
+  glm::vec3 shade_dpdu{0.0f}, shade_dpdv{0.0f};
+  glm::vec2 shade_uv{0.0f};
+  float patch_u = 0, patch_v = 0;  // the domain location (patch corner k at (0,0),(1,0),(1,1),(0,1))
 };
 
 // dP/dU and dP/dV from the derivatives along two parameters a, b and the UV's derivatives along them.
@@ -168,14 +181,17 @@ struct DisplacedDS {
     const float u = loc.u, v = loc.v;
     DisplacedPoint out;
     out.face = s.face, out.u = s.u, out.v = s.v;
+    out.patch_u = loc.u, out.patch_v = loc.v;
     glm::vec3 n = s.normal, pa = s.du, pb = s.dv;
     glm::vec2 ja, jb, uv;
     float lod = pc.lod_interior;
     const bool on_u = u == 0.0f || u == 1.0f, on_v = v == 0.0f || v == 1.0f;
+    bool other_chart = false;  // the UV sampled here is in another face's chart (see DisplacedPoint)
     if (on_u && on_v) {
       const int k = v == 0.0f ? (u == 0.0f ? 0 : 1) : (u == 1.0f ? 2 : 3);
       const auto& t = pc.corner[std::size_t(k)];
       uv = tc.corner[std::size_t(k)];
+      other_chart = uv != tc.interior[std::size_t(k)];
       lod = pc.lod_corner[std::size_t(k)];
       pa = t[0], pb = t[1];
       ja = tc.corner_span[std::size_t(k)][0], jb = tc.corner_span[std::size_t(k)][1];
@@ -200,6 +216,10 @@ struct DisplacedDS {
       const float to = tc.reversed[std::size_t(k)] ? 1.0f - t : t;
       const float so = 1.0f - to;
       uv = e[0] * so + e[1] * to;
+      // This patch's own UVs at the owner's edge ends a and b.
+      const glm::vec2 own_a = tc.interior[std::size_t(tc.reversed[std::size_t(k)] ? (k + 1) % 4 : k)];
+      const glm::vec2 own_b = tc.interior[std::size_t(tc.reversed[std::size_t(k)] ? k : (k + 1) % 4)];
+      other_chart = own_a != e[0] || own_b != e[1];
       lod = pc.lod_edge[std::size_t(k)];
       ja = e[1] - e[0];
       jb = so * (e[3] - e[0]) + to * (e[2] - e[1]);
@@ -220,6 +240,14 @@ struct DisplacedDS {
     texture_derivatives(pa, pb, ja, jb, out.dpdu, out.dpdv);
     out.normal = n;
     out.uv = uv;
+    if (other_chart && params.own_chart_shading) {
+      const auto& c = tc.interior;
+      out.shade_uv = bilerp_uv(c, u, v);
+      texture_derivatives(s.du, s.dv, (1.0f - v) * (c[1] - c[0]) + v * (c[2] - c[3]),
+                          (1.0f - u) * (c[3] - c[0]) + u * (c[2] - c[1]), out.shade_dpdu, out.shade_dpdv);
+    } else {
+      out.shade_uv = uv, out.shade_dpdu = out.dpdu, out.shade_dpdv = out.dpdv;
+    }
 
     Sampler sampler;
     sampler.filter = params.trilinear ? Filter::trilinear : Filter::bilinear;
@@ -260,24 +288,37 @@ struct DisplacedDS {
   }
 };
 
-// For rendering: clip-space position and 11 attributes: the base normal (0..2), dP/dU (3..5), dP/dV
-// (6..8), the texture coordinates (9, 10).
-inline constexpr std::size_t kDisplacedAttributes = 11;
+// For rendering: clip-space position and 13 attributes: the base normal (0..2), and for shading (in the
+// patch's own chart where the sampled UV is another's: DisplacedPoint) dP/dU (3..5), dP/dV (6..8), the
+// texture coordinates (9, 10); the patch's domain location (11, 12: seam blending in DisplacedPS).
+inline constexpr std::size_t kDisplacedAttributes = 13;
 
 struct DisplacedAttributes {
   std::array<float, kDisplacedAttributes> operator()(const DisplacedPoint& s) const {
-    return {s.normal.x, s.normal.y, s.normal.z, s.dpdu.x, s.dpdu.y, s.dpdu.z,
-            s.dpdv.x,   s.dpdv.y,   s.dpdv.z,   s.uv.x,   s.uv.y};
+    return {s.normal.x,     s.normal.y,     s.normal.z,     s.shade_dpdu.x, s.shade_dpdu.y,
+            s.shade_dpdu.z, s.shade_dpdv.x, s.shade_dpdv.y, s.shade_dpdv.z, s.shade_uv.x,
+            s.shade_uv.y,   s.patch_u,      s.patch_v};
   }
 };
 template <class Inner>
 using DisplacedProjectDS = ProjectingDS<Inner, DisplacedAttributes>;
 
-// Clay with a headlight (clay(), subd_shaders.h) on the displaced surface's shading normal: from a tangent-space normal
-// map (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal, Gram-Schmidt orthonormalized; `flip_green`
-// for maps whose y points along −V: OBJ cages, whose v points up the image), or derived from the height map (the normal
-// of P + h N with h's texture gradient by central differences one level-0 texel apart, sampled with the pixel's UV
-// derivatives), or the base normal when neither is given.
+// Clay with a headlight (clay(), subd_shaders.h) on the displaced surface's shading normal: from a
+// tangent-space normal map (RGB = (n + 1) / 2, x along dP/dU, y along dP/dV, z along the normal,
+// Gram-Schmidt orthonormalized; `flip_green` for maps whose y points along −V: OBJ cages, whose v points
+// up the image), or derived from the height map (the normal of P + h N with h's texture gradient by
+// central differences one level-0 texel apart, sampled with the pixel's UV derivatives), or the base
+// normal when neither is given.
+//
+// Seam blending (with `texcoords`): the two charts of a UV seam hold the same surface, but their texels
+// at the seam rarely decode to the same normal (the frog's differ by 5 degrees at the median and 17 at
+// the 90th percentile: its bake's chart borders do not follow the cage's UV edges). Within
+// `seam_band_texels` of a seam edge the normal moves toward the mean of the two charts' normals at the
+// nearest seam point: fully at the seam, fading to nothing at the band's edge. Both sides move to the
+// same mean, so the seam's step goes, and no pixel away from a seam changes. The other chart's tangent
+// frame there is this one's carried across by the similarity that maps this chart's edge onto the
+// other's (mirrored when the charts' orientations differ): exact for conformal charts, and the same
+// rule on both sides.
 struct DisplacedPS {
   const Texture2D* normal_map = nullptr;
   const Texture2D* height = nullptr;  // one channel; used when normal_map is null
@@ -285,34 +326,100 @@ struct DisplacedPS {
   bool flip_green = false;
   glm::vec3 light{0.0f, 0.0f, 1.0f};
   glm::vec3 color = kClayColor;
+  std::span<const PatchTexcoords> texcoords{};  // per patch of the draw; empty: no seam blending
+  float seam_band_texels = 8.0f;
 
   glm::vec4 operator()(const PixelInput<kDisplacedAttributes>& in) const {
     const auto& a = in.attributes;
     const glm::vec3 n0 = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
     const glm::vec3 dpdu(a[3], a[4], a[5]), dpdv(a[6], a[7], a[8]);
     const glm::vec2 uv(a[9], a[10]);
-    glm::vec3 n = n0;
-    Sampler sampler;  // trilinear
-    sampler.address_u = sampler.address_v = AddressMode::clamp;
     const glm::vec2 ddx = in.ddx_attributes ? glm::vec2(in.ddx(9), in.ddx(10)) : glm::vec2(0.0f);
     const glm::vec2 ddy = in.ddy_attributes ? glm::vec2(in.ddy(9), in.ddy(10)) : glm::vec2(0.0f);
+    const Texture2D* map = normal_map ? normal_map : height;
+    if (map == nullptr) return clay(n0, light, color);
+    glm::vec3 n = surface_normal(n0, uv, dpdu, dpdv, ddx, ddy);
+    if (!texcoords.empty() && in.primitive_id < texcoords.size())
+      n = blend_seams(n, n0, a[11], a[12], dpdu, dpdv, ddx, ddy, texcoords[in.primitive_id], *map);
+    return clay(n, light, color);
+  }
+
+ private:
+  // The shading normal at `uv` of a chart whose dP/dU, dP/dV are `du`, `dv` (the base normal where the
+  // map gives none).
+  glm::vec3 surface_normal(const glm::vec3& n0, glm::vec2 uv, const glm::vec3& du, const glm::vec3& dv, glm::vec2 ddx,
+                           glm::vec2 ddy) const {
+    Sampler sampler;  // trilinear
+    sampler.address_u = sampler.address_v = AddressMode::clamp;
     if (normal_map) {
       const glm::vec4 t = normal_map->sample_grad(sampler, uv, ddx, ddy);
       const glm::vec3 m(2.0f * t.x - 1.0f, (2.0f * t.y - 1.0f) * (flip_green ? -1.0f : 1.0f), 2.0f * t.z - 1.0f);
-      const glm::vec3 tangent = unit_or_zero(dpdu - glm::dot(n0, dpdu) * n0);
-      const glm::vec3 bitangent = unit_or_zero(dpdv - glm::dot(n0, dpdv) * n0 - glm::dot(tangent, dpdv) * tangent);
+      const glm::vec3 tangent = unit_or_zero(du - glm::dot(n0, du) * n0);
+      const glm::vec3 bitangent = unit_or_zero(dv - glm::dot(n0, dv) * n0 - glm::dot(tangent, dv) * tangent);
       const glm::vec3 shaded = unit_or_zero(m.x * tangent + m.y * bitangent + m.z * n0);
-      if (shaded != glm::vec3(0.0f)) n = shaded;
-    } else if (height) {
-      const float du = 1.0f / float(height->width()), dv = 1.0f / float(height->height());
-      auto h = [&](glm::vec2 p) { return height->sample_grad(sampler, p, ddx, ddy).x; };
-      const float dhdu = height_scale * (h(uv + glm::vec2(du, 0.0f)) - h(uv - glm::vec2(du, 0.0f))) / (2.0f * du);
-      const float dhdv = height_scale * (h(uv + glm::vec2(0.0f, dv)) - h(uv - glm::vec2(0.0f, dv))) / (2.0f * dv);
-      glm::vec3 d = unit_or_zero(glm::cross(dpdu + dhdu * n0, dpdv + dhdv * n0));
-      if (glm::dot(d, n0) < 0.0f) d = -d;
-      if (d != glm::vec3(0.0f)) n = d;
+      return shaded != glm::vec3(0.0f) ? shaded : n0;
     }
-    return clay(n, light, color);
+    const float su = 1.0f / float(height->width()), sv = 1.0f / float(height->height());
+    auto h = [&](glm::vec2 p) { return height->sample_grad(sampler, p, ddx, ddy).x; };
+    const float dhdu = height_scale * (h(uv + glm::vec2(su, 0.0f)) - h(uv - glm::vec2(su, 0.0f))) / (2.0f * su);
+    const float dhdv = height_scale * (h(uv + glm::vec2(0.0f, sv)) - h(uv - glm::vec2(0.0f, sv))) / (2.0f * sv);
+    glm::vec3 d = unit_or_zero(glm::cross(du + dhdu * n0, dv + dhdv * n0));
+    if (glm::dot(d, n0) < 0.0f) d = -d;
+    return d != glm::vec3(0.0f) ? d : n0;
+  }
+
+  glm::vec3 blend_seams(glm::vec3 n, const glm::vec3& n0, float u, float v, const glm::vec3& du, const glm::vec3& dv,
+                        glm::vec2 ddx, glm::vec2 ddy, const PatchTexcoords& tc, const Texture2D& map) const {
+    if (tc.seam_edges == 0) return n;
+    const glm::vec2 size(float(map.width()), float(map.height()));
+    const auto& c = tc.interior;
+    for (int k = 0; k < 4; ++k) {
+      if ((tc.seam_edges >> k & 1) == 0) continue;
+      // The domain distance from edge k, and the parameter along it (corner k -> k + 1).
+      const float dist = k == 0 ? v : k == 1 ? 1.0f - u : k == 2 ? 1.0f - v : u;
+      const float t = k == 0 ? u : k == 1 ? v : k == 2 ? 1.0f - u : 1.0f - v;
+      const glm::vec2 a0 = c[std::size_t(k)], a1 = c[std::size_t((k + 1) % 4)];
+      // The patch's extent across the edge, in texels, at this t: it and so the band are continuous
+      // from patch to patch along the seam (neighbours share the UV edge between them).
+      const float span =
+          texel_length((1.0f - t) * (c[std::size_t((k + 3) % 4)] - a0) + t * (c[std::size_t((k + 2) % 4)] - a1), size);
+      const float band = std::min(seam_band_texels, 0.5f * span);  // texels
+      if (!(dist * span < band)) continue;
+      const glm::vec2 b0 = tc.twin[std::size_t(k)][0], b1 = tc.twin[std::size_t(k)][1];
+      const glm::vec2 es = a1 - a0, eo = b1 - b0;  // the edge in this chart and in the other (per unit t)
+      // The seam's target, the same on both sides: each chart's normal at the seam point decoded in a
+      // frame both sides can build alike, the conformal one that maps the chart's edge onto the edge's
+      // world tangent E (from this side's frame; the other side's E is the same vector, or its negative
+      // with its edge's UVs negated too), then averaged.
+      const glm::vec3 edge = es.x * du + es.y * dv;
+      const float le = glm::length(edge), ls = glm::length(es), lo = glm::length(eo);
+      if (!(le > 0.0f) || !(ls > 0.0f) || !(lo > 0.0f)) continue;
+      const glm::vec3 ex = edge / le, ey = glm::cross(n0, ex);
+      const float orient = glm::dot(glm::cross(du, dv), n0) < 0.0f ? -1.0f : 1.0f;
+      const float orient_other = (tc.twin_mirrored >> k & 1) ? -orient : orient;
+      const auto conformal = [&](glm::vec2 e, float len, float o, glm::vec3& fu, glm::vec3& fv) {
+        const glm::vec2 d = e / len;
+        fu = (le / len) * (d.x * ex - o * d.y * ey);
+        fv = (le / len) * (d.y * ex + o * d.x * ey);
+      };
+      glm::vec3 us, vs, uo, vo;
+      conformal(es, ls, orient, us, vs);
+      conformal(eo, lo, orient_other, uo, vo);
+      // The pixel's UV derivatives carried into the other chart by the same similarity.
+      const glm::vec2 xs = es / ls, ys(-xs.y, xs.x), xo = eo / lo, yo(-xo.y, xo.x);
+      const float mirror = orient_other * orient, r = lo / ls;
+      const auto to_other = [&](glm::vec2 d) { return r * (glm::dot(d, xs) * xo + mirror * glm::dot(d, ys) * yo); };
+      const glm::vec2 at_s = a0 + t * es, at_o = b0 + t * eo;
+      const glm::vec3 mean = unit_or_zero(surface_normal(n0, at_s, us, vs, ddx, ddy) +
+                                          surface_normal(n0, at_o, uo, vo, to_other(ddx), to_other(ddy)));
+      if (mean == glm::vec3(0.0f)) continue;
+      // This side's own normal at the seam point, in its own frame: the pixel's normal tends to it.
+      const glm::vec3 ns = surface_normal(n0, at_s, du, dv, ddx, ddy);
+      const float s = dist * span / band, w = 1.0f - s * s * (3.0f - 2.0f * s);
+      n += w * (mean - ns);
+    }
+    const glm::vec3 out = unit_or_zero(n);
+    return out != glm::vec3(0.0f) ? out : n0;
   }
 };
 

@@ -1,5 +1,7 @@
 #include "shaders_cpp/displacement/displacement_map.h"
 
+#include "shaders_cpp/displacement/chart_padding.h"
+
 #include "pipeline/stderr_capture.h"
 
 #include <algorithm>
@@ -181,8 +183,8 @@ std::vector<int> select_channels(const std::string& path, const std::vector<std:
 }  // namespace
 
 struct DisplacementImageDecoder {
-  static DisplacementImage decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path, std::uintmax_t file_size,
-                                  std::optional<DisplacementImage::Selection> check);
+  static DisplacementImage decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path,
+                                  std::uintmax_t file_size, std::optional<DisplacementImage::Selection> check);
 };
 
 DisplacementImage DisplacementImage::read(const std::string& path, std::optional<Selection> check) {
@@ -255,6 +257,22 @@ DisplacementMap DisplacementImage::select(std::string_view spec, int count) cons
   std::vector<std::string> selected;
   for (int c : chosen) selected.push_back(names_[std::size_t(c)]);
   return DisplacementMap(std::move(*t), path_, std::move(selected));
+}
+
+DisplacementMap DisplacementMap::padded(const std::vector<std::uint8_t>& covered) const {
+  const int w = width(), h = height(), c = channels();
+  std::vector<float> texels(std::size_t(w) * std::size_t(h) * std::size_t(c));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec4 t = texture_.load(0, x, y);
+      for (int k = 0; k < c; ++k)
+        texels[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * std::size_t(c) + std::size_t(k)] = t[k];
+    }
+  pad_charts(texels, w, h, c, covered);
+  std::string error;
+  auto t = Texture2D::create(w, h, c, std::move(texels), true, &error);
+  if (!t) fail(path_, error);
+  return DisplacementMap(std::move(*t), path_, selected_);
 }
 
 DisplacementMap DisplacementMap::load_encoded(const std::string& name, std::span<const std::uint8_t> bytes,

@@ -54,6 +54,10 @@ class DisplacementMap {
   // Bytes of texel storage, all mip levels.
   std::size_t bytes() const { return texture_.bytes(); }
 
+  // The map with the texels outside `covered` (chart_coverage at this map's size) padded from the
+  // charts (chart_padding.h), its mip levels rebuilt.
+  DisplacementMap padded(const std::vector<std::uint8_t>& covered) const;
+
  private:
   friend class DisplacementImage;
   DisplacementMap(Texture2D t, std::string path, std::vector<std::string> selected)

@@ -32,6 +32,15 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
   auto uv = [&](int f, int k) {
     return uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])];
   };
+  // Twice the signed area of face f's UV quad: its chart's orientation.
+  auto uv_area = [&](int f) {
+    double a = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const glm::vec2 p = uv(f, k), q = uv(f, k + 1);
+      a += double(p.x) * double(q.y) - double(q.x) * double(p.y);
+    }
+    return a;
+  };
   std::vector<PatchTexcoords> out;
   out.reserve(group.size());
   for (const SubdPatch& p : group.patches) {
@@ -52,6 +61,18 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
         tc.edge[std::size_t(k)] = ho == h ? std::array<glm::vec2, 4>{a, b, c, d} : std::array<glm::vec2, 4>{b, a, d, c};
       }
       tc.edge_face[std::size_t(k)] = fo, tc.edge_corner[std::size_t(k)] = std::uint8_t(co);
+      // The face across edge k: its half-edge runs k + 1 -> k.
+      const int ht = t.twin(h);
+      tc.twin[std::size_t(k)] = {uv(f, fk), uv(f, fk + 1)};
+      if (ht >= 0 && !t.is_hole(t.face(ht))) {
+        const int ft = t.face(ht), ct = t.corner(ht);
+        const glm::vec2 a = uv(ft, ct + 1), b = uv(ft, ct);
+        if (a != uv(f, fk) || b != uv(f, fk + 1)) {
+          tc.twin[std::size_t(k)] = {a, b};
+          tc.seam_edges |= std::uint8_t(1u << k);
+          if ((uv_area(f) < 0.0) != (uv_area(ft) < 0.0)) tc.twin_mirrored |= std::uint8_t(1u << k);
+        }
+      }
       // Corner k: the vertex at h's origin.
       const int hv = vertex_owner(t, t.origin(h));
       const int fv = t.face(hv), cv = t.corner(hv);

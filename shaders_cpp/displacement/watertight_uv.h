@@ -20,6 +20,8 @@
 //   next and previous corners (the UV derivatives at the corner, for tangent frames); corner_key[k]:
 //   the cage edge key of the owner's outgoing edge (the corner's LOD uses that edge's factor).
 //
+// - seam_edges, twin, twin_mirrored: the face across each patch edge, for shading (see the struct).
+//
 // Per-face (naive) texcoords put the face's own UVs in the edge and corner UV slots (the owners, spans
 // and LOD keys stay): what the negative tests use to show that a UV seam then cracks.
 //
@@ -49,6 +51,12 @@ struct PatchTexcoords {
   std::array<std::int64_t, 4> corner_key{};
   std::array<std::int32_t, 4> edge_face{}, vertex_face{};
   std::array<std::uint8_t, 4> edge_corner{}, vertex_corner{};
+  // For shading across UV seams (displaced_shaders.h, DisplacedPS): bit k of `seam_edges` says patch
+  // edge k is a UV seam (the face across it has other UVs at the edge's ends); `twin[k]` holds that
+  // face's UVs at patch corners k and k + 1, and bit k of `twin_mirrored` says its chart has the other
+  // orientation (a mirrored chart). Not used for sampling positions.
+  std::array<std::array<glm::vec2, 2>, 4> twin{};
+  std::uint8_t seam_edges = 0, twin_mirrored = 0;
 };
 
 enum class UvOwnership : std::uint8_t { owned, per_face };
