@@ -137,9 +137,9 @@ TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema
   // Sub-objects: every property of lod, displacement and camera is known to the reader too.
   for (const char* object : {"lod", "displacement", "camera"})
     for (const auto& [key, spec] : schema["properties"][object]["properties"].items()) {
-      (void)spec;
       nlohmann::json scene = {{"tessera_scene", 1}, {"asset", kFrog}};
-      nlohmann::json value = key == "mode"                                               ? nlohmann::json("screen")
+      nlohmann::json value = spec.contains("enum")                                       ? spec["enum"].back()
+                             : key == "mode"                                             ? nlohmann::json("screen")
                              : key == "space"                                            ? nlohmann::json("object")
                              : (key == "map" || key == "channel" || key == "normal_map") ? nlohmann::json("x.exr")
                              : (key == "position" || key == "target" || key == "up" || key == "dicing_camera_position")

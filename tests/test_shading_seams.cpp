@@ -7,6 +7,7 @@
 // 2.0 and 5.6 against 0.8.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include <catch2/catch.hpp>
@@ -14,6 +15,7 @@
 #include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/displaced_model.h"
 #include "shaders_cpp/displaced_render.h"
+#include "cli_runner.h"
 #include "test_data.h"
 
 namespace tessera {
@@ -130,6 +132,28 @@ TEST_CASE("Shading seams: the step across a UV seam is within 2 levels of an ord
     CHECK(before.seam - before.ordinary > 2.0);
     CHECK(after.seam <= 0.5 * before.seam);
   }
+}
+
+TEST_CASE("--uv-seams blend|raw from the CLI: raw is the render of before, a bad value is one line", "[seams][cli]") {
+  const auto dir = test::cli_temp_dir() / "uv-seams";
+  std::filesystem::create_directories(dir);
+  const std::string base = "render " + test::data("sdk-cages/monsterfrog_mapped_00.obj") + " --displacement " +
+                           test::data("sdk-cages/monsterfrog.dds") +
+                           " --displacement-channel A --factor 6 --resolution 320x240 -q --uv-seams ";
+  const auto blend = test::run_cli(base + "blend -o " + (dir / "blend.png").string());
+  const auto raw = test::run_cli(base + "raw -o " + (dir / "raw.png").string());
+  const auto dflt = test::run_cli(base.substr(0, base.size() - std::string("--uv-seams ").size()) + "-o " +
+                                  (dir / "default.png").string());
+  REQUIRE(blend.exit_code == 0);
+  REQUIRE(raw.exit_code == 0);
+  REQUIRE(dflt.exit_code == 0);
+  CHECK(test::slurp(dir / "default.png") == test::slurp(dir / "blend.png"));
+  CHECK(test::slurp(dir / "raw.png") != test::slurp(dir / "blend.png"));
+  const auto bad = test::run_cli(base + "smooth -o " + (dir / "bad.png").string());
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("--uv-seams: 'smooth' is not blend or raw") != std::string::npos);
+  CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  CHECK_FALSE(std::filesystem::exists(dir / "bad.png"));
 }
 
 }  // namespace tessera

@@ -133,13 +133,15 @@ RenderSettings read_scene(const std::string& path) {
   }
   if (root.contains("displacement")) {
     const Json& d = root["displacement"];
-    r.only(d, "displacement", {"map", "channel", "scale", "bias", "space", "normal_map"});
+    r.only(d, "displacement", {"map", "channel", "scale", "bias", "space", "normal_map", "uv_seams"});
     if (!d.contains("map")) r.fail("displacement.map", "missing: the displacement map");
     s.displacement.map = r.path(d["map"], "displacement.map");
     if (d.contains("channel")) s.displacement.channel = r.text(d["channel"], "displacement.channel");
     if (d.contains("scale")) s.displacement.scale = r.number(d["scale"], "displacement.scale");
     if (d.contains("bias")) s.displacement.bias = r.number(d["bias"], "displacement.bias");
     if (d.contains("space")) s.displacement.space = r.one_of(d["space"], "displacement.space", {"tangent", "object"});
+    if (d.contains("uv_seams"))
+      s.displacement.uv_seams = r.one_of(d["uv_seams"], "displacement.uv_seams", {"blend", "raw"});
     if (d.contains("normal_map")) {
       const std::string n = r.text(d["normal_map"], "displacement.normal_map");
       s.displacement.normal_map =
@@ -215,6 +217,7 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
     dj["space"] = d.space;
     dj["normal_map"] =
         d.normal_map == "auto" || d.normal_map == "derived" ? d.normal_map : relative_to(d.normal_map, dir);
+    dj["uv_seams"] = d.uv_seams;
     j["displacement"] = dj;
   }
   Json camera = Json::object();

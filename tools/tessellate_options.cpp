@@ -158,6 +158,11 @@ void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
          "shading normals: auto (the displacement file's RGB when the height is another channel, else derived), "
          "derived (from the height), or a tangent-space normal map file")
       ->capture_default_str();
+  cmd.add_option("--uv-seams", d.uv_seams,
+                 "across UV seams: blend (shade each patch from its own chart, blend the two charts' normals at "
+                 "the seam, pad the displacement map beyond its charts) or raw (the maps as stored, the owner's "
+                 "UV shaded across seams: what the asset alone gives)")
+      ->capture_default_str();
 }
 
 namespace {
@@ -206,6 +211,9 @@ std::optional<Displacement> displacement_option(const DisplacementCli& d, const 
              float_text(o.scale) + ", offset " + float_text(o.bias) + ")");
   }
   o.space = d.space == "object" ? DisplacementSpace::object : DisplacementSpace::tangent;
+  if (d.uv_seams != "blend" && d.uv_seams != "raw")
+    throw UsageError("--uv-seams: '" + d.uv_seams + "' is not blend or raw");
+  o.pad_charts = o.own_chart_shading = o.seam_blending = d.uv_seams == "blend";
   o.normal_map = d.normal_map;
   if (d.normal_map == "auto" && material.normal) {
     o.normal_map = material.normal->path;

@@ -47,6 +47,7 @@ struct DisplacementCli {
   std::string map, channel, space = "tangent", normal_map = "auto";
   // Not given: 1 and 0, or a glTF material's displacementGeometryFactor and Offset.
   std::optional<float> scale, bias;
+  std::string uv_seams = "blend";  // or raw
   friend bool operator==(const DisplacementCli&, const DisplacementCli&) = default;
 };
 void add_displacement_options(CLI::App& cmd, DisplacementCli& d);
