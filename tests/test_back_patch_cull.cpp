@@ -92,9 +92,13 @@ TEST_CASE("Every triangle of a patch proven to face away faces away on screen", 
                                      std::pair{test::data("osd-shapes/bilinear_nonplanar.obj"), Scheme::flat}}) {
     const SubdModel m = load_subd_model(path, scheme);
     const int culled_sign = subd_culled_screen_sign(m);
-    for (const SubdCamera& camera : cameras(m.cage, w, h)) {
+    const std::vector<SubdCamera> views = cameras(m.cage, w, h);
+    for (std::size_t vi = 0; vi < views.size(); ++vi) {
+      const SubdCamera& camera = views[vi];
+      if (test::kSanitized && vi % 2 == 0) continue;  // half the cameras, the inside one among them (test_data.h)
       for (const auto partitioning : {ts::Partitioning::integer, ts::Partitioning::fractional_odd}) {
         for (const float factor : {3.0f, 9.5f, 40.0f}) {
+          if (test::kSanitized && factor > 10.0f) continue;
           const SubdFactors f = factors_for(m, camera, w, h, factor, true);
           const PatchTables tables = build_patch_tables(m, nullptr, f, partitioning, DicingCamera{camera.eye, 1.0f});
           const DrawResult r = stream_subd(device, m, f, partitioning, [&](const auto& out, const PatchGroup& g) {
@@ -133,9 +137,13 @@ TEST_CASE("Back-patch culling never changes a pixel: shapes, schemes, views, cam
         std::pair{test::data("osd-shapes/catmark_car.obj"), Scheme::bspline},
         std::pair{test::data("osd-shapes/bilinear_nonplanar.obj"), Scheme::flat}}) {
     const SubdModel m = load_subd_model(path, scheme);
-    for (const SubdCamera& camera : cameras(m.cage, w, h)) {
+    const std::vector<SubdCamera> views = cameras(m.cage, w, h);
+    for (std::size_t vi = 0; vi < views.size(); ++vi) {
+      const SubdCamera& camera = views[vi];
+      if (test::kSanitized && vi % 2 == 0) continue;  // half the cameras, the inside one among them (test_data.h)
       for (const SubdView view : {SubdView::shaded, SubdView::wire_on_shaded}) {
         for (const float factor : {4.0f, 17.3f}) {
+          if (test::kSanitized && factor > 10.0f) continue;
           auto image = [&](bool back, std::uint64_t& away) {
             auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, nullptr);
             REQUIRE(fb);
