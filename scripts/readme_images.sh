@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Writes the README's example image of each `tessera render --view` into docs/images/ (1280x720),
+# Writes the README's example image of each `tessera render --view` into docs/images/ (1280x720) and
+# the UV-seams before/after mosaic,
 # from the bundled monster frog (displaced, but for the culled view). Run after building (scripts/test.sh or scripts/run.sh).
 #
 #   scripts/readme_images.sh [BUILD_DIR]     (default build/)
@@ -23,4 +24,14 @@ done
 # Undisplaced acc: the back-patch test proves patches of Bezier nets only, so both colours show.
 "$bin" -q render "$frog" --scheme acc --factor 12 --camera-position 20,5,12 --camera-target -3,-2.5,2 \
   --resolution 1280x720 --view culled -o "$out/view-culled.png" >/dev/null
+# UV seams, before (raw) and after (blend), with the normal map and derived normals: a 2x2 mosaic.
+seams=(--factor 16 --resolution 600x400 --camera-position 14,28,40 --camera-target 0,10,6 --fov 28
+       --displacement "$root/tests/data/sdk-cages/monsterfrog.dds" --displacement-channel A)
+tmp=$(mktemp -d)
+for n in auto derived; do
+  for s in raw blend; do r "${seams[@]}" --normal-map "$n" --uv-seams "$s" -o "$tmp/$n-$s.png"; done
+done
+oiiotool "$tmp/auto-raw.png" "$tmp/auto-blend.png" "$tmp/derived-raw.png" "$tmp/derived-blend.png" \
+  --mosaic:pad=4 2x2 --resize 904x604 -o "$out/uv-seams.png"
+rm -r "$tmp"
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2
