@@ -39,7 +39,7 @@ parallel=()
 [ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
 # The one leak inside OpenImageIO (tests/lsan.supp says which) is not Tessera's.
 (cd build-fuzz && ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
-  LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0" \
+  LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0:intercept_tls_get_addr=0" \
   "tests/fuzz/fuzz_$target" "corpus/$target" "${dict[@]}" -max_total_time=$((minutes * 60)) \
   -rss_limit_mb=2560 -timeout=20 -max_len=1048576 -artifact_prefix="crashes/$target/" -print_final_stats=1 \
   "${parallel[@]}") >"$log" 2>&1
