@@ -16,6 +16,8 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-distributed
   # Mesa llvmpipe and libepoxy: the oracle and benchmark peer in ../shared/bench.
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
+  # tessera view: its HTTP server, and the headless browser its test drives.
+  libcpp-httplib-dev chromium chromium-driver python3-selenium
   # clang and its libFuzzer runtime: the `fuzz` preset (scripts/fuzz.sh).
   clang
 )

@@ -6,11 +6,17 @@
 namespace tessera::cli {
 
 int run_cli(int argc, char** argv) {
-  static constexpr CommandEntry kCommands[] = {
-      {"pattern", add_pattern_command},   {"oracle-compare", add_oracle_command}, {"bench", add_bench_command},
-      {"analyze", add_analyze_command},   {"tessellate", add_tessellate_command}, {"render", add_render_command},
-      {"accuracy", add_accuracy_command}, {"make-cage", add_make_cage_command},   {"diff", add_diff_command},
-      {"check", add_check_command}};
+  static constexpr CommandEntry kCommands[] = {{"pattern", add_pattern_command},
+                                               {"oracle-compare", add_oracle_command},
+                                               {"bench", add_bench_command},
+                                               {"analyze", add_analyze_command},
+                                               {"tessellate", add_tessellate_command},
+                                               {"render", add_render_command},
+                                               {"accuracy", add_accuracy_command},
+                                               {"make-cage", add_make_cage_command},
+                                               {"diff", add_diff_command},
+                                               {"check", add_check_command},
+                                               {"view", add_view_command}};
   return run_app(argc, argv, kCommands, idiff_arguments);
 }
 

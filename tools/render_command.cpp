@@ -43,33 +43,6 @@ std::string frame_path(const std::string& pattern, int i, const std::string& opt
   return m.prefix().str() + number + m.suffix().str();
 }
 
-// The summary of one rendered image, for --json.
-Json image_json(const std::string& path, const PreparedScene& scene, const SceneImage& image) {
-  const DrawReport& total = image.out.result.report;
-  Json j = {{"output", path},
-            {"width", scene.view.width},
-            {"height", scene.view.height},
-            {"scheme", to_string(scene.scheme)},
-            {"view", to_string(scene.kind)},
-            {"camera",
-             {{"position",
-               {json_float(scene.view.camera.eye.x), json_float(scene.view.camera.eye.y),
-                json_float(scene.view.camera.eye.z)}},
-              {"target",
-               {json_float(scene.view.camera.target.x), json_float(scene.view.camera.target.y),
-                json_float(scene.view.camera.target.z)}}}},
-            {"patches", scene.model.patches.quads.size() + scene.model.patches.tris.size()},
-            {"patches_culled", total.patches_culled},
-            {"patches_facing_away", total.patches_back_culled},
-            {"triangles", total.statistics.CInvocations},
-            {"pixels_shaded", total.statistics.PSInvocations},
-            {"statistics", to_json(total.statistics)},
-            {"times", to_json(total.times)},
-            {"memory", to_json(total.memory)}};
-  if (scene.kind == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
-  return j;
-}
-
 // Renders a sequence from one load of the asset: --frames N of an animation (frame i at time + i / fps)
 // or --orbit N views around the model (view i turned by 2 pi i / N about the up axis). Every image is
 // written beside its final name first and renamed at the end: all images or none.
@@ -117,7 +90,7 @@ int render_sequence(const RenderOptions& o) {
       write_scene_image(image, partial.back());
       const DrawReport& total = image.out.result.report;
       if (o.json) {
-        Json j = image_json(paths[std::size_t(i)], *scene, image);
+        Json j = scene_summary(paths[std::size_t(i)], *scene, image);
         j["time"] = time;
         summaries.push_back(std::move(j));
       } else {
@@ -238,7 +211,7 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     write_text_atomically(o.stats, json_text(s) + "\n");
   }
   if (o.json) {
-    Json j = image_json(o.output, *scene, image);
+    Json j = scene_summary(o.output, *scene, image);
     j["peak_rss_bytes"] = peak_rss_bytes();
     if (!o.stats.empty()) j["stats"] = o.stats;
     std::cout << json_text(j) << "\n";

@@ -46,6 +46,25 @@ struct Log2Histogram {
 
 }  // namespace
 
+Json patch_row(const PatchInfo& p, std::size_t id) {
+  const int edges = p.tri ? 3 : 4, insides = p.tri ? 1 : 2;
+  return {{"domain", p.tri ? "tri" : "quad"},
+          {"id", id},
+          {"face", p.face},
+          {"sub", p.sub},
+          {"kind", to_string(p.kind)},
+          {"type", to_string(p.type)},
+          {"combination", p.combination},
+          {"raw", factors_json(p.raw.edge, edges, p.raw.inside, insides)},
+          {"processed", factors_json(p.edge_processed, edges, p.inside_processed, insides)},
+          {"segments", segments_json(p.edge_segments, edges, p.inside_segments, insides)},
+          {"triangles", p.triangles},
+          {"screen_pixels", std::isfinite(p.screen_pixels) ? Json(json_float(p.screen_pixels)) : Json(nullptr)},
+          {"culled", p.culled       ? Json("frustum")
+                     : p.faces_away ? Json("backface")
+                                    : Json(nullptr)}};
+}
+
 void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const PatchTables& tables,
                           const LodResult& lod) {
   Json rows = Json::array();
@@ -54,7 +73,7 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
   for (const auto* t : {&tables.quads, &tables.tris}) {
     for (std::size_t id = 0; id < t->size(); ++id) {
       const PatchInfo& p = (*t)[id];
-      const int edges = p.tri ? 3 : 4, insides = p.tri ? 1 : 2;
+      const int edges = p.tri ? 3 : 4;
       ++patches;
       triangles += p.triangles;
       drawn += p.faces_away ? 0 : p.triangles;
@@ -65,22 +84,7 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
         const int bin = std::isfinite(f) ? std::clamp(int(std::floor(f)), 1, 64) - 1 : 0;
         ++factor_counts[std::size_t(bin)];
       }
-      rows.push_back(
-          {{"domain", p.tri ? "tri" : "quad"},
-           {"id", id},
-           {"face", p.face},
-           {"sub", p.sub},
-           {"kind", to_string(p.kind)},
-           {"type", to_string(p.type)},
-           {"combination", p.combination},
-           {"raw", factors_json(p.raw.edge, edges, p.raw.inside, insides)},
-           {"processed", factors_json(p.edge_processed, edges, p.inside_processed, insides)},
-           {"segments", segments_json(p.edge_segments, edges, p.inside_segments, insides)},
-           {"triangles", p.triangles},
-           {"screen_pixels", std::isfinite(p.screen_pixels) ? Json(json_float(p.screen_pixels)) : Json(nullptr)},
-           {"culled", p.culled       ? Json("frustum")
-                      : p.faces_away ? Json("backface")
-                                     : Json(nullptr)}});
+      rows.push_back(patch_row(p, id));
     }
   }
   Json factor_bins = Json::array();

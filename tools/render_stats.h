@@ -12,6 +12,10 @@
 
 namespace tessera::cli {
 
+// The row --stats writes for a patch: domain, id (its index in the group), face, kind, type,
+// combination, raw and processed factors, segments, triangles, screen size, cull reason.
+Json patch_row(const PatchInfo& p, std::size_t id);
+
 // `tables`: view_patch_tables(in).
 void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const PatchTables& tables,
                           const LodResult& lod);

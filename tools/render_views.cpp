@@ -309,4 +309,28 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
   return out;
 }
 
+DrawResult render_pick_buffer(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables& tables,
+                              Framebuffer& fb) {
+  fb.clear(glm::vec4(0.0f), 1.0f);
+  DebugRender r;
+  r.ps.view = DebugView::pick;
+  SubdFactors factors = in.factors;
+  SubdCamera camera = in.view.camera;
+  if (kind == ViewKind::culled) {
+    factors.cull.enabled = false;
+    factors.back = {};
+    camera = overview_camera(in, fb.width(), fb.height());
+  }
+  return render_debug(device, in.model, in.displacement, factors, in.partitioning, r, tables, camera, fb);
+}
+
+const PatchInfo* picked_patch(const PatchTables& tables, std::uint32_t code, std::size_t* index) {
+  if (code == 0 || code >= kPickOverflow) return nullptr;
+  const std::size_t i = (code - 1u) / 2u;
+  const std::vector<PatchInfo>& rows = (code - 1u) % 2u ? tables.tris : tables.quads;
+  if (i >= rows.size()) return nullptr;
+  if (index != nullptr) *index = i;
+  return &rows[i];
+}
+
 }  // namespace tessera::cli

@@ -60,4 +60,12 @@ PatchTables view_patch_tables(const ViewInputs& in);
 // view without a displacement).
 ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* tables, Framebuffer& fb);
 
+// The patch under each pixel of view `kind` as render_view draws it (the same draw and camera; the
+// culled view's overview camera), written as pick codes (debug_shaders.h) into `fb`, a single-sampled
+// rgba8 target of the view's size (cleared here to 0: no patch).
+DrawResult render_pick_buffer(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables& tables,
+                              Framebuffer& fb);
+// The patch row a pick code names, or nothing for 0 or a code no row has.
+const PatchInfo* picked_patch(const PatchTables& tables, std::uint32_t code, std::size_t* index = nullptr);
+
 }  // namespace tessera::cli

@@ -2,6 +2,7 @@
 
 #include "pipeline/sample_pattern.h"
 #include "tools/cli_common.h"
+#include "tools/json_output.h"
 #include "tools/view_legend.h"
 
 namespace tessera::cli {
@@ -17,23 +18,35 @@ ViewInputs PreparedScene::inputs() const {
 }
 
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
-  if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
   auto p = std::make_unique<PreparedScene>();
-  p->settings = s;
   p->scheme = scheme_option(s.scheme);
-  p->partitioning = partitioning_option(s.partitioning);
+  p->model = load_model(s.cage, p->scheme, s.asset);
+  p->displacement = displacement_option(s.displacement, p->model);
+  configure_scene(*p, s);
+  return p;
+}
+
+void configure_scene(PreparedScene& p, const RenderSettings& s) {
+  if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
   const auto kind = parse_view(s.view);
   if (!kind) throw UsageError("--view: '" + s.view + "' is not one of " + view_names());
-  p->kind = *kind;
   if (s.factor_kind != "raw" && s.factor_kind != "processed")
     throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
-  p->model = load_model(s.cage, p->scheme, s.asset);
-  p->base_factors = factors_option(s.factor, s.vary, s.factors_file, p->model.cage);
-  p->factors = p->base_factors;
-  p->displacement = displacement_option(s.displacement, p->model);
-  p->view = view_option(s.camera, p->model.cage);
-  p->lod = apply_lod_options(s.lod, p->view, p->model, p->displacement ? &*p->displacement : nullptr, p->factors);
-  return p;
+  const ts::Partitioning partitioning = partitioning_option(s.partitioning);
+  // The pose first: the model is posed from its rig alone, so the result does not depend on the
+  // pose it had (load_model posed it at the time it was loaded with).
+  if (p.model.rig) pose_model(p.model, s.asset, s.asset.time);
+  SubdFactors base = factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
+  ViewSetup view = view_option(s.camera, p.model.cage);
+  SubdFactors factors = base;
+  LodResult lod = apply_lod_options(s.lod, view, p.model, p.displacement ? &*p.displacement : nullptr, factors);
+  p.settings = s;
+  p.partitioning = partitioning;
+  p.kind = *kind;
+  p.base_factors = std::move(base);
+  p.factors = std::move(factors);
+  p.view = view;
+  p.lod = std::move(lod);
 }
 
 void pose_scene(PreparedScene& p, double time) {
@@ -90,6 +103,32 @@ SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_ta
   // the resolved image.
   if (image.fb->samples() > 1) image.fb = image.fb->resolve();
   return image;
+}
+
+Json scene_summary(const std::string& path, const PreparedScene& scene, const SceneImage& image) {
+  const DrawReport& total = image.out.result.report;
+  Json j = {{"output", path},
+            {"width", scene.view.width},
+            {"height", scene.view.height},
+            {"scheme", to_string(scene.scheme)},
+            {"view", to_string(scene.kind)},
+            {"camera",
+             {{"position",
+               {json_float(scene.view.camera.eye.x), json_float(scene.view.camera.eye.y),
+                json_float(scene.view.camera.eye.z)}},
+              {"target",
+               {json_float(scene.view.camera.target.x), json_float(scene.view.camera.target.y),
+                json_float(scene.view.camera.target.z)}}}},
+            {"patches", scene.model.patches.quads.size() + scene.model.patches.tris.size()},
+            {"patches_culled", total.patches_culled},
+            {"patches_facing_away", total.patches_back_culled},
+            {"triangles", total.statistics.CInvocations},
+            {"pixels_shaded", total.statistics.PSInvocations},
+            {"statistics", to_json(total.statistics)},
+            {"times", to_json(total.times)},
+            {"memory", to_json(total.memory)}};
+  if (scene.kind == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  return j;
 }
 
 void write_scene_image(const SceneImage& image, const std::string& path) {

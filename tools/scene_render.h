@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "tools/json_output.h"
 #include "tools/render_views.h"
 #include "tools/scene_file.h"
 
@@ -28,6 +29,11 @@ struct PreparedScene {
   ViewInputs inputs() const;
 };
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
+// Applies `s` to a prepared scene whose asset, scheme and displacement it shares (the caller checks
+// that: cage, asset selection, scheme and displacement settings equal the scene's): everything after
+// the load is redone as prepare_scene(s) does it, so the scene then draws the same bytes as a scene
+// prepared from `s`. On an error the scene is unchanged but for an animated model's pose.
+void configure_scene(PreparedScene& scene, const RenderSettings& s);
 // Poses an animated scene's model at `time` seconds and recomputes what follows the pose (LOD factors,
 // culling); the camera stays where prepare_scene put it (framing the rest pose).
 void pose_scene(PreparedScene& scene, double time);
@@ -48,5 +54,8 @@ std::string describe_times(const DrawReport& report);
 // Draws the scene; `want_tables` keeps the patch tables (for --stats) even when the view does not use them.
 SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables);
 void write_scene_image(const SceneImage& image, const std::string& path);
+// The summary `render --json` prints of one image written to `path`: size, scheme, view, camera,
+// patches, triangles, pixels shaded, statistics, stage times and memory.
+Json scene_summary(const std::string& path, const PreparedScene& scene, const SceneImage& image);
 
 }  // namespace tessera::cli

@@ -131,8 +131,9 @@ LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdMo
     if (factors.per_edge || factors.vary > 0.0f)
       throw UsageError("--lod " + l.mode + " sets every edge's factor: drop --factors-per-edge and --vary-factors");
     factors.per_edge = edge_lod_factors(model.positions(), *model.topology, s);
-    if (displacement) displacement->trilinear = true;
   }
+  // Set both ways: a scene reconfigured from view-dependent to uniform LOD samples as a fresh one.
+  if (displacement) displacement->trilinear = s.mode != LodMode::uniform;
   if (culls_frustum(r.cull)) {
     factors.cull.enabled = true;
     factors.cull.view_projection = view.camera.view_projection;

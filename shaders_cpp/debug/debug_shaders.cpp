@@ -82,6 +82,7 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
   const std::size_t id = std::size_t(std::max(0.0f, a[6]) + 0.5f);
   if (id >= patches.size()) return {1.0f, 0.0f, 1.0f, 1.0f};  // magenta: a patch the table does not know
   const PatchInfo& p = patches[id];
+  if (view == DebugView::pick) return pick_color(pick_code(id, p.tri));
   const float u = a[3], v = a[4], w = a[5];
   const std::array<float, 4> edge_px = domain_edge_pixels(in, p.tri);
   const float boundary_px = std::min({edge_px[0], edge_px[1], edge_px[2], edge_px[3]});
@@ -158,6 +159,7 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
       c = shade(diverging_color(0.5f + 0.5f * hgt / std::max(height_range, 1e-20f)));
       break;
     }
+    case DebugView::pick: c = glm::vec3(0.0f); break;  // (returned above)
     case DebugView::culled: c = shade(p.culled ? kCulledColor : p.faces_away ? kBackCulledColor : kClayColor); break;
   }
   const float border = border_strength * line_coverage(boundary_px, border_width);

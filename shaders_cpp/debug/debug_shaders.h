@@ -62,7 +62,20 @@ enum class DebugView : std::uint8_t {
   uv,            // checker of the texture coordinates, UV seams marked
   displacement,  // signed displacement height
   culled,        // frustum-culled patches red, back-culled blue, the rest clay (from an overview camera)
+  pick,          // not a picture: each pixel's patch as exact bytes (pick_code), for picking
 };
+
+// The pick view's bytes: code = 2 * (patch index in its group) + (tri domain ? 1 : 0) + 1 in the
+// RGB bytes of an rgba8 target, least significant first; 0 where no patch covers the pixel. 24 bits
+// name 8,388,607 patches; a patch beyond that is written as 0xffffff (kPickOverflow).
+inline constexpr std::uint32_t kPickOverflow = 0xffffffu;
+inline std::uint32_t pick_code(std::size_t index, bool tri) {
+  const std::uint64_t code = std::uint64_t(index) * 2u + (tri ? 1u : 0u) + 1u;
+  return code < kPickOverflow ? std::uint32_t(code) : kPickOverflow;
+}
+inline glm::vec4 pick_color(std::uint32_t code) {
+  return glm::vec4(float(code & 255u), float((code >> 8) & 255u), float((code >> 16) & 255u), 255.0f) / 255.0f;
+}
 
 // The culled view's colour of a culled patch (and its legend swatch).
 inline constexpr glm::vec3 kCulledColor{0.92f, 0.25f, 0.18f};

@@ -1,0 +1,77 @@
+// The state behind `tessera view`: one asset, the settings it was started with, and the frames,
+// picks and reproducing commands of the settings a request asks for. Independent of HTTP (the
+// server, viewer_server.h, turns requests into calls here), so tests call it directly too.
+//
+// Contract
+// - frame(s) draws exactly what `tessera render` with render_arguments(s) draws and encodes it with
+//   the same writer into the same bytes (PNG; JPEG frames, for a moving camera, are the same pixels
+//   compressed with loss).
+// - Prepared scenes are kept by what loading decides (scheme, displacement, glTF selection); a change
+//   of camera, factors, LOD, view or time reconfigures a kept scene (configure_scene), which gives
+//   the bytes of a fresh one. At most kKeptScenes are kept, the least recently used dropped.
+// - Calls are serialised (one draw at a time, on all the session's threads): safe from any thread.
+// - Errors: RequestError or UsageError for settings a render refuses (the caller's fault, HTTP 400);
+//   anything else is the asset's or the machine's (HTTP 500).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "pipeline/device.h"
+#include "tools/scene_render.h"
+#include "tools/viewer/viewer_settings.h"
+
+namespace tessera::cli {
+
+enum class FrameFormat : std::uint8_t { png, jpeg };
+
+struct ViewerFrame {
+  std::string bytes;         // the encoded image
+  std::string content_type;  // image/png or image/jpeg
+  Json summary;              // as `render --json` prints it (times and memory included)
+};
+
+class ViewerSession {
+ public:
+  static constexpr std::size_t kKeptScenes = 3;
+
+  // Loads the asset of `base` (its errors as `tessera render` gives them) and makes a private
+  // directory for encoding frames (removed by the destructor).
+  explicit ViewerSession(RenderSettings base);
+  ~ViewerSession();
+  ViewerSession(const ViewerSession&) = delete;
+  ViewerSession& operator=(const ViewerSession&) = delete;
+
+  const RenderSettings& base() const { return base_; }
+  // The asset and what the page needs to build its controls: names, counts, animations and their time
+  // ranges, the bounding box, the framing camera, the views, schemes and the starting settings.
+  Json info();
+
+  // `wanted`, when given, is asked once the session's turn comes: a frame nobody wants any more (a
+  // newer camera arrived while it waited) is not drawn, and nothing is returned.
+  std::optional<ViewerFrame> frame(const RenderSettings& s, FrameFormat format,
+                                   const std::function<bool()>& wanted = {});
+  // The patch under pixel (x, y) of frame(s) (x right, y down from the top-left): its --stats row
+  // (render_stats.h) with the combination's text, or {"patch": null} over the background.
+  Json pick(const RenderSettings& s, int x, int y);
+  // The reproducing command (as words and as one shell line) and the scene file of `s`.
+  Json command(const RenderSettings& s) const;
+
+ private:
+  PreparedScene& scene_for(const RenderSettings& s);
+
+  RenderSettings base_;
+  std::mutex mutex_;
+  Device device_;
+  std::list<std::unique_ptr<PreparedScene>> scenes_;  // most recently used first
+  std::filesystem::path temp_dir_;
+  std::uint64_t next_file_ = 0;
+};
+
+}  // namespace tessera::cli
