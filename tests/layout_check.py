@@ -32,6 +32,9 @@ ALLOWED = {
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement",
               "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "tools/verify", "tools/measure"],
+    "tools/viewer": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
+                     "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp",
+                     "shaders_cpp/debug", "tools/verify", "tools/measure", "tools"],
     "python": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement",
                "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "tools/verify", "tools/measure", "tools"],
 }
