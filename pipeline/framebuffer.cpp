@@ -159,7 +159,7 @@ std::string write_image_atomically(const std::string& path, int width, int heigh
     OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     if (is_float && !out->supports("channelformats") && std::filesystem::path(path).extension() == ".png")
       spec.set_format(OIIO::TypeDesc::UINT8);
-    omit_capture_time(spec);
+    set_output_attributes(spec);
     bool ok = out->open(temp, spec);
     if (ok) ok = out->write_image(is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, pixels);
     if (ok) ok = out->close();

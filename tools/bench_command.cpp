@@ -94,7 +94,7 @@ int run_bench_tessellator(const BenchOptions& o) {
 
 }  // namespace
 
-Runner add_bench_command(CLI::App& app) {
+Runner add_bench_command(CLI::App& app, std::span<const BenchAdder> more) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Benchmarks (results to stdout, --json for scripts)");
   cmd->require_subcommand(1);
@@ -105,12 +105,16 @@ Runner add_bench_command(CLI::App& app) {
   Runner torus = add_bench_torus_command(*cmd);
   Runner frog = add_bench_subd_command(*cmd);
   Runner dolly = add_bench_dolly_command(*cmd);
-  return [o, tess, torus, frog, dolly]() -> int {
+  std::vector<Runner> others;
+  for (const BenchAdder add : more) others.push_back(add(*cmd));
+  return [o, tess, torus, frog, dolly, others]() -> int {
     if (tess->parsed()) return run_bench_tessellator(*o);
     if (const int rc = torus(); rc >= 0) return rc;
     if (const int rc = frog(); rc >= 0) return rc;
     if (const int rc = dolly(); rc >= 0) return rc;
-    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly)");
+    for (const Runner& other : others)
+      if (const int rc = other(); rc >= 0) return rc;
+    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly, view)");
   };
 }
 

@@ -232,7 +232,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
         const fs::path diff_path = fs::path(report_dir) / r.diff_image;
         fs::create_directories(diff_path.parent_path());
         OIIO::ImageBuf heat = verify::heat_map_image(images, 1.0f);
-        omit_capture_time(heat);
+        set_output_attributes(heat);
         if (!heat.write(diff_path.string())) throw InputError(diff_path.string() + ": cannot write the diff image");
       }
       if (v == verify::DiffVerdict::file_error)

@@ -5,10 +5,19 @@
 
 namespace tessera::cli {
 
+namespace {
+
+Runner add_bench_commands(CLI::App& app) {
+  static constexpr BenchAdder kMore[] = {add_bench_view_command};
+  return add_bench_command(app, kMore);
+}
+
+}  // namespace
+
 int run_cli(int argc, char** argv) {
   static constexpr CommandEntry kCommands[] = {{"pattern", add_pattern_command},
                                                {"oracle-compare", add_oracle_command},
-                                               {"bench", add_bench_command},
+                                               {"bench", add_bench_commands},
                                                {"analyze", add_analyze_command},
                                                {"tessellate", add_tessellate_command},
                                                {"render", add_render_command},

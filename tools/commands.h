@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,10 @@ using Runner = std::function<int()>;
 // Each returns the function that runs the subcommand once CLI11 has parsed its options.
 Runner add_pattern_command(CLI::App& app);
 Runner add_oracle_command(CLI::App& app);
-Runner add_bench_command(CLI::App& app);
+// `bench` with its benchmarks, and `more` registered under it (benchmarks of libraries above this one:
+// bench view, from tools/viewer/).
+using BenchAdder = Runner (*)(CLI::App& bench);
+Runner add_bench_command(CLI::App& app, std::span<const BenchAdder> more = {});
 Runner add_analyze_command(CLI::App& app);
 Runner add_tessellate_command(CLI::App& app);
 Runner add_render_command(CLI::App& app);
@@ -33,5 +37,6 @@ std::vector<std::string> idiff_arguments(int argc, char** argv);
 Runner add_bench_torus_command(CLI::App& bench);
 Runner add_bench_subd_command(CLI::App& bench);
 Runner add_bench_dolly_command(CLI::App& bench);
+Runner add_bench_view_command(CLI::App& bench);  // tools/viewer/bench_view.cpp
 
 }  // namespace tessera::cli

@@ -36,7 +36,7 @@ std::string number(double v) {
 Json json_number(double v) { return std::isfinite(v) ? Json(v) : Json(number(v)); }
 
 void write_image(OIIO::ImageBuf img, const std::string& path) {
-  omit_capture_time(img);
+  set_output_attributes(img);
   write_file_atomically(path, [&](const std::string& temp) {
     const std::string ext = std::filesystem::path(path).extension().string();
     if (!img.write(temp, OIIO::TypeUnknown, ext.empty() ? std::string() : ext.substr(1)))

@@ -287,7 +287,7 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
   write_file_atomically(path, [&](const std::string& temp) {
     OIIO::ImageBuf out(OIIO::ImageSpec(pic.size, pic.size, 3, OIIO::TypeDesc::UINT8));
     OIIO::ImageBufAlgo::copy(out, img, OIIO::TypeDesc::UINT8);
-    omit_capture_time(out);
+    set_output_attributes(out);
     if (!out.write(temp)) throw InputError(path + ": cannot write image: " + out.geterror());
   });
 }

@@ -88,7 +88,7 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const std::s
     const bool eight_bit = fb.format() == ColorFormat::rgba8_unorm;
     OIIO::ImageBuf out(OIIO::ImageSpec(w, h, 3, eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT));
     OIIO::ImageBufAlgo::channels(out, img, 3, {}, {}, {}, true);
-    omit_capture_time(out);
+    set_output_attributes(out);
     out.set_write_format(eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
     if (!out.write(temp)) throw InputError(path + ": cannot write image: " + out.geterror());
   });
