@@ -268,6 +268,7 @@ TEST_CASE("viewer HTTP API: frames, picks and commands; one-line 400s for bad re
   one_line_error("/api/pick?x=1&y=1e99", 400, "not an integer");
   one_line_error("/api/pick?x=100000&y=1", 400, "outside");
   one_line_error("/api/frame?factor=3&factor=4", 400, "given twice");
+  one_line_error("/api/frame?time=5", 400, "is not animated");  // an OBJ cage
   one_line_error("/etc/passwd", 404, "not part of the viewer");
   one_line_error("/../../etc/passwd", 404, "");
   // The server still draws after all that.

@@ -35,7 +35,11 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
   const ts::Partitioning partitioning = partitioning_option(s.partitioning);
   // The pose first: the model is posed from its rig alone, so the result does not depend on the
   // pose it had (load_model posed it at the time it was loaded with).
-  if (p.model.rig) pose_model(p.model, s.asset, s.asset.time);
+  if (p.model.rig)
+    pose_model(p.model, s.asset, s.asset.time);
+  else if (s.asset.time != 0.0 || !s.asset.animation.empty())
+    throw UsageError((s.asset.time != 0.0 ? "--time " + float_text(float(s.asset.time)) : std::string("--animation")) +
+                     ": " + s.cage + " is not animated");
   SubdFactors base = factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
   ViewSetup view = view_option(s.camera, p.model.cage);
   SubdFactors factors = base;
