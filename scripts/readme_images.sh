@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes the README's example image of each `tessera render --view` into docs/images/ (1280x720) and
-# the UV-seams before/after mosaic,
+# the UV-seams before/after mosaic and a screenshot of `tessera view`,
 # from the bundled monster frog (displaced, but for the culled view). Run after building (scripts/test.sh or scripts/run.sh).
 #
 #   scripts/readme_images.sh [BUILD_DIR]     (default build/)
@@ -34,4 +34,6 @@ done
 oiiotool "$tmp/auto-raw.png" "$tmp/auto-blend.png" "$tmp/derived-raw.png" "$tmp/derived-blend.png" \
   --mosaic:pad=4 2x2 --resize 904x604 -o "$out/uv-seams.png"
 rm -r "$tmp"
+# tessera view's page after the browser test's orbit, view change and pick (needs chromium).
+/usr/bin/python3 "$root/tests/viewer_browser_test.py" "$bin" "$root" --screenshot "$out/viewer.png" >/dev/null
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2
