@@ -74,13 +74,15 @@ async function pump() {
   seq += 1;
   try {
     const sep = job.query ? '&' : '';
+    const asked = performance.now();
     const r = await fetch('/api/frame?' + job.query + sep + 'client=' + client + '&seq=' + seq);
     if (r.ok) {
       const blob = await r.blob();
+      const roundTrip = (performance.now() - asked) / 1e3;
       const old = frame.src;
       frame.src = URL.createObjectURL(blob);
       if (old.startsWith('blob:')) URL.revokeObjectURL(old);
-      showStats(JSON.parse(r.headers.get('X-Tessera-Summary') || '{}'), job.preview);
+      showStats(JSON.parse(r.headers.get('X-Tessera-Summary') || '{}'), job.preview, roundTrip, blob.size);
       if (!job.preview) {
         await frame.decode().catch(() => {});
         shownQuery = job.query;
@@ -102,7 +104,7 @@ async function pump() {
 
 function ms(seconds) { return (seconds * 1e3).toFixed(1) + ' ms'; }
 
-function showStats(s, preview) {
+function showStats(s, preview, roundTrip, size) {
   const t = s.times || {};
   const rows = [
     ['frame', (s.width || 0) + '×' + (s.height || 0) + (preview ? ' (preview)' : '')],
@@ -111,6 +113,7 @@ function showStats(s, preview) {
     ['patches culled', (s.patches_culled ?? 0).toLocaleString()],
     ['patches facing away', (s.patches_facing_away ?? 0).toLocaleString()],
     ['pixels shaded', (s.pixels_shaded ?? 0).toLocaleString()],
+    ['frame (request to image)', ms(roundTrip) + ', ' + Math.round(size / 1024) + ' KiB'],
     ['draw (wall)', ms(t.wall_s || 0)],
     ['IA + VS · HS', ms(t.ia_vs_s || 0) + ' · ' + ms(t.hs_s || 0)],
     ['tessellator · DS', ms(t.tessellator_s || 0) + ' · ' + ms(t.ds_s || 0)],
