@@ -5,7 +5,8 @@
    may use (tessellator <- pipeline <- shaders_cpp <- tools), and
 2. a library's own headers are its own: a header not listed in its folder's
    tessera_public_headers(...) call is included from that folder only (tests excepted: they test
-   internals).
+   internals), and
+3. no Catch test case's name starts with '-' (ctest would pass it to the test binary as an option).
 
 Usage: layout_check.py SOURCE_DIR. Prints each violation as FILE:LINE: message; exit 1 if any.
 """
@@ -91,6 +92,13 @@ def main():
                     errors.append(f"{where}: {folder} may not depend on {target_folder} (\"{target}\")")
                 elif os.path.basename(target) not in public[target_folder]:
                     errors.append(f"{where}: \"{target}\" is private to {target_folder}")
+    # A Catch test case whose name starts with '-' is read by ctest (catch_discover_tests) as an option.
+    case = re.compile(r'TEST_CASE\(\s*"(-[^"]*)"')
+    for name in sorted(os.listdir(os.path.join(root, "tests"))):
+        if name.endswith(".cpp"):
+            text = open(os.path.join(root, "tests", name), encoding="utf-8").read()
+            for m in case.finditer(text):
+                errors.append(f"tests/{name}: the test case \"{m.group(1)}\" starts with '-' (ctest reads it as an option)")
     for e in errors:
         print(e)
     print(f"layout_check: {len(errors)} violation(s)", file=sys.stderr)
