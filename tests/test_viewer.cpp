@@ -212,7 +212,7 @@ TEST_CASE("viewer picks name the patch an independent id buffer has under the pi
   CHECK_THROWS_AS(session.pick(base, -1, 0), RequestError);
 }
 
-TEST_CASE("viewer HTTP API: frames, picks and commands; one-line 400s for bad requests, 404 elsewhere",
+TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad requests, 404 elsewhere",
           "[viewer][issue23]") {
   ViewerSession session(frog(false));
   ViewerServer server(session);

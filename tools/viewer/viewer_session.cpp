@@ -121,15 +121,22 @@ Json ViewerSession::pick(const RenderSettings& s, int x, int y) {
   if (x < 0 || y < 0 || x >= p.view.width || y >= p.view.height)
     throw RequestError("x, y: (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the " +
                        std::to_string(p.view.width) + "x" + std::to_string(p.view.height) + " frame");
-  const ViewInputs inputs = p.inputs();
-  const PatchTables tables = view_patch_tables(inputs);
-  std::string error;
-  std::optional<Framebuffer> ids = Framebuffer::create(p.view.width, p.view.height, ColorFormat::rgba8_unorm, &error);
-  if (!ids) throw UsageError(error);
-  const DrawResult r = render_pick_buffer(device_, p.kind, inputs, tables, *ids);
-  if (!r.ok()) throw InputError(base_.cage + ": " + r.error);
+  const std::string key = json_text(scene_json(s, ""));
+  if (!pick_ || pick_->key != key) {
+    pick_.reset();
+    const ViewInputs inputs = p.inputs();
+    PickBuffer b{key, std::nullopt, view_patch_tables(inputs)};
+    std::string error;
+    b.ids = Framebuffer::create(p.view.width, p.view.height, ColorFormat::rgba8_unorm, &error);
+    if (!b.ids) throw UsageError(error);
+    const DrawResult r = render_pick_buffer(device_, p.kind, inputs, b.tables, *b.ids);
+    if (!r.ok()) throw InputError(base_.cage + ": " + r.error);
+    pick_ = std::move(b);
+  }
+  const Framebuffer& ids = *pick_->ids;
+  const PatchTables& tables = pick_->tables;
   const std::size_t at = (std::size_t(y) * std::size_t(p.view.width) + std::size_t(x)) * 4;
-  const auto& c = ids->color_bytes();
+  const auto& c = ids.color_bytes();
   const std::uint32_t code = c[at] | (std::uint32_t(c[at + 1]) << 8) | (std::uint32_t(c[at + 2]) << 16);
   std::size_t index = 0;
   const PatchInfo* row = picked_patch(tables, code, &index);

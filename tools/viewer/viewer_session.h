@@ -58,7 +58,8 @@ class ViewerSession {
   std::optional<ViewerFrame> frame(const RenderSettings& s, FrameFormat format,
                                    const std::function<bool()>& wanted = {});
   // The patch under pixel (x, y) of frame(s) (x right, y down from the top-left): its --stats row
-  // (render_stats.h) with the combination's text, or {"patch": null} over the background.
+  // (render_stats.h) with the combination's text, or {"patch": null} over the background. The id
+  // buffer is kept: further picks with the same settings read it without drawing.
   Json pick(const RenderSettings& s, int x, int y);
   // The reproducing command (as words and as one shell line) and the scene file of `s`.
   Json command(const RenderSettings& s) const;
@@ -70,6 +71,13 @@ class ViewerSession {
   std::mutex mutex_;
   Device device_;
   std::list<std::unique_ptr<PreparedScene>> scenes_;  // most recently used first
+  // The last pick's id buffer and patch tables, kept for further clicks on the same frame.
+  struct PickBuffer {
+    std::string key;  // the settings' scene JSON
+    std::optional<Framebuffer> ids;
+    PatchTables tables;
+  };
+  std::optional<PickBuffer> pick_;
   std::filesystem::path temp_dir_;
   std::uint64_t next_file_ = 0;
 };
