@@ -45,7 +45,7 @@ parallel=()
   "${parallel[@]}") >"$log" 2>&1
 status=$?
 set -e
-if [ "$jobs" -gt 1 ]; then cat build-fuzz/fuzz-*.log >>"$log" 2>/dev/null || true; rm -f build-fuzz/fuzz-*.log; fi
+if [ "$jobs" -gt 1 ]; then cat build-fuzz/fuzz-[0-9]*.log >>"$log" 2>/dev/null || true; rm -f build-fuzz/fuzz-[0-9]*.log; fi
 grep -E "^#[0-9]+.*(DONE|cov:)" "$log" | tail -1 >&2 || true
 grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" >&2 || true
 found=0

@@ -212,9 +212,25 @@ TEST_CASE("Truncated images fail in one line: a DDS shorter than its header impl
                                " --resolution 64x64 -o " + (dir / "x.png").string());
   INFO(t.err);
   CHECK(t.exit_code == 1);
-  CHECK(t.err.find("cut.tif: truncated: its header (512x512, uncompressed) implies 262144 bytes") !=
-        std::string::npos);
+  CHECK(t.err.find("cut.tif: truncated: its header (512x512, uncompressed) implies 262144 bytes") != std::string::npos);
   CHECK(std::count(t.err.begin(), t.err.end(), '\n') == 1);
+  CHECK(!fs::exists(dir / "x.png"));
+  // A compressed TIFF of 250 bytes whose header claims 20230x1029 RGB at 16 bits (the maps fuzzer's slow unit:
+  // 1.8 s and 950 MB of decoding before): more than 4096 times its size, refused at once.
+  {
+    std::ifstream unit_in(fs::path(TESSERA_TEST_DATA_DIR).parent_path() /
+                         "fuzz/regressions/maps/slow-unit-32bd9f5785fd50efecb88c948c12bc1bf50997e4",
+                     std::ios::binary);
+    const std::string unit{std::istreambuf_iterator<char>(unit_in), std::istreambuf_iterator<char>()};
+    REQUIRE(unit.size() > 200);
+    std::ofstream(dir / "claims.tif", std::ios::binary) << unit.substr(1);  // (byte 0 picks the fuzzer's decoder)
+  }
+  const auto c = test::run_cli("render " + frog + " --displacement " + (dir / "claims.tif").string() +
+                               " --resolution 64x64 -o " + (dir / "x.png").string());
+  INFO(c.err);
+  CHECK(c.exit_code == 1);
+  CHECK(c.err.find("claims.tif: 20230x1029 (124900020 bytes of pixels) cannot come from a") != std::string::npos);
+  CHECK(std::count(c.err.begin(), c.err.end(), '\n') == 1);
   CHECK(!fs::exists(dir / "x.png"));
 }
 
@@ -244,7 +260,8 @@ TEST_CASE("The exact scheme refuses a valence beyond its documented limit at onc
     std::ofstream out(path);
     const int n = 200;
     out << "v 0 1 0\nv 0 -1 0\n";
-    for (int i = 0; i < n; ++i) out << "v " << std::cos(6.283185307 * i / n) << " 0 " << -std::sin(6.283185307 * i / n) << "\n";
+    for (int i = 0; i < n; ++i)
+      out << "v " << std::cos(6.283185307 * i / n) << " 0 " << -std::sin(6.283185307 * i / n) << "\n";
     for (int i = 0; i < n; ++i) {
       out << "f 1 " << 3 + i << " " << 3 + (i + 1) % n << "\n";
       out << "f 2 " << 3 + (i + 1) % n << " " << 3 + i << "\n";
