@@ -21,6 +21,7 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   auto p = std::make_unique<PreparedScene>();
   p->scheme = scheme_option(s.scheme);
   p->model = load_model(s.cage, p->scheme, s.asset);
+  p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
   p->displacement = displacement_option(s.displacement, p->model);
   configure_scene(*p, s);
   return p;
@@ -33,13 +34,13 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
   if (s.factor_kind != "raw" && s.factor_kind != "processed")
     throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
   const ts::Partitioning partitioning = partitioning_option(s.partitioning);
-  // The pose first: the model is posed from its rig alone, so the result does not depend on the
-  // pose it had (load_model posed it at the time it was loaded with).
-  if (p.model.rig)
-    pose_model(p.model, s.asset, s.asset.time);
-  else if (s.asset.time != 0.0 || !s.asset.animation.empty())
-    throw UsageError((s.asset.time != 0.0 ? "--time " + float_text(float(s.asset.time)) : std::string("--animation")) +
-                     ": " + s.cage + " is not animated");
+  // The pose first, and only when it changes (the exact scheme rebuilds its limit surface per pose):
+  // a model is posed from its rig alone, so the result does not depend on the pose it had.
+  // settings.asset always names the model's pose, even when a later step of this call throws.
+  if (!(p.settings.asset == s.asset)) {
+    pose_or_refuse(p.model, s.cage, s.asset);
+    p.settings.asset = s.asset;
+  }
   SubdFactors base = factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
   ViewSetup view = view_option(s.camera, p.model.cage);
   SubdFactors factors = base;

@@ -123,7 +123,6 @@ GltfSelection gltf_selection(const std::string& path, const AssetCli& a) {
 }
 
 SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& asset) {
-  const bool gltf = is_gltf_path(path);
   const GltfSelection selection = gltf_selection(path, asset);
   SubdModel m;
   try {
@@ -132,15 +131,19 @@ SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& ass
     throw InputError(e.what());
   }
   for (const std::string& w : m.cage.warnings) log_info("warning: " + w);
+  pose_or_refuse(m, path, asset);
+  return m;
+}
+
+void pose_or_refuse(SubdModel& m, const std::string& path, const AssetCli& asset) {
   if (m.rig) {
     pose_model(m, asset, asset.time);
   } else if (asset.time != 0.0) {
     throw UsageError("--time " + float_text(float(asset.time)) + ": " + path + " is not animated" +
-                     (gltf ? " (no skin, morph target or animation)" : " (OBJ cages are static)"));
+                     (is_gltf_path(path) ? " (no skin, morph target or animation)" : " (OBJ cages are static)"));
   } else if (!asset.animation.empty()) {
     throw UsageError("--animation: " + path + " has no animations");
   }
-  return m;
 }
 
 void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {

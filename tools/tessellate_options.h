@@ -41,6 +41,9 @@ SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& ass
 // Poses an animated model at `time` seconds of the animation `asset.animation` names (default: the
 // first); a time that is not finite or an unknown animation is a UsageError.
 void pose_model(SubdModel& m, const AssetCli& asset, double time);
+// An animated model posed at `asset.time` (pose_model); for a static one, a UsageError when `asset`
+// asks for a time or an animation. (load_model does this once the model of `path` is loaded.)
+void pose_or_refuse(SubdModel& m, const std::string& path, const AssetCli& asset);
 
 // --displacement MAP and its companions (render, tessellate, bench frog).
 struct DisplacementCli {
