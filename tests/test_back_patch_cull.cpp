@@ -169,7 +169,7 @@ TEST_CASE("Back-patch culling never changes a pixel: shapes, schemes, views, cam
   CHECK(skipped > 200);
 }
 
-TEST_CASE("Displaced patches make no orientation claim; the left-handed rule follows the rasterizer", "[backface]") {
+TEST_CASE("Displaced patches make no orientation claim, the left-handed rule follows the rasterizer", "[backface]") {
   const SubdModel m = load_subd_model(kFrog, Scheme::acc);
   const Displacement d = make_displacement(
       m, DisplacementOptions{.map = kFrogMap, .channel = std::string("A"), .scale = 1.2f, .bias = -0.6f});
@@ -192,7 +192,7 @@ TEST_CASE("Displaced patches make no orientation claim; the left-handed rule fol
   CHECK_FALSE(BackPatchCull(glm::mat4(0.0f), w, h, 1).enabled());  // singular projection
 }
 
-TEST_CASE("bench frog --compare-cull times each mode, with the same image; --cull names its modes", "[backface][cli]") {
+TEST_CASE("bench frog --compare-cull times each mode, with the same image, --cull names its modes", "[backface][cli]") {
   const auto r = test::run_cli(
       "bench frog --scheme acc --factor 12 --resolution 320x180 --frames 1 --json --compare-cull "
       "--camera-position 20,5,12 --camera-target -3,-2.5,2");

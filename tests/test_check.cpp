@@ -57,7 +57,7 @@ TEST_CASE("Tessera's own view goldens pass tessera check", "[check][cli]") {
   CHECK(test::slurp(report / "junit.xml").find("failures=\"0\"") != std::string::npos);
 }
 
-TEST_CASE("A changed scene fails with a diff and leaves the golden; --update rewrites and says which", "[check][cli]") {
+TEST_CASE("A changed scene fails with a diff and leaves the golden, --update rewrites and says which", "[check][cli]") {
   const fs::path dir = test::cli_temp_dir() / "check-change";
   const fs::path suite = copy_suite(dir / "suite");
   const fs::path scene = dir / "suite/scenes/frog-acc-wire.json";
@@ -72,7 +72,7 @@ TEST_CASE("A changed scene fails with a diff and leaves the golden; --update rew
   CHECK(r.exit_code == 1);
   const auto s = summary_of(report);
   CHECK(s["counts"]["fail"] == 1);
-  CHECK(s["counts"]["pass"] == 3);
+  CHECK(s["counts"]["pass"] == s["cases"].size() - 1);
   const auto& c = s["cases"][1];
   CHECK(c["name"] == "frog-acc-wire");
   CHECK(c["status"] == "fail");

@@ -31,7 +31,7 @@ std::string bytes_of(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("Every render view draws the displaced frog; the views differ; bytes do not depend on threads",
+TEST_CASE("Every render view draws the displaced frog, the views differ, bytes do not depend on threads",
           "[views][cli]") {
   const fs::path dir = test::cli_temp_dir();
   std::set<std::string> images;
@@ -97,7 +97,7 @@ TEST_CASE("render --stats: a row per patch, totals that match the pipeline's cou
   CHECK(j["lod"]["mode"] == "screen");
 }
 
-TEST_CASE("tessellate --stats: the rows and totals of the triangles it writes; --cull backface refused",
+TEST_CASE("tessellate --stats: the rows and totals of the triangles it writes, --cull backface refused",
           "[views][cli]") {
   const fs::path dir = test::cli_temp_dir();
   const fs::path stats = dir / "tessellate-stats.json";

@@ -516,7 +516,7 @@ TEST_CASE("glTF: bad files get one line naming the file and the element, never a
   CHECK(!fs::exists(dir / "x.png"));
 }
 
-TEST_CASE("glTF: skin weights that do not sum to one are normalised with a warning; joints beyond the skin fail",
+TEST_CASE("glTF: skin weights that do not sum to one are normalised with a warning, joints beyond the skin fail",
           "[gltf]") {
   const fs::path dir = test::cli_temp_dir();
   Json j = Json::parse(bytes_of(kSkinned));

@@ -355,7 +355,7 @@ struct TexturePS {
 
 }  // namespace
 
-TEST_CASE("raster: pixel-shader derivatives select the mip level; float targets write EXR", "[raster][texture]") {
+TEST_CASE("raster: pixel-shader derivatives select the mip level, float targets write EXR", "[raster][texture]") {
   // A 64x64 one-texel checkerboard: level 0 is 0/1, every coarser level is 0.5.
   std::vector<float> texels(64 * 64);
   for (int y = 0; y < 64; ++y)

@@ -213,7 +213,7 @@ TEST_CASE("analyze reports the control points' bounding box", "[cli][issue22]") 
   CHECK(text.out.find("bounding box = (") != std::string::npos);
 }
 
-TEST_CASE("Progress and -v on stderr; nothing with -q", "[cli][issue22]") {
+TEST_CASE("Progress and -v on stderr, nothing with -q", "[cli][issue22]") {
   const fs::path dir = temp_dir("progress");
   const std::string args = " render " + kFrog + " --factor 8 --resolution 160x90 -o " + (dir / "p.png").string();
   auto r = run_ok("-v" + args);

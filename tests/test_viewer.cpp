@@ -46,7 +46,7 @@ std::string rendered(const RenderSettings& s, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("viewer settings: requests name render's options; paths, repeats and absurd sizes are refused",
+TEST_CASE("viewer settings: requests name render's options, paths, repeats and absurd sizes are refused",
           "[viewer][issue23]") {
   const RenderSettings base = frog(false);
   const RenderSettings s = settings_from_query(base, {{"factor", "12.5"},
