@@ -219,8 +219,8 @@ TEST_CASE("Truncated images fail in one line: a DDS shorter than its header impl
   // 1.8 s and 950 MB of decoding before): more than 4096 times its size, refused at once.
   {
     std::ifstream unit_in(fs::path(TESSERA_TEST_DATA_DIR).parent_path() /
-                         "fuzz/regressions/maps/slow-unit-32bd9f5785fd50efecb88c948c12bc1bf50997e4",
-                     std::ios::binary);
+                              "fuzz/regressions/maps/slow-unit-32bd9f5785fd50efecb88c948c12bc1bf50997e4",
+                          std::ios::binary);
     const std::string unit{std::istreambuf_iterator<char>(unit_in), std::istreambuf_iterator<char>()};
     REQUIRE(unit.size() > 200);
     std::ofstream(dir / "claims.tif", std::ios::binary) << unit.substr(1);  // (byte 0 picks the fuzzer's decoder)
