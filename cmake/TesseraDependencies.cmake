@@ -30,3 +30,13 @@ if(NOT TARGET tessera::tinygltf)
   target_include_directories(tessera::tinygltf SYSTEM INTERFACE ${TESSERA_TINYGLTF_INCLUDE_DIR})
   target_link_libraries(tessera::tinygltf INTERFACE ${TESSERA_TINYGLTF_LIBRARY})
 endif()
+
+# Embree 3 (libembree-dev): imported the same way, so the installed static tessera_bake needs no Embree
+# config of its own.
+if(NOT TARGET tessera::embree)
+  find_path(TESSERA_EMBREE_INCLUDE_DIR embree3/rtcore.h REQUIRED)
+  find_library(TESSERA_EMBREE_LIBRARY embree3 REQUIRED)
+  add_library(tessera::embree INTERFACE IMPORTED)
+  target_include_directories(tessera::embree SYSTEM INTERFACE ${TESSERA_EMBREE_INCLUDE_DIR})
+  target_link_libraries(tessera::embree INTERFACE ${TESSERA_EMBREE_LIBRARY})
+endif()

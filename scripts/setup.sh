@@ -18,6 +18,8 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   # tessera view: its HTTP server, and the headless browser its test drives.
   libcpp-httplib-dev chromium chromium-driver python3-selenium
+  # tessera bake's ray casting, and tessera optimize's vertex and face ordering.
+  libembree-dev libmeshoptimizer-dev
   # clang and its libFuzzer runtime: the `fuzz` preset (scripts/fuzz.sh).
   clang
 )

@@ -25,7 +25,8 @@ int run_cli(int argc, char** argv) {
                                                {"make-cage", add_make_cage_command},
                                                {"diff", add_diff_command},
                                                {"check", add_check_command},
-                                               {"view", add_view_command}};
+                                               {"view", add_view_command},
+                                               {"bake", add_bake_command}};
   return run_app(argc, argv, kCommands, idiff_arguments);
 }
 

@@ -1,0 +1,68 @@
+#include "shaders_cpp/bake/map_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+
+#include <OpenImageIO/imageio.h>
+
+#include "pipeline/atomic_file.h"
+#include "pipeline/image_metadata.h"
+
+namespace tessera {
+namespace {
+
+std::string extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+bool map_path_holds_floats(const std::string& path) {
+  const std::string ext = extension(path);
+  return ext == ".exr" || ext == ".tif" || ext == ".tiff";
+}
+
+bool map_path_supported(const std::string& path) { return map_path_holds_floats(path) || extension(path) == ".png"; }
+
+std::string write_baked_map(const std::string& path, int width, int height, const std::vector<std::string>& channels,
+                            std::span<const float> texels,
+                            const std::vector<std::pair<std::string, std::string>>& attributes) {
+  if (!map_path_supported(path)) return path + ": write maps as .exr, .tif or .png";
+  const bool floats = map_path_holds_floats(path);
+  const int n = int(channels.size());
+  std::vector<std::uint16_t> quantized;
+  if (!floats) {
+    quantized.resize(texels.size());
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+      const float x = texels[i];
+      if (!(x >= 0.0f && x <= 1.0f))
+        return path + ": a 16-bit PNG holds values in [0, 1], and this map has " + std::to_string(x) +
+               ": write it as .exr or .tif (float)";
+      quantized[i] = std::uint16_t(std::lround(double(x) * 65535.0));
+    }
+  }
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return path + ": no image writer for this extension";
+  return write_atomically(path, [&](const std::string& temp) -> std::string {
+    OIIO::ImageSpec spec(width, height, n, floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT16);
+    spec.channelnames = channels;
+    set_output_attributes(spec);
+    if (floats) spec.attribute("compression", "zip");
+    for (const auto& [key, value] : attributes) spec.attribute(key, value);
+    bool ok = out->open(temp, spec);
+    if (ok)
+      ok = floats ? out->write_image(OIIO::TypeDesc::FLOAT, texels.data())
+                  : out->write_image(OIIO::TypeDesc::UINT16, quantized.data());
+    if (ok) ok = out->close();
+    if (ok) return {};
+    std::string err = out->geterror();
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    return path + ": cannot write the map: " + err;
+  });
+}
+
+}  // namespace tessera
