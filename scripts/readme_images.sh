@@ -34,6 +34,25 @@ done
 oiiotool "$tmp/auto-raw.png" "$tmp/auto-blend.png" "$tmp/derived-raw.png" "$tmp/derived-blend.png" \
   --mosaic:pad=4 2x2 --resize 904x604 -o "$out/uv-seams.png"
 rm -r "$tmp"
+# tessera bake's round trip: the displaced frog tessellated densely, baked back (vector displacement,
+# normal map, occlusion) and re-rendered; top: the original (derived normals) and the re-render with the
+# baked maps; bottom: the baked vector map (0.5 + 0.8 d), normal map and occlusion.
+tmp=$(mktemp -d)
+"$bin" -q tessellate "$frog" --factor 24 --displacement "$root/tests/data/sdk-cages/monsterfrog.dds" \
+  --displacement-channel A -o "$tmp/dense.ply" >/dev/null
+"$bin" -q bake "$frog" --dense "$tmp/dense.ply" --resolution 1024 -o "$tmp/d.exr" --normal-map "$tmp/n.png" \
+  --ao "$tmp/ao.png" --ao-rays 64
+close=(--factor 16 --resolution 600x400 --camera-position 14,28,40 --camera-target 0,10,6 --fov 28)
+r "${close[@]}" --displacement "$root/tests/data/sdk-cages/monsterfrog.dds" --displacement-channel A \
+  --normal-map derived -o "$tmp/original.png"
+r "${close[@]}" --displacement "$tmp/d.exr" --displacement-channel RGB --normal-map "$tmp/n.png" -o "$tmp/baked.png"
+oiiotool "$tmp/d.exr" --addc 0.5 --mulc 0.8 --clamp:min=0:max=1 --resize 400x400 -d uint8 -o "$tmp/d8.png"
+oiiotool "$tmp/n.png" --resize 400x400 -d uint8 -o "$tmp/n8.png"
+oiiotool "$tmp/ao.png" --ch Y,Y,Y --resize 400x400 -d uint8 -o "$tmp/ao8.png"
+oiiotool "$tmp/original.png" "$tmp/baked.png" --mosaic:pad=4 2x1 --resize 1204x400 -o "$tmp/top.png"
+oiiotool "$tmp/d8.png" "$tmp/n8.png" "$tmp/ao8.png" --mosaic:pad=2 3x1 --resize 1204x400 --ch R,G,B,A=1.0 -o "$tmp/bottom.png"
+oiiotool "$tmp/top.png" "$tmp/bottom.png" --mosaic:pad=4 1x2 -d uint8 -o "$out/bake.png"
+rm -r "$tmp"
 # tessera view's page after the browser test's orbit, view change and pick (needs chromium).
 /usr/bin/python3 "$root/tests/viewer_browser_test.py" "$bin" "$root" --screenshot "$out/viewer.png" >/dev/null
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2

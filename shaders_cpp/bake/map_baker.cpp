@@ -132,8 +132,9 @@ BakedMaps bake_maps(const SubdModel& model, std::span<const PatchTexcoords> texc
         const glm::vec3 n = p->normal;
         const float nx = glm::dot(n, f.shade_tangent), ny = glm::dot(n, f.shade_bitangent), nz = glm::dot(n, f.normal);
         float* out_n = out.normal.data() + 3 * i;
-        out_n[0] = 0.5f * (nx + 1.0f), out_n[1] = 0.5f * ((o.flip_green ? -ny : ny) + 1.0f),
-        out_n[2] = 0.5f * (nz + 1.0f);
+        // Encoded as (n + 1) / 2, clamped: rounding can take a unit component a hair past 1.
+        auto encode = [](float c) { return std::clamp(0.5f * (c + 1.0f), 0.0f, 1.0f); };
+        out_n[0] = encode(nx), out_n[1] = encode(o.flip_green ? -ny : ny), out_n[2] = encode(nz);
       }
       if (o.ao) out.ao[i] = ambient_occlusion(*rays, *p, o.ao_rays, o.ao_distance, x, y);
     }
