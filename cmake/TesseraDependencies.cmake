@@ -40,3 +40,12 @@ if(NOT TARGET tessera::embree)
   target_include_directories(tessera::embree SYSTEM INTERFACE ${TESSERA_EMBREE_INCLUDE_DIR})
   target_link_libraries(tessera::embree INTERFACE ${TESSERA_EMBREE_LIBRARY})
 endif()
+
+# meshoptimizer (libmeshoptimizer-dev): imported the same way, for the installed static tessera_optimize.
+if(NOT TARGET tessera::meshoptimizer)
+  find_path(TESSERA_MESHOPT_INCLUDE_DIR meshoptimizer.h REQUIRED)
+  find_library(TESSERA_MESHOPT_LIBRARY meshoptimizer REQUIRED)
+  add_library(tessera::meshoptimizer INTERFACE IMPORTED)
+  target_include_directories(tessera::meshoptimizer SYSTEM INTERFACE ${TESSERA_MESHOPT_INCLUDE_DIR})
+  target_link_libraries(tessera::meshoptimizer INTERFACE ${TESSERA_MESHOPT_LIBRARY})
+endif()

@@ -2,7 +2,7 @@
 # and a CMake package whose Tessera:: targets another project finds with find_package(Tessera).
 include(CMakePackageConfigHelpers)
 set(_tessera_libraries tessera_tessellator tessera_pipeline tessera_cage tessera_animation tessera_gltf tessera_subdiv tessera_displacement
-  tessera_lod tessera_shaders tessera_debug tessera_bake tessera_verify tessera_measure)
+  tessera_optimize tessera_lod tessera_shaders tessera_debug tessera_bake tessera_verify tessera_measure)
 # tessera_options carries no usage requirements a consumer sees (its flags are PRIVATE to each
 # library); it is exported only because static libraries name their private link dependencies.
 set_target_properties(tessera_options PROPERTIES EXPORT_NAME options)

@@ -23,6 +23,7 @@ ALLOWED = {
     "shaders_cpp/gltf": ["shaders_cpp/cage", "shaders_cpp/animation"],
     "shaders_cpp/subdiv": ["tessellator", "shaders_cpp/cage"],
     "shaders_cpp/displacement": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
+    "shaders_cpp/optimize": ["shaders_cpp/cage"],
     "shaders_cpp/lod": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
                     "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod"],
@@ -34,12 +35,12 @@ ALLOWED = {
     "tools/verify": ["tessellator"],
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement",
-              "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure"],
+              "shaders_cpp/lod", "shaders_cpp/optimize", "shaders_cpp", "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure"],
     "tools/viewer": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
-                     "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp",
+                     "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp/optimize", "shaders_cpp",
                      "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure", "tools"],
     "python": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement",
-               "shaders_cpp/lod", "shaders_cpp", "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure", "tools"],
+               "shaders_cpp/lod", "shaders_cpp/optimize", "shaders_cpp", "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure", "tools"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 PUBLIC = re.compile(r"tessera_public_headers\(\s*\S+\s+([^)]*)\)", re.S)

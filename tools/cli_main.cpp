@@ -26,7 +26,8 @@ int run_cli(int argc, char** argv) {
                                                {"diff", add_diff_command},
                                                {"check", add_check_command},
                                                {"view", add_view_command},
-                                               {"bake", add_bake_command}};
+                                               {"bake", add_bake_command},
+                                               {"optimize", add_optimize_command}};
   return run_app(argc, argv, kCommands, idiff_arguments);
 }
 

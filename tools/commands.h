@@ -30,6 +30,7 @@ Runner add_diff_command(CLI::App& app);
 Runner add_check_command(CLI::App& app);
 Runner add_view_command(CLI::App& app);
 Runner add_bake_command(CLI::App& app);
+Runner add_optimize_command(CLI::App& app);
 // The whole command line: every command (cli_main.cpp). Returns the exit code.
 int run_cli(int argc, char** argv);
 // argv with `tessera diff`'s idiff spellings (-fail, -od, ...) turned into CLI11's (--fail, --od).

@@ -384,6 +384,10 @@ std::string format_obj_cage(const Cage& cage) {
   for (int h : t.holes) out += "t hole 1/0/0 " + std::to_string(h) + '\n';
   if (t.boundary != BoundaryInterpolation::edge_only)
     out += std::string("t interpolateboundary 1/0/0 ") + (t.boundary == BoundaryInterpolation::none ? "0" : "1") + '\n';
+  if (t.crease_method == CreaseMethod::chaikin) out += "t creasemethod 0/0/1 chaikin\n";
+  if (t.smooth_triangles) out += "t smoothtriangles 0/0/1 smooth\n";
+  if (t.fvar_boundary != 1) out += "t facevaryinginterpolateboundary 1/0/0 " + std::to_string(t.fvar_boundary) + '\n';
+  if (t.fvar_propagate_corners) out += "t facevaryingpropagatecorners 1/0/0 1\n";
   return out;
 }
 

@@ -44,7 +44,8 @@ Cage load_obj_cage(const std::string& path);
 Cage parse_obj_cage(std::string_view text, std::string name);
 
 // The OBJ text of a cage that parse_obj_cage reads back to the same positions (bit for bit: shortest
-// round-trip decimals), UVs, faces and tags (creases, corners, holes, boundary interpolation);
+// round-trip decimals), UVs, faces and tags (creases, corners, holes, boundary interpolation, crease method, smooth
+// triangles, face-varying interpolation);
 // warnings and the name are not written.
 std::string format_obj_cage(const Cage& cage);
 

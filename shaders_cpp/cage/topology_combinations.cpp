@@ -80,6 +80,7 @@ TopologyCombinations analyze_combinations(const Topology& t) {
   const int nf = t.face_count();
   out.face_combination.assign(std::size_t(nf), -1);
   out.face_rotation.assign(std::size_t(nf), 0);
+  out.face_period.assign(std::size_t(nf), 1);
   out.face_class.assign(std::size_t(nf), PatchClass::hole);
   const std::vector<int> pos = ring_positions(t);
   std::unordered_map<std::vector<std::int32_t>, int, KeyHash> index;
@@ -105,6 +106,16 @@ TopologyCombinations analyze_combinations(const Topology& t) {
         rotation = r;
       }
     }
+    // The face's symmetry: the smallest shift from the canonical corner that reads the same key.
+    int period = n;
+    for (int p = 1; p < n && period == n; ++p) {
+      candidate.assign(1, n);
+      for (int i = 0; i < n; ++i)
+        candidate.insert(candidate.end(), corners[(rotation + p + i) % n].begin(),
+                         corners[(rotation + p + i) % n].end());
+      if (candidate == best) period = p;
+    }
+    out.face_period[f] = period;
     auto [it, fresh] = index.try_emplace(best, int(out.combinations.size()));
     if (fresh) {
       Combination c;

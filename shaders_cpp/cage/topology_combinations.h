@@ -59,6 +59,10 @@ struct TopologyCombinations {
   std::vector<Combination> combinations;  // in order of the first face that has each key
   std::vector<int> face_combination;      // per face: index into combinations, -1 for a hole
   std::vector<int> face_rotation;         // per face: the canonical corner r (0 for a hole)
+  // Per face: the smallest p > 0 such that reading from corner r + p gives the same key (the face's
+  // rotational symmetry: 1 for a regular quad, n for a face with none; 1 for a hole). Starting at any
+  // corner r + m p keeps the face's combination and its canonical rotation.
+  std::vector<int> face_period;
   std::vector<PatchClass> face_class;     // per face
   CombinationStats stats;
 };
