@@ -9,7 +9,9 @@
 
 #include "cli_runner.h"
 #include "shaders_cpp/bake/dense_mesh.h"
+#include "shaders_cpp/bake/map_writer.h"
 #include "shaders_cpp/bake/texel_sites.h"
+#include "shaders_cpp/displacement/displacement_map.h"
 #include "test_data.h"
 
 namespace tessera {
@@ -74,6 +76,25 @@ TEST_CASE("bake: texel sites invert the bilinear UV layout", "[bake]") {
   CHECK_FALSE(invert_bilinear(a.interior, glm::dvec2(0.9, 0.9), u, v));
 }
 
+TEST_CASE("bake: 16-bit maps store their range and decode at load, a malformed encoding is refused", "[bake]") {
+  const fs::path dir = test::cli_temp_dir() / "bake-stored";
+  fs::create_directories(dir);
+  const std::vector<float> values = {-0.25f, 0.5f, 1.75f, 0.0f};
+  for (const char* ext : {".png", ".tif"}) {
+    const std::string path = (dir / (std::string("d") + ext)).string();
+    REQUIRE(write_baked_map(path, 2, 2, {"Y"}, values, {}, true).empty());
+    const DisplacementMap m = DisplacementMap::load(path);
+    for (int i = 0; i < 4; ++i) CHECK(std::abs(m.texture().load(0, i % 2, i / 2).x - values[std::size_t(i)]) < 1e-4f);
+    // Without the stored range a value outside [0, 1] cannot go to a 16-bit file.
+    CHECK(write_baked_map(path, 2, 2, {"Y"}, values).find("holds values in [0, 1]") != std::string::npos);
+  }
+  const std::string bad = (dir / "bad.png").string();
+  REQUIRE(write_baked_map(bad, 2, 2, {"Y"}, std::vector<float>{0, 0.5f, 1, 1},
+                          {{"ImageDescription", decode_description(2, 1) + "x"}})
+              .empty());
+  CHECK_THROWS_WITH(DisplacementMap::load(bad), Catch::Contains("is not a valid stored encoding"));
+}
+
 TEST_CASE("bake: the displaced frog baked from its own tessellation re-renders the same surface", "[bake][cli]") {
   const fs::path dir = test::cli_temp_dir() / "bake-round-trip";
   fs::create_directories(dir);
@@ -82,7 +103,7 @@ TEST_CASE("bake: the displaced frog baked from its own tessellation re-renders t
                         " --displacement-channel A -o " + dense)
               .exit_code == 0);
   struct Case {
-    const char* name;
+    const char* name;  // a name ending in -png bakes a 16-bit PNG, else an EXR
     std::string bake, render;
     double max, rms;  // the bounds it must meet, relative to the diagonal
   };
@@ -91,6 +112,8 @@ TEST_CASE("bake: the displaced frog baked from its own tessellation re-renders t
   // ray casting, nearest 1.4e-2 / 1.7e-3, outward 6.2e-3 / 5.2e-4 (hits on folded layers in creases).
   const Case cases[] = {
       {"dual-vector-tangent", "--kind vector", "--displacement-channel RGB", 3e-3, 1.5e-4},
+      // 16-bit PNG: the range is stored in the file and decoded at load (decode_description).
+      {"dual-vector-png", "--kind vector", "--displacement-channel RGB", 3e-3, 1.5e-4},
       {"dual-vector-object", "--kind vector --space object", "--displacement-channel RGB --displacement-space object",
        3e-2, 5e-3},
       {"dual-scalar", "--kind scalar", "", 3e-3, 1.5e-4},
@@ -99,7 +122,8 @@ TEST_CASE("bake: the displaced frog baked from its own tessellation re-renders t
   };
   for (const Case& c : cases) {
     INFO(c.name);
-    const std::string map = (dir / (std::string(c.name) + ".exr")).string();
+    const std::string name = c.name, ext = name.ends_with("-png") ? ".png" : ".exr";
+    const std::string map = (dir / (name + ext)).string();
     const std::string back = (dir / (std::string(c.name) + ".ply")).string();
     const auto r = test::run_cli("bake " + kFrog + " --dense " + dense + " --resolution 512 " + c.bake + " -o " + map);
     INFO(r.err);
@@ -158,7 +182,8 @@ TEST_CASE("bake: bad input gets one line naming the file", "[bake][cli]") {
       {"bake " + kFrog + " --dense " + truncated + " -o " + out, "cut.ply: vertex 0: the file ends early"},
       {"bake " + kFrog + " --dense " + huge + " -o " + out, "claims 99999999999 entries"},
       {"bake " + kFrog + " --dense " + plain_obj + " --method dual -o " + out, "--method dual needs"},
-      {"bake " + kFrog + " --dense " + plain_obj + " -o " + (dir / "out.png").string(), "write .exr or .tif"},
+      {"bake " + kFrog + " --dense " + plain_obj + " -o " + (dir / "out.jpg").string(),
+       "write maps as .exr, .tif or .png"},
       {"bake " + kFrog + " --dense " + plain_obj + " --resolution 0 -o " + out, "--resolution"},
       {"bake " + kFrog + " --dense " + plain_obj + " --max-distance nan -o " + out, "--max-distance"},
       {"bake " + kFrog + " --dense " + plain_obj + " --kind scalar --space object -o " + out, "has no space"},

@@ -64,8 +64,6 @@ int run_bake(const BakeCli& o) {
       throw UsageError(std::string(name) + ": " + float_text(x) + " is not a finite distance >= 0");
   for (const std::string* p : {&o.output, &o.normal_map, &o.ao})
     if (!p->empty() && !map_path_supported(*p)) throw UsageError(*p + ": write maps as .exr, .tif or .png");
-  if (!map_path_holds_floats(o.output))
-    throw UsageError("-o " + o.output + ": displacement needs float texels: write .exr or .tif");
   check_output_paths({{"-o", o.output}, {"--normal-map", o.normal_map}, {"--ao", o.ao}}, {o.cage, o.dense});
   b.normal_map = !o.normal_map.empty();
   b.ao = !o.ao.empty();
@@ -138,18 +136,18 @@ int run_bake(const BakeCli& o) {
       b.kind == BakeKind::vector ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
   // All maps or none: each is written to a temporary and renamed; a later failure removes the earlier.
   std::vector<std::string> written;
-  auto write = [&](const std::string& path, const std::vector<std::string>& channels,
-                   const std::vector<float>& texels) {
-    const std::string err = write_baked_map(path, w, h, channels, texels, about);
+  auto write = [&](const std::string& path, const std::vector<std::string>& channels, const std::vector<float>& texels,
+                   bool stored_range) {
+    const std::string err = write_baked_map(path, w, h, channels, texels, about, stored_range);
     if (!err.empty()) {
       for (const std::string& p : written) std::filesystem::remove(p);
       throw InputError(err);
     }
     written.push_back(path);
   };
-  write(o.output, names, maps.displacement);
-  if (b.normal_map) write(o.normal_map, {"R", "G", "B"}, maps.normal);
-  if (b.ao) write(o.ao, {"Y"}, maps.ao);
+  write(o.output, names, maps.displacement, true);
+  if (b.normal_map) write(o.normal_map, {"R", "G", "B"}, maps.normal, false);
+  if (b.ao) write(o.ao, {"Y"}, maps.ao, false);
   const auto done = std::chrono::steady_clock::now();
 
   auto seconds = [](auto a, auto z) { return std::chrono::duration<double>(z - a).count(); };
@@ -200,7 +198,9 @@ Runner add_bake_command(CLI::App& app) {
   cmd->add_option("--dense", o->dense,
                   "the dense mesh: PLY (tessera tessellate's carries the parameterisation), OBJ or glTF")
       ->required();
-  cmd->add_option("-o,--output", o->output, "the displacement map (.exr or .tif, float)")->required();
+  cmd->add_option("-o,--output", o->output,
+                  "the displacement map: .exr (float), or .png or .tif (16-bit, its range in the file)")
+      ->required();
   cmd->add_option("--scheme", o->scheme, "the base surface: acc, gregory, bspline or exact (default gregory)");
   cmd->add_option("--resolution", o->resolution, "texels: N (square) or WxH (default 1024)");
   cmd->add_option("--kind", o->kind, "vector (default) or scalar (along the normal)");
@@ -213,8 +213,9 @@ Runner add_bake_command(CLI::App& app) {
   cmd->add_option(
       "--prefer", o->prefer,
       "ray casting: nearest (default) hit either way, or outward (the hit ahead along the normal when there is one)");
-  cmd->add_option("--normal-map", o->normal_map, "also write a tangent-space normal map (.png 16-bit, .exr or .tif)");
-  cmd->add_option("--ao", o->ao, "also write ambient occlusion (.png 16-bit, .exr or .tif)");
+  cmd->add_option("--normal-map", o->normal_map,
+                  "also write a tangent-space normal map (.png or .tif 16-bit, or .exr)");
+  cmd->add_option("--ao", o->ao, "also write ambient occlusion (.png or .tif 16-bit, or .exr)");
   cmd->add_option("--ao-rays", o->ao_rays, "occlusion rays per texel (default 64)");
   cmd->add_option("--ao-distance", o->ao_distance, "how far an occluder counts (default 10% of the cage's diagonal)");
   cmd->add_option("--threads", o->threads, "worker threads (0 = all; the maps are the same bytes for any count)");

@@ -9,6 +9,7 @@
 
 #include "pipeline/atomic_file.h"
 #include "pipeline/image_metadata.h"
+#include "shaders_cpp/displacement/displacement_map.h"
 
 namespace tessera {
 namespace {
@@ -23,25 +24,35 @@ std::string extension(const std::string& path) {
 
 bool map_path_holds_floats(const std::string& path) {
   const std::string ext = extension(path);
-  return ext == ".exr" || ext == ".tif" || ext == ".tiff";
+  return ext == ".exr";
 }
 
-bool map_path_supported(const std::string& path) { return map_path_holds_floats(path) || extension(path) == ".png"; }
+bool map_path_supported(const std::string& path) {
+  const std::string ext = extension(path);
+  return ext == ".exr" || ext == ".png" || ext == ".tif" || ext == ".tiff";
+}
 
 std::string write_baked_map(const std::string& path, int width, int height, const std::vector<std::string>& channels,
                             std::span<const float> texels,
-                            const std::vector<std::pair<std::string, std::string>>& attributes) {
+                            const std::vector<std::pair<std::string, std::string>>& attributes, bool stored_range) {
   if (!map_path_supported(path)) return path + ": write maps as .exr, .tif or .png";
   const bool floats = map_path_holds_floats(path);
   const int n = int(channels.size());
   std::vector<std::uint16_t> quantized;
+  std::string description;
   if (!floats) {
+    float lo = 0.0f, scale = 1.0f;
+    if (stored_range && !texels.empty()) {
+      const auto [mn, mx] = std::minmax_element(texels.begin(), texels.end());
+      lo = *mn, scale = *mx > *mn ? *mx - *mn : 1.0f;
+      description = decode_description(scale, lo);
+    }
     quantized.resize(texels.size());
     for (std::size_t i = 0; i < texels.size(); ++i) {
-      const float x = texels[i];
+      const float x = stored_range ? (texels[i] - lo) / scale : texels[i];
       if (!(x >= 0.0f && x <= 1.0f))
-        return path + ": a 16-bit PNG holds values in [0, 1], and this map has " + std::to_string(x) +
-               ": write it as .exr or .tif (float)";
+        return path + ": a 16-bit file holds values in [0, 1], and this map has " + std::to_string(texels[i]) +
+               ": write it as .exr";
       quantized[i] = std::uint16_t(std::lround(double(x) * 65535.0));
     }
   }
@@ -53,6 +64,7 @@ std::string write_baked_map(const std::string& path, int width, int height, cons
     set_output_attributes(spec);
     if (floats) spec.attribute("compression", "zip");
     for (const auto& [key, value] : attributes) spec.attribute(key, value);
+    if (!description.empty()) spec.attribute("ImageDescription", description);
     bool ok = out->open(temp, spec);
     if (ok)
       ok = floats ? out->write_image(OIIO::TypeDesc::FLOAT, texels.data())

@@ -1,11 +1,14 @@
 #include "shaders_cpp/displacement/displacement_map.h"
 
+#include <charconv>
+
 #include "shaders_cpp/displacement/chart_padding.h"
 
 #include "pipeline/stderr_capture.h"
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -206,7 +209,15 @@ DisplacementImage DisplacementImage::read_encoded(const std::string& name, std::
 
 namespace {
 constexpr std::uint64_t kMaxDecodeRatio = 4096;
+constexpr std::string_view kDecodePrefix = "tessera decode: value = stored * ";
+constexpr std::string_view kDecodeMiddle = " + ";
 }  // namespace
+
+std::string decode_description(float scale, float bias) {
+  char a[32], b[32];
+  const auto ra = std::to_chars(a, a + sizeof a, scale), rb = std::to_chars(b, b + sizeof b, bias);
+  return std::string(kDecodePrefix) + std::string(a, ra.ptr) + std::string(kDecodeMiddle) + std::string(b, rb.ptr);
+}
 
 DisplacementImage DisplacementImageDecoder::decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path,
                                                    std::uintmax_t file_size,
@@ -246,6 +257,21 @@ DisplacementImage DisplacementImageDecoder::decode(std::unique_ptr<OIIO::ImageIn
   if (!in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, image.texels_.data()))
     fail(path, "cannot read pixels (" + one_line(in->geterror()) + ")");
   in->close();
+  const std::string description = s.get_string_attribute("ImageDescription");
+  if (description.starts_with(kDecodePrefix)) {
+    // A stored encoding (decode_description): parsed strictly, applied to every texel.
+    const std::string_view rest = std::string_view(description).substr(kDecodePrefix.size());
+    const std::size_t middle = rest.find(kDecodeMiddle);
+    float scale = 0, bias = 0;
+    const auto ok = [](std::string_view t, float& x) {
+      const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+      return r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(x);
+    };
+    if (middle == std::string_view::npos || !ok(rest.substr(0, middle), scale) ||
+        !ok(rest.substr(middle + kDecodeMiddle.size()), bias))
+      fail(path, "ImageDescription \"" + description.substr(0, 80) + "\" is not a valid stored encoding");
+    for (float& t : image.texels_) t = scale * t + bias;
+  }
   return image;
 }
 

@@ -17,6 +17,10 @@
 // - Errors throw DisplacementMapError whose message is one line starting with the file's path:
 //   missing or unreadable file, a channel the file does not have, the wrong number of channels, a
 //   size the texture cannot hold.
+// - Stored encodings: an image whose ImageDescription reads decode_description(scale, bias) holds its
+//   values as stored = (value - bias) / scale (how `tessera bake` writes displacement into 16-bit PNG
+//   and TIFF, whose texels read as [0, 1]); every channel is decoded back to scale * stored + bias at
+//   load, so the map means what was baked at --displacement-scale 1 and bias 0.
 #pragma once
 
 #include <stdexcept>
@@ -34,6 +38,9 @@ namespace tessera {
 struct DisplacementMapError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// The ImageDescription of a map stored as (value - bias) / scale; see the contract above.
+std::string decode_description(float scale, float bias);
 
 class DisplacementMap {
  public:
