@@ -1,51 +1,38 @@
-# Imports of Debian bookworm packages whose CMake configs are broken there.
-#
-# OpenImageIO 2.4 (libopenimageio-dev): its exported target lists /usr/include/opencv4 as an
-# include directory, which does not exist unless libopencv-dev is installed; import it by hand.
-# OpenSubdiv (libosd-dev): its CMake config is broken too (it references files the package does not
-# ship); import osdCPU (Far, Bfr, Sdc, Vtr) with find_library as tessera::osd.
-if(NOT TARGET tessera::oiio)
-  find_path(TESSERA_OIIO_INCLUDE_DIR OpenImageIO/imagebuf.h REQUIRED)
-  find_library(TESSERA_OIIO_LIBRARY OpenImageIO REQUIRED)
-  find_library(TESSERA_OIIO_UTIL_LIBRARY OpenImageIO_Util REQUIRED)
-  add_library(tessera::oiio INTERFACE IMPORTED)
-  target_include_directories(tessera::oiio INTERFACE ${TESSERA_OIIO_INCLUDE_DIR})
-  target_link_libraries(tessera::oiio INTERFACE ${TESSERA_OIIO_LIBRARY} ${TESSERA_OIIO_UTIL_LIBRARY})
-endif()
+# Imports of Debian bookworm packages as plain INTERFACE IMPORTED targets (tessera::<name>), found with
+# find_path and find_library, so that a consumer of the installed static libraries needs no package
+# config of theirs:
+# - OpenImageIO 2.4 (libopenimageio-dev): its exported target lists /usr/include/opencv4 as an include
+#   directory, which does not exist unless libopencv-dev is installed.
+# - OpenSubdiv (libosd-dev): its CMake config is broken too (it references files the package does not
+#   ship); osdCPU holds Far, Bfr, Sdc and Vtr.
+# - tinygltf (libtinygltf-dev), Embree 3 (libembree-dev), meshoptimizer (libmeshoptimizer-dev): a header
+#   and a library each.
 
-if(NOT TARGET tessera::osd)
-  find_path(TESSERA_OSD_INCLUDE_DIR opensubdiv/bfr/surface.h REQUIRED)
-  find_library(TESSERA_OSD_CPU_LIBRARY osdCPU REQUIRED)
-  add_library(tessera::osd INTERFACE IMPORTED)
-  target_include_directories(tessera::osd SYSTEM INTERFACE ${TESSERA_OSD_INCLUDE_DIR})
-  target_link_libraries(tessera::osd INTERFACE ${TESSERA_OSD_CPU_LIBRARY})
-endif()
+# tessera_import(NAME HEADER LIBRARIES... [SYSTEM]): tessera::NAME from the directory holding HEADER and
+# the LIBRARIES; SYSTEM marks the headers as system headers (no warnings from them).
+function(tessera_import name header)
+  if(TARGET tessera::${name})
+    return()
+  endif()
+  cmake_parse_arguments(PARSE_ARGV 2 ARG "SYSTEM" "" "LIBRARIES")
+  string(TOUPPER ${name} upper)
+  find_path(TESSERA_${upper}_INCLUDE_DIR ${header} REQUIRED)
+  set(libraries)
+  foreach(library IN LISTS ARG_LIBRARIES)
+    find_library(TESSERA_${upper}_${library}_LIBRARY ${library} REQUIRED)
+    list(APPEND libraries ${TESSERA_${upper}_${library}_LIBRARY})
+  endforeach()
+  add_library(tessera::${name} INTERFACE IMPORTED)
+  if(ARG_SYSTEM)
+    target_include_directories(tessera::${name} SYSTEM INTERFACE ${TESSERA_${upper}_INCLUDE_DIR})
+  else()
+    target_include_directories(tessera::${name} INTERFACE ${TESSERA_${upper}_INCLUDE_DIR})
+  endif()
+  target_link_libraries(tessera::${name} INTERFACE ${libraries})
+endfunction()
 
-# tinygltf (libtinygltf-dev): a plain header and shared library; imported the same way so a consumer of
-# the installed static libraries needs no TinyGLTF config of its own.
-if(NOT TARGET tessera::tinygltf)
-  find_path(TESSERA_TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
-  find_library(TESSERA_TINYGLTF_LIBRARY tinygltf REQUIRED)
-  add_library(tessera::tinygltf INTERFACE IMPORTED)
-  target_include_directories(tessera::tinygltf SYSTEM INTERFACE ${TESSERA_TINYGLTF_INCLUDE_DIR})
-  target_link_libraries(tessera::tinygltf INTERFACE ${TESSERA_TINYGLTF_LIBRARY})
-endif()
-
-# Embree 3 (libembree-dev): imported the same way, so the installed static tessera_bake needs no Embree
-# config of its own.
-if(NOT TARGET tessera::embree)
-  find_path(TESSERA_EMBREE_INCLUDE_DIR embree3/rtcore.h REQUIRED)
-  find_library(TESSERA_EMBREE_LIBRARY embree3 REQUIRED)
-  add_library(tessera::embree INTERFACE IMPORTED)
-  target_include_directories(tessera::embree SYSTEM INTERFACE ${TESSERA_EMBREE_INCLUDE_DIR})
-  target_link_libraries(tessera::embree INTERFACE ${TESSERA_EMBREE_LIBRARY})
-endif()
-
-# meshoptimizer (libmeshoptimizer-dev): imported the same way, for the installed static tessera_optimize.
-if(NOT TARGET tessera::meshoptimizer)
-  find_path(TESSERA_MESHOPT_INCLUDE_DIR meshoptimizer.h REQUIRED)
-  find_library(TESSERA_MESHOPT_LIBRARY meshoptimizer REQUIRED)
-  add_library(tessera::meshoptimizer INTERFACE IMPORTED)
-  target_include_directories(tessera::meshoptimizer SYSTEM INTERFACE ${TESSERA_MESHOPT_INCLUDE_DIR})
-  target_link_libraries(tessera::meshoptimizer INTERFACE ${TESSERA_MESHOPT_LIBRARY})
-endif()
+tessera_import(oiio OpenImageIO/imagebuf.h LIBRARIES OpenImageIO OpenImageIO_Util)
+tessera_import(osd opensubdiv/bfr/surface.h LIBRARIES osdCPU SYSTEM)
+tessera_import(tinygltf tiny_gltf.h LIBRARIES tinygltf SYSTEM)
+tessera_import(embree embree3/rtcore.h LIBRARIES embree3 SYSTEM)
+tessera_import(meshoptimizer meshoptimizer.h LIBRARIES meshoptimizer SYSTEM)

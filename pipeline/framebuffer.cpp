@@ -151,23 +151,29 @@ std::string Framebuffer::write_depth(const std::string& path) const {
   return write_image_atomically(path, width_, height_, 1, false, preview.data());
 }
 
-std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
+std::string write_image_atomically(const std::string& path, OIIO::ImageSpec spec, OIIO::TypeDesc data_type,
                                    const void* pixels) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) return path + ": no image writer for this extension (" + OIIO::geterror() + ")";
+  set_output_attributes(spec);
   return write_atomically(path, [&](const std::string& temp) -> std::string {
-    OIIO::ImageSpec spec(width, height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-    if (is_float && !out->supports("channelformats") && std::filesystem::path(path).extension() == ".png")
-      spec.set_format(OIIO::TypeDesc::UINT8);
-    set_output_attributes(spec);
     bool ok = out->open(temp, spec);
-    if (ok) ok = out->write_image(is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, pixels);
+    if (ok) ok = out->write_image(data_type, pixels);
     if (ok) ok = out->close();
     if (ok) return {};
     std::string err = out->geterror();
     std::replace(err.begin(), err.end(), '\n', ' ');
     return path + ": cannot write image: " + err;
   });
+}
+
+std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
+                                   const void* pixels) {
+  const OIIO::TypeDesc type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  OIIO::ImageSpec spec(width, height, channels, type);
+  // A float image to a format without float (PNG) is converted by the writer.
+  if (is_float && std::filesystem::path(path).extension() == ".png") spec.set_format(OIIO::TypeDesc::UINT8);
+  return write_image_atomically(path, spec, type, pixels);
 }
 
 }  // namespace tessera

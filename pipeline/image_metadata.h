@@ -24,4 +24,10 @@ inline void set_output_attributes(OIIO::ImageSpec& spec) {
 
 inline void set_output_attributes(OIIO::ImageBuf& image) { set_output_attributes(image.specmod()); }
 
+// Writes `pixels` (`data_type` values, interleaved, row 0 at the top; OpenImageIO converts them to
+// spec.format) as `spec` describes, atomically (temporary + rename), with set_output_attributes
+// applied. Returns an empty string on success, else a one-line error naming the file.
+std::string write_image_atomically(const std::string& path, OIIO::ImageSpec spec, OIIO::TypeDesc data_type,
+                                   const void* pixels);
+
 }  // namespace tessera

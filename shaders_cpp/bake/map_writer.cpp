@@ -7,7 +7,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "pipeline/atomic_file.h"
 #include "pipeline/image_metadata.h"
 #include "shaders_cpp/displacement/displacement_map.h"
 
@@ -56,25 +55,13 @@ std::string write_baked_map(const std::string& path, int width, int height, cons
       quantized[i] = std::uint16_t(std::lround(double(x) * 65535.0));
     }
   }
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) return path + ": no image writer for this extension";
-  return write_atomically(path, [&](const std::string& temp) -> std::string {
-    OIIO::ImageSpec spec(width, height, n, floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT16);
-    spec.channelnames = channels;
-    set_output_attributes(spec);
-    if (floats) spec.attribute("compression", "zip");
-    for (const auto& [key, value] : attributes) spec.attribute(key, value);
-    if (!description.empty()) spec.attribute("ImageDescription", description);
-    bool ok = out->open(temp, spec);
-    if (ok)
-      ok = floats ? out->write_image(OIIO::TypeDesc::FLOAT, texels.data())
-                  : out->write_image(OIIO::TypeDesc::UINT16, quantized.data());
-    if (ok) ok = out->close();
-    if (ok) return {};
-    std::string err = out->geterror();
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    return path + ": cannot write the map: " + err;
-  });
+  OIIO::ImageSpec spec(width, height, n, floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT16);
+  spec.channelnames = channels;
+  if (floats) spec.attribute("compression", "zip");
+  for (const auto& [key, value] : attributes) spec.attribute(key, value);
+  if (!description.empty()) spec.attribute("ImageDescription", description);
+  return floats ? write_image_atomically(path, spec, OIIO::TypeDesc::FLOAT, texels.data())
+                : write_image_atomically(path, spec, OIIO::TypeDesc::UINT16, quantized.data());
 }
 
 }  // namespace tessera
