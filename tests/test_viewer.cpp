@@ -273,6 +273,13 @@ TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad re
   one_line_error("/../../etc/passwd", 404, "");
   // The server still draws after all that.
   CHECK(get("/api/frame?factor=2").status == 200);
+  // A client's older frame is superseded; the table of clients is capped (256), so once 256 others
+  // have asked, the server has forgotten this one and draws its old frame again.
+  const std::string tiny = "/api/frame?factor=1&resolution=16x16";
+  CHECK(get(tiny + "&client=old&seq=10").status == 200);
+  CHECK(get(tiny + "&client=old&seq=5").status == 409);
+  for (int i = 0; i < 256; ++i) REQUIRE(get(tiny + "&client=c" + std::to_string(i) + "&seq=1").status == 200);
+  CHECK(get(tiny + "&client=old&seq=5").status == 200);
   server.stop();
   serving.join();
 }

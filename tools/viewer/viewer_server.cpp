@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -44,7 +45,29 @@ struct ViewerServer::Impl {
   ViewerSession& session;
   httplib::Server http;
   std::mutex seq_mutex;
-  std::map<std::string, long long> latest_seq;  // per client: the newest frame asked for
+  // Per client: the newest frame asked for, and when the client last asked (a tick). At most
+  // kMaxClients are kept, the longest silent dropped first: client IDs come from requests, and a map
+  // that grew with each new ID would let any caller grow the server's memory without bound.
+  static constexpr std::size_t kMaxClients = 256;
+  struct ClientSeq {
+    long long seq = 0;
+    std::uint64_t tick = 0;
+  };
+  std::map<std::string, ClientSeq> latest_seq;
+  std::uint64_t ticks = 0;
+
+  // Records `seq` for `client` (under seq_mutex).
+  void note_seq(const std::string& client, long long seq) {
+    auto it = latest_seq.find(client);
+    if (it == latest_seq.end()) {
+      if (latest_seq.size() >= kMaxClients)
+        latest_seq.erase(std::min_element(latest_seq.begin(), latest_seq.end(),
+                                          [](const auto& a, const auto& b) { return a.second.tick < b.second.tick; }));
+      it = latest_seq.emplace(client, ClientSeq{seq, 0}).first;
+    }
+    it->second.seq = std::max(it->second.seq, seq);
+    it->second.tick = ++ticks;
+  }
 
   explicit Impl(ViewerSession& s) : session(s) { routes(); }
 
@@ -129,12 +152,12 @@ struct ViewerServer::Impl {
       const long long seq = integer_param(req, "seq");
       {
         std::lock_guard lock(seq_mutex);
-        long long& latest = latest_seq[client];
-        latest = std::max(latest, seq);
+        note_seq(client, seq);
       }
       wanted = [this, client, seq] {
         std::lock_guard lock(seq_mutex);
-        return latest_seq[client] <= seq;
+        const auto it = latest_seq.find(client);  // a dropped client's request is still wanted
+        return it == latest_seq.end() || it->second.seq <= seq;
       };
     }
     const std::optional<ViewerFrame> f = session.frame(s, format, wanted);
