@@ -22,8 +22,6 @@ struct BenchViewOptions {
   bool json = false;
 };
 
-std::string vec_text(glm::vec3 v) { return float_text(v.x) + "," + float_text(v.y) + "," + float_text(v.z); }
-
 int session_threads(int threads) {
   return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -41,16 +39,11 @@ int run_bench_view(BenchViewOptions o) {
   const FrameFormat format = o.format == "png" ? FrameFormat::png : FrameFormat::jpeg;
   ViewerSession session(o.s);
   // The turntable around the framing camera (render --orbit's views).
-  const std::unique_ptr<PreparedScene> framing = prepare_scene(o.s);
-  const ViewSetup base = framing->view;
+  const std::vector<RenderSettings> views = session.turntable(o.s, o.frames);
   session.frame(o.s, format);  // warm-up: the kept scene and the pattern cache
   std::vector<double> total, draw;
   std::uint64_t triangles = 0, bytes = 0;
-  for (int i = 0; i < o.frames; ++i) {
-    const ViewSetup v = orbit_view(o.s.camera, framing->model.cage, base, i, o.frames);
-    RenderSettings s = o.s;
-    s.camera.eye = vec_text(v.camera.eye);
-    s.camera.target = vec_text(v.camera.target);
+  for (const RenderSettings& s : views) {
     const auto start = std::chrono::steady_clock::now();
     const std::optional<ViewerFrame> f = session.frame(s, format);
     total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -63,6 +63,25 @@ PreparedScene& ViewerSession::scene_for(const RenderSettings& s) {
   return *scenes_.front();
 }
 
+namespace {
+// A vector as the CLI's x,y,z option text (shortest round-trip floats).
+std::string vec_text(glm::vec3 v) { return float_text(v.x) + "," + float_text(v.y) + "," + float_text(v.z); }
+}  // namespace
+
+std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, int frames) {
+  std::lock_guard lock(mutex_);
+  PreparedScene& p = scene_for(s);
+  std::vector<RenderSettings> out;
+  for (int i = 0; i < frames; ++i) {
+    const ViewSetup v = orbit_view(s.camera, p.model.cage, p.view, i, frames);
+    RenderSettings t = s;
+    t.camera.eye = vec_text(v.camera.eye);
+    t.camera.target = vec_text(v.camera.target);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
 Json ViewerSession::info() {
   std::lock_guard lock(mutex_);
   PreparedScene& p = scene_for(base_);

@@ -61,6 +61,9 @@ class ViewerSession {
   // (render_stats.h) with the combination's text, or {"patch": null} over the background. The id
   // buffer is kept: further picks with the same settings read it without drawing.
   Json pick(const RenderSettings& s, int x, int y);
+  // The settings of `frames` views turned about the up axis around `s`'s camera (render --orbit's
+  // turntable), from the kept scene: no second load of the asset.
+  std::vector<RenderSettings> turntable(const RenderSettings& s, int frames);
   // The reproducing command (as words and as one shell line) and the scene file of `s`.
   Json command(const RenderSettings& s) const;
 
