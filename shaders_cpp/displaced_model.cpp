@@ -39,6 +39,30 @@ float displacement_bound(const Texture2D& map, DisplacementKind kind, float scal
   return std::nextafter(float(largest), INFINITY);
 }
 
+std::vector<PatchTexcoords> displacement_texcoords(const SubdModel& model, const std::string& map,
+                                                   UvOwnership ownership, bool flip_v) {
+  const Cage& cage = model.cage;
+  // Owner frames are stencils over the 1-ring of the shared edge or vertex (displacement_frames.h);
+  // flat and pn patches carry only their face, so a frame owned by a neighbour is out of their reach.
+  const Scheme scheme = model.patches.scheme;
+  if (scheme == Scheme::flat || scheme == Scheme::pn)
+    throw CageError(cage.name + ": --scheme " + to_string(scheme) +
+                    " cannot be displaced (its patches carry no 1-ring for the shared normals); use acc, gregory, "
+                    "bspline or exact");
+  // Texture coordinates first: it checks that the cage has UVs and only quads (CageError).
+  // glTF's texture v already points down the image; OBJ's is flipped.
+  std::vector<PatchTexcoords> texcoords =
+      build_patch_texcoords(cage, *model.topology, model.patches.quads, ownership, flip_v && !cage.uv_v_down);
+  for (std::size_t i = 0; i < cage.uvs.size(); ++i) {
+    const glm::vec2 uv = cage.uvs[i];
+    if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
+      throw DisplacementMapError(map + ": the cage " + cage.name + " has vt " + std::to_string(i + 1) + " (" +
+                                 float_text(uv.x) + ", " + float_text(uv.y) +
+                                 ") outside the map's [0, 1] square: this map does not fit the cage's UVs");
+  }
+  return texcoords;
+}
+
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& o) {
   if (!std::isfinite(o.scale) || !std::isfinite(o.bias))
     throw DisplacementMapError(o.map + ": displacement scale and bias must be finite");
@@ -70,25 +94,7 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
   d.flip_v = o.flip_v;
 
   const Cage& cage = model.cage;
-  // Owner frames are stencils over the 1-ring of the shared edge or vertex (displacement_frames.h);
-  // flat and pn patches carry only their face, so a frame owned by a neighbour is out of their reach.
-  const Scheme scheme = model.patches.scheme;
-  if (scheme == Scheme::flat || scheme == Scheme::pn)
-    throw CageError(cage.name + ": --scheme " + to_string(scheme) +
-                    " cannot be displaced (its patches carry no 1-ring for the shared normals); use acc, gregory, "
-                    "bspline or exact");
-  // Texture coordinates first: it checks that the cage has UVs and only quads (CageError).
-  // glTF's texture v already points down the image; OBJ's is flipped.
-  d.texcoords =
-      build_patch_texcoords(cage, *model.topology, model.patches.quads, o.ownership, o.flip_v && !cage.uv_v_down);
-  for (std::size_t i = 0; i < cage.uvs.size(); ++i) {
-    const glm::vec2 uv = cage.uvs[i];
-    if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
-      throw DisplacementMapError(o.map + ": the cage " + cage.name + " has vt " + std::to_string(i + 1) + " (" +
-                                 float_text(uv.x) + ", " + float_text(uv.y) +
-                                 ") outside the map's [0, 1] square: this map does not fit the cage's UVs");
-  }
-
+  d.texcoords = displacement_texcoords(model, o.map, o.ownership, o.flip_v);
   if (o.normal_map == "auto") {
     const bool has_rgb = image.channel_names().size() >= 4 &&
                          std::none_of(d.map->selected().begin(), d.map->selected().end(), is_rgb_name);

@@ -78,6 +78,11 @@ struct Displacement {
 };
 
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& options);
+// The per-patch watertight texture coordinates of a model that a map named `map` will displace (and
+// `tessera bake` writes): CageError for a scheme without 1-rings (flat, pn), a cage without UVs or with
+// faces that are not quads; DisplacementMapError naming `map` for a UV outside [0, 1].
+std::vector<PatchTexcoords> displacement_texcoords(const SubdModel& model, const std::string& map,
+                                                   UvOwnership ownership = UvOwnership::owned, bool flip_v = true);
 float displacement_bound(const Texture2D& map, DisplacementKind kind, float scale, float bias);
 
 // The displaced hull and domain shaders of the model's (quad) patch group, handed to

@@ -73,19 +73,11 @@ int run_bake(const BakeCli& o) {
   const SubdModel model = load_model(o.cage, scheme, o.asset);
   std::vector<PatchTexcoords> texcoords;
   try {
-    if (scheme == Scheme::flat || scheme == Scheme::pn)
-      throw CageError(o.cage + ": --scheme " + to_string(scheme) +
-                      " cannot carry displacement (no 1-ring for shared normals); use acc, gregory, bspline or exact");
-    texcoords = build_patch_texcoords(model.cage, *model.topology, model.patches.quads, UvOwnership::owned,
-                                      !model.cage.uv_v_down);
+    texcoords = displacement_texcoords(model, o.output);
   } catch (const CageError& e) {
     throw InputError(e.what());
-  }
-  for (std::size_t i = 0; i < model.cage.uvs.size(); ++i) {
-    const glm::vec2 uv = model.cage.uvs[i];
-    if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
-      throw InputError(o.cage + ": vt " + std::to_string(i + 1) + " (" + float_text(uv.x) + ", " + float_text(uv.y) +
-                       ") lies outside the map's [0, 1] square");
+  } catch (const DisplacementMapError& e) {
+    throw InputError(e.what());
   }
   const double diagonal = cage_diagonal(model.cage);
   b.max_distance = o.max_distance > 0.0f ? o.max_distance : float(0.02 * diagonal);
@@ -102,10 +94,11 @@ int run_bake(const BakeCli& o) {
              : o.method == "raycast" ? BakeMethod::raycast
              : dense.parameterised() ? BakeMethod::dual
                                      : BakeMethod::raycast;
-  if (b.method == BakeMethod::dual && !dense.parameterised())
-    throw InputError(o.dense +
-                     ": --method dual needs the cage's parameterisation on each vertex (face, u, v: tessera "
-                     "tessellate's PLY); use --method raycast");
+  try {
+    check_bake_inputs(dense, b);
+  } catch (const BakeError& e) {
+    throw InputError(e.what());
+  }
   log_info("bake: " + std::to_string(dense.triangle_count()) + " dense triangles from " + o.dense + ", " +
            (b.method == BakeMethod::dual ? "dual parameterisation" : "ray casting") + ", " + std::to_string(w) + "x" +
            std::to_string(h) + " texels");

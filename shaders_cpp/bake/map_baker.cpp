@@ -74,12 +74,16 @@ float ambient_occlusion(const RayCaster& rays, const DensePoint& p, int count, f
 
 }  // namespace
 
-BakedMaps bake_maps(const SubdModel& model, std::span<const PatchTexcoords> texcoords, const DenseMesh& dense,
-                    const BakeOptions& o, const std::function<void(double)>& progress) {
+void check_bake_inputs(const DenseMesh& dense, const BakeOptions& o) {
   if (o.method == BakeMethod::dual && !dense.parameterised())
     throw BakeError(dense.name +
                     ": --method dual needs the cage's parameterisation on each vertex (face, u, v: tessera "
                     "tessellate's PLY); use --method raycast");
+}
+
+BakedMaps bake_maps(const SubdModel& model, std::span<const PatchTexcoords> texcoords, const DenseMesh& dense,
+                    const BakeOptions& o, const std::function<void(double)>& progress) {
+  check_bake_inputs(dense, o);
   const int w = o.width, h = o.height;
   const BaseSurface base(model, texcoords);
   const std::vector<TexelSite> sites = texel_sites(texcoords, w, h);

@@ -64,6 +64,10 @@ struct BakedMaps {
   double max_displacement = 0.0;     // the largest |d| baked (a vector's length)
 };
 
+// Throws BakeError when `dense` cannot be baked by `options` (dual parameterisation without the
+// parameterisation on the mesh); bake_maps calls it first.
+void check_bake_inputs(const DenseMesh& dense, const BakeOptions& options);
+
 BakedMaps bake_maps(const SubdModel& model, std::span<const PatchTexcoords> texcoords, const DenseMesh& dense,
                     const BakeOptions& options, const std::function<void(double)>& progress = {});
 
