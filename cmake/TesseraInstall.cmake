@@ -1,7 +1,7 @@
 # `cmake --install`: the tessera binary, the libraries with their public headers (include/tessera/),
 # and a CMake package whose Tessera:: targets another project finds with find_package(Tessera).
 include(CMakePackageConfigHelpers)
-set(_tessera_libraries tessera_tessellator tessera_pipeline tessera_cage tessera_animation tessera_gltf tessera_subdiv tessera_displacement
+set(_tessera_libraries tessera_tessellator tessera_pipeline tessera_image_io tessera_cage tessera_animation tessera_gltf tessera_subdiv tessera_displacement
   tessera_optimize tessera_lod tessera_shaders tessera_debug tessera_bake tessera_verify tessera_measure)
 # tessera_options carries no usage requirements a consumer sees (its flags are PRIVATE to each
 # library); it is exported only because static libraries name their private link dependencies.

@@ -7,10 +7,6 @@
 #include <memory>
 #include <system_error>
 
-#include <OpenImageIO/imageio.h>
-
-#include "pipeline/atomic_file.h"
-#include "pipeline/image_metadata.h"
 #include "pipeline/sample_pattern.h"
 
 namespace tessera {
@@ -133,47 +129,6 @@ glm::vec4 Framebuffer::color(int x, int y) const {
   float px[4];
   std::memcpy(px, &color_[i * 16], 16);
   return {px[0], px[1], px[2], px[3]};
-}
-
-std::string Framebuffer::write_color(const std::string& path) const {
-  if (samples_ > 1) return resolve().write_color(path);
-  return write_image_atomically(path, width_, height_, 4, format_ == ColorFormat::rgba32_float, color_.data());
-}
-
-std::string Framebuffer::write_depth(const std::string& path) const {
-  if (samples_ > 1) return resolve().write_depth(path);
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".exr" || ext == ".EXR" || ext == ".tif" || ext == ".tiff")
-    return write_image_atomically(path, width_, height_, 1, true, depth_.data());
-  // 8-bit formats would lose almost all depth precision; write depth scaled to 0..255 only as a preview.
-  std::vector<std::uint8_t> preview(depth_.size());
-  for (std::size_t i = 0; i < depth_.size(); ++i) preview[i] = float_to_unorm8(depth_[i]);
-  return write_image_atomically(path, width_, height_, 1, false, preview.data());
-}
-
-std::string write_image_atomically(const std::string& path, OIIO::ImageSpec spec, OIIO::TypeDesc data_type,
-                                   const void* pixels) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) return path + ": no image writer for this extension (" + OIIO::geterror() + ")";
-  set_output_attributes(spec);
-  return write_atomically(path, [&](const std::string& temp) -> std::string {
-    bool ok = out->open(temp, spec);
-    if (ok) ok = out->write_image(data_type, pixels);
-    if (ok) ok = out->close();
-    if (ok) return {};
-    std::string err = out->geterror();
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    return path + ": cannot write image: " + err;
-  });
-}
-
-std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
-                                   const void* pixels) {
-  const OIIO::TypeDesc type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-  OIIO::ImageSpec spec(width, height, channels, type);
-  // A float image to a format without float (PNG) is converted by the writer.
-  if (is_float && std::filesystem::path(path).extension() == ".png") spec.set_format(OIIO::TypeDesc::UINT8);
-  return write_image_atomically(path, spec, type, pixels);
 }
 
 }  // namespace tessera

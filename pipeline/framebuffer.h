@@ -5,9 +5,8 @@
 // at plane s), so the rasterizer's quad forms address a sample's 2x2 pixels as they address a pixel
 // quad of a single-sampled target. resolve() averages the samples into a single-sampled target.
 //
-// Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target);
-// writes to an image file go through OpenImageIO into a temporary beside the target, renamed over it
-// only when complete, so a failed write never leaves a half-written file.
+// Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target). A
+// target is memory only: image files are written by shaders_cpp/image_io/image_file.h.
 #pragma once
 
 #include <algorithm>
@@ -169,13 +168,6 @@ class Framebuffer {
   const std::vector<float>& depth_values() const { return depth_; }
   std::size_t bytes() const { return color_.size() + depth_.size() * sizeof(float); }
 
-  // Writes the colour buffer (resolved, when multisampled): PNG (8-bit), EXR (half/float), or anything
-  // else OpenImageIO knows by extension. Returns an empty string on success, else a one-line error
-  // naming the file.
-  std::string write_color(const std::string& path) const;
-  // Writes the depth buffer as a one-channel float EXR (or 16-bit PNG, depth scaled to 0..65535).
-  std::string write_depth(const std::string& path) const;
-
  private:
   Framebuffer(int w, int h, ColorFormat f, int samples);
   std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
@@ -225,11 +217,5 @@ class Framebuffer {
   std::vector<float> depth_;
   int samples_ = 1;
 };
-
-// Writes an image through OpenImageIO atomically (temporary + rename). `pixels` are `channels`
-// interleaved values per pixel, row 0 at the top; `is_float` selects float32 data, else uint8.
-// Returns an empty string on success, else a one-line error naming the file.
-std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
-                                   const void* pixels);
 
 }  // namespace tessera

@@ -14,10 +14,10 @@
 #include "shaders_cpp/animation/animation_sampler.h"
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/gltf/gltf_cage.h"
-#include "tools/check_report.h"
-#include "tools/check_suite.h"
-#include "tools/cli_common.h"
-#include "tools/scene_render.h"
+#include "tools/scene/check_report.h"
+#include "tools/scene/check_suite.h"
+#include "tools/scene/common.h"
+#include "tools/scene/scene_render.h"
 #include "tools/verify/image_diff.h"
 
 namespace py = pybind11;
@@ -126,7 +126,7 @@ PYBIND11_MODULE(_tessera, m) {
         py::gil_scoped_release unlocked;
         std::unique_ptr<PreparedScene> prepared;
         const SceneImage image = render_scene_file(scene, threads, prepared);
-        write_scene_image(image, output);
+        write_scene_image(image, {output});
       },
       py::arg("scene"), py::arg("output"), py::arg("threads") = 0,
       "Renders a scene file to an image file, as `tessera render --scene SCENE -o OUTPUT` does.");

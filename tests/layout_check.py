@@ -6,7 +6,10 @@
 2. a library's own headers are its own: a header not listed in its folder's
    tessera_public_headers(...) call is included from that folder only (tests excepted: they test
    internals), and
-3. no Catch test case's name starts with '-' (ctest would pass it to the test binary as an option).
+3. no Catch test case's name starts with '-' (ctest would pass it to the test binary as an option),
+4. the viewer and the Python module use the scene library (tools/scene), never the command line
+   (tools/cli), and
+5. no source file sits loose at the top of shaders_cpp/ or tools/: every module is in a room.
 
 Usage: layout_check.py SOURCE_DIR. Prints each violation as FILE:LINE: message; exit 1 if any.
 """
@@ -15,33 +18,35 @@ import re
 import sys
 
 # folder -> folders whose headers it may include (itself always)
+SHADERS = ["tessellator", "pipeline", "shaders_cpp/image_io", "shaders_cpp/cage", "shaders_cpp/animation",
+           "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod"]
+BELOW_TOOLS = SHADERS + ["shaders_cpp/optimize", "shaders_cpp/render", "shaders_cpp/debug", "shaders_cpp/bake",
+                         "tools/verify", "tools/measure"]
 ALLOWED = {
     "tessellator": [],
     "pipeline": ["tessellator"],
+    "shaders_cpp/image_io": ["tessellator", "pipeline"],
     "shaders_cpp/cage": [],
     "shaders_cpp/animation": [],
     "shaders_cpp/gltf": ["shaders_cpp/cage", "shaders_cpp/animation"],
     "shaders_cpp/subdiv": ["tessellator", "shaders_cpp/cage"],
-    "shaders_cpp/displacement": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
+    "shaders_cpp/displacement": ["tessellator", "pipeline", "shaders_cpp/image_io", "shaders_cpp/cage",
+                                 "shaders_cpp/subdiv"],
     "shaders_cpp/optimize": ["shaders_cpp/cage"],
     "shaders_cpp/lod": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/subdiv"],
-    "shaders_cpp": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
-                    "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod"],
-    "shaders_cpp/debug": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
-                          "shaders_cpp/subdiv",
-                          "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp"],
-    "shaders_cpp/bake": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
-                         "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp"],
+    "shaders_cpp/render": SHADERS,
+    "shaders_cpp/debug": SHADERS + ["shaders_cpp/render"],
+    "shaders_cpp/bake": SHADERS + ["shaders_cpp/render"],
     "tools/verify": ["tessellator"],
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
-    "tools": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement",
-              "shaders_cpp/lod", "shaders_cpp/optimize", "shaders_cpp", "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure"],
-    "tools/viewer": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf",
-                     "shaders_cpp/subdiv", "shaders_cpp/displacement", "shaders_cpp/lod", "shaders_cpp/optimize", "shaders_cpp",
-                     "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure", "tools"],
-    "python": ["tessellator", "pipeline", "shaders_cpp/cage", "shaders_cpp/animation", "shaders_cpp/gltf", "shaders_cpp/subdiv", "shaders_cpp/displacement",
-               "shaders_cpp/lod", "shaders_cpp/optimize", "shaders_cpp", "shaders_cpp/debug", "shaders_cpp/bake", "tools/verify", "tools/measure", "tools"],
+    # The scene library, and the viewer and the Python module over it: never the command line.
+    "tools/scene": BELOW_TOOLS,
+    "tools/viewer": BELOW_TOOLS + ["tools/scene"],
+    "python": BELOW_TOOLS + ["tools/scene"],
+    "tools/cli": BELOW_TOOLS + ["tools/scene", "tools/viewer"],
 }
+# Folders that hold only subfolders (and scripts): a source file at their top is a loose module.
+ROOMS_ONLY = ["shaders_cpp", "tools"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 PUBLIC = re.compile(r"tessera_public_headers\(\s*\S+\s+([^)]*)\)", re.S)
 
@@ -106,6 +111,10 @@ def main():
                     errors.append(f"tests/{name}: the test case \"{m.group(1)}\" starts with '-' (ctest reads it as an option)")
                 if ";" in m.group(1):
                     errors.append(f"tests/{name}: the test case \"{m.group(1)}\" has a ';' (ctest cuts the name there)")
+    for folder in ROOMS_ONLY:
+        for name in sorted(os.listdir(os.path.join(root, folder))):
+            if name.endswith((".h", ".cpp")):
+                errors.append(f"{folder}/{name}: a module loose at the top of {folder}/ (give it a folder)")
     for e in errors:
         print(e)
     print(f"layout_check: {len(errors)} violation(s)", file=sys.stderr)

@@ -9,10 +9,11 @@
 
 #include "cli_runner.h"
 
+#include "shaders_cpp/cage/bounding_box.h"
 #include "shaders_cpp/debug/debug_render.h"
-#include "shaders_cpp/displaced_render.h"
 #include "shaders_cpp/lod/back_patch_cull.h"
-#include "shaders_cpp/subd_render.h"
+#include "shaders_cpp/render/displaced_render.h"
+#include "shaders_cpp/render/subd_render.h"
 #include "tessellator/pattern_shape.h"
 #include "test_data.h"
 
@@ -24,10 +25,9 @@ const std::string kFrogMap = test::data("sdk-cages/monsterfrog.dds");
 
 // Cameras around a cage: an orbit at two distances, a grazing one and one inside it.
 std::vector<SubdCamera> cameras(const Cage& cage, int w, int h) {
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : cage.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const glm::vec3 centre = 0.5f * (lo + hi);
-  const float radius = 0.5f * glm::length(hi - lo);
+  const Box3 box = bounding_box(cage.positions);
+  const glm::vec3 centre = box.centre();
+  const float radius = 0.5f * glm::length(box.hi - box.lo);
   std::vector<SubdCamera> out;
   for (int k = 0; k < 4; ++k) {
     const float a = 0.4f + 1.57f * float(k);

@@ -1,4 +1,4 @@
-// `tessera check` (tools/check_suite.h, check_report.h): Tessera's own view goldens pass; a changed scene
+// `tessera check` (tools/scene/check_suite.h, check_report.h): Tessera's own view goldens pass; a changed scene
 // fails with a diff picture, a JUnit failure and the golden untouched; --update (or
 // TESSERA_UPDATE_GOLDEN=1) rewrites only failed and new goldens and says which; shards merge into the
 // single run's report; bad suites get one line.

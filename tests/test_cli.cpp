@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "test_data.h"
-#include "tools/cli_common.h"
 #include "cli_runner.h"
 #include "tessellator/tessellator.h"
+#include "test_data.h"
+#include "tools/scene/common.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;

@@ -10,10 +10,10 @@
 #include <fstream>
 #include <map>
 
-#include "test_data.h"
 #include "cli_runner.h"
-#include "shaders_cpp/displaced_model.h"
-#include "shaders_cpp/displaced_render.h"
+#include "shaders_cpp/render/displaced_model.h"
+#include "shaders_cpp/render/displaced_render.h"
+#include "test_data.h"
 #include "tools/verify/weld_check.h"
 #include "weld_support.h"
 

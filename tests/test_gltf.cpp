@@ -14,6 +14,7 @@
 
 #include "cli_runner.h"
 #include "shaders_cpp/animation/animation_sampler.h"
+#include "shaders_cpp/cage/bounding_box.h"
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/gltf/gltf_cage.h"
@@ -156,9 +157,8 @@ std::vector<glm::dvec3> skinned_frog_closed_form(const CageRig& rig, double t) {
 }
 
 double bbox_diagonal(const std::vector<glm::vec3>& p) {
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const auto& x : p) lo = glm::min(lo, x), hi = glm::max(hi, x);
-  return glm::length(glm::dvec3(hi - lo));
+  const Box3 box = bounding_box(p);
+  return glm::length(glm::dvec3(box.hi - box.lo));
 }
 
 }  // namespace

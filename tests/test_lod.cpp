@@ -5,10 +5,14 @@
 
 #include <catch2/catch.hpp>
 
-#include "shaders_cpp/displaced_render.h"
+#include "shaders_cpp/cage/bounding_box.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/lod/edge_lod.h"
 #include "shaders_cpp/lod/frustum_cull.h"
-#include "shaders_cpp/subd_render.h"
+#include "shaders_cpp/lod/subd_factors.h"
+#include "shaders_cpp/render/displaced_render.h"
+#include "shaders_cpp/render/subd_render.h"
 #include "test_data.h"
 #include "weld_support.h"
 
@@ -205,6 +209,60 @@ TEST_CASE("FrustumCull tests the hull grown by the bound against each clip plane
   CHECK(c.outside(1, at(behind)));
   c.enabled = false;
   CHECK_FALSE(c.outside(2, at(right)));
+}
+
+}  // namespace tessera
+
+namespace tessera {
+
+TEST_CASE("factor policy: ranges and view-dependent LOD's exclusions are FactorSettingErrors naming the option",
+          "[lod][issue32]") {
+  CHECK(base_factors(8.0f, 0.0f).factor == 8.0f);
+  CHECK(base_factors(64.0f, 63.0f).vary == 63.0f);
+  CHECK_THROWS_WITH(base_factors(0.0f, 0.0f), "--factor: 0 is not in (0, 64]");
+  CHECK_THROWS_WITH(base_factors(NAN, 0.0f), "--factor: nan is not in (0, 64]");
+  CHECK_THROWS_WITH(base_factors(64.5f, 0.0f), "--factor: 64.5 is not in (0, 64]");
+  CHECK_THROWS_AS(base_factors(8.0f, -1.0f), FactorSettingError);
+  CHECK_THROWS_AS(base_factors(8.0f, INFINITY), FactorSettingError);
+
+  const Cage cage = load_obj_cage(kFrog);
+  const Topology topology(cage);
+  const LodView view{glm::vec3(0, 0, 60), glm::vec3(0.0f), glm::mat4(1.0f), 640, 360, 35.0f};
+  const LodModel model{cage.positions, topology, 1, 0.0f, false};
+  SubdFactors f = base_factors(8.0f, 0.0f);
+  LodRequest screen{LodMode::screen, PatchCullMode::none, 8.0f, 0.0f, std::nullopt};
+  const LodSettings s = apply_lod(screen, view, model, f);
+  CHECK(s.mode == LodMode::screen);
+  REQUIRE(f.per_edge);
+  CHECK(f.per_edge->size() > 0);
+  CHECK_FALSE(f.cull.enabled);
+
+  SubdFactors varied = base_factors(8.0f, 1.0f);
+  CHECK_THROWS_WITH(apply_lod(screen, view, model, varied),
+                    "--lod screen sets every edge's factor: drop --factors-per-edge and --vary-factors");
+  LodRequest uniform{LodMode::uniform, PatchCullMode::all, 6.0f, 0.0f, std::nullopt};
+  SubdFactors u = base_factors(8.0f, 0.0f);
+  CHECK_THROWS_AS(apply_lod(uniform, view, model, u), FactorSettingError);
+  uniform.edge_pixels = 8.0f;
+  CHECK(apply_lod(uniform, view, model, u).mode == LodMode::uniform);
+  CHECK_FALSE(u.per_edge);
+  CHECK(u.cull.enabled);  // --cull all: the frustum test, and the back-patch test of an undisplaced model
+  LodRequest bad{LodMode::screen, PatchCullMode::none, 0.1f, 0.0f, std::nullopt};
+  CHECK_THROWS_WITH(apply_lod(bad, view, model, u), "--edge-pixels: 0.1 is not in [0.25, 4096]");
+}
+
+TEST_CASE("bounding boxes: empty until extended, glm::min and max of the points in order", "[lod][issue32]") {
+  const Box3 empty = bounding_box({});
+  CHECK(empty.lo.x == INFINITY);
+  CHECK(empty.hi.x == -INFINITY);
+  const std::vector<glm::vec3> points = {{1, -2, 3}, {-4, 5, 0.5f}, {2, 2, 2}};
+  const Box3 b = bounding_box(points);
+  CHECK(b.lo == glm::vec3(-4, -2, 0.5f));
+  CHECK(b.hi == glm::vec3(2, 5, 3));
+  CHECK(b.corner(0) == b.lo);
+  CHECK(b.corner(7) == b.hi);
+  CHECK(b.corner(1) == glm::vec3(2, -2, 0.5f));
+  CHECK(b.centre() == glm::vec3(-1, 1.5f, 1.75f));
 }
 
 }  // namespace tessera

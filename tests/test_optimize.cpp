@@ -12,7 +12,7 @@
 #include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/cage/topology_combinations.h"
 #include "shaders_cpp/optimize/cage_optimize.h"
-#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/render/subd_model.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "test_data.h"
 

@@ -8,9 +8,9 @@
 #include <limits>
 #include <set>
 
-#include "pipeline_support.h"
 #include "pipeline/triangle_list_setup.h"
-#include "shaders_cpp/torus_scene.h"
+#include "pipeline_support.h"
+#include "shaders_cpp/render/torus_scene.h"
 
 using namespace tessera;
 using namespace tessera::test;

@@ -9,8 +9,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "pipeline_support.h"
 #include "pipeline/texture.h"
+#include "pipeline_support.h"
+#include "shaders_cpp/image_io/image_file.h"
 
 using namespace tessera;
 using namespace tessera::test;
@@ -391,7 +392,7 @@ TEST_CASE("raster: pixel-shader derivatives select the mip level, float targets 
       CHECK(fb.color(4, 7).r == Approx(0.5f));  // lod 2: the averaged level
       CHECK(fb.color(5, 7).r == Approx(0.5f));
       const std::string path = (std::filesystem::temp_directory_path() / "tessera-test-lod.exr").string();
-      REQUIRE(fb.write_color(path).empty());
+      REQUIRE(write_color(fb, {path}).empty());
       auto in = OIIO::ImageInput::open(path);
       REQUIRE(in);
       std::vector<float> px(std::size_t(w) * h * 4);

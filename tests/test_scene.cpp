@@ -1,4 +1,4 @@
-// Scene files (tools/scene_file.h, docs/scene.schema.json): a printed scene renders the bytes its
+// Scene files (tools/scene/scene_file.h, docs/scene.schema.json): a printed scene renders the bytes its
 // command line does, settings survive a round trip bit for bit, paths resolve against the scene file,
 // the schema and the reader agree field for field, and bad scenes get one line naming file and field.
 #include <filesystem>
@@ -9,8 +9,8 @@
 
 #include "cli_runner.h"
 #include "test_data.h"
-#include "tools/cli_common.h"
-#include "tools/scene_file.h"
+#include "tools/scene/common.h"
+#include "tools/scene/scene_file.h"
 
 namespace tessera {
 namespace {

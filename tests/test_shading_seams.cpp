@@ -12,10 +12,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "shaders_cpp/cage/topology.h"
-#include "shaders_cpp/displaced_model.h"
-#include "shaders_cpp/displaced_render.h"
 #include "cli_runner.h"
+#include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/render/displaced_model.h"
+#include "shaders_cpp/render/displaced_render.h"
 #include "test_data.h"
 
 namespace tessera {
@@ -134,7 +134,8 @@ TEST_CASE("Shading seams: the step across a UV seam is within 2 levels of an ord
   }
 }
 
-TEST_CASE("UV seams from the CLI (--uv-seams blend|raw): raw is the render of before, a bad value is one line", "[seams][cli]") {
+TEST_CASE("UV seams from the CLI (--uv-seams blend|raw): raw is the render of before, a bad value is one line",
+          "[seams][cli]") {
   const auto dir = test::cli_temp_dir() / "uv-seams";
   std::filesystem::create_directories(dir);
   const std::string base = "render " + test::data("sdk-cages/monsterfrog_mapped_00.obj") + " --displacement " +

@@ -13,12 +13,12 @@
 #include <unordered_map>
 #include <vector>
 
-#include "test_data.h"
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/cage/topology_combinations.h"
+#include "shaders_cpp/render/subd_model.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
-#include "shaders_cpp/subd_model.h"
-#include "shaders_cpp/cage/topology_combinations.h"
+#include "test_data.h"
 #include "tools/verify/weld_check.h"
 #include "weld_support.h"
 

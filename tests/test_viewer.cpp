@@ -4,17 +4,19 @@
 #include <httplib.h>
 
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include <catch2/catch.hpp>
 
-#include "shaders_cpp/displaced_render.h"
-#include "tools/tessellate_options.h"
+#include "cli_runner.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/render/displaced_render.h"
+#include "test_data.h"
+#include "tools/scene/model_options.h"
 #include "tools/viewer/viewer_server.h"
 #include "tools/viewer/viewer_session.h"
 #include "tools/viewer/viewer_settings.h"
-#include "cli_runner.h"
-#include "test_data.h"
 
 namespace tessera::cli {
 namespace {
@@ -134,6 +136,36 @@ TEST_CASE("viewer frames are the bytes tessera render writes, as settings change
   const auto jpeg = session.frame(base, FrameFormat::jpeg);
   REQUIRE(jpeg);
   CHECK(jpeg->bytes.substr(0, 2) == "\xff\xd8");
+}
+
+TEST_CASE("a kept scene keeps its factors file's table: a camera change reads no file", "[viewer][issue32]") {
+  // The frog's first face's first edge at factor 3, the rest at --factor.
+  const fs::path file = test::cli_temp_dir() / "viewer-factors.txt";
+  const Cage cage = load_obj_cage(test::data("sdk-cages/monsterfrog_mapped_00.obj"));
+  const std::string line =
+      std::to_string(cage.face_vertex(0, 0)) + " " + std::to_string(cage.face_vertex(0, 1)) + " 3\n";
+  const auto write = [&] { std::ofstream(file) << line; };
+  write();
+  RenderSettings base = frog(false);
+  base.factors_file = file.string();
+  ViewerSession session(base);
+  REQUIRE(session.frame(base, FrameFormat::png));
+  fs::remove(file);
+  const RenderSettings moved = settings_from_query(base, {{"camera-position", "10,5,60"}});
+  const auto f = session.frame(moved, FrameFormat::png);  // would fail on a re-read of the missing file
+  REQUIRE(f);
+  write();
+  CHECK(f->bytes == rendered(moved, "viewer-factors-file.png"));
+}
+
+TEST_CASE("viewer info lists every scheme the Scheme enum has", "[viewer][issue32]") {
+  ViewerSession session(frog(false));
+  const Json info = session.info();
+  std::vector<std::string> names;
+  for (const auto& s : info["schemes"]) names.push_back(s.get<std::string>());
+  REQUIRE(names.size() == std::size_t(kSchemeCount));
+  for (int k = 0; k < kSchemeCount; ++k) CHECK(parse_scheme(names[std::size_t(k)]) == Scheme(k));
+  CHECK(names.front() == "flat");
 }
 
 TEST_CASE("viewer frames of an animated glTF follow the time setting", "[viewer][issue23]") {

@@ -2,7 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "shaders_cpp/displaced_shaders.h"
+#include "shaders_cpp/render/displaced_shaders.h"
 
 namespace tessera {
 namespace {

@@ -22,7 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "shaders_cpp/displacement/watertight_uv.h"
-#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/render/subd_model.h"
 
 namespace tessera {
 

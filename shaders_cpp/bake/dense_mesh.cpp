@@ -8,7 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/render/subd_model.h"
 
 namespace tessera {
 namespace {

@@ -31,7 +31,7 @@
 #include "shaders_cpp/bake/base_surface.h"
 #include "shaders_cpp/bake/dense_mesh.h"
 #include "shaders_cpp/bake/ray_caster.h"
-#include "shaders_cpp/displaced_model.h"
+#include "shaders_cpp/render/displaced_model.h"
 
 namespace tessera {
 

@@ -7,8 +7,8 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "pipeline/image_metadata.h"
 #include "shaders_cpp/displacement/displacement_map.h"
+#include "shaders_cpp/image_io/image_file.h"
 
 namespace tessera {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "shaders_cpp/debug/debug_shaders.h"
 #include "shaders_cpp/debug/patch_table.h"
-#include "shaders_cpp/displaced_model.h"
-#include "shaders_cpp/subd_render.h"
+#include "shaders_cpp/render/displaced_model.h"
+#include "shaders_cpp/render/subd_render.h"
 
 namespace tessera {
 

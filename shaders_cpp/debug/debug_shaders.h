@@ -22,7 +22,7 @@
 #include "pipeline/stage_io.h"
 #include "pipeline/texture.h"
 #include "shaders_cpp/debug/patch_table.h"
-#include "shaders_cpp/subd_shaders.h"
+#include "shaders_cpp/render/subd_shaders.h"
 
 namespace tessera {
 

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shaders_cpp/subd_render.h"
+#include "shaders_cpp/cage/bounding_box.h"
+#include "shaders_cpp/render/subd_render.h"
 #include "tessellator/pattern_shape.h"
 
 namespace tessera {
@@ -72,10 +73,9 @@ void finish_patch_info(PatchInfo& info, const SubdModel& m, const SubdPatch& pat
   }
   info.triangles = info.culled ? 0u : std::uint32_t(ts::primitive_count(pf, ts_state.output));
   // The hull's bounding sphere (box centre, farthest point), projected as an edge's LOD sphere is.
-  Box3 b{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
-  for (const glm::vec3& p : hull) b.lo = glm::min(b.lo, p), b.hi = glm::max(b.hi, p);
+  const Box3 b = bounding_box(hull);
   info.bound = b;
-  const glm::vec3 centre = 0.5f * (b.lo + b.hi);
+  const glm::vec3 centre = b.centre();
   float radius = 0.0f;
   for (const glm::vec3& p : hull) radius = std::max(radius, glm::length(p - centre));
   info.screen_pixels = projected_diameter(centre, radius, camera);

@@ -19,7 +19,7 @@
 #include "shaders_cpp/cage/topology_combinations.h"
 #include "shaders_cpp/lod/edge_lod.h"
 #include "shaders_cpp/lod/frustum_cull.h"
-#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/render/subd_model.h"
 #include "tessellator/tessellator.h"
 
 namespace tessera {
@@ -84,7 +84,8 @@ std::vector<PatchInfo> build_patch_table(const SubdModel& m, const PatchGroup& g
   }();
   std::vector<PatchInfo> rows(g.patches.size());
   std::vector<SubdVertex> in(std::size_t(g.control_points));
-  std::vector<SubdControlPoint> out(static_cast<std::size_t>(Hs::kOutputControlPoints));  // (not a declaration for clang)
+  std::vector<SubdControlPoint> out(
+      static_cast<std::size_t>(Hs::kOutputControlPoints));  // (not a declaration for clang)
   std::vector<glm::vec3> hull;
   for (std::size_t p = 0; p < g.patches.size(); ++p) {
     const SubdPatch& patch = g.patches[p];

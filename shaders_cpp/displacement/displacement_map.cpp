@@ -2,9 +2,10 @@
 
 #include <charconv>
 
+#include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/displacement/chart_padding.h"
 
-#include "pipeline/stderr_capture.h"
+#include "shaders_cpp/image_io/stderr_capture.h"
 
 #include <algorithm>
 #include <cctype>
@@ -23,12 +24,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw DisplacementMapError(path + ": " + what);
-}
-
-std::string one_line(std::string s) {
-  std::replace(s.begin(), s.end(), '\n', ' ');
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
 }
 
 std::uint32_t le32(const unsigned char* p) {
@@ -104,7 +99,7 @@ std::unique_ptr<OIIO::ImageInput> open(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
   check_dds_size(path);
   auto in = OIIO::ImageInput::open(path);
-  if (!in) fail(path, "cannot read as an image (" + one_line(OIIO::geterror()) + ")");
+  if (!in) fail(path, "cannot read as an image (" + one_line_message(OIIO::geterror()) + ")");
   return in;
 }
 
@@ -203,7 +198,8 @@ DisplacementImage DisplacementImage::read_encoded(const std::string& name, std::
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   // The extension picks the decoder; OpenImageIO reads through the proxy instead of a file.
   auto in = OIIO::ImageInput::create("embedded" + format, true, nullptr, &reader);
-  if (!in) fail(name, "cannot decode the embedded image as " + format + " (" + one_line(OIIO::geterror()) + ")");
+  if (!in)
+    fail(name, "cannot decode the embedded image as " + format + " (" + one_line_message(OIIO::geterror()) + ")");
   return DisplacementImageDecoder::decode(std::move(in), name, bytes.size(), check);
 }
 
@@ -255,7 +251,7 @@ DisplacementImage DisplacementImageDecoder::decode(std::unique_ptr<OIIO::ImageIn
   if (check) select_channels(path, image.names_, check->spec, check->count);  // throws on a wrong choice
   image.texels_.resize(std::size_t(s.width) * std::size_t(s.height) * std::size_t(s.nchannels));
   if (!in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, image.texels_.data()))
-    fail(path, "cannot read pixels (" + one_line(in->geterror()) + ")");
+    fail(path, "cannot read pixels (" + one_line_message(in->geterror()) + ")");
   in->close();
   const std::string description = s.get_string_attribute("ImageDescription");
   if (description.starts_with(kDecodePrefix)) {

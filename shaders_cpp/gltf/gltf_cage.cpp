@@ -15,19 +15,12 @@
 #include <tiny_gltf.h>
 
 #include "shaders_cpp/animation/rig_pose.h"
+#include "shaders_cpp/cage/one_line.h"
 
 namespace tessera {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ';';
-  while (!s.empty() && (s.back() == ';' || s.back() == ' ')) s.pop_back();
-  if (s.size() > 300) s = s.substr(0, 300) + "...";
-  return s;
-}
 
 // Keeps an image's encoded bytes (tinygltf would decode it with stb_image; Tessera's maps go through
 // OpenImageIO, which reads more formats, DDS among them).
@@ -643,7 +636,8 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), length, base)
              : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length, base);
-  if (!ok) throw CageError(path + ": not a readable glTF 2.0 file (" + one_line(err.empty() ? warn : err) + ")");
+  if (!ok)
+    throw CageError(path + ": not a readable glTF 2.0 file (" + one_line_message(err.empty() ? warn : err) + ")");
   const Reader r(path, m);
   for (const std::string& e : m.extensionsRequired)
     if (e != "FB_ngon_encoding" && e != "KHR_materials_displacement")
@@ -653,7 +647,7 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
   Cage& cage = out.cage;
   cage.name = path;
   cage.uv_v_down = true;
-  if (!warn.empty()) cage.warnings.push_back(path + ": " + one_line(warn));
+  if (!warn.empty()) cage.warnings.push_back(path + ": " + one_line_message(warn));
   auto rig = std::make_shared<CageRig>();
   read_nodes(r, m, *rig);
   read_skins(r, m, *rig);

@@ -23,6 +23,8 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders_cpp/cage/bounding_box.h"
+
 namespace tessera {
 
 // --cull: no test, one of them, or both (the frustum test here, the back-patch test of
@@ -32,12 +34,6 @@ std::optional<PatchCullMode> parse_patch_cull_mode(std::string_view name);
 const char* to_string(PatchCullMode m);
 inline bool culls_frustum(PatchCullMode m) { return m == PatchCullMode::frustum || m == PatchCullMode::all; }
 inline bool culls_backface(PatchCullMode m) { return m == PatchCullMode::backface || m == PatchCullMode::all; }
-
-// An axis-aligned box (a face's 1-ring, for patches without control points).
-struct Box3 {
-  glm::vec3 lo{0.0f}, hi{0.0f};
-  glm::vec3 corner(int i) const { return {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z}; }
-};
 
 // D3D's clip volume (-w <= x, y <= w, 0 <= z <= w, z moved by -z_bias * w as clip_position() does) as six
 // planes, each a linear function of the world position (x, y, z, 1) that is >= 0 inside, in double;

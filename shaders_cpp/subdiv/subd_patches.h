@@ -29,14 +29,15 @@
 #include <vector>
 
 #include "shaders_cpp/cage/cage.h"
-#include "tessellator/tessellator.h"
 #include "shaders_cpp/cage/topology.h"
+#include "tessellator/tessellator.h"
 
 namespace tessera {
 
 class LimitSurface;
 
 enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact, pn };
+inline constexpr int kSchemeCount = int(Scheme::pn) + 1;  // every Scheme is in 0..kSchemeCount-1
 std::optional<Scheme> parse_scheme(std::string_view name);
 const char* to_string(Scheme s);
 

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "tools/cli_common.h"
-#include "tools/scene_file.h"
+#include "tools/scene/common.h"
+#include "tools/scene/scene_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // read_scene reads a file: one per process, in memory-backed /dev/shm when there is one.

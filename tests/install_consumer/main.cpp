@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "shaders_cpp/cage/cage_obj.h"
-#include "shaders_cpp/subd_model.h"
+#include "shaders_cpp/render/subd_model.h"
 #include "tessellator/tessellator.h"
 #include "tools/verify/weld_check.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <map>
 
-#include "tools/cli_common.h"
+#include "tools/scene/common.h"
 
 namespace tessera::cli {
 namespace {

@@ -1,12 +1,12 @@
 #include "tools/viewer/viewer_session.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
-#include "tools/cli_common.h"
-#include "tools/render_stats.h"
+#include "shaders_cpp/cage/bounding_box.h"
+#include "tools/scene/common.h"
+#include "tools/scene/render_stats.h"
 
 namespace tessera::cli {
 namespace {
@@ -20,34 +20,12 @@ bool loads_alike(const RenderSettings& a, const RenderSettings& b) {
          a.asset.mesh == b.asset.mesh;
 }
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 Json vec_json(glm::vec3 v) { return Json::array({json_float(v.x), json_float(v.y), json_float(v.z)}); }
 
 }  // namespace
 
 ViewerSession::ViewerSession(RenderSettings base) : base_(std::move(base)), device_(device_options(base_.threads)) {
-  std::string pattern = (fs::temp_directory_path() / "tessera-view-XXXXXX").string();
-  if (::mkdtemp(pattern.data()) == nullptr)
-    throw InputError("tessera view: cannot make a directory for frames in " + fs::temp_directory_path().string());
-  temp_dir_ = pattern;
-  try {
-    scenes_.push_front(prepare_scene(base_));
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(temp_dir_, ignored);
-    throw;
-  }
-}
-
-ViewerSession::~ViewerSession() {
-  std::error_code ignored;
-  fs::remove_all(temp_dir_, ignored);
+  scenes_.push_front(prepare_scene(base_));
 }
 
 PreparedScene& ViewerSession::scene_for(const RenderSettings& s) {
@@ -86,12 +64,13 @@ Json ViewerSession::info() {
   std::lock_guard lock(mutex_);
   PreparedScene& p = scene_for(base_);
   const Cage& cage = p.model.cage;
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& v : p.model.positions()) lo = glm::min(lo, v), hi = glm::max(hi, v);
+  const Box3 box = bounding_box(p.model.positions());
   Json animations = Json::array();
   if (p.model.rig)
     for (const Animation& a : p.model.rig->animations)
       animations.push_back({{"name", a.name}, {"start", json_float(a.start)}, {"end", json_float(a.end)}});
+  Json schemes = Json::array();
+  for (int k = 0; k < kSchemeCount; ++k) schemes.push_back(to_string(Scheme(k)));
   Json views = Json::array();
   for (int k = 0; k <= int(ViewKind::culled); ++k) views.push_back(to_string(ViewKind(k)));
   return {{"asset", fs::path(base_.cage).filename().string()},
@@ -101,14 +80,14 @@ Json ViewerSession::info() {
           {"animated", bool(p.model.rig)},
           {"animations", animations},
           {"displaced", p.displacement.has_value()},
-          {"bounding_box", {{"min", vec_json(lo)}, {"max", vec_json(hi)}}},
+          {"bounding_box", {{"min", vec_json(box.lo)}, {"max", vec_json(box.hi)}}},
           {"camera",
            {{"position", vec_json(p.view.camera.eye)},
             {"target", vec_json(p.view.camera.target)},
             {"up", vec_json(p.view.camera.up)},
             {"fov", json_float(p.view.fov)}}},
           {"views", views},
-          {"schemes", {"bspline", "acc", "gregory", "exact", "pn"}},
+          {"schemes", schemes},
           {"settings", settings_json(base_)},
           {"settable", settable_settings()}};
 }
@@ -117,20 +96,27 @@ std::optional<ViewerFrame> ViewerSession::frame(const RenderSettings& s, FrameFo
                                                 const std::function<bool()>& wanted) {
   std::lock_guard lock(mutex_);
   if (wanted && !wanted()) return std::nullopt;
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  const auto t0 = Clock::now();
   PreparedScene& p = scene_for(s);
-  const SceneImage image = render_scene(device_, p, false);
-  // Written by render's own writer, so the bytes are the ones `tessera render` writes.
-  const fs::path file =
-      temp_dir_ / ("frame-" + std::to_string(next_file_++) + (format == FrameFormat::png ? ".png" : ".jpg"));
-  write_scene_image(image, file.string());
+  const auto t1 = Clock::now();
+  SceneImage image = render_scene(device_, p, false, std::move(spare_));
+  spare_.reset();
+  const auto t2 = Clock::now();
+  // Encoded by render's own writer, in memory, so the bytes are the ones `tessera render` writes.
   ViewerFrame f;
-  f.bytes = read_file(file);
-  std::error_code ignored;
-  fs::remove(file, ignored);
+  write_scene_image(image, {format == FrameFormat::png ? "frame.png" : "frame.jpg", &f.bytes});
+  f.configure_s = seconds(t0, t1);
+  f.render_s = seconds(t1, t2);
+  f.encode_s = seconds(t2, Clock::now());
   if (f.bytes.empty()) throw InputError("tessera view: the frame's image came out empty");
   f.content_type = format == FrameFormat::png ? "image/png" : "image/jpeg";
   f.summary = scene_summary("", p, image);
   f.summary.erase("output");
+  spare_ = std::move(image.fb);
   return f;
 }
 

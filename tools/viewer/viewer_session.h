@@ -24,7 +24,7 @@
 #include <string>
 
 #include "pipeline/device.h"
-#include "tools/scene_render.h"
+#include "tools/scene/scene_render.h"
 #include "tools/viewer/viewer_settings.h"
 
 namespace tessera::cli {
@@ -35,16 +35,17 @@ struct ViewerFrame {
   std::string bytes;         // the encoded image
   std::string content_type;  // image/png or image/jpeg
   Json summary;              // as `render --json` prints it (times and memory included)
+  // Where the frame's time went (seconds): configuring the kept scene for the settings (pose, view,
+  // LOD, culling), drawing it (render_scene: target, draw, resolve), and encoding the image.
+  double configure_s = 0.0, render_s = 0.0, encode_s = 0.0;
 };
 
 class ViewerSession {
  public:
   static constexpr std::size_t kKeptScenes = 3;
 
-  // Loads the asset of `base` (its errors as `tessera render` gives them) and makes a private
-  // directory for encoding frames (removed by the destructor).
+  // Loads the asset of `base` (its errors as `tessera render` gives them).
   explicit ViewerSession(RenderSettings base);
-  ~ViewerSession();
   ViewerSession(const ViewerSession&) = delete;
   ViewerSession& operator=(const ViewerSession&) = delete;
 
@@ -81,8 +82,7 @@ class ViewerSession {
     PatchTables tables;
   };
   std::optional<PickBuffer> pick_;
-  std::filesystem::path temp_dir_;
-  std::uint64_t next_file_ = 0;
+  std::optional<Framebuffer> spare_;  // the last frame's target, drawn into again at the same size
 };
 
 }  // namespace tessera::cli

@@ -5,22 +5,15 @@
 #include <filesystem>
 #include <set>
 
-#include "tools/cli_common.h"
+#include "tools/scene/common.h"
 
 namespace tessera::cli {
 namespace {
 
 // The settings a request may set, with `tessera render`'s own options bound to `s`.
 void add_settable_options(CLI::App& app, RenderSettings& s) {
-  add_scheme_options(app, s.scheme, s.factor, s.vary, s.factors_file, s.partitioning, s.threads);
-  add_camera_options(app, s.camera);
-  const std::string cull = s.lod.cull;
-  add_lod_options(app, s.lod, cull);
-  app.add_option("--view", s.view);
-  app.add_option("--msaa", s.msaa);
-  app.add_option("--factor-kind", s.factor_kind);
-  add_displacement_options(app, s.displacement);
-  add_asset_options(app, s.asset);
+  const std::string cull = s.lod.cull;  // the session's, not render's default
+  add_settings_options(app, s, cull);
 }
 
 // Settings whose empty value means "not given" (the framing camera, +y up, the view camera dices).

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "tools/scene_file.h"
+#include "tools/scene/scene_file.h"
 
 namespace tessera::cli {
 

@@ -1,0 +1,22 @@
+#include "shaders_cpp/cage/one_line.h"
+
+namespace tessera {
+
+std::string one_line_message(std::string_view message) {
+  std::string s;
+  for (const char c : message) {
+    if (c == '\n' || c == '\r') {
+      if (!s.empty() && s.back() != ' ') s += "; ";
+    } else {
+      s += c;
+    }
+  }
+  while (!s.empty() && (s.back() == ' ' || s.back() == ';')) s.pop_back();
+  constexpr std::size_t kMax = 600, kKeep = 280;
+  if (s.size() > kMax)
+    s = s.substr(0, kKeep) + " [... " + std::to_string(s.size() - 2 * kKeep) + " bytes ...] " +
+        s.substr(s.size() - kKeep);
+  return s;
+}
+
+}  // namespace tessera

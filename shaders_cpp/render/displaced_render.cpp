@@ -1,0 +1,42 @@
+#include "shaders_cpp/render/displaced_render.h"
+
+namespace tessera {
+DrawResult render_displaced(Device& device, const SubdModel& model, const Displacement& displacement,
+                            const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
+                            const SubdCamera& camera, Framebuffer& fb) {
+  const glm::vec3 light = glm::normalize(camera.eye - camera.target);
+  auto pass = [&](bool wire) {
+    return with_displaced_group(
+        model, displacement, factors, partitioning,
+        [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
+          const SubdPassState st = subd_pass_state(model, fb, wire);
+          const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
+          DisplacedHS pass_hs = hs;  // the frustum test sees the pass's depth bias
+          pass_hs.base.factors.cull.z_bias = st.z_bias;
+          pass_hs.base.factors.back.z_bias = st.z_bias;
+          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
+          if (wire) return go(ConstantPS<kDisplacedAttributes>{});
+          DisplacedPS ps;
+          ps.light = light;
+          if (displacement.seam_blending) ps.texcoords = displacement.texcoords;
+          if (displacement.normal_map) {
+            ps.normal_map = &displacement.normal_map->texture();
+            ps.flip_green = displacement.flip_v;
+          } else if (displacement.kind == DisplacementKind::scalar) {
+            ps.height = &displacement.map->texture();
+            ps.height_scale = displacement.scale;
+          }
+          return go(ps);
+        });
+  };
+  return draw_view_passes(view, fb, pass);
+}
+
+DrawResult render_surface(Device& device, const SubdModel& model, const Displacement* displacement,
+                          const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
+                          const SubdCamera& camera, Framebuffer& fb) {
+  return displacement ? render_displaced(device, model, *displacement, factors, partitioning, view, camera, fb)
+                      : render_subd(device, model, factors, partitioning, view, camera, fb);
+}
+
+}  // namespace tessera

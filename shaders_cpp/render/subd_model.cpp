@@ -1,0 +1,105 @@
+#include "shaders_cpp/render/subd_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "shaders_cpp/cage/bounding_box.h"
+#include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/subdiv/pn_patch.h"
+
+namespace tessera {
+namespace {
+
+// Removes the patches of faces `keep` rejects, with their IA indices; returns how many went.
+template <class Keep>
+int remove_patches(PatchGroup& g, Keep&& keep) {
+  const std::size_t cp = std::size_t(g.control_points);
+  std::size_t kept = 0;
+  for (std::size_t p = 0; p < g.patches.size(); ++p) {
+    if (!keep(g.patches[p])) continue;
+    g.patches[kept] = g.patches[p];
+    std::copy_n(g.indices.begin() + std::ptrdiff_t(p * cp), cp, g.indices.begin() + std::ptrdiff_t(kept * cp));
+    ++kept;
+  }
+  const int removed = int(g.patches.size() - kept);
+  g.patches.resize(kept);
+  g.indices.resize(kept * cp);
+  return removed;
+}
+
+// Per face, the box of every vertex of the faces around its corners: the limit surface of the face is
+// a convex combination of them (Catmull-Clark's rules, creased or not, have non-negative weights).
+std::vector<Box3> face_ring_boxes(const Cage& cage, const Topology& t) {
+  std::vector<Box3> boxes(std::size_t(t.face_count()));
+  for (int f = 0; f < t.face_count(); ++f) {
+    Box3 b = Box3::empty();
+    for (int k = 0; k < t.face_size(f); ++k) {
+      const int v = t.origin(t.face_half_edge(f) + k);
+      for (const int h : t.ring(v))
+        for (int g = t.face(h), j = 0; j < t.face_size(g); ++j) {
+          b.extend(cage.positions[std::size_t(t.origin(t.face_half_edge(g) + j))]);
+        }
+    }
+    boxes[std::size_t(f)] = b;
+  }
+  return boxes;
+}
+
+}  // namespace
+
+SubdModel make_subd_model(Cage cage, Scheme scheme) {
+  SubdModel m;
+  m.cage = std::move(cage);
+  m.topology = std::make_unique<Topology>(m.cage);
+  m.patches = build_patches(m.cage, *m.topology, scheme);
+  if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, *m.topology);
+  if (scheme == Scheme::exact) {
+    m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage));
+    // Faces OpenSubdiv gives no surface besides holes: boundary faces under `t interpolateboundary`
+    // none. They draw nothing, like holes.
+    auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
+    for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
+    m.ring_boxes = face_ring_boxes(m.cage, *m.topology);
+  }
+  return m;
+}
+
+void set_pose(SubdModel& m, RigPose pose) {
+  if (!m.rig) throw std::logic_error("set_pose: the model of " + m.cage.name + " has no rig");
+  m.posed_positions = pose_positions(*m.rig, pose);
+  m.pose = std::move(pose);
+  // The passes before the draw see the cage the vertex shader will output: the posed positions are
+  // lent to the cage for them (swapped in and back, even on a throw) instead of copying the whole
+  // cage, its faces, UVs and tags, per pose.
+  struct Lend {
+    SubdModel& model;
+    explicit Lend(SubdModel& owner) : model(owner) { std::swap(model.cage.positions, model.posed_positions); }
+    ~Lend() { std::swap(model.cage.positions, model.posed_positions); }
+    Lend(const Lend&) = delete;
+    Lend& operator=(const Lend&) = delete;
+  } lend(m);
+  const Cage& posed = m.cage;
+  if (!m.normals.empty()) m.normals = vertex_normals(posed, *m.topology);
+  if (m.limit) {
+    // OpenSubdiv's Bfr surfaces hold their control points: the exact scheme rebuilds them per pose.
+    m.limit = std::make_unique<LimitSurface>(LimitSurface::create(posed, m.limit->approx_level()));
+    m.ring_boxes = face_ring_boxes(posed, *m.topology);
+  }
+}
+
+Cage load_cage(const std::string& path, const GltfSelection& selection) {
+  return is_gltf_path(path) ? load_gltf_cage(path, selection).cage : load_obj_cage(path);
+}
+
+SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection) {
+  if (!is_gltf_path(path)) return make_subd_model(load_obj_cage(path), scheme);
+  GltfCage g = load_gltf_cage(path, selection);
+  SubdModel m = make_subd_model(std::move(g.cage), scheme);
+  m.rig = std::move(g.rig);
+  m.material = std::move(g.maps);
+  return m;
+}
+
+}  // namespace tessera

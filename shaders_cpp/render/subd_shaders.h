@@ -1,0 +1,390 @@
+// The subdivision schemes as shader functors (pipeline/stage_io.h shapes):
+// - SubdVS: animation at control-point rate (glTF skins and morph targets posing each cage vertex,
+//   rig_pose.h; or an affine transform; identity by default), and the per-vertex normal (`pn` only)
+//   read by SV_VertexID from a second vertex stream.
+// - SubdHS: control-point phase = the patch's stencil table applied to its 1-ring, summed in vertex
+//   index order, or for `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
+//   tessellation factors per cage edge (SubdFactors).
+// - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample.
+// - ProjectingDS (ProjectDS for SurfaceSample) wraps a DS into one that returns ClipVertex for rendering.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <tuple>
+#include <unordered_map>
+
+#include <glm/glm.hpp>
+
+#include "pipeline/stage_io.h"
+#include "shaders_cpp/animation/rig_pose.h"
+#include "shaders_cpp/lod/back_patch_cull.h"
+#include "shaders_cpp/lod/frustum_cull.h"
+#include "shaders_cpp/lod/subd_factors.h"
+#include "shaders_cpp/subdiv/limit_surface.h"
+#include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/subdiv/pn_patch.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
+
+namespace tessera {
+
+struct SubdVertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};  // pn only
+};
+
+struct SubdVS {
+  glm::mat4 transform{1.0f};
+  glm::mat3 normal_transform{1.0f};  // the inverse transpose of transform's upper 3x3
+  bool identity = true;
+  std::span<const glm::vec3> normals;  // per cage vertex (pn, of the posed cage); empty otherwise
+  // An animated cage (glTF): the vertex buffer holds bind positions, posed here (rig_pose.h).
+  const CageRig* rig = nullptr;
+  const RigPose* pose = nullptr;
+  SubdVertex operator()(const glm::vec3& p, std::uint32_t id) const {
+    SubdVertex out{p, id < normals.size() ? normals[id] : glm::vec3(0.0f)};
+    if (rig) out.position = pose_vertex(*rig, *pose, id, p);
+    if (identity) return out;
+    out.position = glm::vec3(transform * glm::vec4(p, 1.0f));
+    out.normal = glm::normalize(normal_transform * out.normal);
+    return out;
+  }
+};
+
+// Hull-shader output control point: a position, and for acc the matching tangent-patch points (for pn,
+// du holds the normal field's coefficient of the same index).
+struct SubdControlPoint {
+  glm::vec3 p{0.0f}, du{0.0f}, dv{0.0f};
+};
+
+struct SubdPatchConstants {
+  TessFactors factors;
+  OrientationBound orientation;  // back-patch culling (pipeline/patch_orientation.h); none by default
+};
+
+struct SubdHS {
+  static constexpr int kOutputControlPoints = 20;
+  std::span<const SubdPatch> patches;
+  std::span<const StencilTable> tables;
+  SubdFactors factors;
+  bool triangles = false;              // the tri domain: three edge factors, one inside factor
+  std::span<const Box3> ring_boxes{};  // per face, `exact` only: the box of its 1-ring (culling)
+  ts::Partitioning partitioning = ts::Partitioning::integer;
+
+  SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
+    const SubdPatch& patch = patches[patch_id];
+    SubdControlPoint cp;
+    if (patch.kind == PatchKind::pn_triangle) {
+      const glm::vec3 p[3] = {in[0].position, in[1].position, in[2].position};
+      const glm::vec3 n[3] = {in[0].normal, in[1].normal, in[2].normal};
+      const PNTriangle t = pn_triangle(p, n);
+      if (i < 10) cp.p = t.b[std::size_t(i)];
+      if (i < 6) cp.du = t.n[std::size_t(i)];
+      return cp;
+    }
+    if (patch.kind == PatchKind::pn_quad) {
+      const glm::vec3 p[4] = {in[0].position, in[1].position, in[2].position, in[3].position};
+      const glm::vec3 n[4] = {in[0].normal, in[1].normal, in[2].normal, in[3].normal};
+      const PNQuad q = pn_quad(p, n);
+      if (i < 16) cp.p = q.b[std::size_t(i)];
+      if (i < 9) cp.du = q.n[std::size_t(i)];
+      return cp;
+    }
+    if (patch.table < 0) return cp;
+    const StencilTable& t = tables[std::size_t(patch.table)];
+    auto row = [&](int r) {
+      glm::dvec3 sum(0.0);
+      const float* w = t.weights.data() + std::size_t(r) * std::size_t(t.ring);
+      for (int k = 0; k < patch.ring_size; ++k) {
+        const int j = patch.order[std::size_t(k)];
+        if (w[j] != 0.0f) sum += double(w[j]) * glm::dvec3(in[std::size_t(j)].position);
+      }
+      return glm::vec3(sum);
+    };
+    if (i < t.rows) cp.p = row(i);
+    if (patch.kind == PatchKind::acc && i < 12) {
+      cp.du = row(16 + i);
+      cp.dv = row(28 + i);
+    }
+    return cp;
+  }
+
+  SubdPatchConstants patch_constants(std::span<const SubdVertex>, std::span<const SubdControlPoint> cp,
+                                     std::uint32_t patch_id) const {
+    const SubdPatch& patch = patches[patch_id];
+    SubdPatchConstants pc;
+    if (outside_view(patch, cp)) return pc;  // zero factors: the tessellator culls the patch
+    pc.factors = edge_and_inside_factors(patch);
+    pc.orientation = orientation_bound(patch, cp, pc.factors);
+    return pc;
+  }
+
+  // The back-patch claim for the quad patches whose positions are a Bezier net (the others: none).
+  OrientationBound orientation_bound(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
+                                     const TessFactors& f) const {
+    if (!factors.back.enabled() || triangles) return {};
+    int segments = 64;
+    for (const float e : f.edge) segments = std::min(segments, max_edge_segments(e));
+    if (patch.kind == PatchKind::acc || patch.kind == PatchKind::pn_quad) {
+      std::array<glm::vec3, 16> net;
+      for (std::size_t i = 0; i < 16; ++i) net[i] = cp[i].p;
+      return factors.back.bound(net, 3, segments);
+    }
+    if (patch.kind == PatchKind::gregory) {
+      // Polynomial where each corner's face points coincide (bspline's regular faces): the Bezier
+      // net with those points inside. The blend of two equal points rounds by a few ulps at most.
+      std::array<glm::vec3, 20> g;
+      for (std::size_t i = 0; i < 20; ++i) g[i] = cp[i].p;
+      for (std::size_t k = 0; k < 4; ++k)
+        if (g[5 * k + 3] != g[5 * k + 4]) return {};
+      std::array<glm::vec3, 16> net = gregory_to_bezier(g, 0.5f, 0.5f);
+      net[5] = g[3], net[6] = g[8], net[10] = g[13], net[9] = g[18];
+      return factors.back.bound(net, 3, segments);
+    }
+    if (patch.kind == PatchKind::bilinear) {  // corners around the quad; the net is row by row
+      const std::array<glm::vec3, 4> net = {cp[0].p, cp[1].p, cp[3].p, cp[2].p};
+      return factors.back.bound(net, 1, segments);
+    }
+    return {};
+  }
+
+  // The factors of a patch that is not culled.
+  TessFactors edge_and_inside_factors(const SubdPatch& patch) const {
+    TessFactors f;
+    for (int k = 0; k < 4; ++k) f.edge[std::size_t(k)] = factors.edge(patch.edge_keys[std::size_t(k)]);
+    if (triangles) {
+      f.inside[0] = (f.edge[0] + f.edge[1] + f.edge[2]) / 3.0f;
+    } else {
+      // Inside U spans edges Veq0/Veq1 (1, 3), inside V spans Ueq0/Ueq1 (0, 2).
+      f.inside[0] = (f.edge[1] + f.edge[3]) * 0.5f;
+      f.inside[1] = (f.edge[0] + f.edge[2]) * 0.5f;
+    }
+    if (partitioning == ts::Partitioning::fractional_odd) lift_inside_factors(f);
+    return f;
+  }
+
+  // fractional_odd only. An inside factor in (1, 1 + 2^-10) puts a ring of points within 2^-11 of the
+  // patch boundary, where the tessellator's 16.16 fixed point can round them onto the boundary's own
+  // points, and the outer edges open; with the other inside factor exactly 1, the stitch folds
+  // zero-area triangles back along an outer edge (an edge used four times). Edge factors at and just
+  // above 1 make such means (view-dependent LOD clamps at 1), so while either inside factor is above
+  // 1, both are raised to at least 1 + 2^-10 (invisible; all-ones patches stay two triangles).
+  static void lift_inside_factors(TessFactors& f) {
+    constexpr float kLow = 1.0f + 0x1p-10f;
+    if (!(std::max(f.inside[0], f.inside[1]) > 1.0f)) return;
+    for (float& x : f.inside)
+      if (x >= 1.0f && x < kLow) x = kLow;
+  }
+
+  // The frustum test on the patch's hull.
+  bool outside_view(const SubdPatch& patch, std::span<const SubdControlPoint> cp) const {
+    if (!factors.cull.enabled) return false;
+    return factors.cull.outside(hull_size(patch), [&](int i) { return hull_point(patch, cp, i); });
+  }
+  // The points whose convex hull holds the patch's surface: its control points, or for `exact`, whose
+  // IA patch is the face alone, the corners of the box of the face's 1-ring (none without the box).
+  int hull_size(const SubdPatch& patch) const {
+    if (patch.kind != PatchKind::exact) return hull_points(patch.kind);
+    return std::size_t(patch.face) < ring_boxes.size() ? 8 : 0;
+  }
+  glm::vec3 hull_point(const SubdPatch& patch, std::span<const SubdControlPoint> cp, int i) const {
+    if (patch.kind == PatchKind::exact) return ring_boxes[std::size_t(patch.face)].corner(i);
+    return cp[std::size_t(i)].p;
+  }
+  // How many of a patch kind's output control points carry positions whose hull holds the surface.
+  static int hull_points(PatchKind k) {
+    switch (k) {
+      case PatchKind::bilinear: return 4;
+      case PatchKind::linear: return 3;
+      case PatchKind::acc: return 16;
+      case PatchKind::gregory: return 20;
+      case PatchKind::gregory_triangle: return 15;
+      case PatchKind::pn_triangle: return 10;
+      case PatchKind::pn_quad: return 16;
+      case PatchKind::exact: return 0;
+    }
+    return 0;
+  }
+};
+
+// What the domain shader produces for one domain point: the surface point, its unit normal, and where
+// it came from: the base face and the domain location in the face's own frame (a quad's (u,v) from its
+// corner 0; a triangle's barycentric (u,v); for a face of more than four sides, (u,v) in its fan
+// triangle SubdPatch::sub). du, dv are the partial derivatives with respect to the patch's domain
+// location (DomainLocation u, v: the patch's frame, which may be rotated from the face's, see
+// SubdPatch::rotation), for tangent frames.
+struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with derivatives)
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};
+  std::uint32_t face = 0;
+  float u = 0, v = 0;
+  glm::vec3 du{0.0f}, dv{0.0f};
+};
+
+// Positions leave the domain shader with -0 turned into +0 (x + 0 is x for every other x): a point
+// that is exactly zero in some coordinate, such as a cage vertex on a coordinate plane evaluated at a
+// patch corner, may otherwise carry the sign of a zero-weighted term, which differs between the edges
+// and patches that meet there.
+inline glm::vec3 positive_zero(const glm::vec3& p) { return p + glm::vec3(0.0f); }
+
+struct SubdDS {
+  std::span<const SubdPatch> patches;
+  const LimitSurface* limit = nullptr;
+  bool flip_normals = false;  // left-handed cages (the limit surface flips its own)
+  bool triangles = false;     // the tri domain
+
+  SurfaceSample operator()(const SubdPatchConstants&, std::span<const SubdControlPoint> cp, DomainLocation loc,
+                           std::uint32_t patch_id) const {
+    const SubdPatch& patch = patches[patch_id];
+    SurfaceSample s;
+    s.face = std::uint32_t(patch.face);
+    // Report the location in the face's own frame (corner 0 at (0,0), or at w = 1): undo the patch's
+    // rotation. Patch corner k is face corner k + r; on the tri domain face corner c takes the
+    // barycentric of patch corner c - r (corner 0: w, 1: u, 2: v).
+    if (triangles) {
+      switch (patch.rotation) {
+        case 1: s.u = loc.w, s.v = loc.u; break;
+        case 2: s.u = loc.v, s.v = loc.w; break;
+        default: s.u = loc.u, s.v = loc.v; break;
+      }
+    } else {
+      switch (patch.rotation) {
+        case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
+        case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
+        case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
+        default: s.u = loc.u, s.v = loc.v; break;
+      }
+    }
+    PatchPoint p;
+    std::optional<glm::vec3> field_normal;
+    switch (patch.kind) {
+      case PatchKind::bilinear: p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v); break;
+      case PatchKind::linear: {
+        p = linear_triangle(cp[0].p, cp[1].p, cp[2].p, loc.u, loc.v, loc.w);
+        break;
+      }
+      case PatchKind::acc: {
+        std::array<glm::vec3, 16> b;
+        std::array<glm::vec3, 12> du, dv;
+        for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+        for (int i = 0; i < 12; ++i)
+          du[std::size_t(i)] = cp[std::size_t(i)].du, dv[std::size_t(i)] = cp[std::size_t(i)].dv;
+        p = bezier_patch(b, loc.u, loc.v);
+        acc_tangents(du, dv, loc.u, loc.v, p.du, p.dv);
+        break;
+      }
+      case PatchKind::gregory: {
+        std::array<glm::vec3, 20> g;
+        for (int i = 0; i < 20; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+        const auto b = gregory_to_bezier(g, loc.u, loc.v);
+        p = bezier_patch(b, loc.u, loc.v);
+        break;
+      }
+      case PatchKind::gregory_triangle: {
+        std::array<glm::vec3, 15> g;
+        for (int i = 0; i < 15; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+        p = gregory_triangle(g, loc.u, loc.v, loc.w);
+        break;
+      }
+      case PatchKind::pn_triangle: {
+        std::array<glm::vec3, 10> b;
+        std::array<glm::vec3, 6> n;
+        for (int i = 0; i < 10; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+        for (int i = 0; i < 6; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
+        p = cubic_triangle(b, loc.u, loc.v, loc.w);
+        field_normal = quadratic_triangle_normal(n, loc.u, loc.v, loc.w);
+        break;
+      }
+      case PatchKind::pn_quad: {
+        std::array<glm::vec3, 16> b;
+        std::array<glm::vec3, 9> n;
+        for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+        for (int i = 0; i < 9; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
+        p = bezier_patch(b, loc.u, loc.v);
+        field_normal = biquadratic_normal(n, loc.u, loc.v);
+        break;
+      }
+      case PatchKind::exact: {
+        const SurfacePoint l = !triangles ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
+                               : limit->face_size(patch.face) == 3
+                                   ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
+                                   : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
+        s.position = positive_zero(l.position);
+        s.normal = l.normal;
+        s.du = l.du, s.dv = l.dv;
+        return s;
+      }
+    }
+    s.position = positive_zero(p.position);
+    s.du = p.du, s.dv = p.dv;
+    // PN patches carry their own normal field; the others' normal is that of the surface.
+    s.normal = field_normal ? *field_normal : unit_or_zero(glm::cross(p.du, p.dv));
+    if (flip_normals) s.normal = -s.normal;
+    return s;
+  }
+};
+
+// A world-space point in clip space, pulled toward the camera by `z_bias` of w (for wireframe drawn
+// over shading).
+inline glm::vec4 clip_position(const glm::mat4& view_projection, float z_bias, const glm::vec3& p) {
+  glm::vec4 c = view_projection * glm::vec4(p, 1.0f);
+  c.z -= z_bias * c.w;
+  return c;
+}
+
+// Wraps a DS for rendering: its point's `position` in clip space, pulled toward the camera by `z_bias`
+// of w (for wireframe drawn over shading), and the attributes AttributesOf{}(point) (std::array<float, N>)
+// for the pixel shader.
+template <class Inner, class AttributesOf>
+struct ProjectingDS {
+  Inner inner;
+  glm::mat4 view_projection{1.0f};
+  float z_bias = 0.0f;
+  template <class PC, class CP>
+  auto operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc, std::uint32_t patch_id) const {
+    const auto s = inner(pc, cps, loc, patch_id);
+    const auto attributes = AttributesOf{}(s);
+    ClipVertex<std::tuple_size_v<decltype(attributes)>> out;
+    out.position = clip_position(view_projection, z_bias, s.position);
+    out.attributes = attributes;
+    return out;
+  }
+};
+
+// A SurfaceSample's normal, the 3 attributes of the plain renders.
+struct NormalAttributes {
+  std::array<float, 3> operator()(const SurfaceSample& s) const { return {s.normal.x, s.normal.y, s.normal.z}; }
+};
+template <class Inner>
+using ProjectDS = ProjectingDS<Inner, NormalAttributes>;
+
+// Clay shading with a headlight (the light comes from the camera direction): ambient plus diffuse on
+// a unit normal (zero shades as ambient only).
+inline glm::vec4 clay(const glm::vec3& unit_normal, const glm::vec3& light, const glm::vec3& color) {
+  const float diffuse = std::max(0.0f, glm::dot(unit_normal, light));
+  return {color * (0.18f + 0.82f * diffuse), 1.0f};
+}
+inline constexpr glm::vec3 kClayColor{0.78f, 0.74f, 0.68f};
+
+struct ClayPS {
+  glm::vec3 light{0.0f, 0.0f, 1.0f};  // toward the light, world space
+  glm::vec3 color = kClayColor;
+  glm::vec4 operator()(const PixelInput<3>& in) const {
+    return clay(unit_or_zero(glm::vec3(in.attributes[0], in.attributes[1], in.attributes[2])), light, color);
+  }
+};
+
+// One colour for every pixel (wireframe passes), for any attribute count.
+inline constexpr glm::vec4 kWireColor{0.2f, 0.25f, 0.35f, 1.0f};
+template <std::size_t N = 3>
+struct ConstantPS {
+  glm::vec4 color = kWireColor;
+  glm::vec4 operator()(const PixelInput<N>&) const { return color; }
+};
+
+}  // namespace tessera

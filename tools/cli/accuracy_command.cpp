@@ -1,0 +1,120 @@
+// `tessera accuracy CAGE.obj --scheme S`: how far a scheme's surface is from the exact Catmull-Clark
+// limit surface (OpenSubdiv at its highest isolation level), measured at the domain points the scheme
+// actually produces. Distances are parametric (the scheme's point against the limit's point at the same
+// face and domain location), an upper bound of the distance to the surface, relative to the limit
+// surface's bounding-box diagonal; normal errors are angles between the two unit normals.
+#include <cmath>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+
+#include "shaders_cpp/render/subd_model.h"
+#include "tools/cli/commands.h"
+#include "tools/scene/common.h"
+#include "tools/scene/json_output.h"
+#include "tools/scene/model_options.h"
+
+namespace tessera::cli {
+namespace {
+
+struct AccuracyOptions {
+  AssetCli asset;
+  std::string cage, scheme = "gregory", partitioning = "integer", factors_file;
+  float factor = 7.0f, vary = 0.0f;
+  int threads = 0;
+  bool json = false;
+};
+
+int run_accuracy(const AccuracyOptions& o) {
+  const Scheme scheme = scheme_option(o.scheme);
+  const ts::Partitioning partitioning = partitioning_option(o.partitioning);
+  const SubdModel model = load_model(o.cage, scheme, o.asset);
+  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
+  std::unique_ptr<LimitSurface> own_reference;
+  try {
+    // The limit of the cage the vertex shader outputs (the posed cage of an animated asset).
+    Cage posed = model.cage;
+    posed.positions = model.positions();
+    if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(posed));
+  } catch (const CageError& e) {
+    throw InputError(e.what());
+  }
+  const LimitSurface& reference = model.limit ? *model.limit : *own_reference;
+  const double diagonal = reference.bounding_box_diagonal();
+  Device device(device_options(o.threads));
+  double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0;
+  std::uint64_t samples = 0;
+  const DrawResult r =
+      stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup& g) {
+        const SubdPatch& patch = g.patches[p.patch_id];
+        const int n = reference.face_size(patch.face);
+        for (std::size_t i = 0; i < p.points.size(); ++i) {
+          const SurfaceSample& s = p.points[i];
+          const ts::DomainPoint q = p.domain[i];
+          glm::dvec3 pos, nrm;
+          if (g.domain == ts::Domain::tri && n == 3) {
+            // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
+            const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);
+            pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
+          } else if (g.domain == ts::Domain::tri) {  // a fan triangle of a larger face
+            const LimitSurface::SubPatchLocation l = LimitSurface::fan_location(n, patch.sub, q.u, q.v);
+            const ReferenceSample e = reference.sample_reference(patch.face, l.sub, l.s, l.t);
+            pos = e.position, nrm = e.normal;
+          } else {
+            const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
+            pos = e.position, nrm = e.normal;
+          }
+          const double d = glm::length(glm::dvec3(s.position) - pos);
+          max_d = std::max(max_d, d);
+          sum_d2 += d * d;
+          const double c = std::clamp(glm::dot(glm::normalize(glm::dvec3(s.normal)), glm::normalize(nrm)), -1.0, 1.0);
+          const double angle = std::acos(c) * 180.0 / std::numbers::pi;
+          if (std::isfinite(angle)) {
+            max_angle = std::max(max_angle, angle);
+            sum_angle += angle;
+          }
+          ++samples;
+        }
+      });
+  if (!r.ok()) throw InputError(o.cage + ": " + r.error);
+  const double rms = samples ? std::sqrt(sum_d2 / double(samples)) : 0.0;
+  const double rel_max = max_d / diagonal, rel_rms = rms / diagonal;
+  if (o.json) {
+    const Json j = {{"cage", o.cage},
+                    {"scheme", to_string(scheme)},
+                    {"factor", json_float(o.factor)},
+                    {"samples", samples},
+                    {"diagonal", diagonal},
+                    {"max_distance", max_d},
+                    {"rms_distance", rms},
+                    {"max_relative", rel_max},
+                    {"rms_relative", rel_rms},
+                    {"max_normal_degrees", max_angle},
+                    {"mean_normal_degrees", samples ? sum_angle / double(samples) : 0.0},
+                    {"fallback_faces", model.patches.fallback_faces}};
+    std::cout << json_text(j) << "\n";
+  } else {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "%s: scheme %s vs exact limit, %llu samples: max %.3e, rms %.3e of the diagonal (%.4g); normals max "
+                  "%.3f deg, mean %.4f deg\n",
+                  o.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal, max_angle,
+                  samples ? sum_angle / double(samples) : 0.0);
+    std::cout << line;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Runner add_accuracy_command(CLI::App& app) {
+  auto o = std::make_shared<AccuracyOptions>();
+  CLI::App* cmd = app.add_subcommand("accuracy", "distance of a scheme's surface to the exact limit surface");
+  cmd->add_option("cage", o->cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb)")->required();
+  add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
+  add_asset_options(*cmd, o->asset);
+  cmd->add_flag("--json", o->json, "print the result as JSON");
+  return [o] { return run_accuracy(*o); };
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,20 @@
+// The reports of `tessera check`, written from the cases' JSON (CaseResult::json(), plus "index", the
+// case's place in the suite) so that shards merged later give the same files: report.html (new,
+// golden and diff side by side, hover a new image to see the golden, metrics, the reproducing
+// command), junit.xml for CI systems, and summary.json.
+#pragma once
+
+#include <string>
+
+#include "tools/scene/json_output.h"
+
+namespace tessera::cli {
+
+// `summary`: {"suite", "suite_path", "cases": [...], "counts": {...}, "seconds"}; writes the three files
+// into `dir` (atomically, each).
+void write_check_reports(const Json& summary, const std::string& dir);
+
+// Counts of each status in `cases`.
+Json count_statuses(const Json& cases);
+
+}  // namespace tessera::cli

@@ -1,0 +1,295 @@
+#include "tools/scene/check_suite.h"
+
+#include <bit>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "shaders_cpp/image_io/image_file.h"
+#include "tessellator/fnv1a.h"
+#include "tools/scene/common.h"
+#include "tools/scene/scene_render.h"
+#include "tools/verify/weld_check.h"
+
+namespace tessera::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string hex64(std::uint64_t v) {
+  char b[20];
+  std::snprintf(b, sizeof b, "%016llx", (unsigned long long)v);
+  return b;
+}
+
+void add_float(ts::Fnv1a& h, float x) { h.add(std::bit_cast<std::uint32_t>(x), 4); }
+
+[[noreturn]] void suite_error(const std::string& path, const std::string& field, const std::string& message) {
+  throw InputError(path + ": \"" + field + "\": " + message);
+}
+
+Json read_json_file(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || fs::is_directory(path)) throw InputError(path + ": cannot read the " + std::string(what));
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    return Json::parse(text.str());
+  } catch (const Json::exception& e) {  // parse_error, or out_of_range for a number past double
+    const std::string w = e.what();
+    const auto at = w.find("] ");
+    throw InputError(path + ": not JSON (" + (at == std::string::npos ? w : w.substr(at + 2)) + ")");
+  }
+}
+
+float threshold(const Json& c, const char* key, float fallback, const std::string& path, const std::string& field) {
+  if (!c.contains(key)) return fallback;
+  if (!c[key].is_number() || !(c[key].get<double>() >= 0.0))
+    suite_error(path, field + "." + key, "expected a number >= 0, got " + c[key].dump());
+  return float(c[key].get<double>());
+}
+
+GeometryDigest digest_of(Device& device, const PreparedScene& scene, const SceneImage& image) {
+  GeometryDigest d;
+  verify::WeldChecker weld;
+  ts::Fnv1a ds;
+  const auto sink = [&](const auto& out, const PatchGroup&) {
+    ds.add(out.patch_id, 4);
+    for (const auto& p : out.points) {
+      add_float(ds, p.position.x), add_float(ds, p.position.y), add_float(ds, p.position.z);
+      add_float(ds, p.normal.x), add_float(ds, p.normal.y), add_float(ds, p.normal.z);
+    }
+    for (const std::uint32_t i : out.indices) ds.add(i, 4);
+    d.triangles += out.indices.size() / 3;
+    verify::add_patch_triangles(weld, out);
+  };
+  const DrawResult r = stream_surface(device, scene.model, scene.displacement ? &*scene.displacement : nullptr,
+                                      scene.factors, scene.partitioning, sink);
+  if (!r.ok()) throw InputError(scene.settings.cage + ": " + r.error);
+  const verify::WeldReport w = weld.report();
+  d.open_edges = w.boundary_edges;
+  d.nonmanifold_edges = w.nonmanifold_edges;
+  d.ds_hash = hex64(ds.value);
+  ts::Fnv1a f;
+  image.tables->for_each([&](const PatchInfo& p) {
+    for (const float e : p.raw.edge) add_float(f, e);
+    for (const float i : p.raw.inside) add_float(f, i);
+  });
+  d.factors_hash = hex64(f.value);
+  return d;
+}
+
+std::string case_command(const SuiteCase& c, const std::string& out) {
+  return "tessera render --scene " + fs::absolute(c.scene).lexically_normal().string() + " -o " + out;
+}
+
+}  // namespace
+
+const char* to_string(CaseStatus s) {
+  switch (s) {
+    case CaseStatus::pass: return "pass";
+    case CaseStatus::warning: return "warning";
+    case CaseStatus::fail: return "fail";
+    case CaseStatus::new_case: return "new";
+    case CaseStatus::error: return "error";
+  }
+  return "error";
+}
+
+Json GeometryDigest::json() const {
+  return {{"triangles", triangles},
+          {"open_edges", open_edges},
+          {"nonmanifold_edges", nonmanifold_edges},
+          {"factors_hash", factors_hash},
+          {"ds_hash", ds_hash}};
+}
+
+Json CaseResult::json() const {
+  Json j = {{"name", name},           {"status", to_string(status)},  {"message", message},
+            {"new_image", new_image}, {"golden_image", golden_image}, {"diff_image", diff_image},
+            {"checks", checks},       {"command", command},           {"seconds", seconds}};
+  if (diff) {
+    j["compare"] = {{"verdict", verify::to_string(diff->verdict)},
+                    {"identical", diff->identical},
+                    {"max_error", diff->max_error},
+                    {"mean_error", diff->mean_error},
+                    {"rms_error", diff->rms_error},
+                    {"psnr", std::isfinite(diff->psnr) ? Json(diff->psnr) : Json(nullptr)},
+                    {"max_pixel", {diff->max_x, diff->max_y}},
+                    {"over_warn", diff->over_warn},
+                    {"over_fail", diff->over_fail},
+                    {"pixels", diff->pixels},
+                    {"hash_new", diff->hash_b},
+                    {"hash_golden", diff->hash_a}};
+  }
+  return j;
+}
+
+Suite read_suite(const std::string& path) {
+  const Json root = read_json_file(path, "suite file");
+  if (!root.is_object()) throw InputError(path + ": expected a JSON object");
+  const std::set<std::string> known = {"tessera_suite", "name", "golden", "cases"};
+  for (const auto& [k, v] : root.items())
+    if (!known.count(k)) suite_error(path, k, "not a suite field (tessera_suite, name, golden, cases)");
+  if (!root.contains("tessera_suite") || root["tessera_suite"] != 1)
+    suite_error(path, "tessera_suite", "must be 1 (this format's version)");
+  Suite s;
+  s.path = path;
+  const fs::path dir = fs::path(path).parent_path();
+  // Absolute: results name files the same way whatever the working directory (check, batch, merge).
+  const auto resolve = [&](const std::string& p) { return fs::absolute(dir / p).lexically_normal().string(); };
+  s.name = root.contains("name") && root["name"].is_string() ? root["name"].get<std::string>()
+                                                             : fs::path(path).stem().string();
+  if (root.contains("golden") && !root["golden"].is_string()) suite_error(path, "golden", "expected a directory path");
+  s.golden_dir = resolve(root.contains("golden") ? root["golden"].get<std::string>() : s.name);
+  if (!root.contains("cases") || !root["cases"].is_array() || root["cases"].empty())
+    suite_error(path, "cases", "expected a non-empty list of cases");
+  const std::regex safe("[A-Za-z0-9._-]{1,100}");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < root["cases"].size(); ++i) {
+    const Json& c = root["cases"][i];
+    const std::string field = "cases[" + std::to_string(i) + "]";
+    if (!c.is_object()) suite_error(path, field, "expected an object");
+    for (const auto& [k, v] : c.items())
+      if (k != "name" && k != "scene" && k != "compare" && k != "checks")
+        suite_error(path, field + "." + k, "not a case field (name, scene, compare, checks)");
+    SuiteCase sc;
+    if (!c.contains("name") || !c["name"].is_string() || !std::regex_match(c["name"].get<std::string>(), safe))
+      suite_error(path, field + ".name", "expected a name of letters, digits, '.', '_' or '-'");
+    sc.name = c["name"].get<std::string>();
+    if (!names.insert(sc.name).second) suite_error(path, field + ".name", "'" + sc.name + "' is used twice");
+    if (!c.contains("scene") || !c["scene"].is_string()) suite_error(path, field + ".scene", "expected a scene file");
+    sc.scene = resolve(c["scene"].get<std::string>());
+    if (c.contains("compare")) {
+      const Json& m = c["compare"];
+      if (m == "exact") {
+        sc.exact = true;
+      } else if (m.is_object()) {
+        for (const auto& [k, v] : m.items())
+          if (k != "fail" && k != "failrelative" && k != "failpercent" && k != "hardfail" && k != "allowfailures" &&
+              k != "warn" && k != "warnrelative" && k != "warnpercent" && k != "hardwarn")
+            suite_error(path, field + ".compare." + k, "not an idiff threshold");
+        const std::string f = field + ".compare";
+        verify::DiffThresholds& t = sc.thresholds;
+        t.fail = threshold(m, "fail", t.fail, path, f);
+        t.fail_relative = threshold(m, "failrelative", t.fail_relative, path, f);
+        t.fail_percent = threshold(m, "failpercent", t.fail_percent, path, f);
+        t.hard_fail = threshold(m, "hardfail", t.hard_fail, path, f);
+        t.allow_failures = (long long)threshold(m, "allowfailures", 0.0f, path, f);
+        t.warn = threshold(m, "warn", t.warn, path, f);
+        t.warn_relative = threshold(m, "warnrelative", t.warn_relative, path, f);
+        t.warn_percent = threshold(m, "warnpercent", t.warn_percent, path, f);
+        t.hard_warn = threshold(m, "hardwarn", t.hard_warn, path, f);
+      } else {
+        suite_error(path, field + ".compare", "expected \"exact\" or an object of idiff thresholds");
+      }
+    }
+    if (c.contains("checks")) {
+      if (!c["checks"].is_array()) suite_error(path, field + ".checks", "expected a list");
+      for (const Json& k : c["checks"]) {
+        if (!k.is_string() || (k != "watertight" && k != "triangles" && k != "factors_hash" && k != "ds_hash"))
+          suite_error(path, field + ".checks", k.dump() + " is not watertight, triangles, factors_hash or ds_hash");
+        sc.checks.push_back(k.get<std::string>());
+      }
+    }
+    s.cases.push_back(std::move(sc));
+  }
+  return s;
+}
+
+CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  CaseResult r;
+  r.name = c.name;
+  r.new_image = "new/" + c.name + ".png";
+  r.golden_image = (fs::path(suite.golden_dir) / (c.name + ".png")).string();
+  const std::string new_path = (fs::path(report_dir) / r.new_image).string();
+  r.command = case_command(c, c.name + ".png");
+  try {
+    const std::unique_ptr<PreparedScene> scene = prepare_scene(read_scene(c.scene));
+    Device device(device_options(threads >= 0 ? threads : scene->settings.threads));
+    const bool geometry = !c.checks.empty();
+    const SceneImage image = render_scene(device, *scene, geometry);
+    fs::create_directories(fs::path(new_path).parent_path());
+    write_scene_image(image, {new_path});
+    if (geometry) r.digest = digest_of(device, *scene, image);
+
+    std::vector<std::string> problems;
+    bool is_new = false;
+    if (!fs::exists(r.golden_image)) {
+      is_new = true;
+      problems.push_back("no golden image");
+    } else {
+      verify::DiffImages images;  // kept for the difference picture: the images are read once
+      r.diff = verify::diff_images(r.golden_image, new_path, c.thresholds, c.exact, &images);
+      const verify::DiffVerdict v = r.diff->verdict;
+      if (!r.diff->identical && v != verify::DiffVerdict::file_error && v != verify::DiffVerdict::different_sizes) {
+        r.diff_image = "diff/" + c.name + ".png";
+        const fs::path diff_path = fs::path(report_dir) / r.diff_image;
+        fs::create_directories(diff_path.parent_path());
+        OIIO::ImageBuf heat = verify::heat_map_image(images, 1.0f);
+        set_output_attributes(heat);
+        if (!heat.write(diff_path.string())) throw InputError(diff_path.string() + ": cannot write the diff image");
+      }
+      if (v == verify::DiffVerdict::file_error)
+        problems.push_back("golden image: " + r.diff->error);
+      else if (v == verify::DiffVerdict::different_sizes)
+        problems.push_back("image sizes differ");
+      else if (v == verify::DiffVerdict::failure)
+        problems.push_back("image: " + std::to_string(r.diff->over_fail) + " pixels over " +
+                           float_text(c.thresholds.fail) + ", max error " + float_text(float(r.diff->max_error)));
+    }
+    if (geometry) {
+      const std::string digest_path = (fs::path(suite.golden_dir) / (c.name + ".json")).string();
+      Json golden;
+      if (fs::exists(digest_path)) golden = read_json_file(digest_path, "golden digest");
+      const Json now = r.digest.json();
+      for (const std::string& k : c.checks) {
+        const std::vector<std::string> keys = k == "watertight"
+                                                  ? std::vector<std::string>{"open_edges", "nonmanifold_edges"}
+                                                  : std::vector<std::string>{k};
+        for (const std::string& key : keys) {
+          const bool known = golden.is_object() && golden.contains(key);
+          const bool same = known && golden[key] == now[key];
+          r.checks[key] = {{"golden", known ? golden[key] : Json(nullptr)}, {"new", now[key]}, {"pass", same}};
+          if (!known) {
+            is_new = true;
+            problems.push_back(key + ": no golden value");
+          } else if (!same) {
+            problems.push_back(key + ": " + now[key].dump() + ", golden " + golden[key].dump());
+          }
+        }
+      }
+    }
+    const bool failed = std::any_of(problems.begin(), problems.end(),
+                                    [](const std::string& p) { return p.find("no golden") == std::string::npos; });
+    r.status = failed                                                      ? CaseStatus::fail
+               : is_new                                                    ? CaseStatus::new_case
+               : r.diff && r.diff->verdict == verify::DiffVerdict::warning ? CaseStatus::warning
+                                                                           : CaseStatus::pass;
+    for (const std::string& p : problems) r.message += (r.message.empty() ? "" : "; ") + p;
+  } catch (const std::exception& e) {
+    r.status = CaseStatus::error;
+    r.message = e.what();
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, const std::string& report_dir) {
+  fs::create_directories(suite.golden_dir);
+  const fs::path from = fs::path(report_dir) / r.new_image;
+  write_file_atomically(r.golden_image, [&](const std::string& temp) {
+    std::error_code ec;
+    fs::copy_file(from, temp, fs::copy_options::overwrite_existing, ec);
+    if (ec) throw InputError(r.golden_image + ": cannot write (" + ec.message() + ")");
+  });
+  if (!c.checks.empty())
+    write_text_atomically((fs::path(suite.golden_dir) / (c.name + ".json")).string(), r.digest.json().dump(2) + "\n");
+}
+
+}  // namespace tessera::cli

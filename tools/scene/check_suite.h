@@ -1,0 +1,75 @@
+// Golden suites for `tessera check`: a suite file lists cases (a scene, how its image is compared, which
+// geometry checks apply); the golden directory holds each case's blessed image (<name>.png) and digest
+// (<name>.json). run_case() renders one case and compares it; nothing here writes a golden.
+//
+// Suite file (JSON; relative paths from the suite file):
+//   {"tessera_suite": 1, "name": "frog", "golden": "golden-dir",
+//    "cases": [{"name": "screen-lod", "scene": "scenes/frog.json",
+//               "compare": "exact" | {"fail": 0.004, "failpercent": 0.1, ...idiff's thresholds...},
+//               "checks": ["watertight", "triangles", "factors_hash", "ds_hash"]}]}
+// The geometry checks trace a change to its stage: `factors_hash` (the hull shader's factors, every
+// patch's raw SV_TessFactor bits), `ds_hash` (the domain shader's output stream: positions and normals
+// bits, in draw order), `triangles`, `watertight` (open and non-manifold edges after welding on exact
+// bits, which must stay what the golden has: zero for a closed asset).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tools/scene/json_output.h"
+#include "tools/scene/scene_file.h"
+#include "tools/verify/image_diff.h"
+
+namespace tessera::cli {
+
+struct SuiteCase {
+  std::string name, scene;  // scene: resolved path
+  bool exact = false;
+  verify::DiffThresholds thresholds;
+  std::vector<std::string> checks;
+};
+
+struct Suite {
+  std::string path, name, golden_dir;  // golden_dir: resolved
+  std::vector<SuiteCase> cases;
+};
+
+// InputError (one line: file and field) for a bad suite; case names are unique and file-name safe.
+Suite read_suite(const std::string& path);
+
+// What the geometry checks compare.
+struct GeometryDigest {
+  std::uint64_t triangles = 0, open_edges = 0, nonmanifold_edges = 0;
+  std::string factors_hash, ds_hash;  // 16 hex digits (FNV-1a 64)
+  Json json() const;
+};
+
+enum class CaseStatus { pass, warning, fail, new_case, error };
+const char* to_string(CaseStatus s);  // "pass", "warning", "fail", "new", "error"
+
+struct CaseResult {
+  std::string name;
+  CaseStatus status = CaseStatus::error;
+  std::string message;       // why it is not a pass
+  std::string new_image;     // relative to the report directory
+  std::string golden_image;  // absolute
+  std::string diff_image;    // relative to the report directory; empty when identical
+  std::optional<verify::DiffReport> diff;
+  Json checks = Json::object();  // per check: {"golden", "new", "pass"}
+  GeometryDigest digest;
+  std::string command;  // reproduces the render
+  double seconds = 0;
+  Json json() const;
+};
+
+// Renders the case into report_dir/new/<name>.png, compares with the golden (and draws
+// report_dir/diff/<name>.png when they differ), runs its checks. Errors become status `error`.
+// `threads` >= 0 overrides the scene's thread count (the bytes are the same for any count).
+CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir, int threads = -1);
+
+// Writes the case's golden image and digest from its new render (check --update).
+void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, const std::string& report_dir);
+
+}  // namespace tessera::cli

@@ -1,0 +1,336 @@
+#include "tools/scene/render_views.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "shaders_cpp/cage/bounding_box.h"
+#include "shaders_cpp/debug/overlay.h"
+#include "shaders_cpp/render/displaced_render.h"
+#include "tools/scene/common.h"
+#include "tools/verify/weld_check.h"
+
+namespace tessera::cli {
+namespace {
+
+constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
+    {ViewKind::shaded, "shaded"},
+    {ViewKind::wireframe, "wireframe"},
+    {ViewKind::wire_on_shaded, "wire-on-shaded"},
+    {ViewKind::factors, "factors"},
+    {ViewKind::density, "density"},
+    {ViewKind::patch_type, "patch-type"},
+    {ViewKind::combination, "combination"},
+    {ViewKind::patch_id, "patch-id"},
+    {ViewKind::normals, "normals"},
+    {ViewKind::uv, "uv"},
+    {ViewKind::displacement, "displacement"},
+    {ViewKind::cage, "cage"},
+    {ViewKind::cracks, "cracks"},
+    {ViewKind::culled, "culled"},
+}};
+
+std::string fixed(float x, int digits) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, double(x));
+  return buf;
+}
+
+template <class F>
+std::vector<glm::vec3> sample_ramp(F&& color) {
+  std::vector<glm::vec3> r(256);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = color(float(i) / 255.0f);
+  return r;
+}
+
+DrawResult draw_shaded(Device& device, const ViewInputs& in, Framebuffer& fb) {
+  return render_surface(device, in.model, in.displacement, in.factors, in.partitioning, SubdView::shaded,
+                        in.view.camera, fb);
+}
+
+// A camera that sees the whole model and the view camera's position, from behind and above it, for
+// the culled view: the view's frustum and what it culled, seen from outside.
+SubdCamera overview_camera(const ViewInputs& in, int w, int h) {
+  const Cage& cage = in.model.cage;
+  Box3 box = bounding_box(cage.positions);
+  const glm::vec3 eye = in.view.camera.eye, target = in.view.camera.target;
+  box.extend(eye);
+  const glm::vec3 centre = box.centre();
+  const float radius = 0.5f * glm::length(box.hi - box.lo);
+  // From beyond the model, above and to the side, looking back toward the view camera: what faces away
+  // from the view (the back-patch test's patches) faces this camera, and the frustum reads as a
+  // pyramid.
+  const glm::vec3 back = glm::normalize(eye - target);
+  glm::vec3 side = glm::cross(glm::vec3(0, 1, 0), back);
+  side = glm::length(side) > 1e-3f ? glm::normalize(side) : glm::vec3(1, 0, 0);
+  const glm::vec3 direction = glm::normalize(0.5f * side + 0.5f * glm::vec3(0, 1, 0) - back);
+  Cage frame;
+  frame.positions = {box.lo, box.hi};
+  return frame_cage(frame, w, h, 35.0f, centre + direction * (radius / std::tan(glm::radians(17.5f)) * 1.1f), centre);
+}
+
+}  // namespace
+
+std::optional<ViewKind> parse_view(std::string_view name) {
+  for (const auto& [kind, text] : kViews)
+    if (name == text) return kind;
+  return std::nullopt;
+}
+
+const char* to_string(ViewKind v) {
+  for (const auto& [kind, text] : kViews)
+    if (kind == v) return text;
+  return "?";
+}
+
+std::string view_names() {
+  std::string s;
+  for (const auto& [kind, text] : kViews) s += (s.empty() ? "" : ", ") + std::string(text);
+  return s;
+}
+
+PatchTables view_patch_tables(const ViewInputs& in) {
+  const DicingCamera camera{in.view.camera.eye, pixels_per_unit(in.view.height, in.view.fov)};
+  return build_patch_tables(in.model, in.displacement, in.factors, in.partitioning, camera);
+}
+
+bool view_uses_patch_tables(ViewKind kind) {
+  return kind != ViewKind::shaded && kind != ViewKind::cage && kind != ViewKind::cracks;
+}
+
+namespace {
+
+// The control cage over the shaded surface (drawn already), depth-tested, faint where hidden.
+void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
+  const Topology& t = *in.model.topology;
+  const glm::mat4& vp = in.view.camera.view_projection;
+  std::vector<OverlayLine> lines;
+  for (int e = 0; e < t.edge_count(); ++e) {
+    const int h = t.edge_half_edges(e)[0];
+    lines.push_back(
+        {in.model.positions()[std::size_t(t.origin(h))], in.model.positions()[std::size_t(t.destination(h))]});
+  }
+  // The cage lies off the surface; where the surface hides it, it is drawn faintly.
+  OverlayStyle hidden{glm::vec3(0.1f, 0.3f, 0.75f), 1.0f, 0.25f, false, 0.0f};
+  OverlayStyle visible{glm::vec3(0.1f, 0.3f, 0.75f), 1.6f, 0.9f, true, 1e-5f};
+  draw_lines(fb, vp, lines, hidden);
+  draw_lines(fb, vp, lines, visible);
+  visible.width = 4.0f;
+  draw_points(fb, vp, in.model.positions(), visible);
+  legend.title = "control cage over the surface (" + std::string(to_string(in.model.patches.scheme)) + ")";
+  legend.lines = {std::to_string(t.edge_count()) + " cage edges, " + std::to_string(t.vertex_count()) +
+                  " vertices; faint where the surface hides them"};
+}
+
+// The tessellation welded on exact bits over the shaded surface (drawn already); open and non-manifold
+// edges drawn thick.
+void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, ViewOutput& out) {
+  verify::WeldChecker weld;
+  const DrawResult s = stream_surface(device, in.model, in.displacement, in.factors, in.partitioning,
+                                      [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
+  if (!s.ok()) {
+    out.result = s;
+    return;
+  }
+  std::vector<OverlayLine> open, nonmanifold;
+  for (const verify::WeldEdge& e : weld.bad_edges()) (e.nonmanifold ? nonmanifold : open).push_back({e.a, e.b});
+  out.open_edges = open.size(), out.nonmanifold_edges = nonmanifold.size();
+  const glm::mat4& vp = in.view.camera.view_projection;
+  draw_lines(fb, vp, open, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
+  draw_lines(fb, vp, nonmanifold, OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
+  const verify::WeldReport r = weld.report();
+  out.legend.title = "cracks: the tessellation welded on exact float bits";
+  out.legend.lines = {
+      std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
+      std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
+          " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
+}
+
+void factors_legend(const ViewInputs& in, const PatchTables& tables, Legend& legend) {
+  float lo = INFINITY, hi = -INFINITY;
+  tables.for_each([&](const PatchInfo& p) {
+    if (p.culled) return;
+    for (int k = 0; k < (p.tri ? 3 : 4); ++k) {
+      const float f = in.processed ? p.edge_processed[std::size_t(k)] : p.raw.edge[std::size_t(k)];
+      lo = std::min(lo, f), hi = std::max(hi, f);
+    }
+  });
+  legend.title = std::string("tessellation factor, ") + (in.processed ? "processed" : "raw") + " (" +
+                 std::string(ts::to_string(in.partitioning)) + ")";
+  legend.lines = {"outer rings: their edge's factor; interior: the larger inside factor",
+                  std::isfinite(lo) ? "edges drawn: " + fixed(lo, 2) + " to " + fixed(hi, 2) : "no patch drawn"};
+  legend.ramp = sample_ramp([](float t) { return heat_color(t); });
+  for (int k = 0; k <= 6; ++k) legend.ticks.emplace_back(float(k) / 6.0f, std::to_string(1 << k));
+}
+
+void patch_type_legend(Scheme scheme, const PatchTables& tables, Legend& legend) {
+  std::array<int, kPatchTypeCount> count{};
+  tables.for_each([&](const PatchInfo& p) { ++count[std::size_t(p.type)]; });
+  legend.title = "patch type, scheme " + std::string(to_string(scheme));
+  for (int k = 0; k < kPatchTypeCount; ++k)
+    if (count[std::size_t(k)] > 0)
+      legend.swatches.emplace_back(category_color(k), std::string(to_string(PatchType(k))) + ": " +
+                                                          std::to_string(count[std::size_t(k)]) + " patches");
+}
+
+void combination_legend(const TopologyCombinations& combos, Legend& legend) {
+  legend.title = std::to_string(combos.combinations.size()) + " topology combinations (as tessera analyze)";
+  std::vector<int> order(combos.combinations.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return combos.combinations[std::size_t(a)].count > combos.combinations[std::size_t(b)].count;
+  });
+  for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i) {
+    const Combination& c = combos.combinations[std::size_t(order[i])];
+    legend.swatches.emplace_back(category_color(order[i]), c.text + " : " + std::to_string(c.count));
+  }
+  if (order.size() > 8) legend.lines = {"the 8 most frequent:"};
+}
+
+// The debug pixel shader's settings for `kind`, and its legend (none for the wireframes).
+DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTables& tables, ViewOutput& out) {
+  DebugRender r;
+  r.ps.processed = in.processed;
+  r.ps.edge_pixels = in.edge_pixels;
+  out.has_legend = true;
+  Legend& legend = out.legend;
+  switch (kind) {
+    case ViewKind::wireframe:
+    case ViewKind::wire_on_shaded:
+      r.ps.view = DebugView::wire;
+      r.ps.paper = kind == ViewKind::wireframe;
+      r.wire_pass = true;
+      out.has_legend = false;
+      break;
+    case ViewKind::factors:
+      r.ps.view = DebugView::factors;
+      factors_legend(in, tables, legend);
+      break;
+    case ViewKind::density:
+      r.ps.view = DebugView::density;
+      legend.title = "pixels per segment, target " + fixed(in.edge_pixels, 1) + " (--edge-pixels)";
+      legend.lines = {"blue: finer than the target; red: coarser"};
+      legend.ramp = sample_ramp([](float t) { return diverging_color(t); });
+      for (int k = -3; k <= 3; ++k)
+        legend.ticks.emplace_back(float(k + 3) / 6.0f, fixed(in.edge_pixels * std::exp2(float(k)), k < 0 ? 1 : 0));
+      break;
+    case ViewKind::patch_type:
+      r.ps.view = DebugView::patch_type;
+      patch_type_legend(in.model.patches.scheme, tables, legend);
+      break;
+    case ViewKind::combination:
+      r.ps.view = DebugView::combination;
+      combination_legend(tables.combinations, legend);
+      break;
+    case ViewKind::patch_id:
+      r.ps.view = DebugView::patch_id;
+      legend.title = "patch id (SV_PrimitiveID): one colour per patch";
+      legend.lines = {std::to_string(tables.quads.size()) + " quad-domain, " + std::to_string(tables.tris.size()) +
+                      " tri-domain patches"};
+      break;
+    case ViewKind::normals:
+      r.ps.view = DebugView::normals;
+      legend.title = "surface normal, world space: RGB = (x, y, z) / 2 + 1/2";
+      break;
+    case ViewKind::uv: {
+      r.ps.view = DebugView::uv;
+      if (!in.model.cage.has_uvs()) throw UsageError("--view uv: " + in.model.cage.name + " has no UVs");
+      if (in.displacement) r.ps.height = &in.displacement->map->texture();
+      std::size_t seams = 0;
+      tables.for_each([&](const PatchInfo& p) { seams += std::size_t(std::popcount(unsigned(p.seam_edges))); });
+      legend.title = "texture coordinates: 16 x 16 checks, red = u, green = v";
+      legend.lines = {"UV seams in red (" + std::to_string(seams / 2) + " seam edges)"};
+      break;
+    }
+    case ViewKind::displacement: {
+      r.ps.view = DebugView::displacement;
+      const Displacement& d = *in.displacement;
+      if (d.kind != DisplacementKind::scalar) throw UsageError("--view displacement shows scalar maps only");
+      r.ps.height = &d.map->texture();
+      r.ps.height_scale = d.scale, r.ps.height_bias = d.bias, r.ps.height_range = d.bound;
+      legend.title = "signed displacement (scale * texel + bias), object units";
+      legend.ramp = sample_ramp([](float t) { return diverging_color(t); });
+      legend.ticks = {{0.0f, "-" + fixed(d.bound, 3)}, {0.5f, "0"}, {1.0f, "+" + fixed(d.bound, 3)}};
+      break;
+    }
+    case ViewKind::culled: {
+      r.ps.view = DebugView::culled;
+      std::size_t culled = 0, away = 0, total = 0;
+      tables.for_each([&](const PatchInfo& p) { culled += p.culled ? 1 : 0, away += p.faces_away ? 1 : 0, ++total; });
+      legend.title = "patch culling, seen from outside the view";
+      legend.swatches = {
+          {kCulledColor, std::to_string(culled) + " of " + std::to_string(total) + " patches outside the frustum"},
+          {kBackCulledColor, std::to_string(away) + " proven to face away (back-patch test)"},
+          {glm::vec3(0.1f, 0.1f, 0.1f), "the view camera's frustum"}};
+      break;
+    }
+    case ViewKind::shaded:
+    case ViewKind::cage:
+    case ViewKind::cracks: break;  // not debug-shader views
+  }
+  return r;
+}
+
+}  // namespace
+
+ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* given, Framebuffer& fb) {
+  ViewOutput out;
+  fb.clear(kBackgroundColor, 1.0f);
+  if (kind == ViewKind::displacement && !in.displacement)
+    throw UsageError("--view displacement needs --displacement MAP");
+  if (kind == ViewKind::shaded || kind == ViewKind::cage || kind == ViewKind::cracks) {
+    out.result = draw_shaded(device, in, fb);
+    if (!out.result.ok() || kind == ViewKind::shaded) return out;
+    out.has_legend = true;
+    if (kind == ViewKind::cage)
+      draw_cage_view(in, fb, out.legend);
+    else
+      draw_cracks_view(device, in, fb, out);
+    return out;
+  }
+  if (given == nullptr)
+    throw std::logic_error("render_view: --view " + std::string(to_string(kind)) + " needs the patch tables");
+  DebugRender r = debug_view_setup(kind, in, *given, out);
+  // The culled view draws what the view culled, from outside, with the view's frustum.
+  SubdFactors factors = in.factors;
+  SubdCamera camera = in.view.camera;
+  if (kind == ViewKind::culled) {
+    factors.cull.enabled = false;
+    factors.back = {};  // its claims are about the view camera, not this one
+    camera = overview_camera(in, fb.width(), fb.height());
+  }
+  r.ps.light = glm::normalize(camera.eye - camera.target);
+  out.result = render_debug(device, in.model, in.displacement, factors, in.partitioning, r, *given, camera, fb);
+  if (out.result.ok() && kind == ViewKind::culled) {
+    std::vector<OverlayLine> lines;
+    frustum_lines(in.view.camera.view_projection, lines);
+    draw_lines(fb, camera.view_projection, lines, OverlayStyle{glm::vec3(0.1f), 1.5f, 1.0f, false, 0.0f});
+  }
+  return out;
+}
+
+DrawResult render_pick_buffer(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables& tables,
+                              Framebuffer& fb) {
+  fb.clear(glm::vec4(0.0f), 1.0f);
+  DebugRender r;
+  r.ps.view = DebugView::pick;
+  SubdFactors factors = in.factors;
+  SubdCamera camera = in.view.camera;
+  if (kind == ViewKind::culled) {
+    factors.cull.enabled = false;
+    factors.back = {};
+    camera = overview_camera(in, fb.width(), fb.height());
+  }
+  return render_debug(device, in.model, in.displacement, factors, in.partitioning, r, tables, camera, fb);
+}
+
+const PatchInfo* picked_patch(const PatchTables& tables, std::uint32_t code, std::size_t* index) {
+  if (code == 0 || code >= kPickOverflow) return nullptr;
+  const std::size_t i = (code - 1u) / 2u;
+  const std::vector<PatchInfo>& rows = (code - 1u) % 2u ? tables.tris : tables.quads;
+  if (i >= rows.size()) return nullptr;
+  if (index != nullptr) *index = i;
+  return &rows[i];
+}
+
+}  // namespace tessera::cli

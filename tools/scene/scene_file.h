@@ -1,0 +1,48 @@
+// Scene files: one render fully described in JSON (docs/scene.schema.json, printed by `tessera render
+// --scene-schema`), so an ad-hoc command line becomes a checked-in test.
+//
+// Contract
+// - read_scene() returns the render's settings with every relative path resolved against the scene
+//   file's directory, and throws InputError -- one line, the file and the field -- for anything the
+//   schema refuses: not JSON (with line and column), a missing or unknown field, a wrong type, a value
+//   outside its set. Values the schema allows but a render refuses (a factor of NaN, a camera at its
+//   target) are the render's to refuse, as on the command line.
+// - scene_json() is the inverse: read_scene(a file holding scene_json(s, dir)) gives `s` back, floats
+//   bit for bit (shortest round-trip text); paths are written relative to `dir` (absolute when `dir`
+//   is empty). Fields at their defaults are written too: a scene says everything it renders with.
+#pragma once
+
+#include <string>
+
+#include "tools/scene/json_output.h"
+#include "tools/scene/model_options.h"
+#include "tools/scene/view_options.h"
+
+namespace tessera::cli {
+
+// What a scene describes: everything `tessera render` takes but its outputs.
+struct RenderSettings {
+  std::string cage, scheme = "gregory", partitioning = "integer", factors_file, view = "shaded";
+  std::string factor_kind = "raw";
+  CameraCli camera;
+  LodCli lod;
+  float factor = 8.0f, vary = 0.0f;
+  AssetCli asset;  // glTF: scene, mesh, animation, time
+  int threads = 0;
+  int msaa = 1;  // samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard patterns)
+  DisplacementCli displacement;
+};
+
+// Registers every setting of `s` but the cage as `tessera render`'s options, bound to `s`: scheme and
+// factors, camera, LOD and culling (--cull defaulting to `cull_default`), --view, --msaa,
+// --factor-kind, displacement and the glTF asset. render, view, bench view and the viewer's request
+// parser all read settings through it, so an option means one thing in each.
+void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default);
+
+RenderSettings read_scene(const std::string& path);
+Json scene_json(const RenderSettings& s, const std::string& dir);
+
+// docs/scene.schema.json, compiled in.
+extern const char* const kSceneSchema;
+
+}  // namespace tessera::cli

@@ -1,0 +1,165 @@
+#include "tools/scene/scene_render.h"
+
+#include <bit>
+#include <cstdint>
+
+#include "pipeline/sample_pattern.h"
+#include "shaders_cpp/image_io/image_file.h"
+#include "tools/scene/common.h"
+#include "tools/scene/json_output.h"
+#include "tools/scene/view_legend.h"
+
+namespace tessera::cli {
+
+ViewInputs PreparedScene::inputs() const {
+  return ViewInputs{model,
+                    displacement ? &*displacement : nullptr,
+                    factors,
+                    partitioning,
+                    view,
+                    settings.lod.edge_pixels,
+                    settings.factor_kind == "processed"};
+}
+
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
+  auto p = std::make_unique<PreparedScene>();
+  p->scheme = scheme_option(s.scheme);
+  p->model = load_model(s.cage, p->scheme, s.asset);
+  p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
+  p->displacement = displacement_option(s.displacement, p->model);
+  configure_scene(*p, s);
+  return p;
+}
+
+void configure_scene(PreparedScene& p, const RenderSettings& s) {
+  if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
+  const auto kind = parse_view(s.view);
+  if (!kind) throw UsageError("--view: '" + s.view + "' is not one of " + view_names());
+  if (s.factor_kind != "raw" && s.factor_kind != "processed")
+    throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
+  const ts::Partitioning partitioning = partitioning_option(s.partitioning);
+  // The pose first, and only when it changes (the exact scheme rebuilds its limit surface per pose):
+  // a model is posed from its rig alone, so the result does not depend on the pose it had.
+  // settings.asset always names the model's pose, even when a later step of this call throws.
+  if (!(p.settings.asset == s.asset)) {
+    pose_or_refuse(p.model, s.cage, s.asset);
+    p.settings.asset = s.asset;
+  }
+  // The base factors depend on --factor, --vary-factors and the factors file alone: a scene already
+  // configured with the same ones keeps them (the viewer's every frame would re-read the file).
+  const auto same_bits = [](float a, float b) {
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+  };
+  const bool same_base = p.configured && same_bits(p.settings.factor, s.factor) && same_bits(p.settings.vary, s.vary) &&
+                         p.settings.factors_file == s.factors_file;
+  SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
+  ViewSetup view = view_option(s.camera, p.model.cage);
+  SubdFactors factors = base;
+  LodResult lod = apply_lod_options(s.lod, view, p.model, p.displacement ? &*p.displacement : nullptr, factors);
+  p.settings = s;
+  p.partitioning = partitioning;
+  p.kind = *kind;
+  p.base_factors = std::move(base);
+  p.factors = std::move(factors);
+  p.view = view;
+  p.lod = std::move(lod);
+  p.configured = true;
+}
+
+void pose_scene(PreparedScene& p, double time) {
+  pose_model(p.model, p.settings.asset, time);
+  p.factors = p.base_factors;
+  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
+}
+
+void view_scene(PreparedScene& p, const ViewSetup& view) {
+  p.view = view;
+  p.factors = p.base_factors;
+  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
+}
+
+std::string describe_scene(const PreparedScene& p) {
+  const Cage& cage = p.model.cage;
+  const auto vec = [](glm::vec3 v) { return float_text(v.x) + "," + float_text(v.y) + "," + float_text(v.z); };
+  std::string s = "loaded " + p.settings.cage + ": " + std::to_string(cage.vertex_count()) + " vertices, " +
+                  std::to_string(cage.face_count()) + " faces, " +
+                  std::to_string(p.model.patches.quads.size() + p.model.patches.tris.size()) + " patches (" +
+                  std::to_string(p.model.patches.quads.size()) + " quad, " +
+                  std::to_string(p.model.patches.tris.size()) + " triangle), scheme " + to_string(p.scheme);
+  if (p.model.rig) s += ", animated (t " + float_text(float(p.settings.asset.time)) + " s)";
+  if (p.displacement && p.displacement->map)
+    s += ", displacement " + std::to_string(p.displacement->map->width()) + "x" +
+         std::to_string(p.displacement->map->height()) + " (bound " + float_text(p.displacement->bound) + ")";
+  if (p.displacement && p.displacement->normal_map) s += ", normal map";
+  s += "; view " + std::to_string(p.view.width) + "x" + std::to_string(p.view.height) + " from " +
+       vec(p.view.camera.eye) + " to " + vec(p.view.camera.target) + ", up " + vec(p.view.camera.up);
+  return s;
+}
+
+std::string describe_times(const DrawReport& r) {
+  const StageTimes& t = r.times;
+  const auto ms = [](double s) { return float_text(float(s * 1e3)); };
+  return "draw " + ms(t.wall) + " ms wall; thread-ms: IA+VS " + ms(t.ia_vs) + ", HS " + ms(t.hs) + ", tessellator " +
+         ms(t.tessellator) + ", DS " + ms(t.ds) + ", setup " + ms(t.setup) + ", raster+PS " + ms(t.raster) + "; " +
+         std::to_string(r.statistics.CInvocations) + " triangles, " + std::to_string(r.statistics.PSInvocations) +
+         " pixels shaded, geometry peak " + std::to_string(r.memory.geometry_peak_bytes / 1024) + " KiB";
+}
+
+SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables,
+                        std::optional<Framebuffer> reuse) {
+  SceneImage image;
+  if (reuse && reuse->width() == scene.view.width && reuse->height() == scene.view.height &&
+      reuse->samples() == scene.settings.msaa && reuse->format() == ColorFormat::rgba8_unorm) {
+    image.fb = std::move(reuse);
+  } else {
+    std::string error;
+    image.fb =
+        Framebuffer::create(scene.view.width, scene.view.height, ColorFormat::rgba8_unorm, &error, scene.settings.msaa);
+    if (!image.fb) throw UsageError(error);
+  }
+  const ViewInputs inputs = scene.inputs();
+  // Per-patch facts, replayed once for the view and the statistics.
+  if (view_uses_patch_tables(scene.kind) || want_tables) image.tables = view_patch_tables(inputs);
+  image.out = render_view(device, scene.kind, inputs, image.tables ? &*image.tables : nullptr, *image.fb);
+  if (!image.out.result.ok()) throw InputError(scene.settings.cage + ": " + image.out.result.error);
+  // The overlays drew at pixel rate into every sample; what follows (legends, files, hashes) reads
+  // the resolved image.
+  if (image.fb->samples() > 1) image.fb = image.fb->resolve();
+  return image;
+}
+
+Json scene_summary(const std::string& path, const PreparedScene& scene, const SceneImage& image) {
+  const DrawReport& total = image.out.result.report;
+  Json j = {{"output", path},
+            {"width", scene.view.width},
+            {"height", scene.view.height},
+            {"scheme", to_string(scene.scheme)},
+            {"view", to_string(scene.kind)},
+            {"camera",
+             {{"position",
+               {json_float(scene.view.camera.eye.x), json_float(scene.view.camera.eye.y),
+                json_float(scene.view.camera.eye.z)}},
+              {"target",
+               {json_float(scene.view.camera.target.x), json_float(scene.view.camera.target.y),
+                json_float(scene.view.camera.target.z)}}}},
+            {"patches", scene.model.patches.quads.size() + scene.model.patches.tris.size()},
+            {"patches_culled", total.patches_culled},
+            {"patches_facing_away", total.patches_back_culled},
+            {"triangles", total.statistics.CInvocations},
+            {"pixels_shaded", total.statistics.PSInvocations},
+            {"statistics", to_json(total.statistics)},
+            {"times", to_json(total.times)},
+            {"memory", to_json(total.memory)}};
+  if (scene.kind == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  return j;
+}
+
+void write_scene_image(const SceneImage& image, const ImageTarget& target) {
+  if (image.out.has_legend) {
+    write_with_legend(*image.fb, image.out.legend, target);
+  } else if (auto e = write_color(*image.fb, target); !e.empty()) {
+    throw InputError(e);
+  }
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,69 @@
+// One render's setup and image, shared by `tessera render` and `tessera check`: the settings
+// (scene_file.h) turned into a loaded model, displacement, view and factors, then drawn in the
+// settings' view, and written as `render -o` writes it (with the view's legend when it has one).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "shaders_cpp/image_io/image_file.h"
+#include "tools/scene/json_output.h"
+#include "tools/scene/render_views.h"
+#include "tools/scene/scene_file.h"
+
+namespace tessera::cli {
+
+// The settings, loaded and checked (UsageError for bad values, InputError for unreadable files).
+// Not movable: `inputs` refers to its members.
+struct PreparedScene {
+  RenderSettings settings;
+  Scheme scheme = Scheme::gregory;
+  ts::Partitioning partitioning = ts::Partitioning::integer;
+  ViewKind kind = ViewKind::shaded;
+  SubdModel model;
+  std::optional<Displacement> displacement;
+  ViewSetup view;
+  SubdFactors base_factors;  // before LOD and culling (pose_scene starts again from them)
+  SubdFactors factors;
+  LodResult lod;
+  bool configured = false;  // configure_scene has succeeded once: base_factors hold settings' factors
+  ViewInputs inputs() const;
+};
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
+// Applies `s` to a prepared scene whose asset, scheme and displacement it shares (the caller checks
+// that: cage, asset selection, scheme and displacement settings equal the scene's): everything after
+// the load is redone as prepare_scene(s) does it, so the scene then draws the same bytes as a scene
+// prepared from `s`. On an error the scene is unchanged but for an animated model's pose.
+void configure_scene(PreparedScene& scene, const RenderSettings& s);
+// Poses an animated scene's model at `time` seconds and recomputes what follows the pose (LOD factors,
+// culling); the camera stays where prepare_scene put it (framing the rest pose).
+void pose_scene(PreparedScene& scene, double time);
+// Moves the scene's view camera to `view` and recomputes what follows the camera (LOD factors, culling);
+// a dicing camera given in the settings stays where it is.
+void view_scene(PreparedScene& scene, const ViewSetup& view);
+
+struct SceneImage {
+  std::optional<Framebuffer> fb;
+  ViewOutput out;
+  std::optional<PatchTables> tables;  // when the view or the caller needed them
+};
+// What was loaded, for -v: the asset's counts, scheme, maps, view and camera, on one line.
+std::string describe_scene(const PreparedScene& scene);
+// Where a draw's time went, for -v: wall time and each stage's thread-seconds, on one line.
+std::string describe_times(const DrawReport& report);
+
+// Draws the scene; `want_tables` keeps the patch tables (for --stats) even when the view does not use them.
+// `reuse`: a target to draw into when it has the scene's size, samples and format (the viewer passes
+// its last frame's, which saves allocating and faulting in a new one per frame); the view clears it
+// first, so the image is the same bytes either way.
+SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_tables,
+                        std::optional<Framebuffer> reuse = std::nullopt);
+// To a file (`{path}`, atomically) or into memory (`{name, &bytes}`: `name`'s extension picks the
+// format), the same bytes either way.
+void write_scene_image(const SceneImage& image, const ImageTarget& target);
+// The summary `render --json` prints of one image written to `path`: size, scheme, view, camera,
+// patches, triangles, pixels shaded, statistics, stage times and memory.
+Json scene_summary(const std::string& path, const PreparedScene& scene, const SceneImage& image);
+
+}  // namespace tessera::cli

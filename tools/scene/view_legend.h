@@ -1,0 +1,32 @@
+// The legend of a debug view: a panel in the image's lower-left corner with a title, lines of text,
+// and a colour bar with tick labels or a list of colour swatches. Text is drawn with OpenImageIO's
+// render_text in DejaVu Sans at a size that follows the image height (readable at 1280x720).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pipeline/framebuffer.h"
+#include "shaders_cpp/image_io/image_file.h"
+
+namespace tessera::cli {
+
+struct Legend {
+  std::string title;
+  std::vector<std::string> lines;
+  // A colour bar: colours sampled left to right, and labels at positions in [0, 1].
+  std::vector<glm::vec3> ramp;
+  std::vector<std::pair<float, std::string>> ticks;
+  // Or swatches: a colour and what it means.
+  std::vector<std::pair<glm::vec3, std::string>> swatches;
+};
+
+// Writes the framebuffer's colour with the legend drawn over it to `target` (a file, atomically, or
+// memory). Without the font the image is written without text (one log line says why). InputError if
+// it cannot be written.
+void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageTarget& target);
+
+}  // namespace tessera::cli
