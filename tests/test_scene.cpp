@@ -11,6 +11,7 @@
 #include "test_data.h"
 #include "tools/scene/common.h"
 #include "tools/scene/scene_file.h"
+#include "tools/scene/scene_render.h"
 
 namespace tessera {
 namespace {
@@ -200,3 +201,44 @@ TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, 
 }
 
 }  // namespace tessera
+
+namespace tessera::cli {
+
+TEST_CASE("configure_scene redoes only what the settings change, and draws as a fresh scene", "[scene][issue32]") {
+  RenderSettings s;
+  s.cage = kFrog;
+  s.lod.mode = "screen";
+  s.lod.cull = "all";
+  s.camera.resolution = "160x90";
+  s.threads = 2;
+  const std::unique_ptr<PreparedScene> p = prepare_scene(s);
+  REQUIRE(p->factors.per_edge);
+  const auto* table = p->factors.per_edge.get();
+  Device device(device_options(2));
+  const auto bytes = [&](const PreparedScene& scene) { return render_scene(device, scene, false).fb->color_bytes(); };
+
+  // A view kind alone: the LOD table stands, and the image is a fresh scene's.
+  RenderSettings v = s;
+  v.view = "factors";
+  configure_scene(*p, v);
+  CHECK(p->factors.per_edge.get() == table);
+  CHECK(p->kind == ViewKind::factors);
+  CHECK(bytes(*p) == bytes(*prepare_scene(v)));
+
+  // The camera: the LOD is computed again, for the new view.
+  RenderSettings c = v;
+  c.camera.eye = "10,5,60";
+  configure_scene(*p, c);
+  CHECK(p->factors.per_edge.get() != table);
+  CHECK(bytes(*p) == bytes(*prepare_scene(c)));
+
+  // After view_scene (render --orbit), the settings' camera is computed again even though its text
+  // did not change.
+  const auto* orbit_table = p->factors.per_edge.get();
+  view_scene(*p, orbit_view(c.camera, p->model.cage, p->view, 1, 4));
+  configure_scene(*p, c);
+  CHECK(p->factors.per_edge.get() != orbit_table);
+  CHECK(bytes(*p) == bytes(*prepare_scene(c)));
+}
+
+}  // namespace tessera::cli

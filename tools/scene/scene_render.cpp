@@ -52,6 +52,17 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
   };
   const bool same_base = p.configured && same_bits(p.settings.factor, s.factor) && same_bits(p.settings.vary, s.vary) &&
                          p.settings.factors_file == s.factors_file;
+  // The view, factors and LOD follow the camera, LOD and cull settings, the base factors and the pose.
+  const auto same_view_inputs = [&](const RenderSettings& a) {
+    return same_base && a.camera == s.camera && a.lod == s.lod && a.asset == s.asset;
+  };
+  if (p.derived_from && same_view_inputs(*p.derived_from)) {
+    p.settings = s;
+    p.partitioning = partitioning;
+    p.kind = *kind;
+    p.derived_from = s;
+    return;
+  }
   SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
   ViewSetup view = view_option(s.camera, p.model.cage);
   SubdFactors factors = base;
@@ -64,16 +75,20 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
   p.view = view;
   p.lod = std::move(lod);
   p.configured = true;
+  p.derived_from = s;
 }
 
 void pose_scene(PreparedScene& p, double time) {
   pose_model(p.model, p.settings.asset, time);
+  p.settings.asset.time = time;
+  p.derived_from.reset();
   p.factors = p.base_factors;
   p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
 }
 
 void view_scene(PreparedScene& p, const ViewSetup& view) {
   p.view = view;
+  p.derived_from.reset();
   p.factors = p.base_factors;
   p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
 }

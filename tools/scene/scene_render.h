@@ -28,16 +28,23 @@ struct PreparedScene {
   SubdFactors factors;
   LodResult lod;
   bool configured = false;  // configure_scene has succeeded once: base_factors hold settings' factors
+  // The settings `view`, `factors` and `lod` were last computed from by configure_scene; pose_scene
+  // and view_scene, which compute them from other inputs, clear it.
+  std::optional<RenderSettings> derived_from;
   ViewInputs inputs() const;
 };
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
 // Applies `s` to a prepared scene whose asset, scheme and displacement it shares (the caller checks
-// that: cage, asset selection, scheme and displacement settings equal the scene's): everything after
-// the load is redone as prepare_scene(s) does it, so the scene then draws the same bytes as a scene
-// prepared from `s`. On an error the scene is unchanged but for an animated model's pose.
+// that: cage, asset selection, scheme and displacement settings equal the scene's): what `s` changes is
+// redone as prepare_scene(s) does it, so the scene then draws the same bytes as a scene prepared from
+// `s`. Only what changed is redone: the pose when the time or animation changes, the base factors when
+// --factor, --vary-factors or the factors file change, the view, LOD and culling when any of those or
+// the camera, LOD or cull settings change; a change of view kind, partitioning, MSAA or factor kind
+// alone keeps them. On an error the scene is unchanged but for an animated model's pose.
 void configure_scene(PreparedScene& scene, const RenderSettings& s);
-// Poses an animated scene's model at `time` seconds and recomputes what follows the pose (LOD factors,
-// culling); the camera stays where prepare_scene put it (framing the rest pose).
+// Poses an animated scene's model at `time` seconds (settings.asset.time becomes `time`) and
+// recomputes what follows the pose (LOD factors, culling); the camera stays where prepare_scene put
+// it (framing the rest pose).
 void pose_scene(PreparedScene& scene, double time);
 // Moves the scene's view camera to `view` and recomputes what follows the camera (LOD factors, culling);
 // a dicing camera given in the settings stays where it is.

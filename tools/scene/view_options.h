@@ -19,6 +19,7 @@ namespace tessera::cli {
 struct CameraCli {
   std::string resolution = "1920x1080", eye, target, up;  // up: empty for +y
   float fov = 35.0f;
+  friend bool operator==(const CameraCli&, const CameraCli&) = default;
 };
 void add_camera_options(CLI::App& cmd, CameraCli& c);
 
@@ -40,6 +41,7 @@ ViewSetup orbit_view(const CameraCli& c, const Cage& cage, const ViewSetup& base
 struct LodCli {
   std::string mode = "uniform", dicing_eye, cull;
   float edge_pixels = 8.0f, lod_distance = 0.0f;
+  friend bool operator==(const LodCli&, const LodCli&) = default;
 };
 // --lod, --edge-pixels, --lod-distance, --dicing-camera-position, and --cull with its default.
 void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default);
