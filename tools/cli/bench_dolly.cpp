@@ -98,14 +98,14 @@ double largest_move(const FramePoints& before, const FramePoints& now, const glm
 }
 
 int run_dolly(const DollyOptions& o) {
-  const Scheme scheme = scheme_option(o.s.scheme);
-  const ts::Partitioning partitioning = partitioning_option(o.s.partitioning);
   if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
   const std::string cage = o.s.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.s.cage;
   // The scene library's one route from settings to a model; each frame's view and LOD follow.
   RenderSettings settings = o.s;
   settings.cage = cage;
   const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
+  const Scheme scheme = scene->scheme;
+  const ts::Partitioning partitioning = scene->partitioning;
   const SubdModel& model = scene->model;
   const SubdFactors& base_factors = scene->base_factors;
   Displacement* d = scene->displacement ? &*scene->displacement : nullptr;

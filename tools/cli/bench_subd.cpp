@@ -6,7 +6,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "pipeline/sample_pattern.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/displaced_render.h"
 #include "shaders_cpp/render/subd_render.h"
@@ -28,8 +27,6 @@ struct BenchSubdOptions {
 };
 
 int run_bench_subd(const BenchSubdOptions& o) {
-  const Scheme scheme = scheme_option(o.s.scheme);
-  const ts::Partitioning partitioning = partitioning_option(o.s.partitioning);
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const std::string cage = o.s.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.s.cage;
   check_output_paths({{"-o", o.output}}, {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
@@ -37,6 +34,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   RenderSettings settings = o.s;
   settings.cage = cage;
   const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
+  const Scheme scheme = scene->scheme;
+  const ts::Partitioning partitioning = scene->partitioning;
   const SubdModel& model = scene->model;
   const ViewSetup& view = scene->view;
   const int w = view.width, h = view.height;
@@ -48,7 +47,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   Device device(device_options(o.s.threads));
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.s.msaa);
-  if (!fb) throw UsageError((valid_sample_count(o.s.msaa) ? "--resolution: " : "--msaa: ") + error);
+  if (!fb) throw UsageError("--resolution: " + error);  // prepare_scene has checked --msaa
 
   using Clock = std::chrono::steady_clock;
   struct Timed {

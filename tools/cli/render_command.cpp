@@ -82,10 +82,12 @@ int render_sequence(const RenderOptions& o) {
       const double time = orbit ? o.s.asset.time : o.s.asset.time + double(i) / o.fps;
       // Image 0 is the scene prepare_scene made: the settings' pose (frame 0 is at their time) and
       // view (orbit view 0 is the base view itself).
-      if (i > 0 && orbit)
-        view_scene(*scene, orbit_view(o.s.camera, scene->model.cage, base, i, count));
-      else if (i > 0)
-        pose_scene(*scene, time);
+      if (i > 0) {
+        if (orbit)
+          view_scene(*scene, orbit_view(o.s.camera, scene->model.cage, base, i, count));
+        else
+          pose_scene(*scene, time);
+      }
       const SceneImage image = render_scene(device, *scene, false);
       const std::filesystem::path final_path(paths[std::size_t(i)]);
       partial.push_back((final_path.parent_path() / (".tessera-partial-" + final_path.filename().string())).string());

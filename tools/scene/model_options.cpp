@@ -39,12 +39,13 @@ ts::Partitioning partitioning_option(const std::string& name) {
 
 SubdFactors factors_option(float factor, float vary, const std::string& file, const Cage& cage) {
   // The range rules first (lod/subd_factors.h), so a bad --factor is named before a bad file.
+  SubdFactors f;
   try {
-    (void)base_factors(factor, vary);
+    f = base_factors(factor, vary);
   } catch (const FactorSettingError& e) {
     throw UsageError(e.what());
   }
-  if (file.empty()) return base_factors(factor, vary);
+  if (file.empty()) return f;
   if (std::filesystem::is_directory(file)) throw InputError(file + ": a directory, not a factors file");
   std::ifstream in(file);
   if (!in) throw InputError(file + ": cannot open");
@@ -75,7 +76,8 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
     // D3D11 rules apply to the value (NaN or <= 0 culls the patch, > 64 clamps): passed through as is.
     (*map)[key] = *x;
   }
-  return base_factors(factor, vary, std::move(map));
+  f.per_edge = std::move(map);
+  return f;
 }
 
 void add_asset_options(CLI::App& cmd, AssetCli& a, bool with_time) {

@@ -1,8 +1,5 @@
 #include "tools/scene/scene_render.h"
 
-#include <bit>
-#include <cstdint>
-
 #include "pipeline/sample_pattern.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "tools/scene/common.h"
@@ -46,34 +43,25 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
     p.settings.asset = s.asset;
   }
   // The base factors depend on --factor, --vary-factors and the factors file alone: a scene already
-  // configured with the same ones keeps them (the viewer's every frame would re-read the file).
-  const auto same_bits = [](float a, float b) {
-    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-  };
-  const bool same_base = p.configured && same_bits(p.settings.factor, s.factor) && same_bits(p.settings.vary, s.vary) &&
+  // configured with the same ones keeps them (the viewer's every frame would re-read the file). The
+  // view, factors and LOD follow those, the camera, LOD and cull settings, and the pose.
+  const bool same_base = p.configured && p.settings.factor == s.factor && p.settings.vary == s.vary &&
                          p.settings.factors_file == s.factors_file;
-  // The view, factors and LOD follow the camera, LOD and cull settings, the base factors and the pose.
-  const auto same_view_inputs = [&](const RenderSettings& a) {
-    return same_base && a.camera == s.camera && a.lod == s.lod && a.asset == s.asset;
-  };
-  if (p.derived_from && same_view_inputs(*p.derived_from)) {
-    p.settings = s;
-    p.partitioning = partitioning;
-    p.kind = *kind;
-    p.derived_from = s;
-    return;
+  const bool same_view = same_base && p.derived_from && p.derived_from->camera == s.camera &&
+                         p.derived_from->lod == s.lod && p.derived_from->asset == s.asset;
+  if (!same_view) {
+    SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
+    ViewSetup view = view_option(s.camera, p.model.cage);
+    SubdFactors factors = base;
+    LodResult lod = apply_lod_options(s.lod, view, p.model, p.displacement ? &*p.displacement : nullptr, factors);
+    p.base_factors = std::move(base);
+    p.factors = std::move(factors);
+    p.view = view;
+    p.lod = std::move(lod);
   }
-  SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
-  ViewSetup view = view_option(s.camera, p.model.cage);
-  SubdFactors factors = base;
-  LodResult lod = apply_lod_options(s.lod, view, p.model, p.displacement ? &*p.displacement : nullptr, factors);
   p.settings = s;
   p.partitioning = partitioning;
   p.kind = *kind;
-  p.base_factors = std::move(base);
-  p.factors = std::move(factors);
-  p.view = view;
-  p.lod = std::move(lod);
   p.configured = true;
   p.derived_from = s;
 }
