@@ -37,7 +37,7 @@ ALLOWED = {
     "shaders_cpp/render": SHADERS,
     "shaders_cpp/debug": SHADERS + ["shaders_cpp/render"],
     "shaders_cpp/bake": SHADERS + ["shaders_cpp/render"],
-    "tools/verify": ["tessellator"],
+    "tools/verify": ["tessellator", "shaders_cpp/image_io"],  # images through the codec
     "tools/measure": ["tessellator", "shaders_cpp/cage", "shaders_cpp/subdiv"],
     # The scene library, and the viewer and the Python module over it: never the command line.
     "tools/scene": BELOW_TOOLS,

@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <filesystem>
 
-#include <OpenImageIO/imageio.h>
-
 #include "shaders_cpp/displacement/displacement_map.h"
 #include "shaders_cpp/image_io/image_file.h"
 
@@ -55,13 +53,12 @@ std::string write_baked_map(const std::string& path, int width, int height, cons
       quantized[i] = std::uint16_t(std::lround(double(x) * 65535.0));
     }
   }
-  OIIO::ImageSpec spec(width, height, n, floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT16);
-  spec.channelnames = channels;
-  if (floats) spec.attribute("compression", "zip");
-  for (const auto& [key, value] : attributes) spec.attribute(key, value);
-  if (!description.empty()) spec.attribute("ImageDescription", description);
-  return floats ? write_image_atomically(path, spec, OIIO::TypeDesc::FLOAT, texels.data())
-                : write_image_atomically(path, spec, OIIO::TypeDesc::UINT16, quantized.data());
+  ImageLayout layout{width, height, n, floats ? PixelType::f32 : PixelType::u16, channels};
+  if (floats) layout.attributes.emplace_back("compression", "zip");
+  for (const auto& [key, value] : attributes) layout.attributes.emplace_back(key, value);
+  if (!description.empty()) layout.attributes.emplace_back("ImageDescription", description);
+  return floats ? write_image(ImageTarget{path}, layout, PixelType::f32, texels.data())
+                : write_image(ImageTarget{path}, layout, PixelType::u16, quantized.data());
 }
 
 }  // namespace tessera

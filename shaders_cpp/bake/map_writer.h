@@ -1,5 +1,5 @@
-// Writing baked maps through OpenImageIO, atomically (a temporary, then rename) and byte-stable (no
-// time stamp: image_metadata.h).
+// Writing baked maps through the image codec, atomically (a temporary, then rename) and byte-stable
+// (no time stamp: image_file.h).
 //
 // Formats, by the path's extension: .exr holds float32; .png and .tif/.tiff hold 16-bit unsigned values
 // in [0, 1]. With `stored_range`, values of any range (displacement) go to a 16-bit file as

@@ -1,12 +1,5 @@
 #include "shaders_cpp/displacement/displacement_map.h"
 
-#include <charconv>
-
-#include "shaders_cpp/cage/one_line.h"
-#include "shaders_cpp/displacement/chart_padding.h"
-
-#include "shaders_cpp/image_io/stderr_capture.h"
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -14,10 +7,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include "shaders_cpp/cage/one_line.h"
+#include "shaders_cpp/displacement/chart_padding.h"
+#include "shaders_cpp/image_io/image_codec.h"
+#include "shaders_cpp/image_io/stderr_capture.h"
 
 namespace tessera {
 namespace {
@@ -93,20 +87,17 @@ void check_dds_size(const std::string& path) {
   check_dds_header(path, h, std::size_t(in.gcount()), std::filesystem::file_size(path));
 }
 
-std::unique_ptr<OIIO::ImageInput> open(const std::string& path) {
+void check_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, "a directory, not an image file");
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
   check_dds_size(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) fail(path, "cannot read as an image (" + one_line_message(OIIO::geterror()) + ")");
-  return in;
 }
 
-std::vector<std::string> names_of(const OIIO::ImageSpec& spec) {
+std::vector<std::string> names_of(const ImageHeader& header) {
   std::vector<std::string> names;
-  for (int c = 0; c < spec.nchannels; ++c) {
-    std::string n = c < int(spec.channelnames.size()) ? spec.channelnames[std::size_t(c)] : std::string();
+  for (int c = 0; c < header.channels; ++c) {
+    std::string n = c < int(header.channel_names.size()) ? header.channel_names[std::size_t(c)] : std::string();
     names.push_back(n.empty() ? "channel" + std::to_string(c) : n);
   }
   return names;
@@ -181,26 +172,21 @@ std::vector<int> select_channels(const std::string& path, const std::vector<std:
 }  // namespace
 
 struct DisplacementImageDecoder {
-  static DisplacementImage decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path,
-                                  std::uintmax_t file_size, std::optional<DisplacementImage::Selection> check);
+  static DisplacementImage decode(const ImageSource& source, std::uintmax_t file_size,
+                                  std::optional<DisplacementImage::Selection> check);
 };
 
 DisplacementImage DisplacementImage::read(const std::string& path, std::optional<Selection> check) {
   const StderrCapture quiet;  // the codec's own error lines: our message says it once
-  auto in = open(path);
-  return DisplacementImageDecoder::decode(std::move(in), path, std::filesystem::file_size(path), check);
+  check_file(path);
+  return DisplacementImageDecoder::decode(ImageSource{path}, std::filesystem::file_size(path), check);
 }
 
 DisplacementImage DisplacementImage::read_encoded(const std::string& name, std::span<const std::uint8_t> bytes,
                                                   const std::string& format, std::optional<Selection> check) {
   const StderrCapture quiet;
   check_dds_header(name, bytes.data(), std::min<std::size_t>(bytes.size(), 148), bytes.size());
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  // The extension picks the decoder; OpenImageIO reads through the proxy instead of a file.
-  auto in = OIIO::ImageInput::create("embedded" + format, true, nullptr, &reader);
-  if (!in)
-    fail(name, "cannot decode the embedded image as " + format + " (" + one_line_message(OIIO::geterror()) + ")");
-  return DisplacementImageDecoder::decode(std::move(in), name, bytes.size(), check);
+  return DisplacementImageDecoder::decode(ImageSource{name, bytes, format}, bytes.size(), check);
 }
 
 namespace {
@@ -215,45 +201,52 @@ std::string decode_description(float scale, float bias) {
   return std::string(kDecodePrefix) + std::string(a, ra.ptr) + std::string(kDecodeMiddle) + std::string(b, rb.ptr);
 }
 
-DisplacementImage DisplacementImageDecoder::decode(std::unique_ptr<OIIO::ImageInput> in, const std::string& path,
-                                                   std::uintmax_t file_size,
+DisplacementImage DisplacementImageDecoder::decode(const ImageSource& source, std::uintmax_t file_size,
                                                    std::optional<DisplacementImage::Selection> check) {
-  const OIIO::ImageSpec s = in->spec();
-  if (s.width < 1 || s.height < 1 || s.width > kMaxTextureSize || s.height > kMaxTextureSize)
-    fail(path, "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1.." +
-                   std::to_string(kMaxTextureSize));
-  if (s.depth > 1) fail(path, "is a volume image; a displacement map is 2D");
-  // Texels are held as float: a header claiming more than 2^28 of them (1 GiB) is refused before any
-  // allocation (a corrupt or hostile header otherwise asks for up to 16 GiB).
-  if (std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(std::max(1, s.nchannels)) > (1ull << 28))
-    fail(path, std::to_string(s.width) + "x" + std::to_string(s.height) + " with " + std::to_string(s.nchannels) +
-                   " channels is more than 2^28 texel values, the most a map may hold");
-  // An uncompressed image's pixels are in the file: a header that claims more than the file holds is
-  // truncated or hostile (OpenImageIO would fill the rest, spending seconds on a 400-byte TIFF that
-  // claims 5638x27909: a fuzzer's find).
-  const std::uint64_t pixel_bytes = std::uint64_t(s.width) * std::uint64_t(s.height) * s.pixel_bytes(true);
-  if (s.get_string_attribute("compression") == "none" && file_size < pixel_bytes)
-    fail(path, "truncated: its header (" + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                   ", uncompressed) implies " + std::to_string(pixel_bytes) + " bytes of pixels, the file has " +
-                   std::to_string(file_size));
-  // A compressed image holds at most so many pixel bytes per file byte: deflate (PNG, TIFF, EXR zip)
-  // expands at most 1032:1, LZW about 2730:1, RLE and JPEG less. A header claiming more than 4096
-  // times the file (plus 64 KiB) is hostile: a fuzzer's 250-byte TIFF claiming 20230x1029 RGB kept
-  // the decoder busy 1.8 s and 950 MB here (30 s under ASan) before failing.
-  if (pixel_bytes > std::uint64_t(kMaxDecodeRatio) * file_size + (64u << 10))
-    fail(path, std::to_string(s.width) + "x" + std::to_string(s.height) + " (" + std::to_string(pixel_bytes) +
-                   " bytes of pixels) cannot come from a " + std::to_string(file_size) + "-byte file: more than " +
-                   std::to_string(kMaxDecodeRatio) + " times its size");
+  const std::string& path = source.path;
   DisplacementImage image;
-  image.path_ = path;
-  image.width_ = s.width, image.height_ = s.height;
-  image.names_ = names_of(s);
-  if (check) select_channels(path, image.names_, check->spec, check->count);  // throws on a wrong choice
-  image.texels_.resize(std::size_t(s.width) * std::size_t(s.height) * std::size_t(s.nchannels));
-  if (!in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, image.texels_.data()))
-    fail(path, "cannot read pixels (" + one_line_message(in->geterror()) + ")");
-  in->close();
-  const std::string description = s.get_string_attribute("ImageDescription");
+  std::string description;
+  // The header is checked before any pixel is decoded; a refusal throws out of the read.
+  const auto accept = [&](const ImageHeader& s) -> void* {
+    if (s.width < 1 || s.height < 1 || s.width > kMaxTextureSize || s.height > kMaxTextureSize)
+      fail(path, "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1.." +
+                     std::to_string(kMaxTextureSize));
+    if (s.depth > 1) fail(path, "is a volume image; a displacement map is 2D");
+    // Texels are held as float: a header claiming more than 2^28 of them (1 GiB) is refused before any
+    // allocation (a corrupt or hostile header otherwise asks for up to 16 GiB).
+    if (std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(std::max(1, s.channels)) > (1ull << 28))
+      fail(path, std::to_string(s.width) + "x" + std::to_string(s.height) + " with " + std::to_string(s.channels) +
+                     " channels is more than 2^28 texel values, the most a map may hold");
+    // An uncompressed image's pixels are in the file: a header that claims more than the file holds is
+    // truncated or hostile (OpenImageIO would fill the rest, spending seconds on a 400-byte TIFF that
+    // claims 5638x27909: a fuzzer's find).
+    const std::uint64_t pixel_bytes = std::uint64_t(s.width) * std::uint64_t(s.height) * s.stored_pixel_bytes;
+    if (s.compression == "none" && file_size < pixel_bytes)
+      fail(path, "truncated: its header (" + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                     ", uncompressed) implies " + std::to_string(pixel_bytes) + " bytes of pixels, the file has " +
+                     std::to_string(file_size));
+    // A compressed image holds at most so many pixel bytes per file byte: deflate (PNG, TIFF, EXR zip)
+    // expands at most 1032:1, LZW about 2730:1, RLE and JPEG less. A header claiming more than 4096
+    // times the file (plus 64 KiB) is hostile: a fuzzer's 250-byte TIFF claiming 20230x1029 RGB kept
+    // the decoder busy 1.8 s and 950 MB here (30 s under ASan) before failing.
+    if (pixel_bytes > std::uint64_t(kMaxDecodeRatio) * file_size + (64u << 10))
+      fail(path, std::to_string(s.width) + "x" + std::to_string(s.height) + " (" + std::to_string(pixel_bytes) +
+                     " bytes of pixels) cannot come from a " + std::to_string(file_size) + "-byte file: more than " +
+                     std::to_string(kMaxDecodeRatio) + " times its size");
+    image.path_ = path;
+    image.width_ = s.width, image.height_ = s.height;
+    image.names_ = names_of(s);
+    if (check) select_channels(path, image.names_, check->spec, check->count);  // throws on a wrong choice
+    image.texels_.resize(std::size_t(s.width) * std::size_t(s.height) * std::size_t(s.channels));
+    description = s.description;
+    return image.texels_.data();
+  };
+  if (const ReadFailure f = image_codec().read(source, PixelType::f32, accept)) {
+    if (f.step == ReadStep::pixels) fail(path, "cannot read pixels (" + one_line_message(f.message) + ")");
+    if (source.bytes)
+      fail(path, "cannot decode the embedded image as " + source.format + " (" + one_line_message(f.message) + ")");
+    fail(path, "cannot read as an image (" + one_line_message(f.message) + ")");
+  }
   if (description.starts_with(kDecodePrefix)) {
     // A stored encoding (decode_description): parsed strictly, applied to every texel.
     const std::string_view rest = std::string_view(description).substr(kDecodePrefix.size());

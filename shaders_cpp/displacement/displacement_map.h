@@ -96,7 +96,7 @@ class DisplacementImage {
   const std::vector<std::string>& channel_names() const { return names_; }
 
  private:
-  friend struct DisplacementImageDecoder;  // the OpenImageIO side, in the .cpp
+  friend struct DisplacementImageDecoder;  // the codec's side, in the .cpp
   std::string path_;
   int width_ = 0, height_ = 0;
   std::vector<std::string> names_;

@@ -1,10 +1,11 @@
 // Image files: every image Tessera writes goes through here, to a file or to memory, with the same
 // encoder settings, so a frame the viewer encodes in memory is the bytes `tessera render` writes.
+// The encoding itself is the image codec's (image_codec.h), loaded on the first image written.
 //
 // Byte stability: OpenImageIO's EXR and TIFF writers stamp the time of writing (EXR `capDate`, TIFF
 // `DateTime`) into a file whose spec names no DateTime, so two renders of the same scene would differ
-// in their bytes. An empty DateTime makes the EXR writer store an empty capDate and the TIFF writer
-// omit the tag: the file is then a function of the pixels alone.
+// in their bytes. The codec writes an empty DateTime: the EXR writer then stores an empty capDate and
+// the TIFF writer omits the tag, and the file is a function of the pixels alone.
 //
 // PNG: zlib level 1 and no row filter. At OpenImageIO's default (level 6, adaptive filters) encoding a
 // 1280x720 frame took about 55 ms, longer than drawing it, which `tessera view` pays on every still
@@ -17,36 +18,16 @@
 
 #include <string>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
-
 #include "pipeline/framebuffer.h"
+#include "shaders_cpp/image_io/image_codec.h"
 
 namespace tessera {
 
-inline void set_output_attributes(OIIO::ImageSpec& spec) {
-  spec.attribute("DateTime", "");
-  spec.attribute("png:compressionLevel", 1);
-  spec.attribute("png:filter", 8);  // PNG_FILTER_NONE
-}
-
-inline void set_output_attributes(OIIO::ImageBuf& image) { set_output_attributes(image.specmod()); }
-
-// Where an encoded image goes. With `memory` set, the encoder picked by `path`'s extension writes into
-// *memory and nothing touches the file system; otherwise the file at `path`, atomically.
-struct ImageTarget {
-  std::string path;
-  std::string* memory = nullptr;
-};
-
-// Writes `pixels` (`data_type` values, interleaved, row 0 at the top; OpenImageIO converts them to
-// spec.format) as `spec` describes, with set_output_attributes applied.
-std::string write_image(const ImageTarget& target, OIIO::ImageSpec spec, OIIO::TypeDesc data_type, const void* pixels);
-// The same for a file path (the form most callers want).
-std::string write_image_atomically(const std::string& path, OIIO::ImageSpec spec, OIIO::TypeDesc data_type,
-                                   const void* pixels);
-// `channels` interleaved values per pixel, float32 when `is_float`, else uint8; a float image to a
-// format without float (PNG) is converted by the writer.
+// Writes `pixels` (`data` values, interleaved, row 0 at the top; converted to layout.stored) as
+// `layout` describes.
+std::string write_image(const ImageTarget& target, const ImageLayout& layout, PixelType data, const void* pixels);
+// `channels` interleaved values per pixel, float32 when `is_float`, else uint8, to a file; a float
+// image to a format without float (PNG) is stored as 8 bits.
 std::string write_image_atomically(const std::string& path, int width, int height, int channels, bool is_float,
                                    const void* pixels);
 

@@ -1,13 +1,15 @@
 // Tessellates a cube cage as Gregory ACC patches through the installed Tessera libraries and welds
-// the result on exact bits; prints "<patches> <triangles> <watertight>" for the test to check.
+// the result on exact bits; prints "<patches> <triangles> <watertight>" for the test to check. With
+// an argument, also writes a small PNG there (the installed image module, loaded at run time).
 #include <cstdio>
 
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/subd_model.h"
 #include "tessellator/tessellator.h"
 #include "tools/verify/weld_check.h"
 
-int main() {
+int main(int argc, char** argv) {
   using namespace tessera;
   const char* cube =
       "v -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 -1\nv 1 -1 -1\n"
@@ -26,6 +28,15 @@ int main() {
   if (!r.ok()) {
     std::fprintf(stderr, "consumer: %s\n", r.error.c_str());
     return 1;
+  }
+  if (argc > 1) {
+    std::string error;
+    auto fb = Framebuffer::create(8, 4, ColorFormat::rgba8_unorm, &error);
+    if (fb) error = write_color(*fb, {argv[1]});
+    if (!error.empty()) {
+      std::fprintf(stderr, "consumer: %s\n", error.c_str());
+      return 1;
+    }
   }
   const verify::WeldReport w = weld.report();
   std::printf("%zu %llu %s\n", model.patches.quads.patches.size(), static_cast<unsigned long long>(w.triangles),

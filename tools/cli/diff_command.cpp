@@ -4,10 +4,8 @@
 // single-dash spellings (-fail 0.004) are accepted as written (main.cpp rewrites them).
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
-#include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/image_io/stderr_capture.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
@@ -34,15 +32,6 @@ std::string number(double v) {
 }
 
 Json json_number(double v) { return std::isfinite(v) ? Json(v) : Json(number(v)); }
-
-void write_image(OIIO::ImageBuf img, const std::string& path) {
-  set_output_attributes(img);
-  write_file_atomically(path, [&](const std::string& temp) {
-    const std::string ext = std::filesystem::path(path).extension().string();
-    if (!img.write(temp, OIIO::TypeUnknown, ext.empty() ? std::string() : ext.substr(1)))
-      throw InputError(path + ": cannot write image (" + img.geterror() + ")");
-  });
-}
 
 int run_diff(const DiffOptions& o) {
   if (o.perceptual) throw UsageError("-p (perceptual comparison) is not supported; compare numerically");
@@ -72,9 +61,10 @@ int run_diff(const DiffOptions& o) {
   // idiff writes the difference image when asked, unless -od and nothing differs.
   try {
     if (!o.output.empty() && r.verdict != verify::DiffVerdict::different_sizes && (differs || !o.only_if_different))
-      write_image(verify::difference_image(images, o.absolute, o.scale), o.output);
+      if (auto e = verify::write_difference_image(images, o.absolute, o.scale, o.output); !e.empty())
+        throw InputError(e);
     if (!o.heatmap.empty() && r.verdict != verify::DiffVerdict::different_sizes)
-      write_image(verify::heat_map_image(images, o.scale), o.heatmap);
+      if (auto e = verify::write_heat_map(images, o.scale, o.heatmap); !e.empty()) throw InputError(e);
   } catch (const InputError& e) {  // a picture that cannot be written is a file error (4), as idiff's codes go
     std::cerr << "tessera diff: " << e.what() << "\n";
     return int(verify::DiffVerdict::file_error);

@@ -1,8 +1,5 @@
 #include "tools/cli/pattern_image.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -60,12 +57,12 @@ class Canvas {
 
   void dot(P2 c, double radius_px, Rgb color) { line(c, c, radius_px * 2, color); }
 
-  // Box-filters down to the output resolution.
-  OIIO::ImageBuf resolve() const {
+  // Box-filters down to the output resolution: RGB floats, row 0 at the top.
+  std::vector<float> resolve() const {
     const int size = w_ / kSupersample;
-    OIIO::ImageBuf out(OIIO::ImageSpec(size, size, 3, OIIO::TypeDesc::FLOAT));
-    std::vector<float> row(std::size_t(size) * 3);
+    std::vector<float> out(std::size_t(size) * std::size_t(size) * 3);
     for (int y = 0; y < size; ++y) {
+      float* row = &out[std::size_t(y) * std::size_t(size) * 3];
       for (int x = 0; x < size; ++x) {
         Rgb sum{0, 0, 0};
         for (int sy = 0; sy < kSupersample; ++sy)
@@ -80,7 +77,6 @@ class Canvas {
         out_pixel[1] = sum.g / n;
         out_pixel[2] = sum.b / n;
       }
-      out.set_pixels(OIIO::ROI(0, size, y, y + 1), OIIO::TypeDesc::FLOAT, row.data());
     }
     return out;
   }
@@ -133,11 +129,12 @@ int edge_of(ts::Domain d, const ts::DomainPoint& p) {
   return -1;
 }
 
-void text(OIIO::ImageBuf& img, int x, int y, const std::string& s, int size, OIIO::ImageBufAlgo::TextAlignX ax,
-          bool& font_ok) {
+void text(const FloatImageView& img, int x, int y, const std::string& s, int size, TextAlignX ax, bool& font_ok) {
   if (!font_ok) return;
   const float black[3] = {0.08f, 0.08f, 0.1f};
-  if (!OIIO::ImageBufAlgo::render_text(img, x, y, s, size, kFont, black, ax, OIIO::ImageBufAlgo::TextAlignY::Center)) {
+  if (!image_codec()
+           .draw_text(img, x, y, s, size, kFont, std::span<const float>(black), ax, TextAlignY::center)
+           .empty()) {
     log_info(std::string("cannot draw text on the pattern image (font ") + kFont +
              "; install fonts-dejavu-core); drawing without labels");
     font_ok = false;
@@ -207,14 +204,15 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
     canvas.dot(m, 6.5, Rgb{1, 1, 1});
   }
 
-  OIIO::ImageBuf img = canvas.resolve();
+  std::vector<float> pixels = canvas.resolve();
+  const FloatImageView img{pixels.data(), pic.size, pic.size, 3};
   bool font_ok = true;
-  using AX = OIIO::ImageBufAlgo::TextAlignX;
+  using AX = TextAlignX;
   const int big = std::max(12, pic.size / 40), small = std::max(10, pic.size / 52);
   const auto& f = pic.raw.values;
   std::string title = std::string(ts::to_string(domain)) + "   " + std::string(ts::to_string(pic.partitioning)) +
                       "   " + std::string(ts::to_string(pattern.output));
-  text(img, pic.size / 2, int(margin * 0.35), title, big, AX::Center, font_ok);
+  text(img, pic.size / 2, int(margin * 0.35), title, big, AX::center, font_ok);
   std::string counts = pattern.culled ? std::string("CULLED: an edge factor is <= 0, -0 or NaN")
                                       : std::to_string(pattern.points.size()) + " points, " +
                                             std::to_string(pattern.primitive_count()) +
@@ -223,7 +221,7 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
                                                         : " points");
   if (inverted) counts += ", " + std::to_string(inverted) + " inverted (red)";
   if (degenerate) counts += ", " + std::to_string(degenerate) + " zero-area";
-  text(img, pic.size / 2, int(margin * 0.75), counts, small, AX::Center, font_ok);
+  text(img, pic.size / 2, int(margin * 0.75), counts, small, AX::center, font_ok);
 
   // Factors along their edges: "name = raw -> segments".
   const auto& pf = pic.processed;
@@ -248,48 +246,46 @@ void write_pattern_image(const PatternPicture& pic, const std::string& path) {
   if (domain == ts::Domain::quad || domain == ts::Domain::isoline) {
     const bool quad = domain == ts::Domain::quad;
     if (quad) {
-      text(img, int(L - 8), int(T + E / 2), label("Ueq0", f[0], &pf.outside[0], "\n= ", "\n"), small, AX::Right,
+      text(img, int(L - 8), int(T + E / 2), label("Ueq0", f[0], &pf.outside[0], "\n= ", "\n"), small, AX::right,
            font_ok);
-      text(img, int(L + E / 2), int(T - small), label("Veq0", f[1], &pf.outside[1]), small, AX::Center, font_ok);
-      text(img, int(L + E + 8), int(T + E / 2), label("Ueq1", f[2], &pf.outside[2], "\n= ", "\n"), small, AX::Left,
+      text(img, int(L + E / 2), int(T - small), label("Veq0", f[1], &pf.outside[1]), small, AX::center, font_ok);
+      text(img, int(L + E + 8), int(T + E / 2), label("Ueq1", f[2], &pf.outside[2], "\n= ", "\n"), small, AX::left,
            font_ok);
-      text(img, int(L + E / 2), int(T + E + small), label("Veq1", f[3], &pf.outside[3]), small, AX::Center, font_ok);
+      text(img, int(L + E / 2), int(T + E + small), label("Veq1", f[3], &pf.outside[3]), small, AX::center, font_ok);
       text(img, pic.size / 2, int(T + E + 2.4 * small),
            "inside U = " + float_text(f[4]) +
                (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")") + ",  inside V = " +
                float_text(f[5]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[1]) + ")"),
-           small, AX::Center, font_ok);
+           small, AX::center, font_ok);
     } else {
       text(
           img, int(L - 8), int(T + E / 2),
           label("density", f[0], nullptr, "\n= ") + (pf.culled ? "" : "\n(" + segments_text(pf.outside[0]) + " lines)"),
-          small, AX::Right, font_ok);
-      text(img, int(L + E / 2), int(T - small), label("detail", f[1], &pf.outside[1]), small, AX::Center, font_ok);
+          small, AX::right, font_ok);
+      text(img, int(L + E / 2), int(T - small), label("detail", f[1], &pf.outside[1]), small, AX::center, font_ok);
     }
-    text(img, int(L - 4), int(T - small), "(0,0)", small, AX::Right, font_ok);
-    text(img, int(L + E + 4), int(T + E + small), "(1,1)", small, AX::Left, font_ok);
+    text(img, int(L - 4), int(T - small), "(0,0)", small, AX::right, font_ok);
+    text(img, int(L + E + 4), int(T + E + small), "(1,1)", small, AX::left, font_ok);
   } else {
     const P2 U = layout.map({1, 0}), V = layout.map({0, 1}), W = layout.map({0, 0});
-    text(img, int((V.x + W.x) / 2 - 10), int((V.y + W.y) / 2), label("Ueq0", f[0], &pf.outside[0]), small, AX::Right,
+    text(img, int((V.x + W.x) / 2 - 10), int((V.y + W.y) / 2), label("Ueq0", f[0], &pf.outside[0]), small, AX::right,
          font_ok);
-    text(img, int((W.x + U.x) / 2), int(W.y + small * 1.4), label("Veq0", f[1], &pf.outside[1]), small, AX::Center,
+    text(img, int((W.x + U.x) / 2), int(W.y + small * 1.4), label("Veq0", f[1], &pf.outside[1]), small, AX::center,
          font_ok);
-    text(img, int((U.x + V.x) / 2 + 10), int((U.y + V.y) / 2), label("Weq0", f[2], &pf.outside[2]), small, AX::Left,
+    text(img, int((U.x + V.x) / 2 + 10), int((U.y + V.y) / 2), label("Weq0", f[2], &pf.outside[2]), small, AX::left,
          font_ok);
-    text(img, int(V.x), int(V.y - small), "v = 1", small, AX::Center, font_ok);
-    text(img, int(U.x + 6), int(U.y + small), "u = 1", small, AX::Left, font_ok);
-    text(img, int(W.x - 6), int(W.y + small), "w = 1", small, AX::Right, font_ok);
+    text(img, int(V.x), int(V.y - small), "v = 1", small, AX::center, font_ok);
+    text(img, int(U.x + 6), int(U.y + small), "u = 1", small, AX::left, font_ok);
+    text(img, int(W.x - 6), int(W.y + small), "w = 1", small, AX::right, font_ok);
     text(img, pic.size / 2, int(W.y + small * 3),
          "inside = " + float_text(f[3]) + (pf.culled || pf.minimal ? "" : " (" + segments_text(pf.inside[0]) + ")"),
-         small, AX::Center, font_ok);
+         small, AX::center, font_ok);
   }
 
-  write_file_atomically(path, [&](const std::string& temp) {
-    OIIO::ImageBuf out(OIIO::ImageSpec(pic.size, pic.size, 3, OIIO::TypeDesc::UINT8));
-    OIIO::ImageBufAlgo::copy(out, img, OIIO::TypeDesc::UINT8);
-    set_output_attributes(out);
-    if (!out.write(temp)) throw InputError(path + ": cannot write image: " + out.geterror());
-  });
+  if (auto e = write_image(ImageTarget{path}, ImageLayout{pic.size, pic.size, 3, PixelType::u8}, PixelType::f32,
+                           pixels.data());
+      !e.empty())
+    throw InputError(e);
 }
 
 }  // namespace tessera::cli

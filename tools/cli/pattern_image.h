@@ -19,7 +19,7 @@ struct PatternPicture {
   int size = 1024;  // pixels, square
 };
 
-// Renders and writes a PNG (or any format OpenImageIO knows from the extension) atomically.
+// Renders and writes a PNG (or any format the image codec knows from the extension) atomically.
 // Throws InputError if the file cannot be written.
 void write_pattern_image(const PatternPicture& picture, const std::string& path);
 

@@ -9,7 +9,6 @@
 #include <set>
 #include <sstream>
 
-#include "shaders_cpp/image_io/image_file.h"
 #include "tessellator/fnv1a.h"
 #include "tools/scene/common.h"
 #include "tools/scene/scene_render.h"
@@ -231,9 +230,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
         r.diff_image = "diff/" + c.name + ".png";
         const fs::path diff_path = fs::path(report_dir) / r.diff_image;
         fs::create_directories(diff_path.parent_path());
-        OIIO::ImageBuf heat = verify::heat_map_image(images, 1.0f);
-        set_output_attributes(heat);
-        if (!heat.write(diff_path.string())) throw InputError(diff_path.string() + ": cannot write the diff image");
+        if (auto e = verify::write_heat_map(images, 1.0f, diff_path.string()); !e.empty()) throw InputError(e);
       }
       if (v == verify::DiffVerdict::file_error)
         problems.push_back("golden image: " + r.diff->error);

@@ -1,10 +1,8 @@
 #include "tools/scene/view_legend.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "shaders_cpp/image_io/image_file.h"
 #include "tools/scene/common.h"
@@ -14,24 +12,23 @@ namespace {
 
 const char* const kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
+// Draws on RGBA float pixels.
 struct Painter {
-  OIIO::ImageBuf& img;
+  FloatImageView img;
   bool font_ok = true;
   void fill(int x0, int y0, int x1, int y1, glm::vec3 c, float alpha) {
-    const OIIO::ImageSpec& s = img.spec();
-    for (int y = std::max(0, y0); y < std::min(s.height, y1); ++y)
-      for (int x = std::max(0, x0); x < std::min(s.width, x1); ++x) {
-        float px[4];
-        img.getpixel(x, y, px, 4);
+    for (int y = std::max(0, y0); y < std::min(img.height, y1); ++y)
+      for (int x = std::max(0, x0); x < std::min(img.width, x1); ++x) {
+        float* px = img.pixels + (std::size_t(y) * std::size_t(img.width) + std::size_t(x)) * 4;
         for (int k = 0; k < 3; ++k) px[k] = px[k] + alpha * (c[k] - px[k]);
-        img.setpixel(x, y, px, 4);
       }
   }
-  void text(int x, int y, const std::string& s, int size, OIIO::ImageBufAlgo::TextAlignX ax) {
+  void text(int x, int y, const std::string& s, int size, TextAlignX ax) {
     if (!font_ok || s.empty()) return;
     const float ink[4] = {0.06f, 0.06f, 0.08f, 1.0f};
-    if (!OIIO::ImageBufAlgo::render_text(img, x, y, s, size, kFont, ink, ax,
-                                         OIIO::ImageBufAlgo::TextAlignY::Baseline)) {
+    if (!image_codec()
+             .draw_text(img, x, y, s, size, kFont, std::span<const float>(ink), ax, TextAlignY::baseline)
+             .empty()) {
       log_info(std::string("cannot draw the legend's text (font ") + kFont + "; install fonts-dejavu-core)");
       font_ok = false;
     }
@@ -42,15 +39,15 @@ struct Painter {
 
 void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageTarget& target) {
   const int w = fb.width(), h = fb.height();
-  OIIO::ImageBuf img(OIIO::ImageSpec(w, h, 4, OIIO::TypeDesc::FLOAT));
+  std::vector<float> rgba(std::size_t(w) * std::size_t(h) * 4);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const glm::vec4 c = fb.color(x, y);
-      const float px[4] = {c.r, c.g, c.b, 1.0f};
-      img.setpixel(x, y, px, 4);
+      float* px = &rgba[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4];
+      px[0] = c.r, px[1] = c.g, px[2] = c.b, px[3] = 1.0f;
     }
-  Painter paint{img};
-  using AX = OIIO::ImageBufAlgo::TextAlignX;
+  Painter paint{FloatImageView{rgba.data(), w, h, 4}};
+  using AX = TextAlignX;
   const int text_size = std::clamp(h / 40, 11, 40), line = text_size * 5 / 4, pad = text_size * 2 / 3;
   const int bar_w = std::min(w - 6 * pad, text_size * 22), bar_h = text_size;
   int rows = 1 + int(legend.lines.size()) + int(legend.swatches.size());
@@ -66,12 +63,12 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageT
   const int x0 = pad, y0 = h - pad - panel_h;
   paint.fill(x0, y0, x0 + panel_w, y0 + panel_h, glm::vec3(1.0f), 0.82f);
   int y = y0 + pad + text_size;
-  paint.text(x0 + pad, y, legend.title, text_size, AX::Left);
-  for (const std::string& s : legend.lines) paint.text(x0 + pad, y += line, s, text_size * 9 / 10, AX::Left);
+  paint.text(x0 + pad, y, legend.title, text_size, AX::left);
+  for (const std::string& s : legend.lines) paint.text(x0 + pad, y += line, s, text_size * 9 / 10, AX::left);
   for (const auto& [color, label] : legend.swatches) {
     y += line;
     paint.fill(x0 + pad, y - text_size * 4 / 5, x0 + pad + text_size, y + text_size / 5, color, 1.0f);
-    paint.text(x0 + pad + text_size * 3 / 2, y, label, text_size * 9 / 10, AX::Left);
+    paint.text(x0 + pad + text_size * 3 / 2, y, label, text_size * 9 / 10, AX::left);
   }
   if (!legend.ramp.empty()) {
     const int bx = x0 + pad + text_size, by = y + line / 2;
@@ -83,17 +80,16 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageT
     for (const auto& [t, label] : legend.ticks) {
       const int tx = bx + int(t * float(bar_w - 1));
       paint.fill(tx, by + bar_h, tx + 1, by + bar_h + text_size / 3, glm::vec3(0.1f), 1.0f);
-      paint.text(tx, by + bar_h + text_size * 4 / 3, label, text_size * 4 / 5, AX::Center);
+      paint.text(tx, by + bar_h + text_size * 4 / 3, label, text_size * 4 / 5, AX::center);
     }
   }
-  const OIIO::TypeDesc type = fb.format() == ColorFormat::rgba8_unorm ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
-  OIIO::ImageBuf out(OIIO::ImageSpec(w, h, 3, type));
-  OIIO::ImageBufAlgo::channels(out, img, 3, {}, {}, {}, true);
-  // channels() gives `out` the pixel format of `img` (float): the file's format is set apart, as
-  // ImageBuf::set_write_format would.
-  OIIO::ImageSpec spec = out.spec();
-  spec.set_format(type);
-  if (std::string e = write_image(target, spec, out.spec().format, out.localpixels()); !e.empty()) throw InputError(e);
+  // RGB of the float pixels, stored as the framebuffer's format (8-bit or float).
+  std::vector<float> rgb(std::size_t(w) * std::size_t(h) * 3);
+  for (std::size_t i = 0; i < std::size_t(w) * std::size_t(h); ++i)
+    for (std::size_t k = 0; k < 3; ++k) rgb[i * 3 + k] = rgba[i * 4 + k];
+  const PixelType stored = fb.format() == ColorFormat::rgba8_unorm ? PixelType::u8 : PixelType::f32;
+  if (std::string e = write_image(target, ImageLayout{w, h, 3, stored}, PixelType::f32, rgb.data()); !e.empty())
+    throw InputError(e);
 }
 
 }  // namespace tessera::cli

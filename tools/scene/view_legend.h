@@ -1,6 +1,6 @@
 // The legend of a debug view: a panel in the image's lower-left corner with a title, lines of text,
-// and a colour bar with tick labels or a list of colour swatches. Text is drawn with OpenImageIO's
-// render_text in DejaVu Sans at a size that follows the image height (readable at 1280x720).
+// and a colour bar with tick labels or a list of colour swatches. Text is drawn by the image codec
+// (OpenImageIO's render_text) in DejaVu Sans at a size that follows the image height (readable at 1280x720).
 #pragma once
 
 #include <string>

@@ -1,10 +1,9 @@
 #include "tools/verify/image_compare.h"
 
 #include <cstdlib>
-#include <memory>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+#include "shaders_cpp/image_io/image_codec.h"
 
 namespace tessera::verify {
 namespace {
@@ -15,16 +14,16 @@ struct Rgb8 {
 };
 
 Rgb8 read_rgb8(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ImageError(path + ": cannot read image (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = in->spec();
   Rgb8 img;
-  img.width = spec.width;
-  img.height = spec.height;
-  const int channels = spec.nchannels;
-  std::vector<std::uint8_t> all(std::size_t(img.width) * std::size_t(img.height) * std::size_t(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, all.data()))
-    throw ImageError(path + ": cannot decode image (" + in->geterror() + ")");
+  int channels = 0;
+  std::vector<std::uint8_t> all;
+  const ReadFailure f = image_codec().read(ImageSource{path}, PixelType::u8, [&](const ImageHeader& h) -> void* {
+    img.width = h.width, img.height = h.height, channels = h.channels;
+    all.resize(std::size_t(img.width) * std::size_t(img.height) * std::size_t(channels));
+    return all.data();
+  });
+  if (f.step == ReadStep::open) throw ImageError(path + ": cannot read image (" + f.message + ")");
+  if (f) throw ImageError(path + ": cannot decode image (" + f.message + ")");
   img.px.resize(std::size_t(img.width) * std::size_t(img.height) * 3);
   for (std::size_t i = 0; i < std::size_t(img.width) * std::size_t(img.height); ++i)
     for (int c = 0; c < 3; ++c)

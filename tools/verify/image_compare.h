@@ -20,8 +20,8 @@ struct ImageDiff {
   double share() const { return pixels ? double(over_threshold) / double(pixels) : 0.0; }
 };
 
-// Reads both images (any format OpenImageIO reads; PPM included) as 8-bit RGB and compares them.
-// Throws ImageError naming the file that cannot be read, or both sizes if they differ.
+// Reads both images through the image codec (any format OpenImageIO reads; PPM included) as 8-bit RGB and compares
+// them. Throws ImageError naming the file that cannot be read, or both sizes if they differ.
 ImageDiff compare_images(const std::string& a, const std::string& b, int threshold);
 
 }  // namespace tessera::verify

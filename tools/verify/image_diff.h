@@ -17,13 +17,13 @@
 //   SHA-1 of each image's decoded pixels and shape (equal decoded pixels, equal hash, whatever the
 //   file format); exact mode makes `identical` the verdict (different shapes: `different_sizes`).
 // - A file that cannot be read is `file_error` with the reader's message; nothing is thrown.
+// - The comparison runs in the image module (image_codec.h), behind the table of image_diff_table.h.
 #pragma once
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
-
-#include <OpenImageIO/imagebuf.h>
 
 namespace tessera::verify {
 
@@ -53,19 +53,22 @@ struct DiffReport {
   std::string hash_a, hash_b;  // SHA-1 of the decoded pixels and shape
 };
 
+// Both images as read (float), kept for the pictures: opaque, the image module's own.
 struct DiffImages {
-  OIIO::ImageBuf a, b;  // as read (float)
+  std::shared_ptr<const void> decoded;
 };
 
 // Reads and compares; `images` (optional) receives both images for diff pictures.
 DiffReport diff_images(const std::string& path_a, const std::string& path_b, const DiffThresholds& t, bool exact,
                        DiffImages* images = nullptr);
 
+// The pictures are written atomically to `path` in the format its extension names (byte-stable, as
+// image_file.h); each returns "" or one line naming the file (also when `images` holds nothing).
 // idiff's -o picture: A - B (or |A - B| with `absolute`), times `scale`, over the union window.
-OIIO::ImageBuf difference_image(const DiffImages& images, bool absolute, float scale);
+std::string write_difference_image(const DiffImages& images, bool absolute, float scale, const std::string& path);
 // A picture people can read: A dimmed to grey, and every pixel that differs in a heat colour: the
 // bright half of inferno by its largest channel difference times `scale`, on a log scale from one
 // 8-bit step to 1. 8-bit RGB.
-OIIO::ImageBuf heat_map_image(const DiffImages& images, float scale);
+std::string write_heat_map(const DiffImages& images, float scale, const std::string& path);
 
 }  // namespace tessera::verify
