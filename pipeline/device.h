@@ -61,17 +61,24 @@ struct DeviceOptions {
 // cannot change any result.
 using DrawProgress = std::function<void(std::size_t patches_done, std::size_t patches_total)>;
 
-// A draw of a patch list (D3D11_PRIMITIVE_TOPOLOGY_n_CONTROL_POINT_PATCHLIST, n = control_points).
-template <class Vertex, class Vs, class Hs, class Ds, class Ps>
-struct PatchDraw {
+// A patch list (D3D11_PRIMITIVE_TOPOLOGY_n_CONTROL_POINT_PATCHLIST, n = control_points) through the
+// stages up to the domain shader: what a draw (PatchDraw) and a stream-output pass (StreamDraw,
+// stream_output.h) share.
+template <class Vertex, class Vs, class Hs, class Ds>
+struct PatchStages {
   std::span<const Vertex> vertices;
   std::span<const std::uint32_t> indices;
   int control_points = 0;  // per input patch, 1..32
   Vs vs;
   Hs hs;
   Ds ds;
-  Ps ps;
   TessellatorState tessellator;
+};
+
+// A draw of a patch list: its stages, then the pixel shader and the fixed-function state after them.
+template <class Vertex, class Vs, class Hs, class Ds, class Ps>
+struct PatchDraw : PatchStages<Vertex, Vs, Hs, Ds> {
+  Ps ps;
   RasterizerState rasterizer;
   DepthState depth;
   Viewport viewport;

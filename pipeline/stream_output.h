@@ -18,16 +18,9 @@
 
 namespace tessera {
 
+// A stream-output pass: the patch list's stages (device.h), with no rasterizer after them.
 template <class Vertex, class Vs, class Hs, class Ds>
-struct StreamDraw {
-  std::span<const Vertex> vertices;
-  std::span<const std::uint32_t> indices;
-  int control_points = 0;  // per input patch, 1..32
-  Vs vs;
-  Hs hs;
-  Ds ds;
-  TessellatorState tessellator;
-};
+using StreamDraw = PatchStages<Vertex, Vs, Hs, Ds>;
 
 template <class DsOut>
 struct PatchOutput {

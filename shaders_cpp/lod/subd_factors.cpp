@@ -1,26 +1,15 @@
 #include "shaders_cpp/lod/subd_factors.h"
 
-#include <charconv>
 #include <cmath>
 
+#include "shaders_cpp/cage/one_line.h"
+
 namespace tessera {
-namespace {
-
-// A value as the option would be written: the shortest text that reads back as the same float.
-std::string value_text(float x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, r.ptr);
-}
-
-}  // namespace
 
 SubdFactors base_factors(float factor, float vary,
                          std::shared_ptr<const std::unordered_map<std::int64_t, float>> per_edge) {
   if (!std::isfinite(factor) || factor <= 0.0f || factor > 64.0f)
-    throw FactorSettingError("--factor: " + value_text(factor) + " is not in (0, 64]");
+    throw FactorSettingError("--factor: " + float_text(factor) + " is not in (0, 64]");
   if (!std::isfinite(vary) || vary < 0.0f || vary > 63.0f)
     throw FactorSettingError("--vary-factors: must be in [0, 63]");
   SubdFactors f;
@@ -32,9 +21,9 @@ SubdFactors base_factors(float factor, float vary,
 
 LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& model, SubdFactors& factors) {
   if (!(std::isfinite(r.edge_pixels) && r.edge_pixels >= 0.25f && r.edge_pixels <= 4096.0f))
-    throw FactorSettingError("--edge-pixels: " + value_text(r.edge_pixels) + " is not in [0.25, 4096]");
+    throw FactorSettingError("--edge-pixels: " + float_text(r.edge_pixels) + " is not in [0.25, 4096]");
   if (!(std::isfinite(r.lod_distance) && r.lod_distance >= 0.0f))
-    throw FactorSettingError("--lod-distance: " + value_text(r.lod_distance) + " is not a finite distance >= 0");
+    throw FactorSettingError("--lod-distance: " + float_text(r.lod_distance) + " is not a finite distance >= 0");
   if (r.mode == LodMode::uniform && (r.edge_pixels != 8.0f || r.lod_distance != 0.0f || r.dicing_eye))
     throw FactorSettingError(
         "--edge-pixels, --lod-distance and --dicing-camera-position need --lod distance or screen");

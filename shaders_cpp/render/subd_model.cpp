@@ -31,7 +31,7 @@ int remove_patches(PatchGroup& g, Keep&& keep) {
 
 // Per face, the box of every vertex of the faces around its corners: the limit surface of the face is
 // a convex combination of them (Catmull-Clark's rules, creased or not, have non-negative weights).
-std::vector<Box3> face_ring_boxes(const Cage& cage, const Topology& t) {
+std::vector<Box3> face_ring_boxes(std::span<const glm::vec3> positions, const Topology& t) {
   std::vector<Box3> boxes(std::size_t(t.face_count()));
   for (int f = 0; f < t.face_count(); ++f) {
     Box3 b = Box3::empty();
@@ -39,7 +39,7 @@ std::vector<Box3> face_ring_boxes(const Cage& cage, const Topology& t) {
       const int v = t.origin(t.face_half_edge(f) + k);
       for (const int h : t.ring(v))
         for (int g = t.face(h), j = 0; j < t.face_size(g); ++j) {
-          b.extend(cage.positions[std::size_t(t.origin(t.face_half_edge(g) + j))]);
+          b.extend(positions[std::size_t(t.origin(t.face_half_edge(g) + j))]);
         }
     }
     boxes[std::size_t(f)] = b;
@@ -54,14 +54,14 @@ SubdModel make_subd_model(Cage cage, Scheme scheme) {
   m.cage = std::move(cage);
   m.topology = std::make_unique<Topology>(m.cage);
   m.patches = build_patches(m.cage, *m.topology, scheme);
-  if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, *m.topology);
+  if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   if (scheme == Scheme::exact) {
     m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage));
     // Faces OpenSubdiv gives no surface besides holes: boundary faces under `t interpolateboundary`
     // none. They draw nothing, like holes.
     auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
     for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
-    m.ring_boxes = face_ring_boxes(m.cage, *m.topology);
+    m.ring_boxes = face_ring_boxes(m.cage.positions, *m.topology);
   }
   return m;
 }
@@ -70,22 +70,25 @@ void set_pose(SubdModel& m, RigPose pose) {
   if (!m.rig) throw std::logic_error("set_pose: the model of " + m.cage.name + " has no rig");
   m.posed_positions = pose_positions(*m.rig, pose);
   m.pose = std::move(pose);
-  // The passes before the draw see the cage the vertex shader will output: the posed positions are
-  // lent to the cage for them (swapped in and back, even on a throw) instead of copying the whole
-  // cage, its faces, UVs and tags, per pose.
-  struct Lend {
-    SubdModel& model;
-    explicit Lend(SubdModel& owner) : model(owner) { std::swap(model.cage.positions, model.posed_positions); }
-    ~Lend() { std::swap(model.cage.positions, model.posed_positions); }
-    Lend(const Lend&) = delete;
-    Lend& operator=(const Lend&) = delete;
-  } lend(m);
-  const Cage& posed = m.cage;
-  if (!m.normals.empty()) m.normals = vertex_normals(posed, *m.topology);
+  // The passes before the draw see the surface the vertex shader will output: normals and ring boxes
+  // from the posed positions.
+  if (!m.normals.empty()) m.normals = vertex_normals(m.cage, m.posed_positions, *m.topology);
   if (m.limit) {
-    // OpenSubdiv's Bfr surfaces hold their control points: the exact scheme rebuilds them per pose.
-    m.limit = std::make_unique<LimitSurface>(LimitSurface::create(posed, m.limit->approx_level()));
-    m.ring_boxes = face_ring_boxes(posed, *m.topology);
+    // OpenSubdiv's Bfr surfaces hold their control points: the exact scheme rebuilds them per pose,
+    // from the cage with the posed positions lent to it (swapped in and back, even on a throw) rather
+    // than a copy of the whole cage, its faces, UVs and tags, per pose.
+    struct Lend {
+      SubdModel& model;
+      explicit Lend(SubdModel& owner) : model(owner) { std::swap(model.cage.positions, model.posed_positions); }
+      ~Lend() { std::swap(model.cage.positions, model.posed_positions); }
+      Lend(const Lend&) = delete;
+      Lend& operator=(const Lend&) = delete;
+    };
+    {
+      const Lend lend(m);
+      m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage, m.limit->approx_level()));
+    }
+    m.ring_boxes = face_ring_boxes(m.posed_positions, *m.topology);
   }
 }
 

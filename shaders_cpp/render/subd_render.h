@@ -55,8 +55,11 @@ template <class Hs, class Ds, class Ps>
 DrawResult draw_group_pass(Device& device, const SubdModel& model, const PatchGroup& g, const TessellatorState& ts,
                            const Hs& hs, const Ds& ds, const Ps& ps, const SubdPassState& st, Framebuffer& fb) {
   const PatchDraw<glm::vec3, SubdVS, Hs, Ds, Ps> d{
-      model.vertex_buffer(), g.indices, g.control_points, model.vertex_shader(), hs, ds, ps, ts,
-      st.rasterizer,         st.depth,  st.viewport};
+      {model.vertex_buffer(), g.indices, g.control_points, model.vertex_shader(), hs, ds, ts},
+      ps,
+      st.rasterizer,
+      st.depth,
+      st.viewport};
   return device.draw(d, fb);
 }
 

@@ -83,14 +83,14 @@ PNQuad pn_quad(std::span<const glm::vec3, 4> pf, std::span<const glm::vec3, 4> n
   return q;
 }
 
-std::vector<glm::vec3> vertex_normals(const Cage& cage, const Topology& t) {
-  std::vector<dvec3> sum(cage.positions.size(), dvec3(0.0));
+std::vector<glm::vec3> vertex_normals(const Cage& cage, std::span<const glm::vec3> positions, const Topology& t) {
+  std::vector<dvec3> sum(positions.size(), dvec3(0.0));
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) continue;
     const int n = t.face_size(f);
     // Relative to the first corner (no cancellation far from the origin): a triangle's (p1 - p0) x
     // (p2 - p0), a quad's (p2 - p0) x (p3 - p1).
-    auto at = [&](int k) { return dvec3(cage.positions[std::size_t(cage.face_vertex(f, k))]); };
+    auto at = [&](int k) { return dvec3(positions[std::size_t(cage.face_vertex(f, k))]); };
     const dvec3 p0 = at(0);
     dvec3 area(0.0);
     for (int k = 1; k + 1 < n; ++k) area += glm::cross(at(k) - p0, at(k + 1) - p0);

@@ -50,7 +50,8 @@ PNQuad pn_quad(std::span<const glm::vec3, 4> p, std::span<const glm::vec3, 4> n)
 
 // Per-vertex unit normals: the sum of the area vectors (half the sum of (p_k - p_0) x (p_k+1 - p_0)) of the
 // non-hole faces around each vertex, accumulated in double in face order, normalized and rounded once.
-// A vertex without faces (or with cancelling ones) gets the zero vector.
-std::vector<glm::vec3> vertex_normals(const Cage& cage, const Topology& topology);
+// A vertex without faces (or with cancelling ones) gets the zero vector. `positions` are the cage's, or
+// a pose of them (one per cage vertex); the faces are the cage's.
+std::vector<glm::vec3> vertex_normals(const Cage& cage, std::span<const glm::vec3> positions, const Topology& topology);
 
 }  // namespace tessera

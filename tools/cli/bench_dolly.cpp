@@ -99,7 +99,7 @@ double largest_move(const FramePoints& before, const FramePoints& now, const glm
 
 int run_dolly(const DollyOptions& o) {
   if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
-  const std::string cage = o.s.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.s.cage;
+  const std::string cage = cage_or_shipped_frog(o.s.cage);
   // The scene library's one route from settings to a model; each frame's view and LOD follow.
   RenderSettings settings = o.s;
   settings.cage = cage;
@@ -193,14 +193,10 @@ Runner add_bench_dolly_command(CLI::App& bench) {
   CLI::App* cmd = bench.add_subcommand(
       "dolly", "The camera moves toward its target with view-dependent LOD: per-frame triangles, time, vertex moves");
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
-  add_scheme_options(*cmd, o->s.scheme, o->s.factor, o->s.vary, o->s.factors_file, o->s.partitioning, o->s.threads);
-  add_asset_options(*cmd, o->s.asset);
-  add_camera_options(*cmd, o->s.camera);
-  add_lod_options(*cmd, o->s.lod, "all");
+  add_model_settings_options(*cmd, o->s, "all");
   cmd->add_option("--to", o->to, "x,y,z: where the camera ends (default: halfway to the target)");
   cmd->add_option("--frames", o->frames, "frames along the path")->capture_default_str();
   cmd->add_flag("--json", o->json, "print results (and every frame) as JSON");
-  add_displacement_options(*cmd, o->s.displacement);
   cmd->fallthrough();
   return [o, cmd]() -> int { return cmd->parsed() ? run_dolly(*o) : -1; };
 }

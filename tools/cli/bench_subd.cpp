@@ -28,7 +28,7 @@ struct BenchSubdOptions {
 
 int run_bench_subd(const BenchSubdOptions& o) {
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
-  const std::string cage = o.s.cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : o.s.cage;
+  const std::string cage = cage_or_shipped_frog(o.s.cage);
   check_output_paths({{"-o", o.output}}, {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
   // The scene library's one route from settings to a model, its view and factors.
   RenderSettings settings = o.s;
@@ -159,10 +159,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
   CLI::App* cmd =
       bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
-  add_scheme_options(*cmd, o->s.scheme, o->s.factor, o->s.vary, o->s.factors_file, o->s.partitioning, o->s.threads);
-  add_asset_options(*cmd, o->s.asset);
-  add_camera_options(*cmd, o->s.camera);
-  add_lod_options(*cmd, o->s.lod, "all");
+  add_model_settings_options(*cmd, o->s, "all");
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
   cmd->add_option("--msaa", o->s.msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
       ->capture_default_str();
@@ -171,7 +168,6 @@ Runner add_bench_subd_command(CLI::App& bench) {
   cmd->add_flag("--compare-cull", o->compare_cull,
                 "also time the frames under each --cull mode (none, frustum, backface, all): the time each "
                 "saves, and whether the images are the same bytes (JSON: cull_modes)");
-  add_displacement_options(*cmd, o->s.displacement);
   cmd->fallthrough();
   return [o, cmd]() -> int { return cmd->parsed() ? run_bench_subd(*o) : -1; };
 }

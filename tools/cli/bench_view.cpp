@@ -32,7 +32,7 @@ double median(std::vector<double> v) {
 }
 
 int run_bench_view(BenchViewOptions o) {
-  if (o.s.cage.empty()) o.s.cage = shared_data_file("monsterfrog_mapped_00.obj", "--cage");
+  o.s.cage = cage_or_shipped_frog(o.s.cage);
   if (o.frames < 1 || o.frames > 100000)
     throw UsageError("--frames: " + std::to_string(o.frames) + " is not in 1..100000");
   if (o.format != "png" && o.format != "jpeg") throw UsageError("--format: '" + o.format + "' is not png or jpeg");

@@ -194,11 +194,7 @@ Runner add_tessellate_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output,
                   "output PLY (binary; each patch its own vertices), or binary glTF (.glb) for any glTF viewer");
   cmd->add_option("--format", o->format, "ply or glb (default: from the output's extension, .glb or else PLY)");
-  add_scheme_options(*cmd, o->s.scheme, o->s.factor, o->s.vary, o->s.factors_file, o->s.partitioning, o->s.threads);
-  add_asset_options(*cmd, o->s.asset);
-  add_displacement_options(*cmd, o->s.displacement);
-  add_camera_options(*cmd, o->s.camera);
-  add_lod_options(*cmd, o->s.lod, "none");
+  add_model_settings_options(*cmd, o->s, "none");
   cmd->add_option("--stats", o->stats,
                   "write per-patch statistics (factors raw and processed, triangles, screen size, culling), "
                   "histograms and totals as JSON (as render --stats; screen sizes for the --camera view)");

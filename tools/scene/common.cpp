@@ -105,6 +105,10 @@ std::string shared_data_file(const std::string& name, const std::string& option)
   return path.string();
 }
 
+std::string cage_or_shipped_frog(const std::string& cage) {
+  return cage.empty() ? shared_data_file("monsterfrog_mapped_00.obj", "--cage") : cage;
+}
+
 std::pair<int, int> parse_resolution(const std::string& text) {
   return parse_size(text, "--resolution", 1, kMaxRenderTargetSize);
 }
@@ -114,14 +118,6 @@ DeviceOptions device_options(int threads) {
   DeviceOptions o;
   o.threads = threads;
   return o;
-}
-
-std::string float_text(float x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);  // shortest that reads back exactly
-  return std::string(buffer, r.ptr);
 }
 
 void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {

@@ -13,6 +13,7 @@
 
 #include "pipeline/device.h"
 #include "shaders_cpp/cage/one_line.h"
+#include "shaders_cpp/lod/subd_factors.h"
 
 namespace tessera::cli {
 
@@ -34,6 +35,17 @@ inline constexpr int kExitUsage = 2;
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+// Runs `f` and returns what it returns; a setting the factor policy refuses (FactorSettingError,
+// lod/subd_factors.h) is the user's to fix: it leaves as a UsageError with the same text.
+template <class F>
+decltype(auto) with_usage_errors(F&& f) {
+  try {
+    return f();
+  } catch (const FactorSettingError& e) {
+    throw UsageError(e.what());
+  }
+}
+
 // Bad input data or a failed check: reported as one line, exit 1.
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -74,6 +86,8 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const std::vecto
 // the binary's directory, in the build tree as in an installed tree. Throws InputError when absent,
 // naming the file and `option`, the option that names another file instead.
 std::string shared_data_file(const std::string& name, const std::string& option);
+// The cage a benchmark draws: `cage` (its --cage), or the shipped monster frog when that is empty.
+std::string cage_or_shipped_frog(const std::string& cage);
 
 // "AxB" for option `what`, each side in lo..hi; throws UsageError naming the option.
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi);
@@ -82,9 +96,5 @@ std::pair<int, int> parse_resolution(const std::string& text);
 
 // Device options for --threads N (0 = all hardware threads; 0..1024, else UsageError).
 DeviceOptions device_options(int threads);
-
-// Shortest decimal text that parses back to the identical float (std::to_chars: 100, 0.1, 3e-05;
-// "nan", "inf", "-inf" as parse_float reads them).
-std::string float_text(float x);
 
 }  // namespace tessera::cli

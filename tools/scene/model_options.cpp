@@ -39,12 +39,7 @@ ts::Partitioning partitioning_option(const std::string& name) {
 
 SubdFactors factors_option(float factor, float vary, const std::string& file, const Cage& cage) {
   // The range rules first (lod/subd_factors.h), so a bad --factor is named before a bad file.
-  SubdFactors f;
-  try {
-    f = base_factors(factor, vary);
-  } catch (const FactorSettingError& e) {
-    throw UsageError(e.what());
-  }
+  SubdFactors f = with_usage_errors([&] { return base_factors(factor, vary); });
   if (file.empty()) return f;
   if (std::filesystem::is_directory(file)) throw InputError(file + ": a directory, not a factors file");
   std::ifstream in(file);

@@ -13,10 +13,16 @@
 
 namespace tessera::cli {
 
-void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default) {
+void add_model_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default) {
   add_scheme_options(cmd, s.scheme, s.factor, s.vary, s.factors_file, s.partitioning, s.threads);
   add_camera_options(cmd, s.camera);
   add_lod_options(cmd, s.lod, cull_default);
+  add_displacement_options(cmd, s.displacement);
+  add_asset_options(cmd, s.asset);
+}
+
+void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default) {
+  add_model_settings_options(cmd, s, cull_default);
   cmd.add_option("--view", s.view, view_names())->capture_default_str();
   cmd.add_option("--msaa", s.msaa,
                  "samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard sample patterns; coverage and depth per "
@@ -24,8 +30,6 @@ void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& c
       ->capture_default_str();
   cmd.add_option("--factor-kind", s.factor_kind, "--view factors: raw (as the hull shader gave them) or processed")
       ->capture_default_str();
-  add_displacement_options(cmd, s.displacement);
-  add_asset_options(cmd, s.asset);
 }
 namespace {
 

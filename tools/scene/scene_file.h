@@ -38,6 +38,11 @@ struct RenderSettings {
 // --factor-kind, displacement and the glTF asset. render, view, bench view and the viewer's request
 // parser all read settings through it, so an option means one thing in each.
 void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default);
+// The settings that make a model and its factors, without those of a picture (--view, --msaa,
+// --factor-kind): scheme and factors, camera (view LOD and culling read it), LOD and culling,
+// displacement and the glTF asset. tessellate, bench frog and bench dolly read them; so does
+// add_settings_options, which adds the picture's.
+void add_model_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default);
 
 RenderSettings read_scene(const std::string& path);
 Json scene_json(const RenderSettings& s, const std::string& dir);

@@ -117,12 +117,8 @@ LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdMo
                            displacement ? displacement->bound : 0.0f, displacement != nullptr};
   LodResult r;
   r.cull = *cull;
-  try {
-    if (!l.dicing_eye.empty()) request.dicing_eye = parse_vec3(l.dicing_eye, "--dicing-camera-position");
-    r.settings = apply_lod(request, lod_view, lod_model, factors);
-  } catch (const FactorSettingError& e) {
-    throw UsageError(e.what());
-  }
+  if (!l.dicing_eye.empty()) request.dicing_eye = parse_vec3(l.dicing_eye, "--dicing-camera-position");
+  r.settings = with_usage_errors([&] { return apply_lod(request, lod_view, lod_model, factors); });
   // Set both ways: a scene reconfigured from view-dependent to uniform LOD samples as a fresh one.
   if (displacement) displacement->trilinear = r.settings.mode != LodMode::uniform;
   return r;
