@@ -4,7 +4,7 @@
 // command about 0.3 s and 90 MB before it does anything. So the table lives in a module,
 // tessera-image-io.so, loaded on the first call of image_codec() -- a command that reads or writes no
 // image never loads it -- unless the binary links the codec in (the tests, the Python module and the
-// fuzzers do: tessera_link_image_codec() in cmake/).
+// fuzzers do: tessera_link_image_codec() in the top CMakeLists.txt).
 //
 // The table holds no OpenImageIO type, so nothing above it includes OpenImageIO. `write` and
 // `draw_text` return "" on success, else the error (write's names the file).
