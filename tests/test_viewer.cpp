@@ -26,8 +26,9 @@ namespace fs = std::filesystem;
 RenderSettings frog(bool displaced) {
   RenderSettings s;
   s.cage = test::data("sdk-cages/monsterfrog_mapped_00.obj");
-  s.lod.cull = "all";  // render's default
-  s.camera.resolution = "320x180";
+  s.lod.cull = PatchCullMode::all;  // render's default
+  s.camera.width = 320;
+  s.camera.height = 180;
   s.threads = 2;
   if (displaced) {
     s.displacement.map = test::data("sdk-cages/monsterfrog.dds");
@@ -60,17 +61,17 @@ TEST_CASE("viewer settings: requests name render's options, paths, repeats and a
                                                       {"x", "4"},
                                                       {"format", "png"}});
   CHECK(s.factor == 12.5f);
-  CHECK(s.view == "factors");
-  CHECK(s.camera.eye == "-3,2,40");  // a leading '-' is a value, not an option
-  CHECK(s.lod.mode == "screen");
+  CHECK(s.view == ViewKind::factors);
+  CHECK(s.camera.eye == glm::vec3(-3, 2, 40));  // a leading '-' is a value, not an option
+  CHECK(s.lod.mode == LodMode::screen);
   CHECK(s.lod.edge_pixels == 6.0f);
-  CHECK(s.scheme == "acc");
-  CHECK(s.lod.cull == "all");  // untouched settings keep the base's
+  CHECK(s.scheme == Scheme::acc);
+  CHECK(s.lod.cull == PatchCullMode::all);  // untouched settings keep the base's
   CHECK(s.cage == base.cage);
   // An empty camera setting goes back to the framing camera.
   RenderSettings moved = base;
-  moved.camera.eye = "1,2,3";
-  CHECK(settings_from_query(moved, {{"camera-position", ""}}).camera.eye.empty());
+  moved.camera.eye = glm::vec3(1, 2, 3);
+  CHECK(!settings_from_query(moved, {{"camera-position", ""}}).camera.eye);
 
   const auto refused = [&](const QueryParams& q, const std::string& expected) {
     try {
@@ -90,8 +91,14 @@ TEST_CASE("viewer settings: requests name render's options, paths, repeats and a
   refused({{"factor", "8"}, {"factor", "9"}}, "given twice");
   refused({{"factor", ""}}, "an empty value");
   refused({{"factor", "eight"}}, "factor");
-  refused({{"resolution", "100000x100000"}}, "more than the viewer draws");
+  refused({{"resolution", "100000x100000"}}, "--resolution: 100000x100000 is outside 1..16384");
   refused({{"resolution", "5000x5000"}}, "more than the viewer draws");
+  // Values are read when the request is, by the command line's readers, with their messages.
+  refused({{"scheme", "loop"}}, "--scheme: 'loop' is not one of flat, bspline, acc, gregory, exact, pn");
+  refused({{"view", "x-ray"}}, "--view: 'x-ray' is not one of shaded, wireframe");
+  refused({{"camera-up", "0,0,0"}}, "--camera-up: 0,0,0 has no direction");
+  refused({{"camera-position", "1,2"}}, "--camera-position: expected x,y,z");
+  refused({{"resolution", "0x10"}}, "--resolution: 0x10 is outside 1..16384");
   refused({{std::string(5000, 'a'), "1"}}, "...' is not a setting");
 
   // The command holds what differs from render's defaults, and reads back as the same settings.
@@ -171,8 +178,9 @@ TEST_CASE("viewer info lists every scheme the Scheme enum has", "[viewer][issue3
 TEST_CASE("viewer frames of an animated glTF follow the time setting", "[viewer][issue23]") {
   RenderSettings s;
   s.cage = test::data("gltf-cages/frog-skinned.gltf");
-  s.lod.cull = "all";
-  s.camera.resolution = "240x160";
+  s.lod.cull = PatchCullMode::all;
+  s.camera.width = 240;
+  s.camera.height = 160;
   ViewerSession session(s);
   const Json info = session.info();
   CHECK(info["animated"] == true);
@@ -290,7 +298,8 @@ TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad re
   one_line_error("/api/frame?camera-position=nan,0,0", 400, "camera");
   one_line_error("/api/frame?camera-position=0,2.884325,0.10888481", 400, "");  // at the target
   one_line_error("/api/frame?resolution=0x0", 400, "resolution");
-  one_line_error("/api/frame?resolution=99999x1", 400, "more than the viewer draws");
+  one_line_error("/api/frame?resolution=99999x1", 400, "--resolution: 99999x1 is outside 1..16384");
+  one_line_error("/api/frame?resolution=8000x8000", 400, "more than the viewer draws");
   one_line_error("/api/frame?msaa=3", 400, "msaa");
   one_line_error("/api/frame?view=nonsense", 400, "view");
   one_line_error("/api/frame?cage=/etc/passwd", 400, "not a setting");

@@ -18,18 +18,19 @@ namespace tessera::cli {
 namespace {
 
 struct AccuracyOptions {
-  AssetCli asset;
-  std::string cage, scheme = "gregory", partitioning = "integer", factors_file;
-  float factor = 7.0f, vary = 0.0f;
-  int threads = 0;
+  RenderSettings s = [] {
+    RenderSettings d;
+    d.factor = 7.0f;
+    return d;
+  }();  // the cage, scheme, factors, partitioning, threads and glTF asset, as render's
   bool json = false;
 };
 
 int run_accuracy(const AccuracyOptions& o) {
-  const Scheme scheme = scheme_option(o.scheme);
-  const ts::Partitioning partitioning = partitioning_option(o.partitioning);
-  const SubdModel model = load_model(o.cage, scheme, o.asset);
-  const SubdFactors factors = factors_option(o.factor, o.vary, o.factors_file, model.cage);
+  const Scheme scheme = o.s.scheme;
+  const ts::Partitioning partitioning = o.s.partitioning;
+  const SubdModel model = load_model(o.s.cage, scheme, o.s.asset);
+  const SubdFactors factors = factors_option(o.s.factor, o.s.vary, o.s.factors_file, model.cage);
   std::unique_ptr<LimitSurface> own_reference;
   try {
     // The limit of the cage the vertex shader outputs (the posed cage of an animated asset).
@@ -41,7 +42,7 @@ int run_accuracy(const AccuracyOptions& o) {
   }
   const LimitSurface& reference = model.limit ? *model.limit : *own_reference;
   const double diagonal = reference.bounding_box_diagonal();
-  Device device(device_options(o.threads));
+  Device device(device_options(o.s.threads));
   double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0;
   std::uint64_t samples = 0;
   const DrawResult r =
@@ -76,13 +77,13 @@ int run_accuracy(const AccuracyOptions& o) {
           ++samples;
         }
       });
-  if (!r.ok()) throw InputError(o.cage + ": " + r.error);
+  if (!r.ok()) throw InputError(o.s.cage + ": " + r.error);
   const double rms = samples ? std::sqrt(sum_d2 / double(samples)) : 0.0;
   const double rel_max = max_d / diagonal, rel_rms = rms / diagonal;
   if (o.json) {
-    const Json j = {{"cage", o.cage},
+    const Json j = {{"cage", o.s.cage},
                     {"scheme", to_string(scheme)},
-                    {"factor", json_float(o.factor)},
+                    {"factor", json_float(o.s.factor)},
                     {"samples", samples},
                     {"diagonal", diagonal},
                     {"max_distance", max_d},
@@ -98,7 +99,7 @@ int run_accuracy(const AccuracyOptions& o) {
     std::snprintf(line, sizeof line,
                   "%s: scheme %s vs exact limit, %llu samples: max %.3e, rms %.3e of the diagonal (%.4g); normals max "
                   "%.3f deg, mean %.4f deg\n",
-                  o.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal, max_angle,
+                  o.s.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal, max_angle,
                   samples ? sum_angle / double(samples) : 0.0);
     std::cout << line;
   }
@@ -110,9 +111,9 @@ int run_accuracy(const AccuracyOptions& o) {
 Runner add_accuracy_command(CLI::App& app) {
   auto o = std::make_shared<AccuracyOptions>();
   CLI::App* cmd = app.add_subcommand("accuracy", "distance of a scheme's surface to the exact limit surface");
-  cmd->add_option("cage", o->cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb)")->required();
-  add_scheme_options(*cmd, o->scheme, o->factor, o->vary, o->factors_file, o->partitioning, o->threads);
-  add_asset_options(*cmd, o->asset);
+  cmd->add_option("cage", o->s.cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb)")->required();
+  add_scheme_options(*cmd, o->s);
+  add_asset_options(*cmd, o->s.asset);
   cmd->add_flag("--json", o->json, "print the result as JSON");
   return [o] { return run_accuracy(*o); };
 }

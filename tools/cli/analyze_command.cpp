@@ -25,7 +25,7 @@ namespace tessera::cli {
 namespace {
 
 struct AnalyzeOptions {
-  AssetCli asset;
+  AssetSettings asset;
   std::string cage;
   bool json = false;
   MemoryOptions memory;

@@ -23,8 +23,9 @@ namespace tessera::cli {
 namespace {
 
 struct BakeCli {
-  AssetCli asset;
-  std::string cage, dense, output, scheme = "gregory", kind = "vector", space = "tangent", method = "auto";
+  AssetSettings asset;
+  Scheme scheme = Scheme::gregory;
+  std::string cage, dense, output, kind = "vector", space = "tangent", method = "auto";
   std::string resolution = "1024", normal_map, ao, prefer = "nearest";
   float max_distance = 0.0f, ao_distance = 0.0f;
   int ao_rays = 64, threads = 0;
@@ -69,7 +70,7 @@ int run_bake(const BakeCli& o) {
   b.ao = !o.ao.empty();
   b.ao_rays = o.ao_rays;
 
-  const Scheme scheme = scheme_option(o.scheme);
+  const Scheme scheme = o.scheme;
   const SubdModel model = load_model(o.cage, scheme, o.asset);
   std::vector<PatchTexcoords> texcoords;
   try {
@@ -194,7 +195,8 @@ Runner add_bake_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output,
                   "the displacement map: .exr (float), or .png or .tif (16-bit, its range in the file)")
       ->required();
-  cmd->add_option("--scheme", o->scheme, "the base surface: acc, gregory, bspline or exact (default gregory)");
+  add_setting_option(*cmd, "--scheme", o->scheme, [](const std::string& text) { return scheme_option(text); },
+                     "the base surface: acc, gregory, bspline or exact (default gregory)");
   cmd->add_option("--resolution", o->resolution, "texels: N (square) or WxH (default 1024)");
   cmd->add_option("--kind", o->kind, "vector (default) or scalar (along the normal)");
   cmd->add_option("--space", o->space, "vector maps: tangent (default) or object");

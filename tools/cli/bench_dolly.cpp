@@ -29,7 +29,7 @@ namespace {
 
 struct DollyOptions {
   RenderSettings s;  // s.cage empty: the monster frog shipped beside the binary
-  std::string to;
+  std::optional<glm::vec3> to;  // not given: halfway to the target
   int frames = 30;
   bool json = false;
 };
@@ -104,14 +104,14 @@ int run_dolly(const DollyOptions& o) {
   RenderSettings settings = o.s;
   settings.cage = cage;
   const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
-  const Scheme scheme = scene->scheme;
-  const ts::Partitioning partitioning = scene->partitioning;
+  const Scheme scheme = scene->settings.scheme;
+  const ts::Partitioning partitioning = scene->settings.partitioning;
   const SubdModel& model = scene->model;
   const SubdFactors& base_factors = scene->base_factors;
   Displacement* d = scene->displacement ? &*scene->displacement : nullptr;
   const ViewSetup& start = scene->view;
   const glm::vec3 from = start.camera.eye, target = start.camera.target;
-  const glm::vec3 to = o.to.empty() ? glm::mix(from, target, 0.5f) : parse_vec3(o.to, "--to");
+  const glm::vec3 to = o.to ? *o.to : glm::mix(from, target, 0.5f);
   if (glm::length(to - target) <= 0.0f) throw UsageError("--to: equal to the camera target");
   Device device(device_options(o.s.threads));
   std::string error;
@@ -166,8 +166,8 @@ int run_dolly(const DollyOptions& o) {
     const Json j = {{"scene", "dolly"},
                     {"cage", cage},
                     {"scheme", to_string(scheme)},
-                    {"partitioning", o.s.partitioning},
-                    {"lod", o.s.lod.mode},
+                    {"partitioning", std::string(ts::to_string(partitioning))},
+                    {"lod", to_string(o.s.lod.mode)},
                     {"edge_pixels", json_float(o.s.lod.edge_pixels)},
                     {"frames", o.frames},
                     {"largest_move_pixels", max_move},
@@ -176,7 +176,8 @@ int run_dolly(const DollyOptions& o) {
                     {"per_frame", frames}};
     std::cout << json_text(j) << "\n";
   } else {
-    std::cout << cage << ", " << to_string(scheme) << ", " << o.s.partitioning << ", lod " << o.s.lod.mode << ", "
+    std::cout << cage << ", " << to_string(scheme) << ", " << ts::to_string(partitioning) << ", lod "
+              << to_string(o.s.lod.mode) << ", "
               << o.frames << " frames: largest vertex move " << max_move << " px (median " << median_move
               << "), median frame " << times[times.size() / 2] << " s\n";
   }
@@ -188,13 +189,14 @@ int run_dolly(const DollyOptions& o) {
 Runner add_bench_dolly_command(CLI::App& bench) {
   auto o = std::make_shared<DollyOptions>();
   o->s.factor = 16.0f;
-  o->s.partitioning = "fractional_odd";
-  o->s.lod.mode = "screen";
+  o->s.partitioning = ts::Partitioning::fractional_odd;
+  o->s.lod.mode = LodMode::screen;
   CLI::App* cmd = bench.add_subcommand(
       "dolly", "The camera moves toward its target with view-dependent LOD: per-frame triangles, time, vertex moves");
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
-  add_model_settings_options(*cmd, o->s, "all");
-  cmd->add_option("--to", o->to, "x,y,z: where the camera ends (default: halfway to the target)");
+  add_model_settings_options(*cmd, o->s, PatchCullMode::all);
+  add_setting_option(*cmd, "--to", o->to, [](const std::string& text) { return vec3_option(text, "--to"); },
+                     "x,y,z: where the camera ends (default: halfway to the target)");
   cmd->add_option("--frames", o->frames, "frames along the path")->capture_default_str();
   cmd->add_flag("--json", o->json, "print results (and every frame) as JSON");
   cmd->fallthrough();

@@ -34,8 +34,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   RenderSettings settings = o.s;
   settings.cage = cage;
   const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
-  const Scheme scheme = scene->scheme;
-  const ts::Partitioning partitioning = scene->partitioning;
+  const Scheme scheme = scene->settings.scheme;
+  const ts::Partitioning partitioning = scene->settings.partitioning;
   const SubdModel& model = scene->model;
   const ViewSetup& view = scene->view;
   const int w = view.width, h = view.height;
@@ -74,8 +74,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
   if (o.compare_cull) {
     std::vector<std::uint8_t> reference;
     double none_median = 0.0;
-    for (const char* mode : {"none", "frustum", "backface", "all"}) {
-      LodCli lod = o.s.lod;
+    for (const PatchCullMode mode :
+         {PatchCullMode::none, PatchCullMode::frustum, PatchCullMode::backface, PatchCullMode::all}) {
+      LodCullSettings lod = o.s.lod;
       lod.cull = mode;
       SubdFactors f = base_factors;
       apply_lod_options(lod, view, model, d, f);
@@ -83,7 +84,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
       const double median = t.frame_s[t.frame_s.size() / 2];
       std::vector<std::uint8_t> bytes = fb->color_bytes();
       if (reference.empty()) reference = bytes, none_median = median;
-      cull_modes.push_back({{"cull", mode},
+      cull_modes.push_back({{"cull", to_string(mode)},
                             {"median_s", median},
                             {"min_s", t.frame_s.front()},
                             {"saved_s", none_median - median},
@@ -92,7 +93,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
                             {"triangles", t.last.statistics.CInvocations},
                             {"same_image", bytes == reference}});
       if (!o.json)
-        std::cout << "--cull " << mode << ": median " << median << " s (min " << t.frame_s.front() << "), "
+        std::cout << "--cull " << to_string(mode) << ": median " << median << " s (min " << t.frame_s.front() << "), "
                   << t.last.patches_culled << " patches outside the view, " << t.last.patches_back_culled
                   << " facing away, " << t.last.statistics.CInvocations << " triangles, "
                   << (bytes == reference ? "same image" : "IMAGE DIFFERS") << "\n";
@@ -123,8 +124,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
               {"msaa", o.s.msaa},
               {"threads", device.threads()},
               {"frames", o.frames},
-              {"lod", o.s.lod.mode},
-              {"cull", o.s.lod.cull},
+              {"lod", to_string(o.s.lod.mode)},
+              {"cull", to_string(o.s.lod.cull)},
               {"patches_culled", last.patches_culled},
               {"patches_back_culled", last.patches_back_culled},
               {"triangles", st.CInvocations},
@@ -159,7 +160,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
   CLI::App* cmd =
       bench.add_subcommand("frog", "A Catmull-Clark cage (default: the monster frog) through the whole pipeline");
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
-  add_model_settings_options(*cmd, o->s, "all");
+  add_model_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
   cmd->add_option("--msaa", o->s.msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
       ->capture_default_str();

@@ -21,6 +21,7 @@
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
+#include "tools/scene/render_settings.h"
 #include "tools/verify/image_compare.h"
 #include "tools/verify/oracle.h"
 
@@ -29,7 +30,7 @@ namespace {
 
 struct TorusOptions {
   float factor = 16;
-  std::string partitioning = "integer";
+  ts::Partitioning partitioning = ts::Partitioning::integer;
   std::string resolution = "1920x1080";
   int frames = 5;
   int rounds = 1;
@@ -86,8 +87,7 @@ LlvmpipeRun run_llvmpipe(const TorusOptions& o, ts::Partitioning p, int w, int h
 }
 
 int run_bench_torus(const TorusOptions& o) {
-  const auto partitioning = ts::parse_partitioning(o.partitioning);
-  if (!partitioning) throw UsageError("--partitioning: expected integer, pow2, fractional_odd or fractional_even");
+  const ts::Partitioning partitioning = o.partitioning;
   if (!std::isfinite(o.factor))
     throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
@@ -99,7 +99,7 @@ int run_bench_torus(const TorusOptions& o) {
   if (o.chunk_primitives < 64 || o.chunk_primitives > (std::size_t(1) << 24))
     throw UsageError("--chunk-primitives: " + std::to_string(o.chunk_primitives) + " is not in 64..16777216");
   const auto [w, h] = parse_resolution(o.resolution);
-  if (!o.llvmpipe.empty()) check_llvmpipe(o, *partitioning);
+  if (!o.llvmpipe.empty()) check_llvmpipe(o, partitioning);
 
   DeviceOptions dopt = device_options(o.threads);
   dopt.tile_size = o.tile_size;
@@ -112,7 +112,7 @@ int run_bench_torus(const TorusOptions& o) {
   if (!fb) throw UsageError((valid_sample_count(o.msaa) ? "--resolution: " : "--msaa: ") + error);
   log_info("building the torus scene");
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  const auto draw = scenes::make_torus_draw(scene, o.factor, *partitioning, w, h);
+  const auto draw = scenes::make_torus_draw(scene, o.factor, partitioning, w, h);
 
   const auto median_of = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -137,7 +137,7 @@ int run_bench_torus(const TorusOptions& o) {
     }
     times.insert(times.end(), round_times.begin(), round_times.end());
     if (!o.llvmpipe.empty()) {
-      llvmpipe_rounds.push_back(run_llvmpipe(o, *partitioning, w, h, device.threads()));
+      llvmpipe_rounds.push_back(run_llvmpipe(o, partitioning, w, h, device.threads()));
       round_speedups.push_back(llvmpipe_rounds.back().median_s / median_of(round_times));
     }
   }
@@ -185,7 +185,7 @@ int run_bench_torus(const TorusOptions& o) {
   if (o.json) {
     Json j = {{"scene", "torus"},
               {"factor", json_float(o.factor)},
-              {"partitioning", o.partitioning},
+              {"partitioning", std::string(ts::to_string(partitioning))},
               {"resolution", std::to_string(w) + "x" + std::to_string(h)},
               {"msaa", o.msaa},
               {"isa", kBuildIsa},
@@ -212,7 +212,7 @@ int run_bench_torus(const TorusOptions& o) {
         line, sizeof line,
         "torus factor %s %s %dx%d %s threads %d: triangles %llu median_s %.4f min_s %.4f (%.1f M triangles/s), "
         "geometry peak %.1f MB, framebuffer %.1f MB, peak RSS %.1f MB\n",
-        float_text(o.factor).c_str(), o.partitioning.c_str(), w, h, kBuildIsa, device.threads(),
+        float_text(o.factor).c_str(), std::string(ts::to_string(partitioning)).c_str(), w, h, kBuildIsa, device.threads(),
         static_cast<unsigned long long>(triangles), median, minimum, double(triangles) / median / 1e6,
         double(report.memory.geometry_peak_bytes) / 1e6, double(report.memory.framebuffer_bytes) / 1e6,
         double(rss) / 1e6);
@@ -237,8 +237,10 @@ Runner add_bench_torus_command(CLI::App& bench) {
   CLI::App* cmd =
       bench.add_subcommand("torus", "The displaced B-spline torus of tessbench.cpp through the whole pipeline");
   cmd->add_option("--factor", o->factor, "tessellation factor on every edge and inside")->capture_default_str();
-  cmd->add_option("--partitioning", o->partitioning, "integer, pow2, fractional_odd or fractional_even")
-      ->capture_default_str();
+  add_setting_option(*cmd, "--partitioning", o->partitioning,
+                     [](const std::string& text) { return partitioning_option(text); },
+                     "integer, pow2, fractional_odd or fractional_even")
+      ->default_str("integer");
   cmd->add_option("--resolution", o->resolution, "WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up frame)")->capture_default_str();
   cmd->add_option(

@@ -58,8 +58,8 @@ int run_bench_view(BenchViewOptions o) {
   const double n = double(o.frames);
   if (o.json) {
     std::cout << json_text(Json{{"cage", o.s.cage},
-                                {"resolution", o.s.camera.resolution},
-                                {"lod", o.s.lod.mode},
+                                {"resolution", resolution_text(o.s.camera.width, o.s.camera.height)},
+                                {"lod", to_string(o.s.lod.mode)},
                                 {"format", o.format},
                                 {"frames", o.frames},
                                 {"threads", session_threads(o.s.threads)},
@@ -75,7 +75,8 @@ int run_bench_view(BenchViewOptions o) {
               << "\n";
     return kExitOk;
   }
-  std::cout << o.s.cage << ", " << o.s.camera.resolution << ", LOD " << o.s.lod.mode << ", " << o.format << ", "
+  std::cout << o.s.cage << ", " << resolution_text(o.s.camera.width, o.s.camera.height) << ", LOD "
+            << to_string(o.s.lod.mode) << ", " << o.format << ", "
             << o.frames << " orbit frames on " << session_threads(o.s.threads) << " threads: median frame "
             << float_text(float(t * 1e3)) << " ms (min "
             << float_text(float(*std::min_element(total.begin(), total.end()) * 1e3)) << "), of which draw "
@@ -94,9 +95,10 @@ Runner add_bench_view_command(CLI::App& bench) {
   CLI::App* cmd =
       bench.add_subcommand("view", "tessera view's frame path (settings to encoded image) over a turntable of cameras");
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
-  o->s.camera.resolution = "1280x720";
-  o->s.lod.mode = "screen";
-  add_settings_options(*cmd, o->s, "all");
+  o->s.camera.width = 1280;
+  o->s.camera.height = 720;
+  o->s.lod.mode = LodMode::screen;
+  add_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->add_option("--frames", o->frames, "timed frames, each from the next camera of the turntable")
       ->capture_default_str();
   cmd->add_option("--format", o->format, "png (the still frame) or jpeg (the moving camera's)")->capture_default_str();

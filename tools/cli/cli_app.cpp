@@ -52,6 +52,12 @@ int run_app(int argc, char** argv, std::span<const CommandEntry> commands,
   } catch (const CLI::ParseError& e) {
     std::cerr << "tessera: " << one_line_message(e.what()) << " (see tessera --help)\n";
     return kExitUsage;
+  } catch (const UsageError& e) {
+    // A value a setting's reader refused (tools/scene/render_settings.h), named as the command would.
+    const auto parsed = app.get_subcommands();
+    std::cerr << "tessera" << (parsed.empty() ? "" : " " + parsed.front()->get_name()) << ": "
+              << one_line_message(e.what()) << "\n";
+    return kExitUsage;
   }
   set_verbosity(quiet ? -1 : verbose ? 1 : 0);
   const std::string name = app.get_subcommands().front()->get_name();

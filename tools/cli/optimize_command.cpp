@@ -15,7 +15,7 @@ namespace tessera::cli {
 namespace {
 
 struct OptimizeCli {
-  AssetCli asset;
+  AssetSettings asset;
   std::string cage, output;
   bool no_rotate = false, no_reorder = false, json = false;
 };

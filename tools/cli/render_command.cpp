@@ -202,8 +202,8 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   const ViewOutput& out = image.out;
   const DrawReport& total = out.result.report;
   write_scene_image(image, {o.output});
-  const ViewKind kind = scene->kind;
-  const Scheme scheme = scene->scheme;
+  const ViewKind kind = scene->settings.view;
+  const Scheme scheme = scene->settings.scheme;
   const ViewSetup& view = scene->view;
   if (!o.stats.empty()) {
     // Counts only: the same bytes for the same input on any thread count. Times and memory, which
@@ -237,7 +237,7 @@ Runner add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "render a cage's subdivision surface to an image");
   cmd->add_option("cage", o->s.cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb); or --scene");
   cmd->add_option("-o,--output", o->output, "output image (PNG or EXR)");
-  add_settings_options(*cmd, o->s, "all");
+  add_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->add_option("--frames", o->frames,
                   "render N frames of the animation from --time, 1/fps apart, to -o frame_%04d.png")
       ->capture_default_str();

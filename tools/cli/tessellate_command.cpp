@@ -32,8 +32,8 @@ struct TessellateOptions {
 };
 
 int run_tessellate(const TessellateOptions& o) {
-  const Scheme scheme = scheme_option(o.s.scheme);
-  const ts::Partitioning partitioning = partitioning_option(o.s.partitioning);
+  const Scheme scheme = o.s.scheme;
+  const ts::Partitioning partitioning = o.s.partitioning;
   if (o.output.empty() && !o.check && o.stats.empty())
     throw UsageError("nothing to do: give -o out.ply, --check-watertight and/or --stats FILE.json");
   std::string format = o.format;
@@ -108,7 +108,8 @@ int run_tessellate(const TessellateOptions& o) {
       "tessera tessellate " + std::filesystem::path(o.s.cage).filename().string() + " scheme " + to_string(scheme) +
       (displacement ? " displacement " + std::filesystem::path(o.s.displacement.map).filename().string()
                     : std::string()) +
-      " factor " + float_text(o.s.factor) + " lod " + o.s.lod.mode + " partitioning " + o.s.partitioning;
+      " factor " + float_text(o.s.factor) + " lod " + to_string(o.s.lod.mode) +
+      " partitioning " + std::string(ts::to_string(partitioning));
   if (!o.output.empty() && format == "glb") {
     write_file_atomically(o.output, [&](const std::string& temp) {
       GlbStreamWriter glb(temp, o.output);
@@ -116,8 +117,8 @@ int run_tessellate(const TessellateOptions& o) {
       // The settings, without the asset's name, so OBJ and glTF inputs of one cage give the same bytes.
       const Json extras = {{"scheme", to_string(scheme)},
                            {"factor", json_float(o.s.factor)},
-                           {"lod", o.s.lod.mode},
-                           {"partitioning", o.s.partitioning},
+                           {"lod", to_string(o.s.lod.mode)},
+                           {"partitioning", std::string(ts::to_string(partitioning))},
                            {"displaced", displacement.has_value()},
                            {"note", "each patch writes its own vertices (weld on exact bits to join them)"}};
       glb.finish("tessera tessellate", extras.dump());
@@ -194,7 +195,7 @@ Runner add_tessellate_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output,
                   "output PLY (binary; each patch its own vertices), or binary glTF (.glb) for any glTF viewer");
   cmd->add_option("--format", o->format, "ply or glb (default: from the output's extension, .glb or else PLY)");
-  add_model_settings_options(*cmd, o->s, "none");
+  add_model_settings_options(*cmd, o->s, PatchCullMode::none);
   cmd->add_option("--stats", o->stats,
                   "write per-patch statistics (factors raw and processed, triangles, screen size, culling), "
                   "histograms and totals as JSON (as render --stats; screen sizes for the --camera view)");

@@ -89,8 +89,9 @@ Runner add_view_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "view", "interactive tessellation debugging in the browser: serves the asset's frames on 127.0.0.1");
   cmd->add_option("cage", o->s.cage, "the cage: OBJ (OpenSubdiv tags allowed) or glTF (.gltf, .glb); or --scene");
-  o->s.camera.resolution = "1280x720";
-  add_settings_options(*cmd, o->s, "all");
+  o->s.camera.width = 1280;
+  o->s.camera.height = 720;
+  add_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->add_option("--scene", o->scene, "start from the scene file FILE (the page can change its settings)");
   cmd->add_option("--port", o->port, "TCP port (0: any free port; the URL is printed)")->capture_default_str();
   cmd->add_option("--bind", o->bind,

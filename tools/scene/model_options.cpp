@@ -12,29 +12,19 @@
 
 namespace tessera::cli {
 
-void add_scheme_options(CLI::App& cmd, std::string& scheme, float& factor, float& vary, std::string& factors_file,
-                        std::string& partitioning, int& threads) {
-  cmd.add_option("--scheme", scheme,
+void add_scheme_options(CLI::App& cmd, RenderSettings& s) {
+  add_setting_option(cmd, "--scheme", s.scheme, [](const std::string& text) { return scheme_option(text); },
                  "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
                  "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit) or pn (PN triangles and quads)")
-      ->capture_default_str();
-  cmd.add_option("--factor", factor, "tessellation factor on every edge")->capture_default_str();
-  cmd.add_option("--vary-factors", vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
-  cmd.add_option("--factors-per-edge", factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
-  cmd.add_option("--partitioning", partitioning, "integer, pow2, fractional_odd or fractional_even")
-      ->capture_default_str();
-  cmd.add_option("--threads", threads, "worker threads (0: all)");
-}
-
-Scheme scheme_option(const std::string& name, const std::string& what) {
-  const auto s = parse_scheme(name);
-  if (!s) throw UsageError(what + ": '" + name + "' is not one of flat, bspline, acc, gregory, exact, pn");
-  return *s;
-}
-
-ts::Partitioning partitioning_option(const std::string& name) {
-  if (const auto p = ts::parse_partitioning(name)) return *p;
-  throw UsageError("--partitioning: '" + name + "' is not one of integer, pow2, fractional_odd, fractional_even");
+      ->default_str(to_string(s.scheme));
+  cmd.add_option("--factor", s.factor, "tessellation factor on every edge")->capture_default_str();
+  cmd.add_option("--vary-factors", s.vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
+  cmd.add_option("--factors-per-edge", s.factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
+  add_setting_option(cmd, "--partitioning", s.partitioning,
+                     [](const std::string& text) { return partitioning_option(text); },
+                     "integer, pow2, fractional_odd or fractional_even")
+      ->default_str(std::string(ts::to_string(s.partitioning)));
+  cmd.add_option("--threads", s.threads, "worker threads (0: all)");
 }
 
 SubdFactors factors_option(float factor, float vary, const std::string& file, const Cage& cage) {
@@ -75,7 +65,7 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
   return f;
 }
 
-void add_asset_options(CLI::App& cmd, AssetCli& a, bool with_time) {
+void add_asset_options(CLI::App& cmd, AssetSettings& a, bool with_time) {
   cmd.add_option("--scene-index", a.scene_index, "glTF: the scene to read (default: the file's default scene)");
   cmd.add_option("--mesh", a.mesh, "glTF: read only the mesh (or node) of this name");
   if (!with_time) return;
@@ -84,7 +74,7 @@ void add_asset_options(CLI::App& cmd, AssetCli& a, bool with_time) {
       ->capture_default_str();
 }
 
-void pose_model(SubdModel& m, const AssetCli& asset, double time) {
+void pose_model(SubdModel& m, const AssetSettings& asset, double time) {
   if (!std::isfinite(time) || std::abs(time) > 1e9)
     throw UsageError("--time: " + std::to_string(time) + " is not a finite time in seconds");
   int animation = m.rig->animations.empty() ? -1 : 0;
@@ -109,7 +99,7 @@ void pose_model(SubdModel& m, const AssetCli& asset, double time) {
       throw InputError(m.cage.name + ": the pose at " + std::to_string(time) + " s moves a vertex to infinity");
 }
 
-GltfSelection gltf_selection(const std::string& path, const AssetCli& a) {
+GltfSelection gltf_selection(const std::string& path, const AssetSettings& a) {
   if (!is_gltf_path(path) && (a.scene_index >= 0 || !a.mesh.empty() || !a.animation.empty()))
     throw UsageError("--scene-index, --mesh and --animation apply to glTF assets; " + path + " is not one");
   GltfSelection selection;
@@ -118,7 +108,7 @@ GltfSelection gltf_selection(const std::string& path, const AssetCli& a) {
   return selection;
 }
 
-SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& asset) {
+SubdModel load_model(const std::string& path, Scheme scheme, const AssetSettings& asset) {
   const GltfSelection selection = gltf_selection(path, asset);
   SubdModel m;
   try {
@@ -131,7 +121,7 @@ SubdModel load_model(const std::string& path, Scheme scheme, const AssetCli& ass
   return m;
 }
 
-void pose_or_refuse(SubdModel& m, const std::string& path, const AssetCli& asset) {
+void pose_or_refuse(SubdModel& m, const std::string& path, const AssetSettings& asset) {
   if (m.rig) {
     pose_model(m, asset, asset.time);
   } else if (asset.time != 0.0) {
@@ -142,7 +132,7 @@ void pose_or_refuse(SubdModel& m, const std::string& path, const AssetCli& asset
   }
 }
 
-void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
+void add_displacement_options(CLI::App& cmd, DisplacementSettings& d) {
   cmd.add_option("--displacement", d.map,
                  "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs; default: a glTF "
                  "material's KHR_materials_displacement texture; none: no displacement");
@@ -151,17 +141,18 @@ void add_displacement_options(CLI::App& cmd, DisplacementCli& d) {
   cmd.add_option("--displacement-scale", d.scale,
                  "displacement = scale * texel + bias (object units; default 1, or a glTF material's factor)");
   cmd.add_option("--displacement-bias", d.bias, "added after scaling (default 0, or a glTF material's offset)");
-  cmd.add_option("--displacement-space", d.space, "vector maps: tangent or object")->capture_default_str();
+  add_setting_option(cmd, "--displacement-space", d.space, displacement_space_option, "vector maps: tangent or object")
+      ->default_str(to_string(d.space));
   cmd.add_option(
          "--normal-map", d.normal_map,
          "shading normals: auto (the displacement file's RGB when the height is another channel, else derived), "
          "derived (from the height), or a tangent-space normal map file")
       ->capture_default_str();
-  cmd.add_option("--uv-seams", d.uv_seams,
+  add_setting_option(cmd, "--uv-seams", d.uv_seams, uv_seams_option,
                  "across UV seams: blend (shade each patch from its own chart, blend the two charts' normals at "
                  "the seam, pad the displacement map beyond its charts) or raw (the maps as stored, the owner's "
                  "UV shaded across seams: what the asset alone gives)")
-      ->capture_default_str();
+      ->default_str(to_string(d.uv_seams));
 }
 
 namespace {
@@ -180,19 +171,17 @@ std::string format_of(const GltfImage& image) {
 
 }  // namespace
 
-std::optional<Displacement> displacement_option(const DisplacementCli& d, const SubdModel& model) {
+std::optional<Displacement> displacement_option(const DisplacementSettings& d, const SubdModel& model) {
   const GltfMaterialMaps& material = model.material;
   const bool none = d.map == "none";
   const bool from_material = d.map.empty() && material.displacement.has_value();
   if ((d.map.empty() && !from_material) || none) {
-    DisplacementCli companions = d;
+    DisplacementSettings companions = d;
     companions.map.clear();
-    if (!(companions == DisplacementCli{}))  // a companion option given without the map
+    if (!(companions == DisplacementSettings{}))  // a companion option given without the map
       throw UsageError("--displacement-* and --normal-map need --displacement MAP");
     return std::nullopt;
   }
-  if (d.space != "tangent" && d.space != "object")
-    throw UsageError("--displacement-space: '" + d.space + "' is not tangent or object");
   DisplacementOptions o;
   o.scale = d.scale.value_or(from_material ? material.displacement_factor : 1.0f);
   o.bias = d.bias.value_or(from_material ? material.displacement_offset : 0.0f);
@@ -209,10 +198,8 @@ std::optional<Displacement> displacement_option(const DisplacementCli& d, const 
     log_info("displacement: " + image.path + " (the material's displacementGeometryTexture, scale " +
              float_text(o.scale) + ", offset " + float_text(o.bias) + ")");
   }
-  o.space = d.space == "object" ? DisplacementSpace::object : DisplacementSpace::tangent;
-  if (d.uv_seams != "blend" && d.uv_seams != "raw")
-    throw UsageError("--uv-seams: '" + d.uv_seams + "' is not blend or raw");
-  o.pad_charts = o.own_chart_shading = o.seam_blending = d.uv_seams == "blend";
+  o.space = d.space;
+  o.pad_charts = o.own_chart_shading = o.seam_blending = d.uv_seams == UvSeams::blend;
   o.normal_map = d.normal_map;
   if (d.normal_map == "auto" && material.normal) {
     o.normal_map = material.normal->path;

@@ -13,23 +13,6 @@
 namespace tessera::cli {
 namespace {
 
-constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
-    {ViewKind::shaded, "shaded"},
-    {ViewKind::wireframe, "wireframe"},
-    {ViewKind::wire_on_shaded, "wire-on-shaded"},
-    {ViewKind::factors, "factors"},
-    {ViewKind::density, "density"},
-    {ViewKind::patch_type, "patch-type"},
-    {ViewKind::combination, "combination"},
-    {ViewKind::patch_id, "patch-id"},
-    {ViewKind::normals, "normals"},
-    {ViewKind::uv, "uv"},
-    {ViewKind::displacement, "displacement"},
-    {ViewKind::cage, "cage"},
-    {ViewKind::cracks, "cracks"},
-    {ViewKind::culled, "culled"},
-}};
-
 std::string fixed(float x, int digits) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*f", digits, double(x));
@@ -70,24 +53,6 @@ SubdCamera overview_camera(const ViewInputs& in, int w, int h) {
 }
 
 }  // namespace
-
-std::optional<ViewKind> parse_view(std::string_view name) {
-  for (const auto& [kind, text] : kViews)
-    if (name == text) return kind;
-  return std::nullopt;
-}
-
-const char* to_string(ViewKind v) {
-  for (const auto& [kind, text] : kViews)
-    if (kind == v) return text;
-  return "?";
-}
-
-std::string view_names() {
-  std::string s;
-  for (const auto& [kind, text] : kViews) s += (s.empty() ? "" : ", ") + std::string(text);
-  return s;
-}
 
 PatchTables view_patch_tables(const ViewInputs& in) {
   const DicingCamera camera{in.view.camera.eye, pixels_per_unit(in.view.height, in.view.fov)};

@@ -8,29 +8,10 @@
 
 #include "shaders_cpp/debug/debug_render.h"
 #include "tools/scene/view_legend.h"
+#include "tools/scene/render_settings.h"
 #include "tools/scene/view_options.h"
 
 namespace tessera::cli {
-
-enum class ViewKind : std::uint8_t {
-  shaded,
-  wireframe,
-  wire_on_shaded,
-  factors,
-  density,
-  patch_type,
-  combination,
-  patch_id,
-  normals,
-  uv,
-  displacement,
-  cage,
-  cracks,
-  culled,
-};
-std::optional<ViewKind> parse_view(std::string_view name);
-const char* to_string(ViewKind v);
-std::string view_names();  // "shaded, wireframe, ..." for help and errors
 
 struct ViewInputs {
   const SubdModel& model;

@@ -7,29 +7,31 @@
 #include <set>
 #include <sstream>
 
+#include "pipeline/framebuffer.h"
 #include "pipeline/sample_pattern.h"
 #include "tools/scene/common.h"
 #include "tools/scene/render_views.h"
 
 namespace tessera::cli {
 
-void add_model_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default) {
-  add_scheme_options(cmd, s.scheme, s.factor, s.vary, s.factors_file, s.partitioning, s.threads);
+void add_model_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_default) {
+  add_scheme_options(cmd, s);
   add_camera_options(cmd, s.camera);
   add_lod_options(cmd, s.lod, cull_default);
   add_displacement_options(cmd, s.displacement);
   add_asset_options(cmd, s.asset);
 }
 
-void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default) {
+void add_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_default) {
   add_model_settings_options(cmd, s, cull_default);
-  cmd.add_option("--view", s.view, view_names())->capture_default_str();
+  add_setting_option(cmd, "--view", s.view, view_kind_option, view_names())->default_str(to_string(s.view));
   cmd.add_option("--msaa", s.msaa,
                  "samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard sample patterns; coverage and depth per "
                  "sample, shading per pixel, a box-filter resolve)")
       ->capture_default_str();
-  cmd.add_option("--factor-kind", s.factor_kind, "--view factors: raw (as the hull shader gave them) or processed")
-      ->capture_default_str();
+  add_setting_option(cmd, "--factor-kind", s.factor_kind, factor_kind_option,
+                     "--view factors: raw (as the hull shader gave them) or processed")
+      ->default_str(to_string(s.factor_kind));
 }
 namespace {
 
@@ -62,14 +64,18 @@ class SceneReader {
     if (!v.is_string()) fail(field, "expected a string, got " + v.dump());
     return v.get<std::string>();
   }
-  std::string one_of(const Json& v, const std::string& field, std::initializer_list<const char*> values) const {
+  // A name, read by the option reader `read` (render_settings.h): the names the command line takes.
+  // Its refusal ("--scheme: 'x' is not one of ...") is given under the field's name instead.
+  template <class Read>
+  auto one_of(const Json& v, const std::string& field, Read read) const {
     const std::string s = text(v, field);
-    std::string all;
-    for (const char* x : values) {
-      if (s == x) return s;
-      all += (all.empty() ? "" : ", ") + std::string(x);
+    try {
+      return read(s);
+    } catch (const UsageError& e) {
+      const std::string what = e.what();
+      const auto colon = what.find(": ");
+      fail(field, colon == std::string::npos ? what : what.substr(colon + 2));
     }
-    fail(field, "'" + s + "' is not one of " + all);
   }
   std::string path(const Json& v, const std::string& field) const {
     const std::string s = text(v, field);
@@ -77,12 +83,21 @@ class SceneReader {
     const fs::path p(s);
     return p.is_absolute() ? s : (dir_ / p).lexically_normal().string();
   }
-  // [x, y, z] as the command line's "x,y,z" (shortest round-trip text, so the floats are the same).
-  std::string vec3(const Json& v, const std::string& field) const {
+  // [x, y, z], each finite.
+  glm::vec3 vec3(const Json& v, const std::string& field) const {
     if (!v.is_array() || v.size() != 3) fail(field, "expected [x, y, z], got " + v.dump());
-    std::string out;
-    for (std::size_t i = 0; i < 3; ++i) out += (i ? "," : "") + float_text(number(v[i], field));
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      out[i] = number(v[std::size_t(i)], field);
+      if (!std::isfinite(out[i])) fail(field, "not finite: " + v.dump());
+    }
     return out;
+  }
+  // [x, y, z], a direction: not of length 0.
+  glm::vec3 direction(const Json& v, const std::string& field) const {
+    const glm::vec3 d = vec3(v, field);
+    if (!(glm::length(glm::dvec3(d)) > 1e-12)) fail(field, v.dump() + " has no direction (give a non-zero x,y,z)");
+    return d;
   }
 
  private:
@@ -90,12 +105,7 @@ class SceneReader {
   fs::path dir_;
 };
 
-Json vec3_json(const std::string& text) {
-  const std::vector<float> v = parse_float_list(text, "vector");
-  Json a = Json::array();
-  for (float x : v) a.push_back(json_float(x));
-  return a;
-}
+Json vec3_json(glm::vec3 v) { return Json::array({json_float(v.x), json_float(v.y), json_float(v.z)}); }
 
 std::string relative_to(const std::string& path, const std::string& dir) {
   const fs::path absolute = fs::absolute(path).lexically_normal();
@@ -133,19 +143,20 @@ RenderSettings read_scene(const std::string& path) {
   RenderSettings s;
   s.cage = r.path(root["asset"], "asset");
   if (root.contains("scheme"))
-    s.scheme = r.one_of(root["scheme"], "scheme", {"flat", "bspline", "acc", "gregory", "exact", "pn"});
+    s.scheme = r.one_of(root["scheme"], "scheme", [](const std::string& t) { return scheme_option(t); });
   if (root.contains("partitioning"))
     s.partitioning =
-        r.one_of(root["partitioning"], "partitioning", {"integer", "pow2", "fractional_odd", "fractional_even"});
+        r.one_of(root["partitioning"], "partitioning", [](const std::string& t) { return partitioning_option(t); });
   if (root.contains("factor")) s.factor = r.number(root["factor"], "factor");
   if (root.contains("vary_factors")) s.vary = r.number(root["vary_factors"], "vary_factors");
   if (root.contains("factors_per_edge")) s.factors_file = r.path(root["factors_per_edge"], "factors_per_edge");
-  s.lod.cull = "all";
-  if (root.contains("cull")) s.lod.cull = r.one_of(root["cull"], "cull", {"none", "frustum", "backface", "all"});
+  s.lod.cull = PatchCullMode::all;
+  if (root.contains("cull"))
+    s.lod.cull = r.one_of(root["cull"], "cull", cull_option);
   if (root.contains("lod")) {
     const Json& l = root["lod"];
     r.only(l, "lod", {"mode", "edge_pixels", "distance", "dicing_camera_position"});
-    if (l.contains("mode")) s.lod.mode = r.one_of(l["mode"], "lod.mode", {"uniform", "distance", "screen"});
+    if (l.contains("mode")) s.lod.mode = r.one_of(l["mode"], "lod.mode", lod_mode_option);
     if (l.contains("edge_pixels")) s.lod.edge_pixels = r.number(l["edge_pixels"], "lod.edge_pixels");
     if (l.contains("distance")) s.lod.lod_distance = r.number(l["distance"], "lod.distance");
     if (l.contains("dicing_camera_position"))
@@ -159,9 +170,11 @@ RenderSettings read_scene(const std::string& path) {
     if (d.contains("channel")) s.displacement.channel = r.text(d["channel"], "displacement.channel");
     if (d.contains("scale")) s.displacement.scale = r.number(d["scale"], "displacement.scale");
     if (d.contains("bias")) s.displacement.bias = r.number(d["bias"], "displacement.bias");
-    if (d.contains("space")) s.displacement.space = r.one_of(d["space"], "displacement.space", {"tangent", "object"});
+    if (d.contains("space"))
+      s.displacement.space =
+          r.one_of(d["space"], "displacement.space", displacement_space_option);
     if (d.contains("uv_seams"))
-      s.displacement.uv_seams = r.one_of(d["uv_seams"], "displacement.uv_seams", {"blend", "raw"});
+      s.displacement.uv_seams = r.one_of(d["uv_seams"], "displacement.uv_seams", uv_seams_option);
     if (d.contains("normal_map")) {
       const std::string n = r.text(d["normal_map"], "displacement.normal_map");
       s.displacement.normal_map =
@@ -173,20 +186,23 @@ RenderSettings read_scene(const std::string& path) {
     r.only(c, "camera", {"position", "target", "up", "fov"});
     if (c.contains("position")) s.camera.eye = r.vec3(c["position"], "camera.position");
     if (c.contains("target")) s.camera.target = r.vec3(c["target"], "camera.target");
-    if (c.contains("up")) s.camera.up = r.vec3(c["up"], "camera.up");
+    if (c.contains("up")) s.camera.up = r.direction(c["up"], "camera.up");
     if (c.contains("fov")) s.camera.fov = r.number(c["fov"], "camera.fov");
   }
   if (root.contains("resolution")) {
     const Json& v = root["resolution"];
     if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
       r.fail("resolution", "expected [width, height] in pixels, got " + v.dump());
-    s.camera.resolution = std::to_string(v[0].get<long long>()) + "x" + std::to_string(v[1].get<long long>());
+    const long long w = v[0].get<long long>(), h = v[1].get<long long>();
+    if (w < 1 || h < 1 || w > kMaxRenderTargetSize || h > kMaxRenderTargetSize)
+      r.fail("resolution", v.dump() + " is outside 1.." + std::to_string(kMaxRenderTargetSize) + " per side");
+    s.camera.width = int(w);
+    s.camera.height = int(h);
   }
   if (root.contains("view"))
-    s.view = r.one_of(root["view"], "view",
-                      {"shaded", "wireframe", "wire-on-shaded", "factors", "density", "patch-type", "combination",
-                       "patch-id", "normals", "uv", "displacement", "cage", "cracks", "culled"});
-  if (root.contains("factor_kind")) s.factor_kind = r.one_of(root["factor_kind"], "factor_kind", {"raw", "processed"});
+    s.view = r.one_of(root["view"], "view", view_kind_option);
+  if (root.contains("factor_kind"))
+    s.factor_kind = r.one_of(root["factor_kind"], "factor_kind", factor_kind_option);
   if (root.contains("time")) {
     if (!root["time"].is_number()) r.fail("time", "expected seconds, got " + root["time"].dump());
     s.asset.time = root["time"].get<double>();
@@ -217,39 +233,38 @@ RenderSettings read_scene(const std::string& path) {
 Json scene_json(const RenderSettings& s, const std::string& dir) {
   Json j = {{"tessera_scene", 1},
             {"asset", relative_to(s.cage, dir)},
-            {"scheme", s.scheme},
-            {"partitioning", s.partitioning},
+            {"scheme", to_string(s.scheme)},
+            {"partitioning", std::string(ts::to_string(s.partitioning))},
             {"factor", json_float(s.factor)},
             {"vary_factors", json_float(s.vary)}};
   if (!s.factors_file.empty()) j["factors_per_edge"] = relative_to(s.factors_file, dir);
-  Json lod = {{"mode", s.lod.mode},
+  Json lod = {{"mode", to_string(s.lod.mode)},
               {"edge_pixels", json_float(s.lod.edge_pixels)},
               {"distance", json_float(s.lod.lod_distance)}};
-  if (!s.lod.dicing_eye.empty()) lod["dicing_camera_position"] = vec3_json(s.lod.dicing_eye);
+  if (s.lod.dicing_eye) lod["dicing_camera_position"] = vec3_json(*s.lod.dicing_eye);
   j["lod"] = lod;
-  j["cull"] = s.lod.cull;
+  j["cull"] = to_string(s.lod.cull);
   if (!s.displacement.map.empty()) {
-    const DisplacementCli& d = s.displacement;
+    const DisplacementSettings& d = s.displacement;
     Json dj = {{"map", relative_to(d.map, dir)}};
     if (!d.channel.empty()) dj["channel"] = d.channel;
     if (d.scale) dj["scale"] = json_float(*d.scale);
     if (d.bias) dj["bias"] = json_float(*d.bias);
-    dj["space"] = d.space;
+    dj["space"] = to_string(d.space);
     dj["normal_map"] =
         d.normal_map == "auto" || d.normal_map == "derived" ? d.normal_map : relative_to(d.normal_map, dir);
-    dj["uv_seams"] = d.uv_seams;
+    dj["uv_seams"] = to_string(d.uv_seams);
     j["displacement"] = dj;
   }
   Json camera = Json::object();
-  if (!s.camera.eye.empty()) camera["position"] = vec3_json(s.camera.eye);
-  if (!s.camera.target.empty()) camera["target"] = vec3_json(s.camera.target);
-  if (!s.camera.up.empty()) camera["up"] = vec3_json(s.camera.up);
+  if (s.camera.eye) camera["position"] = vec3_json(*s.camera.eye);
+  if (s.camera.target) camera["target"] = vec3_json(*s.camera.target);
+  if (s.camera.up) camera["up"] = vec3_json(*s.camera.up);
   camera["fov"] = json_float(s.camera.fov);
   j["camera"] = camera;
-  const auto [w, h] = parse_size(s.camera.resolution, "resolution", 1, 65536);
-  j["resolution"] = {w, h};
-  j["view"] = s.view;
-  j["factor_kind"] = s.factor_kind;
+  j["resolution"] = {s.camera.width, s.camera.height};
+  j["view"] = to_string(s.view);
+  j["factor_kind"] = to_string(s.factor_kind);
   j["time"] = s.asset.time;
   if (!s.asset.animation.empty()) j["animation"] = s.asset.animation;
   if (!s.asset.mesh.empty()) j["mesh"] = s.asset.mesh;

@@ -16,33 +16,21 @@
 
 #include "tools/scene/json_output.h"
 #include "tools/scene/model_options.h"
+#include "tools/scene/render_settings.h"
 #include "tools/scene/view_options.h"
 
 namespace tessera::cli {
-
-// What a scene describes: everything `tessera render` takes but its outputs.
-struct RenderSettings {
-  std::string cage, scheme = "gregory", partitioning = "integer", factors_file, view = "shaded";
-  std::string factor_kind = "raw";
-  CameraCli camera;
-  LodCli lod;
-  float factor = 8.0f, vary = 0.0f;
-  AssetCli asset;  // glTF: scene, mesh, animation, time
-  int threads = 0;
-  int msaa = 1;  // samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard patterns)
-  DisplacementCli displacement;
-};
 
 // Registers every setting of `s` but the cage as `tessera render`'s options, bound to `s`: scheme and
 // factors, camera, LOD and culling (--cull defaulting to `cull_default`), --view, --msaa,
 // --factor-kind, displacement and the glTF asset. render, view, bench view and the viewer's request
 // parser all read settings through it, so an option means one thing in each.
-void add_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default);
+void add_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_default);
 // The settings that make a model and its factors, without those of a picture (--view, --msaa,
 // --factor-kind): scheme and factors, camera (view LOD and culling read it), LOD and culling,
 // displacement and the glTF asset. tessellate, bench frog and bench dolly read them; so does
 // add_settings_options, which adds the picture's.
-void add_model_settings_options(CLI::App& cmd, RenderSettings& s, const std::string& cull_default);
+void add_model_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_default);
 
 RenderSettings read_scene(const std::string& path);
 Json scene_json(const RenderSettings& s, const std::string& dir);

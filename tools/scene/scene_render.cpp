@@ -12,16 +12,15 @@ ViewInputs PreparedScene::inputs() const {
   return ViewInputs{model,
                     displacement ? &*displacement : nullptr,
                     factors,
-                    partitioning,
+                    settings.partitioning,
                     view,
                     settings.lod.edge_pixels,
-                    settings.factor_kind == "processed"};
+                    settings.factor_kind == FactorKind::processed};
 }
 
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   auto p = std::make_unique<PreparedScene>();
-  p->scheme = scheme_option(s.scheme);
-  p->model = load_model(s.cage, p->scheme, s.asset);
+  p->model = load_model(s.cage, s.scheme, s.asset);
   p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
   p->displacement = displacement_option(s.displacement, p->model);
   configure_scene(*p, s);
@@ -30,11 +29,6 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
 
 void configure_scene(PreparedScene& p, const RenderSettings& s) {
   if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
-  const auto kind = parse_view(s.view);
-  if (!kind) throw UsageError("--view: '" + s.view + "' is not one of " + view_names());
-  if (s.factor_kind != "raw" && s.factor_kind != "processed")
-    throw UsageError("--factor-kind: '" + s.factor_kind + "' is not raw or processed");
-  const ts::Partitioning partitioning = partitioning_option(s.partitioning);
   // The pose first, and only when it changes (the exact scheme rebuilds its limit surface per pose):
   // a model is posed from its rig alone, so the result does not depend on the pose it had.
   // settings.asset always names the model's pose, even when a later step of this call throws.
@@ -60,8 +54,6 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
     p.lod = std::move(lod);
   }
   p.settings = s;
-  p.partitioning = partitioning;
-  p.kind = *kind;
   p.configured = true;
   p.derived_from = s;
 }
@@ -88,7 +80,7 @@ std::string describe_scene(const PreparedScene& p) {
                   std::to_string(cage.face_count()) + " faces, " +
                   std::to_string(p.model.patches.quads.size() + p.model.patches.tris.size()) + " patches (" +
                   std::to_string(p.model.patches.quads.size()) + " quad, " +
-                  std::to_string(p.model.patches.tris.size()) + " triangle), scheme " + to_string(p.scheme);
+                  std::to_string(p.model.patches.tris.size()) + " triangle), scheme " + to_string(p.settings.scheme);
   if (p.model.rig) s += ", animated (t " + float_text(float(p.settings.asset.time)) + " s)";
   if (p.displacement && p.displacement->map)
     s += ", displacement " + std::to_string(p.displacement->map->width()) + "x" +
@@ -122,8 +114,8 @@ SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_ta
   }
   const ViewInputs inputs = scene.inputs();
   // Per-patch facts, replayed once for the view and the statistics.
-  if (view_uses_patch_tables(scene.kind) || want_tables) image.tables = view_patch_tables(inputs);
-  image.out = render_view(device, scene.kind, inputs, image.tables ? &*image.tables : nullptr, *image.fb);
+  if (view_uses_patch_tables(scene.settings.view) || want_tables) image.tables = view_patch_tables(inputs);
+  image.out = render_view(device, scene.settings.view, inputs, image.tables ? &*image.tables : nullptr, *image.fb);
   if (!image.out.result.ok()) throw InputError(scene.settings.cage + ": " + image.out.result.error);
   // The overlays drew at pixel rate into every sample; what follows (legends, files, hashes) reads
   // the resolved image.
@@ -136,8 +128,8 @@ Json scene_summary(const std::string& path, const PreparedScene& scene, const Sc
   Json j = {{"output", path},
             {"width", scene.view.width},
             {"height", scene.view.height},
-            {"scheme", to_string(scene.scheme)},
-            {"view", to_string(scene.kind)},
+            {"scheme", to_string(scene.settings.scheme)},
+            {"view", to_string(scene.settings.view)},
             {"camera",
              {{"position",
                {json_float(scene.view.camera.eye.x), json_float(scene.view.camera.eye.y),
@@ -153,7 +145,7 @@ Json scene_summary(const std::string& path, const PreparedScene& scene, const Sc
             {"statistics", to_json(total.statistics)},
             {"times", to_json(total.times)},
             {"memory", to_json(total.memory)}};
-  if (scene.kind == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  if (scene.settings.view == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
   return j;
 }
 

@@ -18,9 +18,6 @@ namespace tessera::cli {
 // Not movable: `inputs` refers to its members.
 struct PreparedScene {
   RenderSettings settings;
-  Scheme scheme = Scheme::gregory;
-  ts::Partitioning partitioning = ts::Partitioning::integer;
-  ViewKind kind = ViewKind::shaded;
   SubdModel model;
   std::optional<Displacement> displacement;
   ViewSetup view;

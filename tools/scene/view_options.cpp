@@ -7,27 +7,36 @@
 
 namespace tessera::cli {
 
-glm::vec3 parse_vec3(const std::string& text, const char* what) {
-  const auto v = parse_float_list(text, what);
-  if (v.size() != 3) throw UsageError(std::string(what) + ": expected x,y,z");
-  for (float x : v)
-    if (!std::isfinite(x)) throw UsageError(std::string(what) + ": not finite");
-  return {v[0], v[1], v[2]};
+namespace {
+// An optional vector option: "x,y,z", or empty for "not given".
+auto optional_vec3(const std::string& what, bool direction) {
+  return [what, direction](const std::string& text) -> std::optional<glm::vec3> {
+    if (text.empty()) return std::nullopt;
+    return direction ? direction_option(text, what) : vec3_option(text, what);
+  };
 }
+}  // namespace
 
-void add_camera_options(CLI::App& cmd, CameraCli& c) {
-  cmd.add_option("--resolution", c.resolution, "WxH")->capture_default_str();
-  cmd.add_option("--camera-position", c.eye, "x,y,z (default: framing the model)");
-  cmd.add_option("--camera-target", c.target, "x,y,z (default: the model's centre)");
+void add_camera_options(CLI::App& cmd, CameraSettings& c) {
+  cmd.add_option_function<std::string>(
+         "--resolution", [&c](const std::string& text) { std::tie(c.width, c.height) = resolution_option(text); },
+         "WxH")
+      ->default_str(resolution_text(c.width, c.height));
+  add_setting_option(cmd, "--camera-position", c.eye, optional_vec3("--camera-position", false),
+                     "x,y,z (default: framing the model)");
+  add_setting_option(cmd, "--camera-target", c.target, optional_vec3("--camera-target", false),
+                     "x,y,z (default: the model's centre)");
   cmd.add_option("--fov", c.fov, "vertical field of view, degrees")->capture_default_str();
-  cmd.add_option("--camera-up", c.up, "x,y,z: the world's up direction (default 0,1,0; 0,0,1 for z-up assets)");
+  add_setting_option(cmd, "--camera-up", c.up, optional_vec3("--camera-up", true),
+                     "x,y,z: the world's up direction (default 0,1,0; 0,0,1 for z-up assets)");
 }
 
 namespace {
 // Resolution and field of view, checked.
-ViewSetup view_frame(const CameraCli& c) {
+ViewSetup view_frame(const CameraSettings& c) {
   ViewSetup v;
-  std::tie(v.width, v.height) = parse_resolution(c.resolution);
+  v.width = c.width;
+  v.height = c.height;
   if (!(c.fov > 1.0f && c.fov < 179.0f)) throw UsageError("--fov: must be in (1, 179) degrees");
   v.fov = c.fov;
   return v;
@@ -35,48 +44,42 @@ ViewSetup view_frame(const CameraCli& c) {
 }  // namespace
 
 // --camera-up as a unit vector (+y when not given).
-glm::vec3 up_option(const CameraCli& c) {
-  if (c.up.empty()) return {0.0f, 1.0f, 0.0f};
-  const glm::vec3 up = parse_vec3(c.up, "--camera-up");
-  const double length = glm::length(glm::dvec3(up));
-  if (!(length > 1e-12) || !std::isfinite(length))
-    throw UsageError("--camera-up: " + c.up + " has no direction (give a non-zero x,y,z)");
-  return glm::vec3(glm::dvec3(up) / length);
+glm::vec3 unit_up(const CameraSettings& c) {
+  if (!c.up) return {0.0f, 1.0f, 0.0f};
+  return glm::vec3(glm::dvec3(*c.up) / glm::length(glm::dvec3(*c.up)));  // direction_option: not of length 0
 }
 
 // A camera looking along its up axis has no defined orientation (lookAt divides by zero and the image
 // is empty), so it is refused rather than drawn as nothing.
-void check_camera_orientation(const SubdCamera& camera, const CameraCli& c) {
+void check_camera_orientation(const SubdCamera& camera, const CameraSettings& c) {
   const glm::dvec3 d = glm::dvec3(camera.target) - glm::dvec3(camera.eye);
   const double across = glm::length(glm::cross(glm::normalize(d), glm::dvec3(camera.up)));
   if (!(across > 1e-4))
     throw UsageError("--camera-position/--camera-target: the camera looks straight along the up axis (" +
-                     (c.up.empty() ? std::string("+y") : c.up) +
+                     (c.up ? vec3_text(*c.up) : std::string("+y")) +
                      "), which leaves its orientation undefined; move it off that axis or give --camera-up");
 }
 
-ViewSetup view_option(const CameraCli& c, const Cage& cage) {
+ViewSetup view_option(const CameraSettings& c, const Cage& cage) {
   ViewSetup v = view_frame(c);
-  std::optional<glm::vec3> eye, target;
-  if (!c.eye.empty()) eye = parse_vec3(c.eye, "--camera-position");
-  if (!c.target.empty()) target = parse_vec3(c.target, "--camera-target");
-  if (eye && target && glm::length(*eye - *target) <= 0.0f) throw UsageError("camera position and target coincide");
-  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target, up_option(c));
+  if (c.eye && c.target && glm::length(*c.eye - *c.target) <= 0.0f)
+    throw UsageError("camera position and target coincide");
+  v.camera = frame_cage(cage, v.width, v.height, c.fov, c.eye, c.target, unit_up(c));
   if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
     throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
   check_camera_orientation(v.camera, c);
   return v;
 }
 
-ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target) {
+ViewSetup view_at(const CameraSettings& c, const Cage& cage, glm::vec3 eye, glm::vec3 target) {
   ViewSetup v = view_frame(c);
   if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
-  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target, up_option(c));
+  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target, unit_up(c));
   check_camera_orientation(v.camera, c);
   return v;
 }
 
-ViewSetup orbit_view(const CameraCli& c, const Cage& cage, const ViewSetup& base, int i, int n) {
+ViewSetup orbit_view(const CameraSettings& c, const Cage& cage, const ViewSetup& base, int i, int n) {
   if (i == 0) return base;
   // In double, the angle from the integers, so view i is the same for any n that names the same angle.
   const glm::dvec3 up(base.camera.up), target(base.camera.target);
@@ -87,37 +90,32 @@ ViewSetup orbit_view(const CameraCli& c, const Cage& cage, const ViewSetup& base
   return view_at(c, cage, glm::vec3(target + turned), base.camera.target);
 }
 
-void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default) {
+void add_lod_options(CLI::App& cmd, LodCullSettings& l, PatchCullMode cull_default) {
   l.cull = cull_default;
-  cmd.add_option("--lod", l.mode,
+  add_setting_option(cmd, "--lod", l.mode, lod_mode_option,
                  "tessellation factors: uniform (--factor), distance (falling with each edge's distance to the "
                  "dicing camera) or screen (each cage edge's projected size over --edge-pixels)")
-      ->capture_default_str();
+      ->default_str(to_string(l.mode));
   cmd.add_option("--edge-pixels", l.edge_pixels, "--lod screen: target pixels per segment")->capture_default_str();
   cmd.add_option("--lod-distance", l.lod_distance,
                  "--lod distance: the distance at which an edge gets --factor (default: camera to target)");
-  cmd.add_option("--dicing-camera-position", l.dicing_eye,
+  add_setting_option(cmd, "--dicing-camera-position", l.dicing_eye, optional_vec3("--dicing-camera-position", false),
                  "x,y,z: measure LOD from here instead of the view camera (a frozen tessellation to fly around)");
-  cmd.add_option("--cull", l.cull,
+  add_setting_option(cmd, "--cull", l.cull, cull_option,
                  "patch culling: none, frustum (the control-point hull outside the view), backface (every "
                  "triangle proven to face away; undisplaced Bezier patches) or all (both; neither changes a pixel)")
-      ->capture_default_str();
+      ->default_str(to_string(l.cull));
 }
 
-LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdModel& model, Displacement* displacement,
-                            SubdFactors& factors) {
-  const auto mode = parse_lod_mode(l.mode);
-  if (!mode) throw UsageError("--lod: '" + l.mode + "' is not uniform, distance or screen");
-  const auto cull = parse_patch_cull_mode(l.cull);
-  if (!cull) throw UsageError("--cull: '" + l.cull + "' is not none, frustum, backface or all");
-  LodRequest request{*mode, *cull, l.edge_pixels, l.lod_distance, std::nullopt};
+LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model,
+                            Displacement* displacement, SubdFactors& factors) {
+  const LodRequest request{l.mode, l.cull, l.edge_pixels, l.lod_distance, l.dicing_eye};
   const LodView lod_view{view.camera.eye, view.camera.target, view.camera.view_projection,
                          view.width,      view.height,        view.fov};
   const LodModel lod_model{model.positions(), *model.topology, subd_culled_screen_sign(model),
                            displacement ? displacement->bound : 0.0f, displacement != nullptr};
   LodResult r;
-  r.cull = *cull;
-  if (!l.dicing_eye.empty()) request.dicing_eye = parse_vec3(l.dicing_eye, "--dicing-camera-position");
+  r.cull = l.cull;
   r.settings = with_usage_errors([&] { return apply_lod(request, lod_view, lod_model, factors); });
   // Set both ways: a scene reconfigured from view-dependent to uniform LOD samples as a fresh one.
   if (displacement) displacement->trilinear = r.settings.mode != LodMode::uniform;

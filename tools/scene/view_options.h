@@ -13,15 +13,12 @@
 #include "shaders_cpp/render/displaced_model.h"
 #include "shaders_cpp/render/subd_model.h"
 #include "shaders_cpp/render/subd_render.h"
+#include "tools/scene/render_settings.h"
 
 namespace tessera::cli {
 
-struct CameraCli {
-  std::string resolution = "1920x1080", eye, target, up;  // up: empty for +y
-  float fov = 35.0f;
-  friend bool operator==(const CameraCli&, const CameraCli&) = default;
-};
-void add_camera_options(CLI::App& cmd, CameraCli& c);
+// --resolution, --camera-position, --camera-target, --fov, --camera-up, read into `c`.
+void add_camera_options(CLI::App& cmd, CameraSettings& c);
 
 // The view camera: WxH, the vertical field of view, and the camera that frames the cage unless given.
 // UsageError for a bad resolution, fov, up vector, a position equal to the target, or a view direction
@@ -31,32 +28,24 @@ struct ViewSetup {
   float fov = 35.0f;  // degrees
   SubdCamera camera;
 };
-ViewSetup view_option(const CameraCli& c, const Cage& cage);
+ViewSetup view_option(const CameraSettings& c, const Cage& cage);
 // The same with the camera's position and target given (a path of cameras).
-ViewSetup view_at(const CameraCli& c, const Cage& cage, glm::vec3 eye, glm::vec3 target);
+ViewSetup view_at(const CameraSettings& c, const Cage& cage, glm::vec3 eye, glm::vec3 target);
 // View i of n around `base`'s target: its eye turned by 2 pi i / n about the up axis through the target
 // (counter-clockwise seen from above), at the same distance and height. View 0 is `base` itself.
-ViewSetup orbit_view(const CameraCli& c, const Cage& cage, const ViewSetup& base, int i, int n);
+ViewSetup orbit_view(const CameraSettings& c, const Cage& cage, const ViewSetup& base, int i, int n);
 
-struct LodCli {
-  std::string mode = "uniform", dicing_eye, cull;
-  float edge_pixels = 8.0f, lod_distance = 0.0f;
-  friend bool operator==(const LodCli&, const LodCli&) = default;
-};
 // --lod, --edge-pixels, --lod-distance, --dicing-camera-position, and --cull with its default.
-void add_lod_options(CLI::App& cmd, LodCli& l, const std::string& cull_default);
+void add_lod_options(CLI::App& cmd, LodCullSettings& l, PatchCullMode cull_default);
 
-// The text of --lod, --cull and --dicing-camera-position read, then the policy of lod/subd_factors.h
-// (apply_lod: per-edge LOD factors, frustum and back-patch culling) applied for the view and the
-// model; under view-dependent LOD the displacement's mip levels are blended (Displacement::trilinear).
-// UsageError for bad values.
+// The policy of lod/subd_factors.h (apply_lod: per-edge LOD factors, frustum and back-patch culling)
+// applied for the view and the model; under view-dependent LOD the displacement's mip levels are
+// blended (Displacement::trilinear). UsageError for values the policy refuses.
 struct LodResult {
   LodSettings settings;
   PatchCullMode cull = PatchCullMode::none;
 };
-LodResult apply_lod_options(const LodCli& l, const ViewSetup& view, const SubdModel& model, Displacement* displacement,
+LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model, Displacement* displacement,
                             SubdFactors& factors);
-
-glm::vec3 parse_vec3(const std::string& text, const char* what);
 
 }  // namespace tessera::cli

@@ -41,11 +41,6 @@ PreparedScene& ViewerSession::scene_for(const RenderSettings& s) {
   return *scenes_.front();
 }
 
-namespace {
-// A vector as the CLI's x,y,z option text (shortest round-trip floats).
-std::string vec_text(glm::vec3 v) { return float_text(v.x) + "," + float_text(v.y) + "," + float_text(v.z); }
-}  // namespace
-
 std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, int frames) {
   std::lock_guard lock(mutex_);
   PreparedScene& p = scene_for(s);
@@ -53,8 +48,8 @@ std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, in
   for (int i = 0; i < frames; ++i) {
     const ViewSetup v = orbit_view(s.camera, p.model.cage, p.view, i, frames);
     RenderSettings t = s;
-    t.camera.eye = vec_text(v.camera.eye);
-    t.camera.target = vec_text(v.camera.target);
+    t.camera.eye = v.camera.eye;
+    t.camera.target = v.camera.target;
     out.push_back(std::move(t));
   }
   return out;
@@ -134,7 +129,7 @@ Json ViewerSession::pick(const RenderSettings& s, int x, int y) {
     std::string error;
     b.ids = Framebuffer::create(p.view.width, p.view.height, ColorFormat::rgba8_unorm, &error);
     if (!b.ids) throw UsageError(error);
-    const DrawResult r = render_pick_buffer(device_, p.kind, inputs, b.tables, *b.ids);
+    const DrawResult r = render_pick_buffer(device_, p.settings.view, inputs, b.tables, *b.ids);
     if (!r.ok()) throw InputError(base_.cage + ": " + r.error);
     pick_ = std::move(b);
   }

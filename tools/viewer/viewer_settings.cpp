@@ -12,7 +12,7 @@ namespace {
 
 // The settings a request may set, with `tessera render`'s own options bound to `s`.
 void add_settable_options(CLI::App& app, RenderSettings& s) {
-  const std::string cull = s.lod.cull;  // the session's, not render's default
+  const PatchCullMode cull = s.lod.cull;  // the session's, not render's default
   add_settings_options(app, s, cull);
 }
 
@@ -22,7 +22,7 @@ bool clears_when_empty(const std::string& name) {
          name == "dicing-camera-position";
 }
 
-std::string& camera_text(RenderSettings& s, const std::string& name) {
+std::optional<glm::vec3>& camera_vector(RenderSettings& s, const std::string& name) {
   if (name == "camera-position") return s.camera.eye;
   if (name == "camera-target") return s.camera.target;
   if (name == "camera-up") return s.camera.up;
@@ -32,9 +32,11 @@ std::string& camera_text(RenderSettings& s, const std::string& name) {
 // `render`'s defaults: a default RenderSettings with the cull mode render registers.
 RenderSettings render_defaults() {
   RenderSettings d;
-  d.lod.cull = "all";
+  d.lod.cull = PatchCullMode::all;
   return d;
 }
+
+std::string optional_text(const std::optional<glm::vec3>& v) { return v ? vec3_text(*v) : std::string(); }
 
 std::string double_text(double x) {
   // The shortest of %.15g..%.17g that reads back as the same double.
@@ -96,7 +98,7 @@ RenderSettings settings_from_query(const RenderSettings& base, const QueryParams
     }
     if (value.empty()) {
       if (!clears_when_empty(name)) throw RequestError(name + ": an empty value");
-      camera_text(s, name).clear();
+      camera_vector(s, name).reset();
       continue;
     }
     args.push_back("--" + name + "=" + value);
@@ -108,44 +110,39 @@ RenderSettings settings_from_query(const RenderSettings& base, const QueryParams
     app.parse(args);
   } catch (const CLI::ParseError& e) {
     throw RequestError(one_line_message(e.what()));
+  } catch (const UsageError& e) {  // a value the settings' readers refuse
+    throw RequestError(e.what());
   }
-  const auto x = s.camera.resolution.find('x');
-  if (x != std::string::npos) {
-    try {
-      const long long w = std::stoll(s.camera.resolution.substr(0, x));
-      const long long h = std::stoll(s.camera.resolution.substr(x + 1));
-      if (w > kMaxViewerSide || h > kMaxViewerSide || w * h > kMaxViewerPixels)
-        throw RequestError("resolution: " + s.camera.resolution + " is more than the viewer draws (" +
-                           std::to_string(kMaxViewerSide) + " pixels a side, 4096x4096 in all)");
-    } catch (const std::logic_error&) {
-      // Not two numbers: view_option says so when the frame is drawn.
-    }
-  }
+  const long long w = s.camera.width, h = s.camera.height;
+  if (w > kMaxViewerSide || h > kMaxViewerSide || w * h > kMaxViewerPixels)
+    throw RequestError("resolution: " + resolution_text(s.camera.width, s.camera.height) +
+                       " is more than the viewer draws (" + std::to_string(kMaxViewerSide) +
+                       " pixels a side, 4096x4096 in all)");
   return s;
 }
 
 Json settings_json(const RenderSettings& s) {
-  const DisplacementCli& d = s.displacement;
-  Json j = {{"scheme", s.scheme},
-            {"partitioning", s.partitioning},
+  const DisplacementSettings& d = s.displacement;
+  Json j = {{"scheme", to_string(s.scheme)},
+            {"partitioning", std::string(ts::to_string(s.partitioning))},
             {"factor", json_float(s.factor)},
             {"vary-factors", json_float(s.vary)},
-            {"resolution", s.camera.resolution},
-            {"camera-position", s.camera.eye},
-            {"camera-target", s.camera.target},
-            {"camera-up", s.camera.up},
+            {"resolution", resolution_text(s.camera.width, s.camera.height)},
+            {"camera-position", optional_text(s.camera.eye)},
+            {"camera-target", optional_text(s.camera.target)},
+            {"camera-up", optional_text(s.camera.up)},
             {"fov", json_float(s.camera.fov)},
-            {"lod", s.lod.mode},
+            {"lod", to_string(s.lod.mode)},
             {"edge-pixels", json_float(s.lod.edge_pixels)},
             {"lod-distance", json_float(s.lod.lod_distance)},
-            {"dicing-camera-position", s.lod.dicing_eye},
-            {"cull", s.lod.cull},
-            {"view", s.view},
+            {"dicing-camera-position", optional_text(s.lod.dicing_eye)},
+            {"cull", to_string(s.lod.cull)},
+            {"view", to_string(s.view)},
             {"msaa", s.msaa},
-            {"factor-kind", s.factor_kind},
+            {"factor-kind", to_string(s.factor_kind)},
             {"displacement-scale", d.scale ? Json(json_float(*d.scale)) : Json(nullptr)},
             {"displacement-bias", d.bias ? Json(json_float(*d.bias)) : Json(nullptr)},
-            {"uv-seams", d.uv_seams},
+            {"uv-seams", to_string(d.uv_seams)},
             {"time", s.asset.time},
             {"animation", s.asset.animation}};
   return j;
@@ -157,36 +154,45 @@ std::vector<std::string> render_arguments(const RenderSettings& s, const std::st
   const auto text = [&](const char* option, const std::string& value, const std::string& def) {
     if (value != def) w.insert(w.end(), {option, value});
   };
+  // A typed setting, written by to_string when it differs from the default.
+  const auto name = [&](const char* option, const auto& value, const auto& def) {
+    if (value != def) w.insert(w.end(), {option, std::string(to_string(value))});
+  };
+  const auto vector = [&](const char* option, const std::optional<glm::vec3>& value) {
+    if (value) w.insert(w.end(), {option, vec3_text(*value)});
+  };
   const auto number = [&](const char* option, float value, float def) {
     if (value != def || std::signbit(value) != std::signbit(def)) w.insert(w.end(), {option, float_text(value)});
   };
-  text("--scheme", s.scheme, d.scheme);
-  text("--partitioning", s.partitioning, d.partitioning);
+  name("--scheme", s.scheme, d.scheme);
+  if (s.partitioning != d.partitioning)
+    w.insert(w.end(), {"--partitioning", std::string(ts::to_string(s.partitioning))});
   number("--factor", s.factor, d.factor);
   number("--vary-factors", s.vary, d.vary);
   text("--factors-per-edge", absolute(s.factors_file), "");
-  text("--view", s.view, d.view);
-  text("--factor-kind", s.factor_kind, d.factor_kind);
-  text("--resolution", s.camera.resolution, d.camera.resolution);
-  text("--camera-position", s.camera.eye, "");
-  text("--camera-target", s.camera.target, "");
-  text("--camera-up", s.camera.up, "");
+  name("--view", s.view, d.view);
+  name("--factor-kind", s.factor_kind, d.factor_kind);
+  text("--resolution", resolution_text(s.camera.width, s.camera.height),
+       resolution_text(d.camera.width, d.camera.height));
+  vector("--camera-position", s.camera.eye);
+  vector("--camera-target", s.camera.target);
+  vector("--camera-up", s.camera.up);
   number("--fov", s.camera.fov, d.camera.fov);
-  text("--lod", s.lod.mode, d.lod.mode);
+  name("--lod", s.lod.mode, d.lod.mode);
   number("--edge-pixels", s.lod.edge_pixels, d.lod.edge_pixels);
   number("--lod-distance", s.lod.lod_distance, d.lod.lod_distance);
-  text("--dicing-camera-position", s.lod.dicing_eye, "");
-  text("--cull", s.lod.cull, d.lod.cull);
+  vector("--dicing-camera-position", s.lod.dicing_eye);
+  name("--cull", s.lod.cull, d.lod.cull);
   if (s.msaa != d.msaa) w.insert(w.end(), {"--msaa", std::to_string(s.msaa)});
-  const DisplacementCli& m = s.displacement;
+  const DisplacementSettings& m = s.displacement;
   text("--displacement", m.map == "none" ? m.map : absolute(m.map), "");
   text("--displacement-channel", m.channel, "");
-  text("--displacement-space", m.space, d.displacement.space);
+  name("--displacement-space", m.space, d.displacement.space);
   const bool normal_keyword = m.normal_map == "auto" || m.normal_map == "derived" || m.normal_map == "none";
   text("--normal-map", normal_keyword ? m.normal_map : absolute(m.normal_map), d.displacement.normal_map);
   if (m.scale) w.insert(w.end(), {"--displacement-scale", float_text(*m.scale)});
   if (m.bias) w.insert(w.end(), {"--displacement-bias", float_text(*m.bias)});
-  text("--uv-seams", m.uv_seams, d.displacement.uv_seams);
+  name("--uv-seams", m.uv_seams, d.displacement.uv_seams);
   if (s.asset.scene_index != d.asset.scene_index)
     w.insert(w.end(), {"--scene-index", std::to_string(s.asset.scene_index)});
   text("--mesh", s.asset.mesh, "");

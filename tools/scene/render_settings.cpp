@@ -1,0 +1,117 @@
+#include "tools/scene/render_settings.h"
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "tools/scene/common.h"
+
+namespace tessera::cli {
+namespace {
+
+constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
+    {ViewKind::shaded, "shaded"},
+    {ViewKind::wireframe, "wireframe"},
+    {ViewKind::wire_on_shaded, "wire-on-shaded"},
+    {ViewKind::factors, "factors"},
+    {ViewKind::density, "density"},
+    {ViewKind::patch_type, "patch-type"},
+    {ViewKind::combination, "combination"},
+    {ViewKind::patch_id, "patch-id"},
+    {ViewKind::normals, "normals"},
+    {ViewKind::uv, "uv"},
+    {ViewKind::displacement, "displacement"},
+    {ViewKind::cage, "cage"},
+    {ViewKind::cracks, "cracks"},
+    {ViewKind::culled, "culled"},
+}};
+
+[[noreturn]] void refuse(const std::string& what, std::string_view text, const std::string& allowed) {
+  throw UsageError(what + ": '" + std::string(text) + "' is not " + allowed);
+}
+
+}  // namespace
+
+Scheme scheme_option(std::string_view text, const std::string& what) {
+  if (const auto s = parse_scheme(text)) return *s;
+  refuse(what, text, "one of flat, bspline, acc, gregory, exact, pn");
+}
+
+ts::Partitioning partitioning_option(std::string_view text, const std::string& what) {
+  if (const auto p = ts::parse_partitioning(text)) return *p;
+  refuse(what, text, "one of integer, pow2, fractional_odd, fractional_even");
+}
+
+ViewKind view_kind_option(std::string_view text) {
+  for (const auto& [kind, name] : kViews)
+    if (text == name) return kind;
+  refuse("--view", text, "one of " + view_names());
+}
+
+FactorKind factor_kind_option(std::string_view text) {
+  if (text == "raw") return FactorKind::raw;
+  if (text == "processed") return FactorKind::processed;
+  refuse("--factor-kind", text, "raw or processed");
+}
+
+LodMode lod_mode_option(std::string_view text) {
+  if (const auto m = parse_lod_mode(text)) return *m;
+  refuse("--lod", text, "uniform, distance or screen");
+}
+
+PatchCullMode cull_option(std::string_view text) {
+  if (const auto m = parse_patch_cull_mode(text)) return *m;
+  refuse("--cull", text, "none, frustum, backface or all");
+}
+
+DisplacementSpace displacement_space_option(std::string_view text) {
+  if (text == "tangent") return DisplacementSpace::tangent;
+  if (text == "object") return DisplacementSpace::object;
+  refuse("--displacement-space", text, "tangent or object");
+}
+
+UvSeams uv_seams_option(std::string_view text) {
+  if (text == "blend") return UvSeams::blend;
+  if (text == "raw") return UvSeams::raw;
+  refuse("--uv-seams", text, "blend or raw");
+}
+
+glm::vec3 vec3_option(std::string_view text, const std::string& what) {
+  const auto v = parse_float_list(text, what);
+  if (v.size() != 3) throw UsageError(what + ": expected x,y,z");
+  for (float x : v)
+    if (!std::isfinite(x)) throw UsageError(what + ": not finite");
+  return {v[0], v[1], v[2]};
+}
+
+glm::vec3 direction_option(std::string_view text, const std::string& what) {
+  const glm::vec3 v = vec3_option(text, what);
+  const double length = glm::length(glm::dvec3(v));
+  if (!(length > 1e-12) || !std::isfinite(length))
+    throw UsageError(what + ": " + std::string(text) + " has no direction (give a non-zero x,y,z)");
+  return v;
+}
+
+std::pair<int, int> resolution_option(std::string_view text) { return parse_resolution(std::string(text)); }
+
+std::string view_names() {
+  std::string s;
+  for (const auto& [kind, name] : kViews) s += (s.empty() ? "" : ", ") + std::string(name);
+  return s;
+}
+
+const char* to_string(ViewKind v) {
+  for (const auto& [kind, name] : kViews)
+    if (kind == v) return name;
+  return "?";
+}
+
+const char* to_string(FactorKind k) { return k == FactorKind::processed ? "processed" : "raw"; }
+const char* to_string(UvSeams u) { return u == UvSeams::raw ? "raw" : "blend"; }
+const char* to_string(DisplacementSpace s) { return s == DisplacementSpace::object ? "object" : "tangent"; }
+
+std::string vec3_text(glm::vec3 v) { return float_text(v.x) + "," + float_text(v.y) + "," + float_text(v.z); }
+
+std::string resolution_text(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+}  // namespace tessera::cli
