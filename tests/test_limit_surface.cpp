@@ -26,6 +26,7 @@
 #include "tools/measure/limit_accuracy.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/osd_refiner.h"
 #include "shaders_cpp/cage/topology.h"
 
@@ -647,4 +648,58 @@ TEST_CASE("limit surface measurements", "[.][limit-bench]") {
         double(after - before) / 1024.0, double(s.memory_bytes()) / 1048576.0,
         std::chrono::duration<double, std::nano>(t3 - t2).count() / n_eval, edge_ns, sink);
   }
+}
+
+TEST_CASE("limit surface: Far patches agree with Bfr where both work", "[limit][issue34]") {
+  // far_patches.h evaluates the faces Bfr 3.5.0 fails on; on cages where Bfr works, the same faces
+  // through Far give the same surface to within the end caps' difference at the isolation level.
+  for (const char* name : {"catmark_cube_creases1", "catmark_xord_interior", "catmark_nonquads", "catmark_edgecorner"}) {
+    INFO(name);
+    const Cage cage = load_obj_cage(osd_shape(name));
+    const LimitSurface bfr = LimitSurface::create(cage);
+    std::vector<int> faces;
+    for (int f = 0; f < cage.face_count(); ++f)
+      if (bfr.has_surface(f)) faces.push_back(f);
+    const osd_detail::FarPatches far(cage, bfr.approx_level(), faces);
+    double worst = 0.0;
+    for (int f : faces)
+      for (int k = 0; k < bfr.sub_patch_count(f); ++k)
+        for (int i = 0; i <= 4; ++i)
+          for (int j = 0; j <= 4; ++j) {
+            const float s = float(i) / 4.0f, t = float(j) / 4.0f;
+            const glm::dvec3 a(bfr.evaluate_unowned(f, k, s, t).position);
+            worst = std::max(worst, glm::length(far.evaluate(f, k, s, t).p - a));
+          }
+    CHECK(worst / bfr.bounding_box_diagonal() < 1e-5);
+  }
+}
+
+TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided", "[limit][issue34]") {
+  // catmark_val2_interior: faces with a valence-2 interior corner, a boundary corner and creases,
+  // which Bfr 3.5.0 builds from uninitialized memory (a crash in most runs). Far evaluates them.
+  const Cage cage = load_obj_cage(osd_shape("catmark_val2_interior"));
+  const std::vector<int> far_faces = osd_detail::needs_far_patches(Topology(cage));
+  CHECK_FALSE(far_faces.empty());
+  for (int run = 0; run < 3; ++run) {
+    const LimitSurface s = LimitSurface::create(cage);
+    const WatertightResult owned = check_watertight(s, cage, true);
+    CHECK(owned.points > 0);
+    CHECK(owned.mismatches == 0);
+    CHECK(check_watertight(s, cage, false).max_distance < 1e-5);
+    for (int f : far_faces)
+      for (int k = 0; k < s.sub_patch_count(f); ++k) {
+        const SurfacePoint p = s.evaluate(f, k, 0.5f, 0.5f);
+        CHECK(std::isfinite(p.position.x + p.position.y + p.position.z));
+        CHECK(glm::length(p.normal) == Approx(1.0).epsilon(1e-5));
+      }
+  }
+  // The creases are honoured: without them the same faces give another surface.
+  Cage smooth = cage;
+  smooth.tags.creases.clear();
+  CHECK(osd_detail::needs_far_patches(Topology(smooth)).empty());
+  const LimitSurface a = LimitSurface::create(cage), b = LimitSurface::create(smooth);
+  double apart = 0.0;
+  for (int f : far_faces) apart = std::max(apart, double(glm::length(a.evaluate(f, 0, 0.5f, 0.5f).position -
+                                                                    b.evaluate(f, 0, 0.5f, 0.5f).position)));
+  CHECK(apart > 1e-3);
 }

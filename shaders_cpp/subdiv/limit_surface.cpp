@@ -25,6 +25,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/osd_refiner.h"
 
 namespace tessera {
@@ -60,7 +62,10 @@ struct LimitSurface::Impl {
   std::vector<int> sizes;         // per face
   std::vector<int> corner_base;   // per face: first entry in corners/edge_owner
   std::vector<int> corners;       // cage vertex of each face corner
-  std::vector<Surface> surfaces;  // per face; invalid without a surface
+  std::vector<Surface> surfaces;  // per face; invalid without a surface or when by_far
+  // Faces evaluated through Far instead of Bfr (far_patches.h: OpenSubdiv 3.5.0's Bfr fails on them).
+  std::vector<char> by_far;
+  std::unique_ptr<osd_detail::FarPatches> far;
   std::vector<std::size_t> pp_offset;
   std::vector<double> patch_points;
 
@@ -73,12 +78,16 @@ struct LimitSurface::Impl {
 
   glm::dvec3 lo{0.0}, hi{0.0};
 
-  bool has_surface(int f) const { return surfaces[std::size_t(f)].IsValid(); }
+  bool has_surface(int f) const { return surfaces[std::size_t(f)].IsValid() || by_far[std::size_t(f)]; }
 
   // Bfr evaluation of face f, sub-patch k, at (s,t) in that sub-patch's unit square; derivatives
   // with respect to (s,t). Bfr tiles the sub-faces of a non-quad in one (u,v) space; the map from
   // the normalized sub-face square into it is affine, so its Jacobian comes from three conversions.
   Raw raw(int f, int k, double s, double t) const {
+    if (by_far[std::size_t(f)]) {
+      const osd_detail::FarPatches::Point q = far->evaluate(f, k, s, t);
+      return {q.p, q.ds, q.dt};
+    }
     const Surface& surf = surfaces[std::size_t(f)];
     const double* pp = patch_points.data() + pp_offset[std::size_t(f)];
     const Surface::PointDescriptor desc(3);
@@ -283,10 +292,19 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   for (int v = 0; v < nv; ++v)
     for (int c = 0; c < 3; ++c) mesh[std::size_t(v) * 3 + std::size_t(c)] = double(cage.positions[std::size_t(v)][c]);
   m->surfaces.resize(std::size_t(nf));
+  m->by_far.assign(std::size_t(nf), 0);
+  if (const std::vector<int> far_faces = osd_detail::needs_far_patches(Topology(cage)); !far_faces.empty()) {
+    m->far = std::make_unique<osd_detail::FarPatches>(cage, approx_level, far_faces);
+    for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
+  }
   m->pp_offset.assign(std::size_t(nf) + 1, 0);
   const Surface::PointDescriptor desc(3);
   for (int f = 0; f < nf; ++f) {
     Surface& s = m->surfaces[std::size_t(f)];
+    if (m->by_far[std::size_t(f)]) {
+      m->pp_offset[std::size_t(f)] = m->patch_points.size();
+      continue;
+    }
     if (m->factory->FaceHasLimitSurface(f) && !m->factory->InitVertexSurface(f, &s))
       throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
                       " has no OpenSubdiv limit surface");
@@ -476,7 +494,8 @@ std::size_t LimitSurface::memory_bytes() const {
   return m.patch_points.capacity() * sizeof(double) + m.surfaces.capacity() * sizeof(Surface) +
          m.pp_offset.capacity() * sizeof(std::size_t) + m.edge_owner.capacity() * sizeof(Impl::EdgeOwner) +
          m.vertex_limit.capacity() * sizeof(SharedPoint) +
-         (m.sizes.capacity() + m.corner_base.capacity() + m.corners.capacity()) * sizeof(int);
+         (m.sizes.capacity() + m.corner_base.capacity() + m.corners.capacity()) * sizeof(int) +
+         (m.far ? m.far->memory_bytes() : 0) + m.by_far.capacity();
 }
 
 }  // namespace tessera
