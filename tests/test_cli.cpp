@@ -498,3 +498,62 @@ TEST_CASE("tessera with more --threads than cores runs them without oneTBB's wor
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());  // oneTBB would print "TBB Warning: The number of workers is currently limited..."
 }
+
+namespace {
+
+nlohmann::json json_of(const std::string& text) { return nlohmann::json::parse(text); }
+
+}  // namespace
+
+TEST_CASE("creases: a tag on no edge is left out with a warning naming its line", "[cli][issue34]") {
+  const fs::path cage = test::cli_temp_dir() / "crease-on-no-edge.obj";
+  std::ofstream(cage) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 1 10\nt crease 2/1/0 0 2 5\n";
+  const auto r = run_cli("analyze " + cage.string() + " --json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = json_of(r.out);
+  REQUIRE(j["tags"]["creases"].size() == 1);  // 0-1 kept, 0-2 (a diagonal) left out
+  CHECK(j["tags"]["creases"][0]["vertices"] == nlohmann::json::array({0, 1}));
+  CHECK(j["warnings"].dump().find(cage.string() + ":7: crease 0 2 names no edge of the cage") != std::string::npos);
+  const auto exact = run_cli("render " + cage.string() + " --scheme exact --resolution 32x32 -o " +
+                             (test::cli_temp_dir() / "crease-on-no-edge.png").string());
+  CHECK(exact.exit_code == 0);
+  CHECK(exact.err.find(":7: crease 0 2 names no edge") != std::string::npos);
+}
+
+TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json and --stats", "[cli][issue34]") {
+  const std::string cage = data("osd-shapes/catmark_cube_creases1.obj");
+  const fs::path dir = test::cli_temp_dir();
+  const std::string stats = (dir / "creases-stats.json").string(), png = (dir / "creases.png").string();
+  const auto fast = run_cli("render " + cage + " --resolution 32x32 --json --stats " + stats + " -o " + png);
+  REQUIRE(fast.exit_code == 0);
+  const std::string said = "--scheme gregory draws the cage's 12 creased edges (12 semi-sharp) smooth";
+  CHECK(fast.err.find(said) != std::string::npos);
+  CHECK(std::count(fast.err.begin(), fast.err.end(), '\n') == 1);
+  CHECK(json_of(fast.out)["warnings"].dump().find(said) != std::string::npos);
+  CHECK(json_of(slurp(stats))["warnings"].dump().find(said) != std::string::npos);
+  const auto tess = run_cli("tessellate " + cage + " --scheme acc --factor 2 --json --check-watertight");
+  CHECK(json_of(tess.out)["warnings"].dump().find("--scheme acc draws") != std::string::npos);
+  // The exact scheme honours them: nothing to say.
+  const auto exact = run_cli("render " + cage + " --scheme exact --resolution 32x32 --json -o " + png);
+  REQUIRE(exact.exit_code == 0);
+  CHECK(json_of(exact.out)["warnings"].empty());
+  CHECK(exact.err.empty());
+  // A corner alone.
+  const auto corner = run_cli("-q render " + data("osd-shapes/catmark_cube_corner4.obj") +
+                              " --scheme pn --resolution 32x32 --json -o " + png);
+  CHECK(json_of(corner.out)["warnings"].dump().find("1 sharp corner smooth") != std::string::npos);
+}
+
+TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {
+  const auto r = run_cli("analyze " + data("osd-shapes/catmark_cube_creases1.obj") + " --json");
+  REQUIRE(r.exit_code == 0);
+  const auto tags = json_of(r.out)["tags"];
+  REQUIRE(tags["creases"].size() == 12);
+  for (const auto& c : tags["creases"]) CHECK((c["sharpness"].get<double>() > 0.0 && c["sharpness"] < 10.0));
+  CHECK(tags["corners"].empty());
+  const auto text = run_cli("analyze " + data("osd-shapes/catmark_hole_test1.obj"));
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("- hole: face ") != std::string::npos);
+  const auto holes = json_of(run_cli("analyze " + data("osd-shapes/catmark_hole_test1.obj") + " --json").out);
+  CHECK(holes["tags"]["holes"].size() == holes["holes"].get<std::size_t>());
+}

@@ -66,7 +66,9 @@ struct Cage {
   bool uv_v_down = false;
   CageTags tags;
   // What the loader read but did not use (unsupported tags such as OpenSubdiv's hierarchical edits,
-  // unknown OBJ statements), one line each naming the file and line. Not errors: the cage is usable.
+  // unknown OBJ statements, creases on no edge), one line each naming the file and line, and what a
+  // model's scheme leaves out (make_subd_model: creases and corners drawn smooth). Not errors: the
+  // cage is usable.
   std::vector<std::string> warnings;
 
   int vertex_count() const { return static_cast<int>(positions.size()); }

@@ -3,6 +3,7 @@
 // follow the faces they name; some exporters refer to vertices written later).
 #include "shaders_cpp/cage/cage_obj.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -313,6 +314,32 @@ class ObjParser {
       if (const int f = cage_.tags.holes[i]; f < 0 || f >= nf)
         fail(hole_lines_[i],
              "hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces (0-based)");
+    drop_creases_on_no_edge();
+  }
+
+  // A crease on two vertices that share no edge sharpens nothing: it is left out with a warning naming
+  // its line, as OpenSubdiv's own tools do (OpenSubdiv's regression shapes hold such tags), so no
+  // reader or library downstream ever sees it.
+  void drop_creases_on_no_edge() {
+    std::set<std::pair<int, int>> edges;
+    for (int f = 0; f < cage_.face_count(); ++f) {
+      const int n = cage_.face_sizes[std::size_t(f)];
+      for (int k = 0; k < n; ++k) {
+        const int a = cage_.face_vertex(f, k), b = cage_.face_vertex(f, (k + 1) % n);
+        edges.insert({std::min(a, b), std::max(a, b)});
+      }
+    }
+    std::vector<Crease> kept;
+    for (std::size_t i = 0; i < cage_.tags.creases.size(); ++i) {
+      const Crease& c = cage_.tags.creases[i];
+      if (c.v0 != c.v1 && edges.count({std::min(c.v0, c.v1), std::max(c.v0, c.v1)})) {
+        kept.push_back(c);
+        continue;
+      }
+      warn(crease_lines_[i], "crease " + std::to_string(c.v0) + " " + std::to_string(c.v1) +
+                                 " names no edge of the cage (vertices from 0); left out");
+    }
+    cage_.tags.creases = std::move(kept);
   }
 
   std::string_view text_;

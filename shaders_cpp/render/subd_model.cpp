@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "shaders_cpp/cage/bounding_box.h"
@@ -49,11 +51,39 @@ std::vector<Box3> face_ring_boxes(std::span<const glm::vec3> positions, const To
 
 }  // namespace
 
+namespace {
+
+// One line when `scheme` draws a surface without the creases and corners the cage tags (every
+// scheme but exact): no approximation goes unsaid.
+std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t, Scheme scheme) {
+  if (scheme == Scheme::exact) return std::nullopt;
+  int creased = 0, semi_sharp = 0, corners = 0;
+  for (int e = 0; e < t.edge_count(); ++e)
+    if (!t.is_boundary_edge(e) && t.edge_sharpness(e) > 0.0f) {
+      ++creased;
+      if (t.edge_sharpness(e) < 10.0f) ++semi_sharp;
+    }
+  for (int v = 0; v < t.vertex_count(); ++v)
+    if (t.corner_sharpness(v) > 0.0f && !t.is_isolated(v)) ++corners;
+  if (creased == 0 && corners == 0) return std::nullopt;
+  std::string what;
+  if (creased > 0)
+    what = std::to_string(creased) + " creased edge" + (creased == 1 ? "" : "s") +
+           (semi_sharp > 0 ? " (" + std::to_string(semi_sharp) + " semi-sharp)" : "");
+  if (corners > 0)
+    what += (what.empty() ? "" : " and ") + std::to_string(corners) + " sharp corner" + (corners == 1 ? "" : "s");
+  return cage.name + ": --scheme " + to_string(scheme) + " draws the cage's " + what +
+         " smooth; --scheme exact honours them";
+}
+
+}  // namespace
+
 SubdModel make_subd_model(Cage cage, Scheme scheme) {
   SubdModel m;
   m.cage = std::move(cage);
   m.topology = std::make_unique<Topology>(m.cage);
   m.patches = build_patches(m.cage, *m.topology, scheme);
+  if (auto w = dropped_sharpness(m.cage, *m.topology, scheme)) m.cage.warnings.push_back(std::move(*w));
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   if (scheme == Scheme::exact) {
     m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage));

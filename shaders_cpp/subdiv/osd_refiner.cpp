@@ -5,13 +5,17 @@
 #include "shaders_cpp/subdiv/osd_refiner.h"
 
 #include <opensubdiv/bfr/limits.h>
+#include <opensubdiv/far/error.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <mutex>
 #include <string>
 #include <vector>
 
+#include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 
@@ -41,6 +45,15 @@ Options sdc_options(const CageTags& tags) {
 
 namespace {
 
+// OpenSubdiv prints its warnings and errors with printf, to stdout, where they would mix with a
+// command's results (--json): they go to stderr instead, one line each, prefixed.
+void osd_warning(const char* message) {
+  std::fprintf(stderr, "OpenSubdiv: warning: %s\n", one_line_message(message).c_str());
+}
+void osd_error(osd::Far::ErrorType, const char* message) {
+  std::fprintf(stderr, "OpenSubdiv: error: %s\n", one_line_message(message).c_str());
+}
+
 void check_osd_limits(const Cage& cage, const Topology& topology) {
   const std::string name = cage_label(cage);
   const int max_face = osd::Bfr::Limits::MaxFaceSize(), max_valence = osd::Bfr::Limits::MaxValence();
@@ -61,7 +74,16 @@ void check_osd_limits(const Cage& cage, const Topology& topology) {
 
 }  // namespace
 
+void route_osd_messages() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    osd::Far::SetWarningCallback(osd_warning);
+    osd::Far::SetErrorCallback(osd_error);
+  });
+}
+
 std::unique_ptr<TopologyRefiner> build_osd_refiner(const Cage& cage) {
+  route_osd_messages();
   const Topology topology(cage);  // validate_cage: everything but OpenSubdiv's own limits
   check_osd_limits(cage, topology);
   // Sharpness as the topology resolved it (creases on vertex pairs that are no edge are ignored there,

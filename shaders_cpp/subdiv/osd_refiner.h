@@ -25,6 +25,10 @@ namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 // flipped by the caller instead.
 osd::Sdc::Options sdc_options(const CageTags& tags);
 
+// Sends OpenSubdiv's warnings and errors (printf to stdout by default) to stderr, one line each,
+// prefixed "OpenSubdiv: "; once per process. build_osd_refiner calls it.
+void route_osd_messages();
+
 std::unique_ptr<osd::Far::TopologyRefiner> build_osd_refiner(const Cage& cage);
 
 // Cage name for messages ("cage" when empty).

@@ -167,6 +167,42 @@ void warnings_section(Report& r, const CageAnalysis& a) {
   for (const std::string& w : all) r.line("- " + w);
 }
 
+// The tags as the topology resolved them (a crease on no edge is gone; a repeated tag keeps its last
+// value): every creased edge, corner and hole with its sharpness, what only --scheme exact honours.
+void tags_section(Report& r, const CageAnalysis& a) {
+  const Topology& t = a.topology;
+  const auto sharpness_text = [](float s) { return s >= 10.0f ? std::string("infinite") : float_text(s); };
+  constexpr std::size_t kListed = 20;  // lines per kind in the text; the JSON lists all
+  auto& tags = r.json()["tags"] = nlohmann::ordered_json::object();
+  r.line("");
+  r.line("Tags (honoured by --scheme exact; the other schemes draw them smooth):");
+  auto& creases = tags["creases"] = nlohmann::ordered_json::array();
+  std::vector<std::string> lines;
+  for (int e = 0; e < t.edge_count(); ++e) {
+    const float s = t.edge_sharpness(e);
+    if (!(s > 0.0f)) continue;
+    const int h = t.edge_half_edges(e)[0], v0 = t.origin(h), v1 = t.destination(h);
+    creases.push_back({{"vertices", {v0, v1}}, {"sharpness", std::stod(float_text(s))}});
+    lines.push_back("- crease " + std::to_string(v0) + " " + std::to_string(v1) + " sharpness " + sharpness_text(s));
+  }
+  auto& corners = tags["corners"] = nlohmann::ordered_json::array();
+  for (int v = 0; v < t.vertex_count(); ++v) {
+    const float s = t.corner_sharpness(v);
+    if (!(s > 0.0f)) continue;
+    corners.push_back({{"vertex", v}, {"sharpness", std::stod(float_text(s))}});
+    lines.push_back("- corner " + std::to_string(v) + " sharpness " + sharpness_text(s));
+  }
+  auto& holes = tags["holes"] = nlohmann::ordered_json::array();
+  for (int f = 0; f < t.face_count(); ++f)
+    if (t.is_hole(f)) {
+      holes.push_back(f);
+      lines.push_back("- hole: face " + std::to_string(f));
+    }
+  if (lines.empty()) r.line("- none");
+  for (std::size_t i = 0; i < std::min(lines.size(), kListed); ++i) r.line(lines[i]);
+  if (lines.size() > kListed) r.line("- ... " + std::to_string(lines.size() - kListed) + " more (--json lists all)");
+}
+
 void memory_section(Report& r, const CageAnalysis& a) {
   if (!a.memory) return;
   r.line("");
@@ -177,7 +213,7 @@ void memory_section(Report& r, const CageAnalysis& a) {
 }
 
 using Section = void (*)(Report&, const CageAnalysis&);
-constexpr Section kSections[] = {cage_section, patch_section, memory_section, warnings_section};
+constexpr Section kSections[] = {cage_section, patch_section, tags_section, memory_section, warnings_section};
 
 int run_analyze(const AnalyzeOptions& o) {
   if (!o.memory.enabled && !(o.memory == MemoryOptions{}))

@@ -208,7 +208,7 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   if (!o.stats.empty()) {
     // Counts only: the same bytes for the same input on any thread count. Times and memory, which
     // are measurements, are in the --json summary.
-    Json s = {{"statistics", to_json(total.statistics)}};
+    Json s = {{"statistics", to_json(total.statistics)}, {"warnings", scene->model.cage.warnings}};
     add_patch_statistics(s, device, scene->inputs(), *image.tables, scene->lod);
     if (kind == ViewKind::cracks)
       s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};

@@ -147,7 +147,7 @@ int run_tessellate(const TessellateOptions& o) {
         model, displacement ? &*displacement : nullptr, factors, partitioning, view, o.s.lod.edge_pixels, false};
     const PatchTables tables = view_patch_tables(inputs);
     // Counts only, the same bytes on any thread count; times and memory are in --json.
-    Json s = {{"statistics", to_json(result.report.statistics)}};
+    Json s = {{"statistics", to_json(result.report.statistics)}, {"warnings", model.cage.warnings}};
     add_patch_statistics(s, device, inputs, tables, lod);
     write_text_atomically(o.stats, json_text(s) + "\n");
   }
@@ -172,7 +172,8 @@ int run_tessellate(const TessellateOptions& o) {
               {"seconds", result.report.times.wall},
               {"times", to_json(result.report.times)},
               {"memory", to_json(result.report.memory)},
-              {"peak_rss_bytes", peak_rss_bytes()}};
+              {"peak_rss_bytes", peak_rss_bytes()},
+              {"warnings", model.cage.warnings}};
     if (o.check) j["watertight"] = to_json(w);
     std::cout << json_text(j) << "\n";
   } else {

@@ -146,6 +146,7 @@ Json scene_summary(const std::string& path, const PreparedScene& scene, const Sc
             {"times", to_json(total.times)},
             {"memory", to_json(total.memory)}};
   if (scene.settings.view == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  j["warnings"] = scene.model.cage.warnings;  // what the loader and the scheme left out, one line each
   return j;
 }
 

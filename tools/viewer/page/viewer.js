@@ -118,6 +118,8 @@ function showStats(s, preview, roundTrip, size) {
     ['IA + VS · HS', ms(t.ia_vs_s || 0) + ' · ' + ms(t.hs_s || 0)],
     ['tessellator · DS', ms(t.tessellator_s || 0) + ' · ' + ms(t.ds_s || 0)],
     ['setup · raster + PS', ms(t.setup_s || 0) + ' · ' + ms(t.raster_s || 0)],
+    // What the loader or the scheme left out (creases drawn smooth, tags on no edge), one row each.
+    ...(s.warnings || []).map((w) => ['warning', w]),
   ];
   $('stats').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');
