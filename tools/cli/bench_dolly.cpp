@@ -99,13 +99,11 @@ double largest_move(const FramePoints& before, const FramePoints& now, const glm
 
 int run_dolly(const DollyOptions& o) {
   if (o.frames < 2 || o.frames > 10000) throw UsageError("--frames: must be in 2..10000");
-  const std::string cage = cage_or_shipped_frog(o.s.cage);
   // The scene library's one route from settings to a model; each frame's view and LOD follow.
-  RenderSettings settings = o.s;
-  settings.cage = cage;
-  const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
-  const Scheme scheme = scene->settings.scheme;
+  const std::unique_ptr<PreparedScene> scene = prepare_bench_scene(o.s);
+  const std::string& cage = scene->settings.cage;
   const ts::Partitioning partitioning = scene->settings.partitioning;
+  const Scheme scheme = scene->settings.scheme;
   const SubdModel& model = scene->model;
   const SubdFactors& base_factors = scene->base_factors;
   Displacement* d = scene->displacement ? &*scene->displacement : nullptr;

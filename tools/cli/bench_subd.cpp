@@ -31,9 +31,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const std::string cage = cage_or_shipped_frog(o.s.cage);
   check_output_paths({{"-o", o.output}}, {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
   // The scene library's one route from settings to a model, its view and factors.
-  RenderSettings settings = o.s;
-  settings.cage = cage;
-  const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
+  const std::unique_ptr<PreparedScene> scene = prepare_bench_scene(o.s);
   const Scheme scheme = scene->settings.scheme;
   const ts::Partitioning partitioning = scene->settings.partitioning;
   const SubdModel& model = scene->model;

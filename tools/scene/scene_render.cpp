@@ -27,6 +27,11 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   return p;
 }
 
+std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s) {
+  s.cage = cage_or_shipped_frog(s.cage);
+  return prepare_scene(s);
+}
+
 void configure_scene(PreparedScene& p, const RenderSettings& s) {
   if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
   // The pose first, and only when it changes (the exact scheme rebuilds its limit surface per pose):

@@ -31,6 +31,9 @@ struct PreparedScene {
   ViewInputs inputs() const;
 };
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
+// prepare_scene for a benchmark: `s` with its cage, or the monster frog shipped with tessera when it
+// names none (cage_or_shipped_frog).
+std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s);
 // Applies `s` to a prepared scene whose asset, scheme and displacement it shares (the caller checks
 // that: cage, asset selection, scheme and displacement settings equal the scene's): what `s` changes is
 // redone as prepare_scene(s) does it, so the scene then draws the same bytes as a scene prepared from
