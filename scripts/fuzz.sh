@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer harness for a while: scripts/fuzz.sh TARGET MINUTES [JOBS]
-#   TARGET: obj, gltf, maps, factors or scene (tests/fuzz/fuzz_TARGET.cpp)
+#   TARGET: obj, gltf, maps, factors, scene or tags (tests/fuzz/fuzz_TARGET.cpp)
 # Builds the `fuzz` preset (clang, ASan + UBSan) in build-fuzz/ if needed, seeds a working corpus in
 # build-fuzz/corpus/TARGET from tests/data (and the seeds of tests/fuzz/seeds), runs libFuzzer for
 # MINUTES, and prints the executions, the coverage and any crash. A crash input is copied to
@@ -8,10 +8,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-target=${1:?usage: scripts/fuzz.sh obj|gltf|maps|factors|scene MINUTES [JOBS]}
+target=${1:?usage: scripts/fuzz.sh obj|gltf|maps|factors|scene|tags MINUTES [JOBS]}
 minutes=${2:?usage: scripts/fuzz.sh TARGET MINUTES [JOBS]}
 jobs=${3:-1}
-case "$target" in obj|gltf|maps|factors|scene) ;; *) echo "fuzz.sh: unknown target '$target'" >&2; exit 2;; esac
+case "$target" in obj|gltf|maps|factors|scene|tags) ;; *) echo "fuzz.sh: unknown target '$target'" >&2; exit 2;; esac
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ is missing (scripts/setup.sh installs clang)" >&2; exit 2; }
 
 [ -f build-fuzz/build.ninja ] || cmake --preset fuzz >/dev/null
@@ -27,6 +27,7 @@ if [ -z "$(ls -A "$corpus")" ]; then
     maps) cp tests/fuzz/seeds/maps/* "$corpus"/ ;;
     factors) cp tests/fuzz/seeds/factors/* "$corpus"/ ;;
     scene) cp golden/suites/scenes/*.json "$corpus"/ ;;
+    tags) cp tests/data/osd-shapes/*.obj "$corpus"/ ;;
   esac
 fi
 dict=()
