@@ -5,6 +5,7 @@
 #include <fstream>
 #include <set>
 
+#include <OpenImageIO/imageio.h>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -29,7 +30,47 @@ std::string bytes_of(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Pixels of an 8-bit image close to `rgb` (each channel within 40 of 255 * rgb).
+long pixels_near(const fs::path& p, glm::vec3 rgb) {
+  auto in = OIIO::ImageInput::open(p.string());
+  REQUIRE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<unsigned char> px(std::size_t(spec.width) * std::size_t(spec.height) * 3);
+  REQUIRE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+  long n = 0;
+  for (std::size_t i = 0; i < px.size(); i += 3) {
+    bool near = true;
+    for (std::size_t c = 0; c < 3; ++c) near &= std::abs(int(px[i + c]) - int(255.0f * rgb[int(c)])) <= 40;
+    n += near;
+  }
+  return n;
+}
+
 }  // namespace
+
+TEST_CASE("The cage view colours creased edges and corners by sharpness", "[views][cli][issue34]") {
+  // catmark_cube_creases2 (infinitely sharp and semi-sharp creases) against the same cage without its
+  // tags: only the tagged one has red (infinite) edges, and its legend says what the colours mean.
+  const fs::path dir = test::cli_temp_dir();
+  const std::string tagged = test::data("osd-shapes/catmark_cube_creases2.obj");
+  const fs::path plain = dir / "cube-untagged.obj";
+  {
+    std::ifstream in(tagged);
+    std::ofstream out(plain);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("t ", 0) != 0) out << line << "\n";
+  }
+  const glm::vec3 red(0.85f, 0.05f, 0.05f);
+  long counts[2] = {0, 0};
+  int i = 0;
+  for (const std::string& cage : {tagged, plain.string()}) {
+    const fs::path out = dir / ("cage-view-" + std::to_string(i) + ".png");
+    REQUIRE(run_cli("render " + cage + " --view cage --resolution 400x300 -o " + out.string()).exit_code == 0);
+    counts[i++] = pixels_near(out, red);
+  }
+  CHECK(counts[0] > 500);
+  CHECK(counts[1] == 0);
+}
 
 TEST_CASE("Every render view draws the displaced frog, the views differ, bytes do not depend on threads",
           "[views][cli]") {

@@ -65,26 +65,47 @@ bool view_uses_patch_tables(ViewKind kind) {
 
 namespace {
 
-// The control cage over the shaded surface (drawn already), depth-tested, faint where hidden.
+// The control cage over the shaded surface (drawn already), depth-tested, faint where hidden. Tagged
+// edges and corners are coloured by sharpness, as OpenSubdiv's viewer does: what only --scheme exact
+// honours, and where.
 void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
   const Topology& t = *in.model.topology;
   const glm::mat4& vp = in.view.camera.view_projection;
-  std::vector<OverlayLine> lines;
+  const std::vector<glm::vec3>& positions = in.model.positions();
+  // Smooth edges, then creases of sharpness up to 1, up to 10, and infinite (10 and above).
+  struct Kind {
+    glm::vec3 color;
+    float width;
+    std::vector<OverlayLine> lines;
+  };
+  std::array<Kind, 4> kinds = {{{glm::vec3(0.1f, 0.3f, 0.75f), 1.6f, {}},
+                                {glm::vec3(0.95f, 0.8f, 0.1f), 2.6f, {}},
+                                {glm::vec3(0.95f, 0.5f, 0.05f), 2.6f, {}},
+                                {glm::vec3(0.85f, 0.05f, 0.05f), 2.6f, {}}}};
   for (int e = 0; e < t.edge_count(); ++e) {
     const int h = t.edge_half_edges(e)[0];
-    lines.push_back(
-        {in.model.positions()[std::size_t(t.origin(h))], in.model.positions()[std::size_t(t.destination(h))]});
+    const float s = t.edge_sharpness(e);
+    const std::size_t k = !(s > 0.0f) ? 0 : s <= 1.0f ? 1 : s < 10.0f ? 2 : 3;
+    kinds[k].lines.push_back({positions[std::size_t(t.origin(h))], positions[std::size_t(t.destination(h))]});
   }
+  std::vector<glm::vec3> corners;
+  for (int v = 0; v < t.vertex_count(); ++v)
+    if (t.corner_sharpness(v) > 0.0f) corners.push_back(positions[std::size_t(v)]);
   // The cage lies off the surface; where the surface hides it, it is drawn faintly.
-  OverlayStyle hidden{glm::vec3(0.1f, 0.3f, 0.75f), 1.0f, 0.25f, false, 0.0f};
-  OverlayStyle visible{glm::vec3(0.1f, 0.3f, 0.75f), 1.6f, 0.9f, true, 1e-5f};
-  draw_lines(fb, vp, lines, hidden);
-  draw_lines(fb, vp, lines, visible);
-  visible.width = 4.0f;
-  draw_points(fb, vp, in.model.positions(), visible);
+  for (const Kind& k : kinds) draw_lines(fb, vp, k.lines, OverlayStyle{k.color, 1.0f, 0.25f, false, 0.0f});
+  for (const Kind& k : kinds) draw_lines(fb, vp, k.lines, OverlayStyle{k.color, k.width, 0.9f, true, 1e-5f});
+  OverlayStyle visible{kinds[0].color, 4.0f, 0.9f, true, 1e-5f};
+  draw_points(fb, vp, positions, visible);
+  visible.color = kinds[3].color;
+  visible.width = 7.0f;
+  draw_points(fb, vp, corners, visible);
   legend.title = "control cage over the surface (" + std::string(to_string(in.model.patches.scheme)) + ")";
   legend.lines = {std::to_string(t.edge_count()) + " cage edges, " + std::to_string(t.vertex_count()) +
                   " vertices; faint where the surface hides them"};
+  const std::size_t creased = kinds[1].lines.size() + kinds[2].lines.size() + kinds[3].lines.size();
+  if (creased > 0 || !corners.empty())
+    legend.lines.push_back(std::to_string(creased) + " creased edges by sharpness: yellow up to 1, orange up to 10, "
+                           "red infinite; " + std::to_string(corners.size()) + " sharp corners (red dots)");
 }
 
 // The tessellation welded on exact bits over the shaded surface (drawn already); open and non-manifold
