@@ -524,15 +524,23 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
   const std::string cage = data("osd-shapes/catmark_cube_creases1.obj");
   const fs::path dir = test::cli_temp_dir();
   const std::string stats = (dir / "creases-stats.json").string(), png = (dir / "creases.png").string();
-  const auto fast = run_cli("render " + cage + " --resolution 32x32 --json --stats " + stats + " -o " + png);
+  const auto fast = run_cli("render " + cage + " --scheme pn --resolution 32x32 --json --stats " + stats + " -o " + png);
   REQUIRE(fast.exit_code == 0);
-  const std::string said = "--scheme gregory draws the cage's 12 creased edges (12 semi-sharp) smooth";
+  const std::string said = "--scheme pn draws the cage's 12 creased edges (12 semi-sharp) smooth";
   CHECK(fast.err.find(said) != std::string::npos);
   CHECK(std::count(fast.err.begin(), fast.err.end(), '\n') == 1);
   CHECK(json_of(fast.out)["warnings"].dump().find(said) != std::string::npos);
   CHECK(json_of(slurp(stats))["warnings"].dump().find(said) != std::string::npos);
-  const auto tess = run_cli("tessellate " + cage + " --scheme acc --factor 2 --json --check-watertight");
-  CHECK(json_of(tess.out)["warnings"].dump().find("--scheme acc draws") != std::string::npos);
+  // The per-face schemes draw creases of sharpness 1 and more; the one of 0.1 they draw smooth.
+  for (const char* scheme : {"acc", "gregory", "bspline"}) {
+    const auto tess = run_cli("tessellate " + cage + " --scheme " + scheme + " --factor 2 --json --check-watertight");
+    CHECK(json_of(tess.out)["warnings"].dump().find(std::string("--scheme ") + scheme +
+                                                    " draws the cage's 1 creased edge of sharpness below 1 smooth") !=
+          std::string::npos);
+  }
+  const auto infsharp = run_cli("-q render " + data("osd-shapes/catmark_inf_crease0.obj") +
+                                " --resolution 32x32 --json -o " + png);
+  CHECK(json_of(infsharp.out)["warnings"].empty());
   // The exact scheme honours them: nothing to say.
   const auto exact = run_cli("render " + cage + " --scheme exact --resolution 32x32 --json -o " + png);
   REQUIRE(exact.exit_code == 0);
@@ -541,7 +549,8 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
   // A corner alone.
   const auto corner = run_cli("-q render " + data("osd-shapes/catmark_cube_corner4.obj") +
                               " --scheme pn --resolution 32x32 --json -o " + png);
-  CHECK(json_of(corner.out)["warnings"].dump().find("1 sharp corner smooth") != std::string::npos);
+  CHECK(json_of(corner.out)["warnings"].dump().find("1 sharp corner smooth; --scheme exact honours it") !=
+        std::string::npos);
 }
 
 TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {
@@ -556,4 +565,32 @@ TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli
   CHECK(text.out.find("- hole: face ") != std::string::npos);
   const auto holes = json_of(run_cli("analyze " + data("osd-shapes/catmark_hole_test1.obj") + " --json").out);
   CHECK(holes["tags"]["holes"].size() == holes["holes"].get<std::size_t>());
+}
+
+TEST_CASE("creases in acc, gregory and bspline: watertight to the bit, and near the exact limit", "[cli][issue34]") {
+  // The per-face schemes cut the corner rings at creases of sharpness >= 1 and blend semi-sharp ones
+  // (subd_patches.cpp): both faces of a crease build its boundary points from the same rings, so the
+  // tessellation welds on exact bits under uniform and varied factors.
+  for (const char* shape : {"catmark_cube_creases1", "catmark_cubes_infsharp", "catmark_torus_creases1",
+                            "catmark_pyramid_creases1", "catmark_chaikin1"})
+    for (const char* scheme : {"acc", "gregory", "bspline"}) {
+      if (std::string(scheme) == "acc" && std::string(shape) == "catmark_pyramid_creases1") continue;  // triangles
+      const auto r = run_cli("-q tessellate " + data(std::string("osd-shapes/") + shape + ".obj") + " --scheme " +
+                             scheme + " --factor 5 --vary-factors 0.7 --partitioning fractional_odd --check-watertight");
+      INFO(shape << " " << scheme << ": " << r.err);
+      CHECK(r.exit_code == 0);
+    }
+  // Against the exact limit (fraction of the bounding-box diagonal), gregory. Before creases were
+  // honoured: 2.06e-1, 1.19e-1, 2.01e-1, 4.0e-2 (smooth patches over creased cages).
+  const std::pair<const char*, double> bounds[] = {{"catmark_cube_creases2", 1e-2},
+                                                   {"catmark_inf_crease0", 3e-2},
+                                                   {"catmark_cube_creases1", 1e-2},
+                                                   {"catmark_single_crease", 2e-2},
+                                                   {"catmark_torus_creases0", 2e-3}};
+  for (const auto& [shape, bound] : bounds) {
+    const auto r = run_cli("-q accuracy " + data(std::string("osd-shapes/") + shape + ".obj") + " --json");
+    REQUIRE(r.exit_code == 0);
+    INFO(shape);
+    CHECK(json_of(r.out)["max_relative"].get<double>() < bound);
+  }
 }

@@ -50,4 +50,19 @@ class Topology;
 // when it is a valence-2 boundary vertex and the cage interpolates boundary corners.
 CornerRing gather_corner_ring(const Cage& cage, const Topology& topology, int face, int k);
 
+// Creases and corner tags below this sharpness relax within the first subdivision step: the per-face
+// schemes draw them smooth.
+inline constexpr float kCutSharpness = 1.0f;
+
+// The ring of corner k of face f with the cage's creases cut open: every edge of sharpness at least
+// kCutSharpness taken as infinitely sharp. Where the vertex has two or more such edges (a boundary's edges count),
+// the ring is the wedge of faces between the sharp edges on either side of the face, as a boundary
+// ring starting at the first of them; with three or more it is also a sharp corner (Catmull-Clark's
+// crease and corner rules, which on each side of a crease are the boundary rules). A dart (one sharp
+// edge, inside) keeps its whole ring. `vertex_sharpness`, when given, receives the sharpness the
+// crease rule would use at the vertex: its corner tag's, or else the mean of its sharp inner edges'
+// (0 when the ring is not cut).
+CornerRing gather_creased_corner_ring(const Cage& cage, const Topology& topology, int face, int k,
+                                      float* vertex_sharpness = nullptr);
+
 }  // namespace tessera

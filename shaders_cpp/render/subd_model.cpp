@@ -9,6 +9,8 @@
 
 #include "shaders_cpp/cage/bounding_box.h"
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/cage/corner_ring.h"
+#include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 
 namespace tessera {
@@ -53,27 +55,31 @@ std::vector<Box3> face_ring_boxes(std::span<const glm::vec3> positions, const To
 
 namespace {
 
-// One line when `scheme` draws a surface without the creases and corners the cage tags (every
-// scheme but exact): no approximation goes unsaid.
+// One line when `scheme` draws a surface without some of the creases and corners the cage tags, so no
+// approximation goes unsaid: pn and flat draw them all smooth; acc, gregory and bspline those of
+// sharpness below kCutSharpness (subd_patches.cpp cuts and blends the others); exact honours every one.
 std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t, Scheme scheme) {
   if (scheme == Scheme::exact) return std::nullopt;
+  const bool per_face = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
+  const float below = per_face ? kCutSharpness : INFINITY;
   int creased = 0, semi_sharp = 0, corners = 0;
   for (int e = 0; e < t.edge_count(); ++e)
-    if (!t.is_boundary_edge(e) && t.edge_sharpness(e) > 0.0f) {
+    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && s > 0.0f && s < below) {
       ++creased;
-      if (t.edge_sharpness(e) < 10.0f) ++semi_sharp;
+      if (s < kSharpnessInfinite) ++semi_sharp;
     }
   for (int v = 0; v < t.vertex_count(); ++v)
-    if (t.corner_sharpness(v) > 0.0f && !t.is_isolated(v)) ++corners;
+    if (const float s = t.corner_sharpness(v); s > 0.0f && s < below && !t.is_isolated(v)) ++corners;
   if (creased == 0 && corners == 0) return std::nullopt;
   std::string what;
   if (creased > 0)
     what = std::to_string(creased) + " creased edge" + (creased == 1 ? "" : "s") +
-           (semi_sharp > 0 ? " (" + std::to_string(semi_sharp) + " semi-sharp)" : "");
+           (semi_sharp > 0 && !per_face ? " (" + std::to_string(semi_sharp) + " semi-sharp)" : "");
   if (corners > 0)
     what += (what.empty() ? "" : " and ") + std::to_string(corners) + " sharp corner" + (corners == 1 ? "" : "s");
+  if (per_face) what += " of sharpness below " + float_text(kCutSharpness);
   return cage.name + ": --scheme " + to_string(scheme) + " draws the cage's " + what +
-         " smooth; --scheme exact honours them";
+         " smooth; --scheme exact honours " + (creased + corners == 1 ? "it" : "them");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "shaders_cpp/subdiv/subd_patches.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <span>
@@ -128,6 +129,49 @@ class Builder {
   std::vector<PatchGroup*> groups_;
 };
 
+// Creases in the per-face schemes (acc, gregory, bspline's fallback): each patch is built twice, from
+// the whole corner rings (smooth) and from the rings cut open at every crease (corner_ring.h:
+// Catmull-Clark's crease and corner rules are the boundary rules on each side, so an infinitely sharp
+// crease is exact where a boundary is), and the control points near corner k are blended by the
+// sharpness s of its vertex: w = 1 - 2^-s (1 for infinitely sharp). A semi-sharp crease of sharpness s
+// stays sharp for s subdivision steps and then relaxes over what is left, a band of width 2^-s of the
+// face; the blend gives the sharp patch that share. Rows shared with a neighbour (P and E points) come
+// from the same vertex's rings and weight on both faces, so they stay bit-identical.
+double crease_weight(float s) { return s >= kSharpnessInfinite ? 1.0 : s > 0.0f ? 1.0 - std::exp2(-double(s)) : 0.0; }
+
+// Row r of a patch's stencils -> the corner whose sharpness blends it, or -1 for the mean of two
+// (ACC's tangent rows between corners). Gregory quads and triangles: five rows per corner.
+template <std::size_t N>
+std::vector<Stencil> blend_by_corner(const std::vector<Stencil>& smooth, const std::vector<Stencil>& sharp,
+                                     const std::array<double, N>& w, bool acc) {
+  std::vector<Stencil> out(smooth.size());
+  for (std::size_t r = 0; r < smooth.size(); ++r) {
+    double weight = 0.0;
+    if (!acc) {
+      weight = w[r / 5];
+    } else if (r < 16) {  // b(i, j): the corner of its quadrant
+      const std::size_t i = r % 4, j = r / 4;
+      weight = w[i < 2 ? (j < 2 ? 0 : 3) : (j < 2 ? 1 : 2)];
+    } else if (r < 28) {  // du(i, j), i = 0..2 along u
+      const std::size_t i = (r - 16) % 3, j = (r - 16) / 3;
+      const double left = w[j < 2 ? 0 : 3], right = w[j < 2 ? 1 : 2];
+      weight = i == 0 ? left : i == 2 ? right : 0.5 * (left + right);
+    } else {  // dv(i, j), j = 0..2 along v
+      const std::size_t i = (r - 28) % 4, j = (r - 28) / 4;
+      const double low = w[i < 2 ? 0 : 1], high = w[i < 2 ? 3 : 2];
+      weight = j == 0 ? low : j == 2 ? high : 0.5 * (low + high);
+    }
+    if (weight == 0.0) {
+      out[r] = smooth[r];
+    } else if (weight == 1.0) {
+      out[r] = sharp[r];
+    } else {
+      out[r].add(smooth[r], 1.0 - weight).add(sharp[r], weight);
+    }
+  }
+  return out;
+}
+
 // The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
 // neighbours and far vertices, counter-clockwise from the face).
 std::vector<int> gather_ring(std::span<const CornerRing> rings) {
@@ -226,12 +270,25 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
                       (scheme == Scheme::acc ? " handles quads only" : " handles triangles and quads only") +
                       " (use --scheme exact or flat)");
+    // The rings cut at creases, and each corner's blend weight (crease_weight); `creased` when any.
+    bool creased = false;
+    auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
+      for (std::size_t k = 0; k < N; ++k) {
+        float sharpness = 0.0f;
+        cut[k] = gather_creased_corner_ring(cage, t, f, int((k + std::size_t(rot)) % N), &sharpness);
+        w[k] = crease_weight(sharpness);
+        creased |= t.has_sharpness_at(cut[k].center);
+      }
+    };
     if (n == 3) {
-      std::array<CornerRing, 3> corners;
+      std::array<CornerRing, 3> corners, cut;
+      std::array<double, 3> w{};
       for (int k = 0; k < 3; ++k) corners[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rot) % 3);
+      cut_rings(cut, w);
       if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
-      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), gregory_triangle_stencils(corners),
-                  edges, rot);
+      std::vector<Stencil> stencils = gregory_triangle_stencils(corners);
+      if (creased) stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
+      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot);
       continue;
     }
     std::array<CornerRing, 4> corners;
@@ -242,12 +299,19 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
                         " touches a face that is not a quad; --scheme acc needs quads around every corner (use "
                         "--scheme gregory, exact or flat)");
     }
+    std::array<CornerRing, 4> cut;
+    std::array<double, 4> w{};
+    cut_rings(cut, w);
     const std::vector<int> ring = gather_ring(corners);
     if (scheme == Scheme::acc) {
-      builder.add(out.quads, f, 0, PatchKind::acc, ring, acc_quad_stencils(corners), edges, rot);
+      std::vector<Stencil> stencils = acc_quad_stencils(corners);
+      if (creased) stencils = blend_by_corner(stencils, acc_quad_stencils(cut), w, true);
+      builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot);
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
-      builder.add(out.quads, f, 0, PatchKind::gregory, ring, gregory_quad_stencils(corners), edges, rot);
+      std::vector<Stencil> stencils = gregory_quad_stencils(corners);
+      if (creased) stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
+      builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot);
     }
   }
   builder.finish();

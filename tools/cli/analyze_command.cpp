@@ -168,14 +168,14 @@ void warnings_section(Report& r, const CageAnalysis& a) {
 }
 
 // The tags as the topology resolved them (a crease on no edge is gone; a repeated tag keeps its last
-// value): every creased edge, corner and hole with its sharpness, what only --scheme exact honours.
+// value): every creased edge, corner and hole with its sharpness.
 void tags_section(Report& r, const CageAnalysis& a) {
   const Topology& t = a.topology;
   const auto sharpness_text = [](float s) { return s >= 10.0f ? std::string("infinite") : float_text(s); };
   constexpr std::size_t kListed = 20;  // lines per kind in the text; the JSON lists all
   auto& tags = r.json()["tags"] = nlohmann::ordered_json::object();
   r.line("");
-  r.line("Tags (honoured by --scheme exact; the other schemes draw them smooth):");
+  r.line("Tags (exact honours all; acc, gregory and bspline those of sharpness 1 and above; pn and flat none):");
   auto& creases = tags["creases"] = nlohmann::ordered_json::array();
   std::vector<std::string> lines;
   for (int e = 0; e < t.edge_count(); ++e) {
