@@ -270,14 +270,16 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
                       (scheme == Scheme::acc ? " handles quads only" : " handles triangles and quads only") +
                       " (use --scheme exact or flat)");
-    // The rings cut at creases, and each corner's blend weight (crease_weight); `creased` when any.
+    // The rings cut at creases, and each corner's blend weight (crease_weight), for a face with a
+    // tagged corner (`creased`); a smooth face is built once, as before creases were drawn.
     bool creased = false;
+    for (int k = 0; k < n; ++k) creased |= t.has_sharpness_at(cage.face_vertex(f, k));
     auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
+      if (!creased) return;
       for (std::size_t k = 0; k < N; ++k) {
         float sharpness = 0.0f;
         cut[k] = gather_creased_corner_ring(cage, t, f, int((k + std::size_t(rot)) % N), &sharpness);
         w[k] = crease_weight(sharpness);
-        creased |= t.has_sharpness_at(cut[k].center);
       }
     };
     if (n == 3) {
