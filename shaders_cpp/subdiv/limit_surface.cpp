@@ -25,7 +25,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/osd_refiner.h"
 
@@ -273,7 +272,8 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   auto m = std::make_unique<Impl>();
   m->level = approx_level;
   m->left_handed = cage.tags.left_handed;
-  m->refiner = osd_detail::build_osd_refiner(cage);  // validate_cage, then OpenSubdiv's limits
+  std::vector<int> far_faces;
+  m->refiner = osd_detail::build_osd_refiner(cage, &far_faces);  // validate_cage, then OpenSubdiv's limits
   osd::Bfr::SurfaceFactory::Options options;
   options.SetApproxLevelSmooth(approx_level).SetApproxLevelSharp(approx_level);
   m->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*m->refiner, options);
@@ -293,7 +293,7 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
     for (int c = 0; c < 3; ++c) mesh[std::size_t(v) * 3 + std::size_t(c)] = double(cage.positions[std::size_t(v)][c]);
   m->surfaces.resize(std::size_t(nf));
   m->by_far.assign(std::size_t(nf), 0);
-  if (const std::vector<int> far_faces = osd_detail::needs_far_patches(Topology(cage)); !far_faces.empty()) {
+  if (!far_faces.empty()) {
     m->far = std::make_unique<osd_detail::FarPatches>(cage, approx_level, far_faces);
     for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
   }

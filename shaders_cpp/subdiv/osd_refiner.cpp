@@ -17,6 +17,7 @@
 
 #include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 
 namespace tessera::osd_detail {
@@ -82,10 +83,11 @@ void route_osd_messages() {
   });
 }
 
-std::unique_ptr<TopologyRefiner> build_osd_refiner(const Cage& cage) {
+std::unique_ptr<TopologyRefiner> build_osd_refiner(const Cage& cage, std::vector<int>* far_faces) {
   route_osd_messages();
   const Topology topology(cage);  // validate_cage: everything but OpenSubdiv's own limits
   check_osd_limits(cage, topology);
+  if (far_faces) *far_faces = needs_far_patches(topology);
   // Sharpness as the topology resolved it (creases on vertex pairs that are no edge are ignored there,
   // a tag repeated keeps its last value, as OpenSubdiv does); zero sharpness is the default anyway.
   std::vector<int> crease_pairs, corner_verts;

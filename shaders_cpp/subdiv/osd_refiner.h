@@ -12,6 +12,7 @@
 #include <opensubdiv/sdc/options.h>
 
 #include <memory>
+#include <vector>
 
 #include "shaders_cpp/cage/cage.h"
 
@@ -29,7 +30,9 @@ osd::Sdc::Options sdc_options(const CageTags& tags);
 // prefixed "OpenSubdiv: "; once per process. build_osd_refiner calls it.
 void route_osd_messages();
 
-std::unique_ptr<osd::Far::TopologyRefiner> build_osd_refiner(const Cage& cage);
+// `far_faces`, when given, receives needs_far_patches of the cage (far_patches.h), from the topology the
+// refiner is built from (so a LimitSurface builds it once per pose).
+std::unique_ptr<osd::Far::TopologyRefiner> build_osd_refiner(const Cage& cage, std::vector<int>* far_faces = nullptr);
 
 // Cage name for messages ("cage" when empty).
 std::string cage_label(const Cage& cage);

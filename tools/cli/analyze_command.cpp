@@ -171,7 +171,7 @@ void warnings_section(Report& r, const CageAnalysis& a) {
 // value): every creased edge, corner and hole with its sharpness.
 void tags_section(Report& r, const CageAnalysis& a) {
   const Topology& t = a.topology;
-  const auto sharpness_text = [](float s) { return s >= 10.0f ? std::string("infinite") : float_text(s); };
+  const auto sharpness_text = [](float s) { return s >= kSharpnessInfinite ? std::string("infinite") : float_text(s); };
   constexpr std::size_t kListed = 20;  // lines per kind in the text; the JSON lists all
   auto& tags = r.json()["tags"] = nlohmann::ordered_json::object();
   r.line("");

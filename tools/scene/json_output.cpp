@@ -57,6 +57,8 @@ void write(std::string& out, const J& v) {
 
 double json_float(float x) { return std::strtod(float_text(x).c_str(), nullptr); }
 
+Json json_vec3(glm::vec3 v) { return Json::array({json_float(v.x), json_float(v.y), json_float(v.z)}); }
+
 std::string json_text(const Json& value) {
   std::string out;
   write(out, value);

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <string>
 
@@ -25,6 +27,8 @@ using FloatJson =
 // A float as the double nearest its shortest text (float_text), so that JSON shows 3.3 rather
 // than 3.299999952316284; either reads back to the same float.
 double json_float(float x);
+// [x, y, z], each json_float.
+Json json_vec3(glm::vec3 v);
 
 // `value` as one line of JSON text (no trailing newline).
 std::string json_text(const Json& value);

@@ -84,10 +84,14 @@ glm::vec3 vec3_option(std::string_view text, const std::string& what) {
   return {v[0], v[1], v[2]};
 }
 
+bool has_direction(glm::vec3 v) {
+  const double length = glm::length(glm::dvec3(v));
+  return length > 1e-12 && std::isfinite(length);
+}
+
 glm::vec3 direction_option(std::string_view text, const std::string& what) {
   const glm::vec3 v = vec3_option(text, what);
-  const double length = glm::length(glm::dvec3(v));
-  if (!(length > 1e-12) || !std::isfinite(length))
+  if (!has_direction(v))
     throw UsageError(what + ": " + std::string(text) + " has no direction (give a non-zero x,y,z)");
   return v;
 }

@@ -123,7 +123,9 @@ DisplacementSpace displacement_space_option(std::string_view text);
 UvSeams uv_seams_option(std::string_view text);
 // "x,y,z", each finite.
 glm::vec3 vec3_option(std::string_view text, const std::string& what);
-// vec3_option, and a direction: not of length 0.
+// Whether `v` gives a direction (its length is not 0, nor too small or large to normalise).
+bool has_direction(glm::vec3 v);
+// vec3_option, and a direction (has_direction).
 glm::vec3 direction_option(std::string_view text, const std::string& what);
 // "WIDTHxHEIGHT", each side 1..kMaxRenderTargetSize (framebuffer.h).
 std::pair<int, int> resolution_option(std::string_view text);

@@ -96,7 +96,7 @@ class SceneReader {
   // [x, y, z], a direction: not of length 0.
   glm::vec3 direction(const Json& v, const std::string& field) const {
     const glm::vec3 d = vec3(v, field);
-    if (!(glm::length(glm::dvec3(d)) > 1e-12)) fail(field, v.dump() + " has no direction (give a non-zero x,y,z)");
+    if (!has_direction(d)) fail(field, v.dump() + " has no direction (give a non-zero x,y,z)");
     return d;
   }
 
@@ -104,8 +104,6 @@ class SceneReader {
   std::string path_;
   fs::path dir_;
 };
-
-Json vec3_json(glm::vec3 v) { return Json::array({json_float(v.x), json_float(v.y), json_float(v.z)}); }
 
 std::string relative_to(const std::string& path, const std::string& dir) {
   const fs::path absolute = fs::absolute(path).lexically_normal();
@@ -151,8 +149,7 @@ RenderSettings read_scene(const std::string& path) {
   if (root.contains("vary_factors")) s.vary = r.number(root["vary_factors"], "vary_factors");
   if (root.contains("factors_per_edge")) s.factors_file = r.path(root["factors_per_edge"], "factors_per_edge");
   s.lod.cull = PatchCullMode::all;
-  if (root.contains("cull"))
-    s.lod.cull = r.one_of(root["cull"], "cull", cull_option);
+  if (root.contains("cull")) s.lod.cull = r.one_of(root["cull"], "cull", cull_option);
   if (root.contains("lod")) {
     const Json& l = root["lod"];
     r.only(l, "lod", {"mode", "edge_pixels", "distance", "dicing_camera_position"});
@@ -171,8 +168,7 @@ RenderSettings read_scene(const std::string& path) {
     if (d.contains("scale")) s.displacement.scale = r.number(d["scale"], "displacement.scale");
     if (d.contains("bias")) s.displacement.bias = r.number(d["bias"], "displacement.bias");
     if (d.contains("space"))
-      s.displacement.space =
-          r.one_of(d["space"], "displacement.space", displacement_space_option);
+      s.displacement.space = r.one_of(d["space"], "displacement.space", displacement_space_option);
     if (d.contains("uv_seams"))
       s.displacement.uv_seams = r.one_of(d["uv_seams"], "displacement.uv_seams", uv_seams_option);
     if (d.contains("normal_map")) {
@@ -199,10 +195,8 @@ RenderSettings read_scene(const std::string& path) {
     s.camera.width = int(w);
     s.camera.height = int(h);
   }
-  if (root.contains("view"))
-    s.view = r.one_of(root["view"], "view", view_kind_option);
-  if (root.contains("factor_kind"))
-    s.factor_kind = r.one_of(root["factor_kind"], "factor_kind", factor_kind_option);
+  if (root.contains("view")) s.view = r.one_of(root["view"], "view", view_kind_option);
+  if (root.contains("factor_kind")) s.factor_kind = r.one_of(root["factor_kind"], "factor_kind", factor_kind_option);
   if (root.contains("time")) {
     if (!root["time"].is_number()) r.fail("time", "expected seconds, got " + root["time"].dump());
     s.asset.time = root["time"].get<double>();
@@ -241,7 +235,7 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   Json lod = {{"mode", to_string(s.lod.mode)},
               {"edge_pixels", json_float(s.lod.edge_pixels)},
               {"distance", json_float(s.lod.lod_distance)}};
-  if (s.lod.dicing_eye) lod["dicing_camera_position"] = vec3_json(*s.lod.dicing_eye);
+  if (s.lod.dicing_eye) lod["dicing_camera_position"] = json_vec3(*s.lod.dicing_eye);
   j["lod"] = lod;
   j["cull"] = to_string(s.lod.cull);
   if (!s.displacement.map.empty()) {
@@ -257,9 +251,9 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
     j["displacement"] = dj;
   }
   Json camera = Json::object();
-  if (s.camera.eye) camera["position"] = vec3_json(*s.camera.eye);
-  if (s.camera.target) camera["target"] = vec3_json(*s.camera.target);
-  if (s.camera.up) camera["up"] = vec3_json(*s.camera.up);
+  if (s.camera.eye) camera["position"] = json_vec3(*s.camera.eye);
+  if (s.camera.target) camera["target"] = json_vec3(*s.camera.target);
+  if (s.camera.up) camera["up"] = json_vec3(*s.camera.up);
   camera["fov"] = json_float(s.camera.fov);
   j["camera"] = camera;
   j["resolution"] = {s.camera.width, s.camera.height};

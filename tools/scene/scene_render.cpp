@@ -130,26 +130,21 @@ SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_ta
 
 Json scene_summary(const std::string& path, const PreparedScene& scene, const SceneImage& image) {
   const DrawReport& total = image.out.result.report;
-  Json j = {{"output", path},
-            {"width", scene.view.width},
-            {"height", scene.view.height},
-            {"scheme", to_string(scene.settings.scheme)},
-            {"view", to_string(scene.settings.view)},
-            {"camera",
-             {{"position",
-               {json_float(scene.view.camera.eye.x), json_float(scene.view.camera.eye.y),
-                json_float(scene.view.camera.eye.z)}},
-              {"target",
-               {json_float(scene.view.camera.target.x), json_float(scene.view.camera.target.y),
-                json_float(scene.view.camera.target.z)}}}},
-            {"patches", scene.model.patches.quads.size() + scene.model.patches.tris.size()},
-            {"patches_culled", total.patches_culled},
-            {"patches_facing_away", total.patches_back_culled},
-            {"triangles", total.statistics.CInvocations},
-            {"pixels_shaded", total.statistics.PSInvocations},
-            {"statistics", to_json(total.statistics)},
-            {"times", to_json(total.times)},
-            {"memory", to_json(total.memory)}};
+  Json j = {
+      {"output", path},
+      {"width", scene.view.width},
+      {"height", scene.view.height},
+      {"scheme", to_string(scene.settings.scheme)},
+      {"view", to_string(scene.settings.view)},
+      {"camera", {{"position", json_vec3(scene.view.camera.eye)}, {"target", json_vec3(scene.view.camera.target)}}},
+      {"patches", scene.model.patches.quads.size() + scene.model.patches.tris.size()},
+      {"patches_culled", total.patches_culled},
+      {"patches_facing_away", total.patches_back_culled},
+      {"triangles", total.statistics.CInvocations},
+      {"pixels_shaded", total.statistics.PSInvocations},
+      {"statistics", to_json(total.statistics)},
+      {"times", to_json(total.times)},
+      {"memory", to_json(total.memory)}};
   if (scene.settings.view == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
   j["warnings"] = scene.model.cage.warnings;  // what the loader and the scheme left out, one line each
   return j;

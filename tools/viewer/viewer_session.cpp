@@ -20,8 +20,6 @@ bool loads_alike(const RenderSettings& a, const RenderSettings& b) {
          a.asset.mesh == b.asset.mesh;
 }
 
-Json vec_json(glm::vec3 v) { return Json::array({json_float(v.x), json_float(v.y), json_float(v.z)}); }
-
 }  // namespace
 
 ViewerSession::ViewerSession(RenderSettings base) : base_(std::move(base)), device_(device_options(base_.threads)) {
@@ -75,11 +73,11 @@ Json ViewerSession::info() {
           {"animated", bool(p.model.rig)},
           {"animations", animations},
           {"displaced", p.displacement.has_value()},
-          {"bounding_box", {{"min", vec_json(box.lo)}, {"max", vec_json(box.hi)}}},
+          {"bounding_box", {{"min", json_vec3(box.lo)}, {"max", json_vec3(box.hi)}}},
           {"camera",
-           {{"position", vec_json(p.view.camera.eye)},
-            {"target", vec_json(p.view.camera.target)},
-            {"up", vec_json(p.view.camera.up)},
+           {{"position", json_vec3(p.view.camera.eye)},
+            {"target", json_vec3(p.view.camera.target)},
+            {"up", json_vec3(p.view.camera.up)},
             {"fov", json_float(p.view.fov)}}},
           {"views", views},
           {"schemes", schemes},

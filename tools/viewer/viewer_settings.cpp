@@ -165,8 +165,7 @@ std::vector<std::string> render_arguments(const RenderSettings& s, const std::st
     if (value != def || std::signbit(value) != std::signbit(def)) w.insert(w.end(), {option, float_text(value)});
   };
   name("--scheme", s.scheme, d.scheme);
-  if (s.partitioning != d.partitioning)
-    w.insert(w.end(), {"--partitioning", std::string(ts::to_string(s.partitioning))});
+  name("--partitioning", s.partitioning, d.partitioning);
   number("--factor", s.factor, d.factor);
   number("--vary-factors", s.vary, d.vary);
   text("--factors-per-edge", absolute(s.factors_file), "");
