@@ -549,8 +549,45 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
   // A corner alone.
   const auto corner = run_cli("-q render " + data("osd-shapes/catmark_cube_corner4.obj") +
                               " --scheme pn --resolution 32x32 --json -o " + png);
-  CHECK(json_of(corner.out)["warnings"].dump().find("1 sharp corner smooth; --scheme exact honours it") !=
+  CHECK(json_of(corner.out)["warnings"].dump().find("1 sharp corner smooth; --scheme adaptive or exact honours it") !=
         std::string::npos);
+}
+
+TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sharpness is said", "[cli][issue34]") {
+  const fs::path dir = test::cli_temp_dir();
+  const std::string png = (dir / "adaptive.png").string(), cage = data("osd-shapes/catmark_single_crease.obj");
+  // catmark_single_crease has creases of sharpness 5.7 and 5: level 4 draws them as 4 and says so.
+  const auto capped = run_cli("render " + cage + " --scheme adaptive --isolation 4 --resolution 32x32 --json -o " + png);
+  REQUIRE(capped.exit_code == 0);
+  const std::string said = "--scheme adaptive --isolation 4 draws the cage's 8 creased edges of sharpness above 4 as "
+                           "sharpness 4; --isolation 6 or --scheme exact honours them";
+  CHECK(capped.err.find(said) != std::string::npos);
+  CHECK(json_of(capped.out)["warnings"].dump().find(said) != std::string::npos);
+  const auto full = run_cli("render " + cage + " --scheme adaptive --isolation 6 --resolution 32x32 --json -o " + png);
+  REQUIRE(full.exit_code == 0);
+  CHECK(json_of(full.out)["warnings"].empty());
+  // Out of range, or not a number: refused as any bad option value (exit 2), naming the option.
+  for (const char* bad : {"0", "11", "four", "4.5"}) {
+    const auto r = run_cli("render " + cage + " --scheme adaptive --isolation " + bad + " -o " + png);
+    INFO(bad << ": " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--isolation: '" + std::string(bad) + "' is not an isolation level from 1 to 10") !=
+          std::string::npos);
+  }
+  // A scene file keeps the level, and reads it back.
+  const std::string scene = (dir / "adaptive.json").string();
+  const auto printed = run_cli("render " + cage + " --scheme adaptive --isolation 3 --print-scene -");
+  REQUIRE(printed.exit_code == 0);
+  CHECK(json_of(printed.out)["isolation"] == 3);
+  {
+    std::ofstream(scene) << printed.out;
+  }
+  const auto again = run_cli("render --scene " + scene + " --print-scene -");
+  REQUIRE(again.exit_code == 0);
+  CHECK(json_of(again.out)["isolation"] == 3);
+  const auto accuracy = run_cli("-q accuracy " + cage + " --scheme adaptive --isolation 6 --json");
+  REQUIRE(accuracy.exit_code == 0);
+  CHECK(json_of(accuracy.out)["max_relative"].get<double>() < 1e-6);
 }
 
 TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {
@@ -567,12 +604,13 @@ TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli
   CHECK(holes["tags"]["holes"].size() == holes["holes"].get<std::size_t>());
 }
 
-TEST_CASE("creases in acc, gregory and bspline: watertight to the bit, and near the exact limit", "[cli][issue34]") {
+TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit, and near the exact limit",
+          "[cli][issue34]") {
   // The per-face schemes cut the corner rings at creases of sharpness >= 1 and blend semi-sharp ones
   // (subd_patches.cpp): both faces of a crease build its boundary points from the same rings, so the
   // tessellation welds on exact bits under uniform and varied factors.
   for (const char* shape : {"catmark_cube_creases1", "catmark_cubes_infsharp", "catmark_pyramid_creases1"})
-    for (const char* scheme : {"acc", "gregory", "bspline"}) {
+    for (const char* scheme : {"adaptive", "acc", "gregory", "bspline"}) {
       if (std::string(scheme) == "acc" && std::string(shape) == "catmark_pyramid_creases1") continue;  // triangles
       for (const char* factors : {" --factor 5 --vary-factors 0.7", " --lod screen --camera-position 2,3,4"}) {
         const auto r = run_cli("-q tessellate " + data(std::string("osd-shapes/") + shape + ".obj") + " --scheme " +

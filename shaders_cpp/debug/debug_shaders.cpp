@@ -36,6 +36,16 @@ glm::vec3 category_color(int i) {
   return hashed_color(std::uint32_t(i));
 }
 
+glm::vec3 adaptive_patch_color(AdaptivePatchKind kind, int level) {
+  static constexpr std::array<glm::vec3, kAdaptivePatchKinds> base = {
+      glm::vec3(0.55f, 0.75f, 0.95f),  // regular: light blue
+      glm::vec3(0.97f, 0.72f, 0.35f),  // boundary (and infinitely sharp crease): orange
+      glm::vec3(0.92f, 0.35f, 0.35f),  // single-crease: red
+      glm::vec3(0.45f, 0.82f, 0.45f)}; // end cap: green
+  // Deeper levels darker, by 11% a level, so levels 0..6 stay apart and readable.
+  return base[std::size_t(kind)] * std::max(0.3f, 1.0f - 0.11f * float(level));
+}
+
 namespace {
 
 float gradient_length(const PixelInput<kDebugAttributes>& in, std::size_t a) {
@@ -119,7 +129,25 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
       }
       break;
     }
-    case DebugView::patch_type: c = shade(category_color(int(p.type))); break;
+    case DebugView::patch_type: {
+      if (adaptive == nullptr || !adaptive->has_surface(p.face)) {
+        c = shade(category_color(int(p.type)));
+        break;
+      }
+      const LimitSurface::PatchFacts f = adaptive->patch_at_face_frame(p.face, p.sub, a[7], a[8]);
+      c = shade(adaptive_patch_color(f.kind, f.level));
+      if (!p.tri && f.level > 0) {
+        // The sub-patch borders of a quad at this level: the face (u,v) at multiples of 2^-level.
+        const float cells = std::ldexp(1.0f, f.level);
+        const float fu = a[7] * cells, fv = a[8] * cells;
+        const float du = std::min(fu - std::floor(fu), std::ceil(fu) - fu) /
+                         (cells * std::max(gradient_length(in, 7), 1e-12f));
+        const float dv = std::min(fv - std::floor(fv), std::ceil(fv) - fv) /
+                         (cells * std::max(gradient_length(in, 8), 1e-12f));
+        c = glm::mix(c, glm::vec3(0.1f, 0.1f, 0.14f), 0.5f * line_coverage(std::min(du, dv), 1.0f));
+      }
+      break;
+    }
     case DebugView::combination: c = shade(category_color(p.combination)); break;
     case DebugView::patch_id: c = shade(hashed_color(std::uint32_t(id) * 2u + (p.tri ? 1u : 0u))); break;
     case DebugView::normals:

@@ -55,7 +55,7 @@ enum class DebugView : std::uint8_t {
   wire,          // clay, patch boundaries drawn bold (under the wireframe pass)
   factors,       // heat map of tessellation factors per edge region
   density,       // pixels per segment against the target
-  patch_type,    // PatchType colours
+  patch_type,    // PatchType colours; the adaptive scheme: its patches' kinds and isolation levels
   combination,   // topology combination colours
   patch_id,      // a colour per patch
   normals,       // world normal as RGB
@@ -87,6 +87,8 @@ glm::vec3 heat_color(float t);       // dark blue -> cyan -> green -> yellow -> 
 glm::vec3 diverging_color(float t);  // blue -> white -> red, white at 0.5
 glm::vec3 category_color(int i);     // well-separated colours for small indices, hashed beyond
 glm::vec3 hashed_color(std::uint32_t i);
+// The adaptive patch-type view's colour of a kind at an isolation level (its legend swatch at level 0).
+glm::vec3 adaptive_patch_color(AdaptivePatchKind kind, int level);
 
 struct DebugPS {
   DebugView view = DebugView::wire;
@@ -97,6 +99,9 @@ struct DebugPS {
   const Texture2D* height = nullptr;  // displacement: the map (channel 0 scalar)
   float height_scale = 1.0f, height_bias = 0.0f, height_range = 1.0f;
   bool paper = false;  // wire: a flat white surface (the wireframe view) instead of clay
+  // patch_type under the adaptive scheme: the surface whose patch at each point is coloured (by kind,
+  // darker per isolation level, quads with their sub-patch borders) instead of the face's type.
+  const LimitSurface* adaptive = nullptr;
 
   // The factor range the factors view maps to its colour bar (log2 from 1 to 64).
   static float factor_position(float f) { return std::clamp(std::log2(std::max(f, 1.0f)) / 6.0f, 0.0f, 1.0f); }

@@ -130,14 +130,14 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
       for (std::uint32_t j = 0; j < std::uint32_t(kMaxPatchControlPoints); ++j)
         if (mask >> j & 1u) weights.push_back(dense[j]);
     };
-    // One unit per corner k in the patch's rotation, from the stencils of its half-edge; `exact` has no
+    // One unit per corner k in the patch's rotation, from the stencils of its half-edge; `exact` and `adaptive` have no
     // frame stencils, and its units hold `empty` empty stencils.
     const Stencil none;
     auto add_units = [&](int empty, auto&& stencils_of) {
       for (int k = 0; k < 4; ++k) {
         const int h = t.face_offset(patch.face) + (k + patch.rotation) % 4;
         masks.clear(), weights.clear();
-        if (scheme == Scheme::exact)
+        if (uses_limit_surface(scheme))
           for (int i = 0; i < empty; ++i) add(none);
         else
           for (const Stencil& s : stencils_of(h)) add(s);

@@ -57,9 +57,32 @@ namespace {
 
 // One line when `scheme` draws a surface without some of the creases and corners the cage tags, so no
 // approximation goes unsaid: pn and flat draw them all smooth; acc, gregory and bspline those of
-// sharpness below kCutSharpness (subd_patches.cpp cuts and blends the others); exact honours every one.
-std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t, Scheme scheme) {
+// sharpness below kCutSharpness (subd_patches.cpp cuts and blends the others); adaptive draws semi-sharp
+// sharpness above its isolation level as that level (Far clamps it to the levels left); exact honours
+// every one.
+std::optional<std::string> capped_sharpness(const Cage& cage, const Topology& t, int isolation) {
+  int creased = 0, corners = 0;
+  float most = 0.0f;
+  auto capped = [&](float s) { return s > float(isolation) && s < kSharpnessInfinite; };
+  for (int e = 0; e < t.edge_count(); ++e)
+    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && capped(s)) ++creased, most = std::max(most, s);
+  for (int v = 0; v < t.vertex_count(); ++v)
+    if (const float s = t.corner_sharpness(v); capped(s) && !t.is_isolated(v)) ++corners, most = std::max(most, s);
+  if (creased == 0 && corners == 0) return std::nullopt;
+  std::string what;
+  if (creased > 0) what = std::to_string(creased) + " creased edge" + (creased == 1 ? "" : "s");
+  if (corners > 0)
+    what += (what.empty() ? "" : " and ") + std::to_string(corners) + " sharp corner" + (corners == 1 ? "" : "s");
+  const int needed = std::min(kMaxIsolation, int(std::ceil(most)));
+  return cage.name + ": --scheme adaptive --isolation " + std::to_string(isolation) + " draws the cage's " + what +
+         " of sharpness above " + std::to_string(isolation) + " as sharpness " + std::to_string(isolation) + "; " +
+         (needed > isolation ? "--isolation " + std::to_string(needed) + " or " : std::string()) +
+         "--scheme exact honours " + (creased + corners == 1 ? "it" : "them");
+}
+
+std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t, Scheme scheme, int isolation) {
   if (scheme == Scheme::exact) return std::nullopt;
+  if (scheme == Scheme::adaptive) return capped_sharpness(cage, t, isolation);
   const bool per_face = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
   const float below = per_face ? kCutSharpness : INFINITY;
   int creased = 0, semi_sharp = 0, corners = 0;
@@ -79,20 +102,22 @@ std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t
     what += (what.empty() ? "" : " and ") + std::to_string(corners) + " sharp corner" + (corners == 1 ? "" : "s");
   if (per_face) what += " of sharpness below " + float_text(kCutSharpness);
   return cage.name + ": --scheme " + to_string(scheme) + " draws the cage's " + what +
-         " smooth; --scheme exact honours " + (creased + corners == 1 ? "it" : "them");
+         " smooth; --scheme adaptive or exact honours " + (creased + corners == 1 ? "it" : "them");
 }
 
 }  // namespace
 
-SubdModel make_subd_model(Cage cage, Scheme scheme) {
+SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   SubdModel m;
   m.cage = std::move(cage);
   m.topology = std::make_unique<Topology>(m.cage);
   m.patches = build_patches(m.cage, *m.topology, scheme);
-  if (auto w = dropped_sharpness(m.cage, *m.topology, scheme)) m.cage.warnings.push_back(std::move(*w));
+  if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
-  if (scheme == Scheme::exact) {
-    m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage));
+  if (uses_limit_surface(scheme)) {
+    m.limit = std::make_unique<LimitSurface>(scheme == Scheme::adaptive
+                                                 ? LimitSurface::create_adaptive(m.cage, isolation)
+                                                 : LimitSurface::create(m.cage));
     // Faces OpenSubdiv gives no surface besides holes: boundary faces under `t interpolateboundary`
     // none. They draw nothing, like holes.
     auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
@@ -122,7 +147,9 @@ void set_pose(SubdModel& m, RigPose pose) {
     };
     {
       const Lend lend(m);
-      m.limit = std::make_unique<LimitSurface>(LimitSurface::create(m.cage, m.limit->approx_level()));
+      m.limit = std::make_unique<LimitSurface>(m.limit->adaptive()
+                                                   ? LimitSurface::create_adaptive(m.cage, m.limit->approx_level())
+                                                   : LimitSurface::create(m.cage, m.limit->approx_level()));
     }
     m.ring_boxes = face_ring_boxes(m.posed_positions, *m.topology);
   }
@@ -132,10 +159,10 @@ Cage load_cage(const std::string& path, const GltfSelection& selection) {
   return is_gltf_path(path) ? load_gltf_cage(path, selection).cage : load_obj_cage(path);
 }
 
-SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection) {
-  if (!is_gltf_path(path)) return make_subd_model(load_obj_cage(path), scheme);
+SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection, int isolation) {
+  if (!is_gltf_path(path)) return make_subd_model(load_obj_cage(path), scheme, isolation);
   GltfCage g = load_gltf_cage(path, selection);
-  SubdModel m = make_subd_model(std::move(g.cage), scheme);
+  SubdModel m = make_subd_model(std::move(g.cage), scheme, isolation);
   m.rig = std::move(g.rig);
   m.material = std::move(g.maps);
   return m;

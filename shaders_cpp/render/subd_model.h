@@ -1,5 +1,5 @@
-// A cage ready to draw with one scheme: the cage, its topology, its patches (and, for `exact`, the
-// limit surface; for `pn`, the per-vertex normals), and the calls that run it through the pipeline as
+// A cage ready to draw with one scheme: the cage, its topology, its patches (and, for `exact` and
+// `adaptive`, the limit surface; for `pn`, the per-vertex normals), and the calls that run it through the pipeline as
 // stream output or as a render.
 //
 // Contract: load_subd_model throws CageError (one line naming the file and element) for files that
@@ -26,9 +26,9 @@ struct SubdModel {
   Cage cage;  // the rest pose
   std::unique_ptr<Topology> topology;
   SubdPatches patches;
-  std::unique_ptr<LimitSurface> limit;  // exact scheme only (of the posed cage)
+  std::unique_ptr<LimitSurface> limit;  // exact and adaptive only (of the posed cage)
   std::vector<glm::vec3> normals;       // pn only: per cage vertex (pn_patch.h), of the posed cage
-  std::vector<Box3> ring_boxes;         // exact only: per face, the box of its 1-ring (frustum culling)
+  std::vector<Box3> ring_boxes;         // exact and adaptive: per face, the box of its 1-ring (culling)
   // Animation (glTF): the rig, and once set_pose ran, the pose the vertex shader applies and its
   // result over every control point, for the passes that need positions before the draw.
   std::shared_ptr<const CageRig> rig;
@@ -55,8 +55,10 @@ struct SubdModel {
 // The cage of an OBJ file, or of a glTF one (`.gltf`, `.glb`; its rest pose).
 Cage load_cage(const std::string& path, const GltfSelection& selection = {});
 // Reads an OBJ cage, or a glTF one (`.gltf`, `.glb`: gltf_cage.h with `selection`, its rig kept).
-SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection = {});
-SubdModel make_subd_model(Cage cage, Scheme scheme);
+// `isolation`: the adaptive scheme's level (1..kMaxIsolation; others ignore it).
+SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection = {},
+                          int isolation = kDefaultIsolation);
+SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation = kDefaultIsolation);
 // Poses an animated model: the vertex shader will apply `pose`, and what depends on positions before
 // the draw (PN normals, the exact limit surface, culling boxes) follows it. The model must have a rig.
 void set_pose(SubdModel& m, RigPose pose);

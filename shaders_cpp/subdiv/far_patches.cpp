@@ -6,15 +6,18 @@
 #include <opensubdiv/far/stencilTableFactory.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include "shaders_cpp/subdiv/osd_refiner.h"
+#include "shaders_cpp/subdiv/single_crease_basis.h"
 
 namespace tessera::osd_detail {
 
 namespace far = osd::Far;
+
 
 std::vector<int> needs_far_patches(const Topology& t) {
   std::vector<int> faces;
@@ -36,19 +39,49 @@ struct FarPatches::Impl {
   std::unique_ptr<far::TopologyRefiner> refiner;
   std::unique_ptr<far::PatchTable> table;
   std::unique_ptr<far::PatchMap> map;
-  std::vector<glm::dvec3> points;               // base vertices, refined vertices, local points
-  std::unordered_map<int, int> first_ptex_face;  // per chosen face
-  std::vector<int> sizes;                        // per base face
+  bool single_crease = false;  // the table has a sharpness per patch
+  std::vector<glm::dvec3> points;  // base vertices, refined vertices, local points
+  std::vector<int> first_ptex_face;  // per base face; -1 where it has no patches
+  std::vector<int> sizes;            // per base face
+
+  const far::PatchTable::PatchHandle& find(int face, int k, double s, double t) const {
+    const int first = face >= 0 && face < int(sizes.size()) ? first_ptex_face[std::size_t(face)] : -1;
+    if (first < 0) throw std::logic_error("FarPatches: face " + std::to_string(face) + " has no patches");
+    const far::PatchTable::PatchHandle* h = map->FindPatch(first + (sizes[std::size_t(face)] == 4 ? 0 : k), s, t);
+    if (!h)
+      throw std::logic_error("FarPatches: no patch at face " + std::to_string(face) + " (" + std::to_string(s) +
+                             ", " + std::to_string(t) + ")");
+    return *h;
+  }
+  // A regular patch's single crease (0: none). Far keeps a sharpness for end caps too; they ignore it.
+  float sharpness(const far::PatchTable::PatchHandle& h) const {
+    if (!single_crease || table->GetPatchArrayDescriptor(h.arrayIndex).GetType() != far::PatchDescriptor::REGULAR)
+      return 0.0f;
+    return table->GetSingleCreasePatchSharpnessValue(h);
+  }
+  AdaptivePatchKind kind(const far::PatchTable::PatchHandle& h) const {
+    return kind_of(h.arrayIndex, sharpness(h), table->GetPatchParam(h));
+  }
+  AdaptivePatchKind kind_of(int array, float sharp, const far::PatchParam& param) const {
+    if (table->GetPatchArrayDescriptor(array).GetType() != far::PatchDescriptor::REGULAR) return AdaptivePatchKind::end_cap;
+    if (sharp > 0.0f) return AdaptivePatchKind::single_crease;
+    return param.GetBoundary() ? AdaptivePatchKind::boundary : AdaptivePatchKind::regular;
+  }
 };
 
-FarPatches::FarPatches(const Cage& cage, int level, const std::vector<int>& faces) : impl_(std::make_unique<Impl>()) {
+FarPatches::FarPatches(const Cage& cage, int level, const std::vector<int>& faces, bool single_crease)
+    : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.refiner = build_osd_refiner(cage);
   m.sizes = cage.face_sizes;
-  far::PatchTableFactory::Options options(level);
+  m.single_crease = single_crease;
+  far::PatchTableFactory::Options options{static_cast<unsigned>(level)};
   options.SetEndCapType(far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
   options.SetPatchPrecision<double>();
   options.useInfSharpPatch = true;
+  options.useSingleCreasePatch = single_crease;
+  options.generateVaryingTables = false;
+  options.generateLegacySharpCornerPatches = false;  // the true limit at smooth corners, as Bfr gives it
   const far::ConstIndexArray selected(faces.data(), int(faces.size()));
   m.refiner->RefineAdaptive(options.GetRefineAdaptiveOptions(), selected);
   m.table.reset(far::PatchTableFactory::Create(*m.refiner, options, selected));
@@ -77,28 +110,46 @@ FarPatches::FarPatches(const Cage& cage, int level, const std::vector<int>& face
       const std::size_t e = std::size_t(offsets[std::size_t(i)] + j);
       p += weights[e] * m.points[std::size_t(indices[e])];
     }
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw CageError(cage_label(cage) + ": no finite limit surface (vertex positions that are not finite or overflow)");
     m.points[std::size_t(nv + i)] = p;
   }
   m.map = std::make_unique<far::PatchMap>(*m.table);
   const far::PtexIndices ptex(*m.refiner);
-  for (int f : faces) m.first_ptex_face[f] = ptex.GetFaceId(f);
+  m.first_ptex_face.assign(m.sizes.size(), -1);
+  auto choose = [&](int f) {
+    // Holes, and boundary faces under boundary interpolation "none", have no patches.
+    const int first = ptex.GetFaceId(f);
+    if (m.map->FindPatch(first, 0.5, 0.5)) m.first_ptex_face[std::size_t(f)] = first;
+  };
+  if (faces.empty())
+    for (int f = 0; f < cage.face_count(); ++f) choose(f);
+  for (int f : faces) choose(f);
 }
 
 FarPatches::~FarPatches() = default;
 
+bool FarPatches::has_patches(int face) const {
+  return face >= 0 && face < int(impl_->sizes.size()) && impl_->first_ptex_face[std::size_t(face)] >= 0;
+}
+
 FarPatches::Point FarPatches::evaluate(int face, int k, double s, double t) const {
   const Impl& m = *impl_;
-  const auto it = m.first_ptex_face.find(face);
-  if (it == m.first_ptex_face.end())
-    throw std::logic_error("FarPatches: face " + std::to_string(face) + " was not chosen");
-  const int ptex_face = it->second + (m.sizes[std::size_t(face)] == 4 ? 0 : k);
-  const far::PatchTable::PatchHandle* h = m.map->FindPatch(ptex_face, s, t);
-  if (!h)
-    throw std::logic_error("FarPatches: no patch at face " + std::to_string(face) + " (" + std::to_string(s) + ", " +
-                           std::to_string(t) + ")");
+  const far::PatchTable::PatchHandle& h = m.find(face, k, s, t);
+  const far::PatchParam param = m.table->GetPatchParam(h);
   double w[20], ws[20], wt[20];
-  m.table->EvaluateBasis(*h, s, t, w, ws, wt);
-  const far::ConstIndexArray cvs = m.table->GetPatchVertices(*h);
+  // Far scales derivatives by 2^depth; a non-quad's sub-face starts at depth 1, its (s,t) spanning the
+  // sub-face: derivatives with respect to it are half that.
+  double scale = param.NonQuadRoot() ? 0.5 : 1.0;
+  if (const float sharp = m.sharpness(h); sharp > 0.0f) {
+    double u = s, v = t;
+    param.Normalize(u, v);
+    single_crease_patch_basis(std::countr_zero(unsigned(param.GetBoundary())), double(sharp), u, v, w, ws, wt);
+    scale *= double(1 << param.GetDepth());
+  } else {
+    m.table->EvaluateBasis(h, s, t, w, ws, wt);
+  }
+  const far::ConstIndexArray cvs = m.table->GetPatchVertices(h);
   Point r{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
   for (int i = 0; i < cvs.size(); ++i) {
     const glm::dvec3& c = m.points[std::size_t(cvs[i])];
@@ -106,9 +157,40 @@ FarPatches::Point FarPatches::evaluate(int face, int k, double s, double t) cons
     r.ds += ws[i] * c;
     r.dt += wt[i] * c;
   }
+  r.ds *= scale;
+  r.dt *= scale;
   return r;
 }
 
-std::size_t FarPatches::memory_bytes() const { return impl_->points.capacity() * sizeof(glm::dvec3); }
+FarPatches::PatchInfo FarPatches::patch_at(int face, int k, double s, double t) const {
+  const Impl& m = *impl_;
+  const far::PatchTable::PatchHandle& h = m.find(face, k, s, t);
+  return {m.kind(h), int(m.table->GetPatchParam(h).GetDepth())};
+}
+
+FarPatches::Counts FarPatches::counts() const {
+  const Impl& m = *impl_;
+  Counts c;
+  for (int a = 0; a < m.table->GetNumPatchArrays(); ++a)
+    for (int p = 0; p < m.table->GetNumPatches(a); ++p) {
+      const far::PatchParam param = m.table->GetPatchParam(a, p);
+      const float sharp = m.single_crease ? m.table->GetSingleCreasePatchSharpnessValue(a, p) : 0.0f;
+      ++c.by_kind[int(m.kind_of(a, sharp, param))];
+      ++c.by_level[std::min(15, int(param.GetDepth()))];
+      ++c.total;
+    }
+  return c;
+}
+
+std::size_t FarPatches::memory_bytes() const {
+  const Impl& m = *impl_;
+  std::size_t cvs = 0;
+  for (int a = 0; a < m.table->GetNumPatchArrays(); ++a)
+    cvs += std::size_t(m.table->GetNumPatches(a)) * std::size_t(m.table->GetPatchArrayDescriptor(a).GetNumControlVertices());
+  // The points, and per patch its control point indices, PatchParam (8 bytes) and sharpness index.
+  return m.points.capacity() * sizeof(glm::dvec3) + cvs * sizeof(int) +
+         std::size_t(m.table->GetNumPatchesTotal()) * (8 + (m.single_crease ? sizeof(int) : 0)) +
+         m.first_ptex_face.capacity() * sizeof(int);
+}
 
 }  // namespace tessera::osd_detail

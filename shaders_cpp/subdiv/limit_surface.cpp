@@ -52,8 +52,19 @@ std::uint64_t edge_key(int a, int b) {
 
 }  // namespace
 
+const char* to_string(AdaptivePatchKind k) {
+  switch (k) {
+    case AdaptivePatchKind::regular: return "regular";
+    case AdaptivePatchKind::boundary: return "boundary";
+    case AdaptivePatchKind::single_crease: return "single-crease";
+    case AdaptivePatchKind::end_cap: return "end cap";
+  }
+  return "?";
+}
+
 struct LimitSurface::Impl {
   int level = kDefaultApproxLevel;
+  bool adaptive = false;  // create_adaptive(): every face through `far`
   bool left_handed = false;
   std::unique_ptr<osd::Far::TopologyRefiner> refiner;
   std::unique_ptr<osd::Bfr::RefinerSurfaceFactory<>> factory;
@@ -269,14 +280,31 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   if (approx_level < 1 || approx_level > kMaxApproxLevel)
     throw std::invalid_argument("LimitSurface: approximation level " + std::to_string(approx_level) +
                                 " is outside 1.." + std::to_string(kMaxApproxLevel));
+  return build(cage, approx_level, false);
+}
+
+LimitSurface LimitSurface::create_adaptive(const Cage& cage, int isolation) {
+  if (isolation < 1 || isolation > kMaxIsolation)
+    throw std::invalid_argument("LimitSurface: isolation level " + std::to_string(isolation) + " is outside 1.." +
+                                std::to_string(kMaxIsolation));
+  return build(cage, isolation, true);
+}
+
+LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
   auto m = std::make_unique<Impl>();
-  m->level = approx_level;
+  m->level = level;
+  m->adaptive = adaptive;
   m->left_handed = cage.tags.left_handed;
   std::vector<int> far_faces;
-  m->refiner = osd_detail::build_osd_refiner(cage, &far_faces);  // validate_cage, then OpenSubdiv's limits
-  osd::Bfr::SurfaceFactory::Options options;
-  options.SetApproxLevelSmooth(approx_level).SetApproxLevelSharp(approx_level);
-  m->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*m->refiner, options);
+  if (adaptive) {
+    // validate_cage and OpenSubdiv's limits are checked as the patches' refiner is built.
+    m->far = std::make_unique<osd_detail::FarPatches>(cage, level, std::vector<int>{}, true);
+  } else {
+    m->refiner = osd_detail::build_osd_refiner(cage, &far_faces);  // validate_cage, then OpenSubdiv's limits
+    osd::Bfr::SurfaceFactory::Options options;
+    options.SetApproxLevelSmooth(level).SetApproxLevelSharp(level);
+    m->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*m->refiner, options);
+  }
 
   const int nf = cage.face_count(), nv = cage.vertex_count();
   m->sizes = cage.face_sizes;
@@ -294,14 +322,16 @@ LimitSurface LimitSurface::create(const Cage& cage, int approx_level) {
   m->surfaces.resize(std::size_t(nf));
   m->by_far.assign(std::size_t(nf), 0);
   if (!far_faces.empty()) {
-    m->far = std::make_unique<osd_detail::FarPatches>(cage, approx_level, far_faces);
+    m->far = std::make_unique<osd_detail::FarPatches>(cage, level, far_faces);
     for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
   }
+  if (adaptive)
+    for (int f = 0; f < nf; ++f) m->by_far[std::size_t(f)] = m->far->has_patches(f);
   m->pp_offset.assign(std::size_t(nf) + 1, 0);
   const Surface::PointDescriptor desc(3);
   for (int f = 0; f < nf; ++f) {
     Surface& s = m->surfaces[std::size_t(f)];
-    if (m->by_far[std::size_t(f)]) {
+    if (m->by_far[std::size_t(f)] || m->adaptive) {
       m->pp_offset[std::size_t(f)] = m->patch_points.size();
       continue;
     }
@@ -375,6 +405,7 @@ int LimitSurface::sub_patch_count(int face) const {
   return n == 4 ? 1 : n;
 }
 int LimitSurface::approx_level() const { return impl_->level; }
+bool LimitSurface::adaptive() const { return impl_->adaptive; }
 
 namespace {
 void check_patch(const LimitSurface& s, int face, int sub_patch, float u, float v) {
@@ -477,6 +508,31 @@ SurfacePoint LimitSurface::evaluate_fan(int face, int triangle, float u, float v
     return m.to_point(face, l.sub, l.s, l.t, Raw{r.p, pu, pv}, r);
   }
   return {sh.position, glm::vec3(pu), glm::vec3(pv), sh.normal};
+}
+
+LimitSurface::PatchFacts LimitSurface::patch_at(int face, int sub_patch, float u, float v) const {
+  if (!impl_->adaptive) throw std::logic_error("LimitSurface::patch_at: not the adaptive method");
+  check_patch(*this, face, sub_patch, u, v);
+  return impl_->far->patch_at(face, sub_patch, u, v);
+}
+
+LimitSurface::PatchFacts LimitSurface::patch_at_face_frame(int face, int sub, float u, float v) const {
+  if (!impl_->adaptive) throw std::logic_error("LimitSurface::patch_at_face_frame: not the adaptive method");
+  if (!has_surface(face)) bad_query("face " + std::to_string(face) + " has no surface");
+  const int n = impl_->sizes[std::size_t(face)];
+  const double du = std::clamp(double(u), 0.0, 1.0), dv = std::clamp(double(v), 0.0, 1.0);
+  if (n == 4) return impl_->far->patch_at(face, 0, du, dv);
+  if (n == 3) {
+    const Impl::TriMap tm = Impl::tri_map(du, dv);
+    return impl_->far->patch_at(face, tm.k, tm.s, tm.t);
+  }
+  const SubPatchLocation l = fan_location(n, std::clamp(sub, 0, n - 1), du, dv);
+  return impl_->far->patch_at(face, l.sub, std::clamp(l.s, 0.0, 1.0), std::clamp(l.t, 0.0, 1.0));
+}
+
+LimitSurface::PatchCounts LimitSurface::patch_counts() const {
+  if (!impl_->adaptive) throw std::logic_error("LimitSurface::patch_counts: not the adaptive method");
+  return impl_->far->counts();
 }
 
 ReferenceSample LimitSurface::sample_reference(int face, int sub_patch, double u, double v) const {

@@ -1,5 +1,10 @@
-// The exact Catmull-Clark limit surface of a Cage, evaluated through OpenSubdiv (Bfr). It is the
-// domain-shader evaluator of the `exact` scheme and the reference for accuracy measurements.
+// The Catmull-Clark limit surface of a Cage, evaluated through OpenSubdiv, by one of two methods:
+// - create(): the exact surface through Bfr (Far for the faces 3.5.0's Bfr fails on). It is the
+//   domain-shader evaluator of the `exact` scheme and the reference for accuracy measurements.
+// - create_adaptive(): the `adaptive` scheme, feature-adaptive patches to an isolation level through
+//   Far (B-spline, boundary, single-crease and Gregory end-cap patches, far_patches.h); exact to
+//   round-off on regular and single-crease regions and converging to the limit as the level rises.
+// Both give the same domains, ownership and contract below; they differ in the surface between.
 //
 // Contract
 // - Domains follow D3D11 patches.
@@ -47,6 +52,7 @@
 #include <glm/vec2.hpp>
 #include <glm/ext/vector_double3.hpp>
 
+#include <cstdint>
 #include <memory>
 
 #include "shaders_cpp/cage/cage.h"
@@ -69,6 +75,16 @@ struct ReferenceSample {
 // cost around a vertex grows as about valence^2.4; at 128 a cage's surface builds in about 0.2 s).
 inline constexpr int kMaxExactValence = 128;
 
+// The adaptive method's patch at a point (patch_at), for the patch-type view and statistics.
+enum class AdaptivePatchKind : std::uint8_t { regular, boundary, single_crease, end_cap };
+inline constexpr int kAdaptivePatchKinds = 4;
+const char* to_string(AdaptivePatchKind k);
+
+// The isolation levels the adaptive method takes (Far's maximum is 10) and its default: at 4 every
+// creased OpenSubdiv shape is within ... of the exact limit (README, "Creases").
+inline constexpr int kMaxIsolation = 10;
+inline constexpr int kDefaultIsolation = 4;
+
 class LimitSurface {
  public:
   // Bfr represents the surface exactly (B-spline patches) except within 2^-level (in face
@@ -83,6 +99,9 @@ class LimitSurface {
   // kMaxExactValence, or whose limit is not finite; std::invalid_argument for a level outside
   // 1..kMaxApproxLevel.
   static LimitSurface create(const Cage& cage, int approx_level = kDefaultApproxLevel);
+  // The adaptive method at `isolation` (1..kMaxIsolation; std::invalid_argument outside); the same
+  // CageErrors as create().
+  static LimitSurface create_adaptive(const Cage& cage, int isolation);
 
   LimitSurface(LimitSurface&&) noexcept;
   LimitSurface& operator=(LimitSurface&&) noexcept;
@@ -93,7 +112,26 @@ class LimitSurface {
   bool has_surface(int face) const;
   // 1 for a quad, n for any other n-gon, 0 for a face without a surface.
   int sub_patch_count(int face) const;
+  // create()'s approximation level, or create_adaptive()'s isolation level.
   int approx_level() const;
+  bool adaptive() const;
+
+  // The adaptive method only (std::logic_error otherwise): the patch evaluate() uses at a point of the
+  // quad domain (same checks as evaluate()), and the patch table's counts.
+  struct PatchFacts {
+    AdaptivePatchKind kind = AdaptivePatchKind::regular;
+    int level = 0;
+  };
+  PatchFacts patch_at(int face, int sub_patch, float u, float v) const;
+  // The same at a point given as the domain shader's face frame: a quad's (u,v), a triangle's
+  // barycentric (u,v), or fan triangle `sub` of a larger face; no range checks beyond the face's.
+  PatchFacts patch_at_face_frame(int face, int sub, float u, float v) const;
+  struct PatchCounts {
+    int by_kind[kAdaptivePatchKinds] = {};
+    int by_level[16] = {};
+    int total = 0;
+  };
+  PatchCounts patch_counts() const;
 
   // Quad-domain evaluation (quads: sub_patch 0; other faces: sub-patch k), with ownership.
   SurfacePoint evaluate(int face, int sub_patch, float u, float v) const;
@@ -131,6 +169,7 @@ class LimitSurface {
  private:
   struct Impl;
   explicit LimitSurface(std::unique_ptr<Impl> impl);
+  static LimitSurface build(const Cage& cage, int level, bool adaptive);
   std::unique_ptr<Impl> impl_;
 };
 

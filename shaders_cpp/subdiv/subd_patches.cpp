@@ -21,6 +21,7 @@ const char* to_string(Scheme s) {
     case Scheme::gregory: return "gregory";
     case Scheme::exact: return "exact";
     case Scheme::pn: return "pn";
+    case Scheme::adaptive: return "adaptive";
   }
   return "?";
 }
@@ -40,8 +41,8 @@ const char* to_string(PatchKind k) {
 }
 
 std::optional<Scheme> parse_scheme(std::string_view name) {
-  for (Scheme s : {Scheme::flat, Scheme::bspline, Scheme::acc, Scheme::gregory, Scheme::exact, Scheme::pn})
-    if (name == to_string(s)) return s;
+  for (int k = 0; k < kSchemeCount; ++k)
+    if (const Scheme s = Scheme(k); name == to_string(s)) return s;
   return std::nullopt;
 }
 
@@ -227,23 +228,23 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       // The IA patch is the face; the hull shader builds the PN points from its corners (pn_patch.h).
       if (n > 4)
         throw CageError(where(cage, f) + " has " + std::to_string(n) +
-                        " sides; --scheme pn handles triangles and quads only (use --scheme exact or flat)");
+                        " sides; --scheme pn handles triangles and quads only (use --scheme adaptive, exact or flat)");
       builder.add(n == 3 ? out.tris : out.quads, f, 0, n == 3 ? PatchKind::pn_triangle : PatchKind::pn_quad,
                   corners_from(0), {}, edges);
       continue;
     }
     if (!stencil_scheme) {
-      // flat and exact: the IA patch is the face itself.
+      // flat, exact and adaptive: the IA patch is the face itself.
       if (n > kMaxPatchControlPoints)
         throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
                         " draws faces of up to " + std::to_string(kMaxPatchControlPoints) +
                         " (the face is the patch's control points)");
-      const PatchKind tri_kind = scheme == Scheme::exact ? PatchKind::exact : PatchKind::linear;
+      const PatchKind tri_kind = uses_limit_surface(scheme) ? PatchKind::exact : PatchKind::linear;
       if (n == 3 || n == 4) {
         std::vector<Stencil> corners;
         if (scheme == Scheme::flat)
           for (int k = 0; k < n; ++k) corners.push_back(Stencil::vertex(corner(k)));
-        const PatchKind kind = n == 3 ? tri_kind : scheme == Scheme::exact ? PatchKind::exact : PatchKind::bilinear;
+        const PatchKind kind = n == 3 ? tri_kind : uses_limit_surface(scheme) ? PatchKind::exact : PatchKind::bilinear;
         builder.add(n == 3 ? out.tris : out.quads, f, 0, kind, corners_from(0), corners, edges);
         continue;
       }
@@ -269,7 +270,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     if (n != 4 && (n != 3 || scheme == Scheme::acc))
       throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
                       (scheme == Scheme::acc ? " handles quads only" : " handles triangles and quads only") +
-                      " (use --scheme exact or flat)");
+                      " (use --scheme adaptive, exact or flat)");
     // The rings cut at creases, and each corner's blend weight (crease_weight), for a face with a
     // tagged corner (`creased`); a smooth face is built once, as before creases were drawn.
     bool creased = false;

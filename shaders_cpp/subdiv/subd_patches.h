@@ -36,10 +36,13 @@ namespace tessera {
 
 class LimitSurface;
 
-enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact, pn };
-inline constexpr int kSchemeCount = int(Scheme::pn) + 1;  // every Scheme is in 0..kSchemeCount-1
+enum class Scheme : std::uint8_t { flat, bspline, acc, gregory, exact, pn, adaptive };
+inline constexpr int kSchemeCount = int(Scheme::adaptive) + 1;  // every Scheme is in 0..kSchemeCount-1
 std::optional<Scheme> parse_scheme(std::string_view name);
 const char* to_string(Scheme s);
+// exact and adaptive: the domain shader evaluates a LimitSurface (PatchKind::exact), made by create()
+// or create_adaptive().
+inline bool uses_limit_surface(Scheme s) { return s == Scheme::exact || s == Scheme::adaptive; }
 
 // How the domain shader evaluates a patch.
 enum class PatchKind : std::uint8_t {
@@ -50,7 +53,7 @@ enum class PatchKind : std::uint8_t {
   gregory_triangle,  // 15 triangular Gregory points (quartic, cubic boundaries) on the tri domain
   pn_triangle,       // PN triangle: 10 cubic Bezier points, 6 normal coefficients, from the corners
   pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
-  exact,             // the limit surface (limit_surface.h), evaluated per domain point
+  exact,             // the limit surface (limit_surface.h; exact or adaptive), evaluated per domain point
 };
 const char* to_string(PatchKind k);  // "gregory_triangle", as the enumerator
 

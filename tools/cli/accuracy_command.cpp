@@ -29,18 +29,20 @@ struct AccuracyOptions {
 int run_accuracy(const AccuracyOptions& o) {
   const Scheme scheme = o.s.scheme;
   const ts::Partitioning partitioning = o.s.partitioning;
-  const SubdModel model = load_model(o.s.cage, scheme, o.s.asset);
+  const SubdModel model = load_model(o.s.cage, scheme, o.s.asset, o.s.isolation);
   const SubdFactors factors = factors_option(o.s.factor, o.s.vary, o.s.factors_file, model.cage);
   std::unique_ptr<LimitSurface> own_reference;
   try {
     // The limit of the cage the vertex shader outputs (the posed cage of an animated asset).
     Cage posed = model.cage;
     posed.positions = model.positions();
-    if (!model.limit) own_reference = std::make_unique<LimitSurface>(LimitSurface::create(posed));
+    // exact measures against its own surface; adaptive's is not the reference.
+    if (!model.limit || model.limit->adaptive())
+      own_reference = std::make_unique<LimitSurface>(LimitSurface::create(posed));
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
-  const LimitSurface& reference = model.limit ? *model.limit : *own_reference;
+  const LimitSurface& reference = own_reference ? *own_reference : *model.limit;
   const double diagonal = reference.bounding_box_diagonal();
   Device device(device_options(o.s.threads));
   double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0;
@@ -52,23 +54,28 @@ int run_accuracy(const AccuracyOptions& o) {
         for (std::size_t i = 0; i < p.points.size(); ++i) {
           const SurfaceSample& s = p.points[i];
           const ts::DomainPoint q = p.domain[i];
-          glm::dvec3 pos, nrm;
+          // On a crease the limit has two normals, one per side; a point shared by two faces carries its
+          // owner's (limit_surface.h), so a normal is measured against this face's and the owner's, the nearer.
+          glm::dvec3 pos, nrm, owned;
           if (g.domain == ts::Domain::tri && n == 3) {
             // The face's own barycentrics (the DS undid any rotation); exact: multiples of 2^-16.
             const SurfacePoint e = reference.evaluate_triangle(patch.face, s.u, s.v, (1.0f - s.u) - s.v);
-            pos = glm::dvec3(e.position), nrm = glm::dvec3(e.normal);
+            pos = glm::dvec3(e.position), nrm = owned = glm::dvec3(e.normal);
           } else if (g.domain == ts::Domain::tri) {  // a fan triangle of a larger face
             const LimitSurface::SubPatchLocation l = LimitSurface::fan_location(n, patch.sub, q.u, q.v);
             const ReferenceSample e = reference.sample_reference(patch.face, l.sub, l.s, l.t);
             pos = e.position, nrm = e.normal;
+            owned = glm::dvec3(reference.evaluate_fan(patch.face, patch.sub, q.u, q.v, (1.0f - q.u) - q.v).normal);
           } else {
             const ReferenceSample e = reference.sample_reference(patch.face, patch.sub, s.u, s.v);  // the face's frame
             pos = e.position, nrm = e.normal;
+            owned = glm::dvec3(reference.evaluate(patch.face, patch.sub, s.u, s.v).normal);
           }
           const double d = glm::length(glm::dvec3(s.position) - pos);
           max_d = std::max(max_d, d);
           sum_d2 += d * d;
-          const double c = std::clamp(glm::dot(glm::normalize(glm::dvec3(s.normal)), glm::normalize(nrm)), -1.0, 1.0);
+          const glm::dvec3 sn = glm::normalize(glm::dvec3(s.normal));
+          const double c = std::clamp(std::max(glm::dot(sn, glm::normalize(nrm)), glm::dot(sn, glm::normalize(owned))), -1.0, 1.0);
           const double angle = std::acos(c) * 180.0 / std::numbers::pi;
           if (std::isfinite(angle)) {
             max_angle = std::max(max_angle, angle);

@@ -25,6 +25,7 @@ namespace {
 struct BakeCli {
   AssetSettings asset;
   Scheme scheme = Scheme::gregory;
+  int isolation = kDefaultIsolation;
   std::string cage, dense, output, kind = "vector", space = "tangent", method = "auto";
   std::string resolution = "1024", normal_map, ao, prefer = "nearest";
   float max_distance = 0.0f, ao_distance = 0.0f;
@@ -71,7 +72,7 @@ int run_bake(const BakeCli& o) {
   b.ao_rays = o.ao_rays;
 
   const Scheme scheme = o.scheme;
-  const SubdModel model = load_model(o.cage, scheme, o.asset);
+  const SubdModel model = load_model(o.cage, scheme, o.asset, o.isolation);
   std::vector<PatchTexcoords> texcoords;
   try {
     texcoords = displacement_texcoords(model, o.output);
@@ -196,7 +197,10 @@ Runner add_bake_command(CLI::App& app) {
                   "the displacement map: .exr (float), or .png or .tif (16-bit, its range in the file)")
       ->required();
   add_setting_option(*cmd, "--scheme", o->scheme, [](const std::string& text) { return scheme_option(text); },
-                     "the base surface: acc, gregory, bspline or exact (default gregory)");
+                     "the base surface: acc, gregory, bspline, exact or adaptive (default gregory)");
+  add_setting_option(*cmd, "--isolation", o->isolation, [](const std::string& text) { return isolation_option(text); },
+                     "--scheme adaptive: the isolation level, 1 to " + std::to_string(kMaxIsolation) + " (default " +
+                         std::to_string(kDefaultIsolation) + ")");
   cmd->add_option("--resolution", o->resolution, "texels: N (square) or WxH (default 1024)");
   cmd->add_option("--kind", o->kind, "vector (default) or scalar (along the normal)");
   cmd->add_option("--space", o->space, "vector maps: tangent (default) or object");

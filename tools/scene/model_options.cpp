@@ -15,8 +15,13 @@ namespace tessera::cli {
 void add_scheme_options(CLI::App& cmd, RenderSettings& s) {
   add_setting_option(cmd, "--scheme", s.scheme, [](const std::string& text) { return scheme_option(text); },
                  "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
-                 "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit) or pn (PN triangles and quads)")
+                 "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit), pn (PN triangles and quads) or adaptive "
+                 "(feature-adaptive patches to --isolation: creases, corners and every face)")
       ->default_str(to_string(s.scheme));
+  add_setting_option(cmd, "--isolation", s.isolation, [](const std::string& text) { return isolation_option(text); },
+                     "--scheme adaptive: the isolation level, 1 to " + std::to_string(kMaxIsolation) +
+                         " (refinement around extraordinary vertices and creases; higher is closer to exact)")
+      ->default_str(std::to_string(s.isolation));
   cmd.add_option("--factor", s.factor, "tessellation factor on every edge")->capture_default_str();
   cmd.add_option("--vary-factors", s.vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
   cmd.add_option("--factors-per-edge", s.factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
@@ -108,11 +113,11 @@ GltfSelection gltf_selection(const std::string& path, const AssetSettings& a) {
   return selection;
 }
 
-SubdModel load_model(const std::string& path, Scheme scheme, const AssetSettings& asset) {
+SubdModel load_model(const std::string& path, Scheme scheme, const AssetSettings& asset, int isolation) {
   const GltfSelection selection = gltf_selection(path, asset);
   SubdModel m;
   try {
-    m = load_subd_model(path, scheme, selection);
+    m = load_subd_model(path, scheme, selection, isolation);
   } catch (const CageError& e) {
     throw InputError(e.what());
   }

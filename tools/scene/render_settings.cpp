@@ -1,6 +1,7 @@
 #include "tools/scene/render_settings.h"
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <utility>
 
@@ -34,7 +35,17 @@ constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
 
 Scheme scheme_option(std::string_view text, const std::string& what) {
   if (const auto s = parse_scheme(text)) return *s;
-  refuse(what, text, "one of flat, bspline, acc, gregory, exact, pn");
+  std::string names;
+  for (int k = 0; k < kSchemeCount; ++k) names += std::string(k ? ", " : "") + to_string(Scheme(k));
+  refuse(what, text, "one of " + names);
+}
+
+int isolation_option(std::string_view text, const std::string& what) {
+  int level = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), level);
+  if (ec != std::errc() || end != text.data() + text.size() || level < 1 || level > kMaxIsolation)
+    refuse(what, text, "an isolation level from 1 to " + std::to_string(kMaxIsolation));
+  return level;
 }
 
 ts::Partitioning partitioning_option(std::string_view text, const std::string& what) {

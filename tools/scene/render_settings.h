@@ -97,6 +97,7 @@ struct AssetSettings {
 struct RenderSettings {
   std::string cage;
   Scheme scheme = Scheme::gregory;
+  int isolation = kDefaultIsolation;  // --scheme adaptive's level (limit_surface.h)
   ts::Partitioning partitioning = ts::Partitioning::integer;
   float factor = 8.0f, vary = 0.0f;
   std::string factors_file;  // --factors-per-edge
@@ -114,6 +115,8 @@ struct RenderSettings {
 // The readers of settings text. `what` names the option in the error (the scene file reader and
 // other commands pass their own).
 Scheme scheme_option(std::string_view text, const std::string& what = "--scheme");
+// 1..kMaxIsolation.
+int isolation_option(std::string_view text, const std::string& what = "--isolation");
 ts::Partitioning partitioning_option(std::string_view text, const std::string& what = "--partitioning");
 ViewKind view_kind_option(std::string_view text);
 FactorKind factor_kind_option(std::string_view text);

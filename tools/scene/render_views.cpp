@@ -159,6 +159,21 @@ void patch_type_legend(Scheme scheme, const PatchTables& tables, Legend& legend)
                                                           std::to_string(count[std::size_t(k)]) + " patches");
 }
 
+// The adaptive scheme's patches: Far's patch table, by kind and by isolation level.
+void adaptive_patch_legend(const LimitSurface& limit, Legend& legend) {
+  const LimitSurface::PatchCounts c = limit.patch_counts();
+  legend.title = "adaptive patches, isolation " + std::to_string(limit.approx_level()) + ": " +
+                 std::to_string(c.total) + " patches";
+  for (int k = 0; k < kAdaptivePatchKinds; ++k)
+    if (c.by_kind[k] > 0)
+      legend.swatches.emplace_back(adaptive_patch_color(AdaptivePatchKind(k), 0),
+                                   std::string(to_string(AdaptivePatchKind(k))) + ": " + std::to_string(c.by_kind[k]));
+  std::string levels;
+  for (int l = 0; l < 16; ++l)
+    if (c.by_level[l] > 0) levels += (levels.empty() ? "" : ", ") + std::to_string(l) + ": " + std::to_string(c.by_level[l]);
+  legend.lines = {"per level " + levels, "darker: deeper level; thin lines: sub-patch borders"};
+}
+
 void combination_legend(const TopologyCombinations& combos, Legend& legend) {
   legend.title = std::to_string(combos.combinations.size()) + " topology combinations (as tessera analyze)";
   std::vector<int> order(combos.combinations.size());
@@ -202,7 +217,12 @@ DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTab
       break;
     case ViewKind::patch_type:
       r.ps.view = DebugView::patch_type;
-      patch_type_legend(in.model.patches.scheme, tables, legend);
+      if (in.model.limit && in.model.limit->adaptive()) {
+        r.ps.adaptive = in.model.limit.get();
+        adaptive_patch_legend(*in.model.limit, legend);
+      } else {
+        patch_type_legend(in.model.patches.scheme, tables, legend);
+      }
       break;
     case ViewKind::combination:
       r.ps.view = DebugView::combination;

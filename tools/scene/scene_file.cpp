@@ -131,7 +131,7 @@ RenderSettings read_scene(const std::string& path) {
   const SceneReader r(path);
   r.only(
       root, "",
-      {"tessera_scene", "asset",     "scheme",       "partitioning", "factor",     "vary_factors", "factors_per_edge",
+      {"tessera_scene", "asset",     "scheme",       "isolation",    "partitioning", "factor",     "vary_factors", "factors_per_edge",
        "lod",           "cull",      "displacement", "camera",       "resolution", "view",         "factor_kind",
        "time",          "animation", "mesh",         "scene_index",  "threads",    "msaa"});
   if (!root.contains("tessera_scene") || root["tessera_scene"] != 1)
@@ -142,6 +142,12 @@ RenderSettings read_scene(const std::string& path) {
   s.cage = r.path(root["asset"], "asset");
   if (root.contains("scheme"))
     s.scheme = r.one_of(root["scheme"], "scheme", [](const std::string& t) { return scheme_option(t); });
+  if (root.contains("isolation")) {
+    const Json& v = root["isolation"];
+    if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > kMaxIsolation)
+      r.fail("isolation", "expected an isolation level from 1 to " + std::to_string(kMaxIsolation) + ", got " + v.dump());
+    s.isolation = int(v.get<long long>());
+  }
   if (root.contains("partitioning"))
     s.partitioning =
         r.one_of(root["partitioning"], "partitioning", [](const std::string& t) { return partitioning_option(t); });
@@ -231,6 +237,7 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
             {"partitioning", std::string(ts::to_string(s.partitioning))},
             {"factor", json_float(s.factor)},
             {"vary_factors", json_float(s.vary)}};
+  if (s.scheme == Scheme::adaptive) j["isolation"] = s.isolation;
   if (!s.factors_file.empty()) j["factors_per_edge"] = relative_to(s.factors_file, dir);
   Json lod = {{"mode", to_string(s.lod.mode)},
               {"edge_pixels", json_float(s.lod.edge_pixels)},

@@ -20,7 +20,7 @@ ViewInputs PreparedScene::inputs() const {
 
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
   auto p = std::make_unique<PreparedScene>();
-  p->model = load_model(s.cage, s.scheme, s.asset);
+  p->model = load_model(s.cage, s.scheme, s.asset, s.isolation);
   p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
   p->displacement = displacement_option(s.displacement, p->model);
   configure_scene(*p, s);

@@ -56,6 +56,7 @@ std::string absolute(const std::string& path) {
 
 const std::vector<std::string>& settable_settings() {
   static const std::vector<std::string> names = {"scheme",
+                                                 "isolation",
                                                  "partitioning",
                                                  "factor",
                                                  "vary-factors",
@@ -124,6 +125,7 @@ RenderSettings settings_from_query(const RenderSettings& base, const QueryParams
 Json settings_json(const RenderSettings& s) {
   const DisplacementSettings& d = s.displacement;
   Json j = {{"scheme", to_string(s.scheme)},
+            {"isolation", s.isolation},
             {"partitioning", std::string(ts::to_string(s.partitioning))},
             {"factor", json_float(s.factor)},
             {"vary-factors", json_float(s.vary)},
@@ -165,6 +167,7 @@ std::vector<std::string> render_arguments(const RenderSettings& s, const std::st
     if (value != def || std::signbit(value) != std::signbit(def)) w.insert(w.end(), {option, float_text(value)});
   };
   name("--scheme", s.scheme, d.scheme);
+  text("--isolation", std::to_string(s.isolation), std::to_string(d.isolation));
   name("--partitioning", s.partitioning, d.partitioning);
   number("--factor", s.factor, d.factor);
   number("--vary-factors", s.vary, d.vary);

@@ -1,0 +1,33 @@
+// Internal (not part of the public API): the basis of a single-crease patch (Niessner, Loop, Greiner,
+// "Efficient evaluation of semi-smooth creases in Catmull-Clark subdivision surfaces", Eurographics 2012
+// short paper): a regular 4x4 B-spline neighbourhood whose control row on one patch edge is a crease of
+// one sharpness, evaluated exactly (OpenSubdiv's CPU Far::PatchBasis treats that edge as a boundary,
+// i.e. infinitely sharp; its GPU shaders alone honour the sharpness).
+//
+// Why a product of two curves: in a regular neighbourhood with one straight crease, Catmull-Clark's
+// crease rules are tensor products of the uniform cubic B-spline rule along the crease and a 1D rule
+// across it (the crease vertex keeps its place, lerped with the smooth rule by the fraction while the
+// sharpness is below 1; RenderMan/OpenSubdiv's semi-sharp rules). Across the crease the 1D curve is
+// evaluated by that subdivision: each step halves the span; the half away from the crease is a plain
+// B-spline segment of the new points, the half at the crease recurses with the sharpness less 1, and
+// after ceil(sharpness) steps the rest is plain B-spline too.
+//
+// Contract
+// - crease_curve_basis(x, sharpness, w, dw): the four weights (and d/dx) of control rows Q0..Q3 at x in
+//   [0,1] across the span Q1 (x = 0) .. Q2 (x = 1), with the crease on row Q2; sharpness <= 0 gives the
+//   uniform cubic B-spline basis. Sharpness is taken as is (the caller clamps, Far clamps to the levels
+//   left); the loop runs at most ceil(sharpness) steps, each exact in binary fractions of x.
+// - single_crease_patch_basis(edge, sharpness, s, t, w, ws, wt): the 16 weights of a regular patch's
+//   points (Far's order: row-major, s along a row, t across rows; the face is rows and columns 1..2)
+//   with the crease on face edge `edge` (Far's boundary bits: 0 t=0, 1 s=1, 2 t=1, 3 s=0), at (s,t) in
+//   the patch's own unit square, derivatives with respect to (s,t).
+#pragma once
+
+namespace tessera::osd_detail {
+
+void cubic_bspline_basis(double x, double w[4], double dw[4]);
+void crease_curve_basis(double x, double sharpness, double w[4], double dw[4]);
+void single_crease_patch_basis(int edge, double sharpness, double s, double t, double w[16], double ws[16],
+                               double wt[16]);
+
+}  // namespace tessera::osd_detail
