@@ -317,7 +317,7 @@ TEST_CASE("glTF: the skinned, displaced frog is watertight in every pose, the sa
           "[gltf][cli]") {
   const std::string maps = " --displacement " + kFrogMap + " --displacement-channel A";
   for (const char* t : {"0.2", "1", "1.7"})
-    for (const char* scheme : {"gregory", "exact"}) {
+    for (const char* scheme : {"gregory", "exact", "adaptive"}) {
       const auto r = run_cli(std::string("tessellate ") + kSkinned + " --time " + t + " --scheme " + scheme +
                              " --factor 5 --partitioning fractional_odd --check-watertight" + maps);
       INFO(t << " " << scheme << ": " << r.out << r.err);

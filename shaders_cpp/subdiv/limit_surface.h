@@ -81,7 +81,8 @@ inline constexpr int kAdaptivePatchKinds = 4;
 const char* to_string(AdaptivePatchKind k);
 
 // The isolation levels the adaptive method takes (Far's maximum is 10) and its default: at 4 every
-// creased OpenSubdiv shape is within ... of the exact limit (README, "Creases").
+// creased OpenSubdiv shape is within 6.5e-3 of the diagonal of the exact limit, at 6 within 5.2e-4
+// (README, "Choosing a scheme"); 4 loads the frog in a third of 6's time and memory.
 inline constexpr int kMaxIsolation = 10;
 inline constexpr int kDefaultIsolation = 4;
 

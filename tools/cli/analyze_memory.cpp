@@ -114,6 +114,7 @@ MeasuredMemory measure_render(const std::string& cage_path, const MemoryOptions&
                                    "--scheme",     o.scheme,     "--factor",  std::to_string(level),
                                    "--resolution", o.resolution, "--threads", std::to_string(o.threads),
                                    "-o",           image,        "--json"};
+  if (o.scheme == "adaptive") args.insert(args.end(), {"--isolation", std::to_string(o.isolation)});
   if (!o.displacement.empty()) {
     args.insert(args.end(), {"--displacement", o.displacement});
     if (!o.channel.empty()) args.insert(args.end(), {"--displacement-channel", o.channel});
@@ -158,6 +159,10 @@ void add_memory_options(CLI::App& cmd, MemoryOptions& o) {
   cmd.add_option("--levels", o.levels, "--memory: tessellation levels (integer factors 1..64)")->capture_default_str();
   cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")
       ->capture_default_str();
+  add_setting_option(cmd, "--memory-isolation", o.isolation,
+                     [](const std::string& text) { return isolation_option(text, "--memory-isolation"); },
+                     "--memory-scheme adaptive: the isolation level")
+      ->default_str(std::to_string(o.isolation));
   cmd.add_option("--texel-bytes", o.texel_bytes,
                  "--memory: bytes per map texel (0: as Tessera keeps the map, a float per channel)")
       ->capture_default_str();
@@ -196,6 +201,10 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   }
   model.texel_bytes = a.texel_bytes = texel_bytes;
   try {
+    if (uses_limit_surface(scheme))
+      model.limit_surface_bytes = (scheme == Scheme::adaptive ? LimitSurface::create_adaptive(cage, o.isolation)
+                                                              : LimitSurface::create(cage))
+                                      .memory_bytes();
     a.table = memory_table(cage, topology, build_patches(cage, topology, scheme), model);
   } catch (const CageError& e) {
     throw InputError(e.what());
@@ -219,7 +228,8 @@ std::string memory_text(const MemoryAnalysis& a) {
   s << "Memory (level L: integer factor L on every edge; the model is in shaders_cpp/memory_model.h):\n";
   s << "- pre-tessellated mesh: " << a.options.mesh_vertex_bytes
     << " B per vertex (position, normal, UV; split on UV seams), 32-bit indices\n";
-  s << "- Tessera: cage " << megabytes(t.cage_bytes) << " MB + patch data (" << a.options.scheme << ") "
+  s << "- Tessera: cage " << megabytes(t.cage_bytes) << " MB + patch data (" << a.options.scheme
+    << (a.options.scheme == "adaptive" ? ", isolation " + std::to_string(a.options.isolation) : std::string()) << ") "
     << megabytes(t.patch_bytes) << " MB + map at one texel per generated vertex, " << a.texel_bytes
     << " B per texel, with its mip chain\n";
   s << "- map: " << a.map_description << "; UV area " << t.uv_area << " over " << t.faces << " faces\n";
@@ -255,6 +265,7 @@ nlohmann::ordered_json memory_json(const MemoryAnalysis& a) {
   j["cage_bytes"] = t.cage_bytes;
   if (!a.measured.empty()) j["process_base_rss_bytes"] = a.base_rss_bytes;
   j["patch_bytes"] = t.patch_bytes;
+  if (a.options.scheme == "adaptive") j["isolation"] = a.options.isolation;
   auto& levels = j["levels"] = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < t.levels.size(); ++i) {
     const MemoryLevel& m = t.levels[i];

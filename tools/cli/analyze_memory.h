@@ -13,6 +13,7 @@
 
 #include "shaders_cpp/cage/cage.h"
 #include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/subdiv/limit_surface.h"
 #include "tools/measure/memory_model.h"
 
 namespace tessera::cli {
@@ -20,6 +21,7 @@ namespace tessera::cli {
 struct MemoryOptions {
   bool enabled = false;
   std::string scheme = "gregory", levels = "8,16,32,64";
+  int isolation = kDefaultIsolation;  // --memory-scheme adaptive's level
   std::string displacement, channel;            // the map, and the channel that holds the height (displacement_map.h)
   int texel_bytes = 0, mesh_vertex_bytes = 32;  // texel_bytes 0: as the map is kept
   bool measure = false;

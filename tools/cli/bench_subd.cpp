@@ -133,6 +133,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
               {"stream_s", stream_s},
               {"hs_patches_per_thread_s", hs_rate},
               {"ds_points_per_thread_s", ds_rate},
+              {"adaptive", adaptive_patches_json(model)},
               {"times", to_json(last.times)}};
     if (o.compare_cull) j["cull_modes"] = cull_modes;
     std::cout << json_text(j) << "\n";

@@ -210,6 +210,7 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     // are measurements, are in the --json summary.
     Json s = {{"statistics", to_json(total.statistics)}, {"warnings", scene->model.cage.warnings}};
     add_patch_statistics(s, device, scene->inputs(), *image.tables, scene->lod);
+    if (Json a = adaptive_patches_json(scene->model); !a.is_null()) s["adaptive"] = a;
     if (kind == ViewKind::cracks)
       s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};
     write_text_atomically(o.stats, json_text(s) + "\n");

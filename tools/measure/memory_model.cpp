@@ -73,7 +73,8 @@ MemoryTable memory_table(const Cage& cage, const Topology& topology, const SubdP
   table.patch_bytes =
       (patches.quads.indices.size() + patches.tris.indices.size()) * sizeof(std::uint32_t) + weights * sizeof(float) +
       patch_count * sizeof(SubdPatch) +
-      options.displacement_data_bytes.value_or(cage.has_uvs() ? patch_count * 16 * sizeof(glm::vec2) : 0);
+      options.displacement_data_bytes.value_or(cage.has_uvs() ? patch_count * 16 * sizeof(glm::vec2) : 0) +
+      options.limit_surface_bytes;
 
   // Vertices of the mesh that do not depend on the level: one per cage vertex and distinct UV.
   std::uint64_t corner_vertices = 0;

@@ -52,6 +52,9 @@ struct MemoryModelOptions {
   // The per-patch data displacement adds (watertight UVs, owner frames: displaced_model.h), as the
   // caller measured it; none: Castaño's 16 texture coordinates per patch.
   std::optional<std::uint64_t> displacement_data_bytes;
+  // exact and adaptive: the limit surface's precomputed data (LimitSurface::memory_bytes: Bfr's patch
+  // points, or Far's patch table and points; the ownership tables), as the caller measured it.
+  std::uint64_t limit_surface_bytes = 0;
 };
 
 struct MemoryLevel {
@@ -71,7 +74,7 @@ struct MemoryLevel {
 struct MemoryTable {
   // Independent of the level.
   std::uint64_t cage_bytes = 0;   // positions, UVs, face and face-UV indices
-  std::uint64_t patch_bytes = 0;  // IA indices, stencil tables, patch records, displacement data
+  std::uint64_t patch_bytes = 0;  // IA indices, stencil tables, patch records, displacement data, limit surface
   double uv_area = 0.0;           // sum of the faces' areas in UV space (0 without UVs: unit area per face)
   int faces = 0;                  // non-hole faces
   std::vector<MemoryLevel> levels;

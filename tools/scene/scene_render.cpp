@@ -146,8 +146,23 @@ Json scene_summary(const std::string& path, const PreparedScene& scene, const Sc
       {"times", to_json(total.times)},
       {"memory", to_json(total.memory)}};
   if (scene.settings.view == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  if (Json a = adaptive_patches_json(scene.model); !a.is_null()) j["adaptive"] = a;
   j["warnings"] = scene.model.cage.warnings;  // what the loader and the scheme left out, one line each
   return j;
+}
+
+Json adaptive_patches_json(const SubdModel& model) {
+  if (!model.limit || !model.limit->adaptive()) return nullptr;
+  const LimitSurface::PatchCounts c = model.limit->patch_counts();
+  Json kinds = Json::object(), levels = Json::object();
+  for (int k = 0; k < kAdaptivePatchKinds; ++k) kinds[to_string(AdaptivePatchKind(k))] = c.by_kind[k];
+  for (int l = 0; l < 16; ++l)
+    if (c.by_level[l] > 0) levels[std::to_string(l)] = c.by_level[l];
+  return {{"isolation", model.limit->approx_level()},
+          {"patches", c.total},
+          {"by_kind", kinds},
+          {"by_level", levels},
+          {"bytes", model.limit->memory_bytes()}};
 }
 
 void write_scene_image(const SceneImage& image, const ImageTarget& target) {

@@ -72,5 +72,8 @@ void write_scene_image(const SceneImage& image, const ImageTarget& target);
 // The summary `render --json` prints of one image written to `path`: size, scheme, view, camera,
 // patches, triangles, pixels shaded, statistics, stage times and memory.
 Json scene_summary(const std::string& path, const PreparedScene& scene, const SceneImage& image);
+// The adaptive scheme's patch table (isolation, patches by kind and by level, bytes): the "adaptive"
+// field of render's --json and --stats and of bench's --json; null for the other schemes.
+Json adaptive_patches_json(const SubdModel& model);
 
 }  // namespace tessera::cli

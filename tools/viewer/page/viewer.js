@@ -17,7 +17,7 @@ let camera = null;          // {eye, target, up} as arrays, or null: the server'
 let cameraMoved = false;
 
 // Settings the controls hold, as request parameters.
-const controlIds = ['view', 'scheme', 'partitioning', 'lod', 'factor', 'edge-pixels', 'cull', 'factor-kind',
+const controlIds = ['view', 'scheme', 'isolation', 'partitioning', 'lod', 'factor', 'edge-pixels', 'cull', 'factor-kind',
                     'displacement-scale', 'msaa', 'resolution'];
 
 function vec(a) { return a.map((x) => Number(x.toPrecision(7))).join(','); }
@@ -293,8 +293,12 @@ async function start() {
   const resolutions = ['640x360', '960x540', '1280x720', '1920x1080'];
   if (!resolutions.includes(s.resolution)) resolutions.push(s.resolution);
   fillSelect($('resolution'), resolutions, s.resolution);
-  for (const id of ['partitioning', 'lod', 'cull', 'factor-kind', 'factor', 'edge-pixels', 'msaa'])
+  for (const id of ['isolation', 'partitioning', 'lod', 'cull', 'factor-kind', 'factor', 'edge-pixels', 'msaa'])
     $(id).value = s[id];
+  // The isolation level is the adaptive scheme's only.
+  const isolationRow = () => { $('isolation-row').hidden = $('scheme').value !== 'adaptive'; };
+  isolationRow();
+  $('scheme').addEventListener('change', isolationRow);
   $('displacement-row').hidden = !info.displaced;
   $('displacement-scale').value = s['displacement-scale'] ?? '';
   $('displacement-scale').placeholder = 'the asset\'s';
