@@ -137,20 +137,39 @@ FarPatches::Point FarPatches::evaluate(int face, int k, double s, double t) cons
   const Impl& m = *impl_;
   const far::PatchTable::PatchHandle& h = m.find(face, k, s, t);
   const far::PatchParam param = m.table->GetPatchParam(h);
-  double w[20], ws[20], wt[20];
+  const far::ConstIndexArray cvs = m.table->GetPatchVertices(h);
   // Far scales derivatives by 2^depth; a non-quad's sub-face starts at depth 1, its (s,t) spanning the
   // sub-face: derivatives with respect to it are half that.
   double scale = param.NonQuadRoot() ? 0.5 : 1.0;
-  if (const float sharp = m.sharpness(h); sharp > 0.0f) {
+  Point r{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+  if (m.table->GetPatchArrayDescriptor(h.arrayIndex).GetType() == far::PatchDescriptor::REGULAR) {
+    // B-spline and single-crease patches: two curves' tensor product, summed a row at a time.
     double u = s, v = t;
     param.Normalize(u, v);
-    single_crease_patch_basis(std::countr_zero(unsigned(param.GetBoundary())), double(sharp), u, v, w, ws, wt);
+    const float sharp = m.sharpness(h);
+    const RegularCurves c =
+        sharp > 0.0f ? single_crease_curves(std::countr_zero(unsigned(param.GetBoundary())), double(sharp), u, v)
+                     : regular_patch_curves(param.GetBoundary(), u, v);
+    for (int i = 0; i < 4; ++i) {
+      if (c.t[i] == 0.0 && c.dt[i] == 0.0) continue;  // a folded phantom row (its indices may be none)
+      glm::dvec3 row(0.0), drow(0.0);
+      for (int j = 0; j < 4; ++j) {
+        if (c.s[j] == 0.0 && c.ds[j] == 0.0) continue;  // a folded phantom column (its index may be none)
+        const glm::dvec3& p = m.points[std::size_t(cvs[4 * i + j])];
+        row += c.s[j] * p;
+        drow += c.ds[j] * p;
+      }
+      r.p += c.t[i] * row;
+      r.ds += c.t[i] * drow;
+      r.dt += c.dt[i] * row;
+    }
     scale *= double(1 << param.GetDepth());
-  } else {
-    m.table->EvaluateBasis(h, s, t, w, ws, wt);
+    r.ds *= scale;
+    r.dt *= scale;
+    return r;
   }
-  const far::ConstIndexArray cvs = m.table->GetPatchVertices(h);
-  Point r{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+  double w[20], ws[20], wt[20];
+  m.table->EvaluateBasis(h, s, t, w, ws, wt);
   for (int i = 0; i < cvs.size(); ++i) {
     const glm::dvec3& c = m.points[std::size_t(cvs[i])];
     r.p += w[i] * c;

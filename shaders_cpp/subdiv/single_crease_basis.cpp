@@ -47,8 +47,33 @@ void crease_curve_basis(double x, double sharpness, double w[4], double dw[4]) {
   }
 }
 
-void single_crease_patch_basis(int edge, double sharpness, double s, double t, double w[16], double ws[16],
-                               double wt[16]) {
+namespace {
+
+// A phantom point beyond the end of a row (boundary): 2 * inner - next, folded into those two.
+void fold(double w[4], int phantom, int inner, int next) {
+  w[inner] += 2.0 * w[phantom];
+  w[next] -= w[phantom];
+  w[phantom] = 0.0;
+}
+
+}  // namespace
+
+RegularCurves regular_patch_curves(int boundary, double s, double t) {
+  RegularCurves c;
+  cubic_bspline_basis(s, c.s, c.ds);
+  cubic_bspline_basis(t, c.t, c.dt);
+  for (double* w : {c.t, c.dt}) {
+    if (boundary & 1) fold(w, 0, 1, 2);  // t = 0
+    if (boundary & 4) fold(w, 3, 2, 1);  // t = 1
+  }
+  for (double* w : {c.s, c.ds}) {
+    if (boundary & 8) fold(w, 0, 1, 2);  // s = 0
+    if (boundary & 2) fold(w, 3, 2, 1);  // s = 1
+  }
+  return c;
+}
+
+RegularCurves single_crease_curves(int edge, double sharpness, double s, double t) {
   // The crease runs along s (edges 0, 2) or along t (edges 1, 3); on edges 0 and 3 it lies at the
   // parameter's 0, so the curve runs reversed (rows 3..0, x = 1 - parameter, derivative negated).
   const bool across_t = edge == 0 || edge == 2, reversed = edge == 0 || edge == 3;
@@ -63,13 +88,24 @@ void single_crease_patch_basis(int edge, double sharpness, double s, double t, d
     std::swap(dc[1], dc[2]);
     for (double& d : dc) d = -d;
   }
-  const double *bs = across_t ? a : c, *dbs = across_t ? da : dc;  // per column (s)
-  const double *bt = across_t ? c : a, *dbt = across_t ? dc : da;  // per row (t)
+  RegularCurves r;
+  for (int k = 0; k < 4; ++k) {
+    r.s[k] = across_t ? a[k] : c[k];
+    r.ds[k] = across_t ? da[k] : dc[k];
+    r.t[k] = across_t ? c[k] : a[k];
+    r.dt[k] = across_t ? dc[k] : da[k];
+  }
+  return r;
+}
+
+void single_crease_patch_basis(int edge, double sharpness, double s, double t, double w[16], double ws[16],
+                               double wt[16]) {
+  const RegularCurves c = single_crease_curves(edge, sharpness, s, t);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      w[4 * i + j] = bs[j] * bt[i];
-      ws[4 * i + j] = dbs[j] * bt[i];
-      wt[4 * i + j] = bs[j] * dbt[i];
+      w[4 * i + j] = c.s[j] * c.t[i];
+      ws[4 * i + j] = c.ds[j] * c.t[i];
+      wt[4 * i + j] = c.s[j] * c.dt[i];
     }
 }
 
