@@ -13,7 +13,10 @@ ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
 if [ "${TESSERA_ASAN:-1}" != 0 ]; then
   asan=${build%/}-asan
   echo "test.sh: the suite again under ASan + UBSan in $asan (TESSERA_ASAN=0 skips this)" >&2
-  "$root/scripts/setup.sh" "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DTESSERA_SANITIZE=address;undefined"
+  # -g1: line tables only (the sanitizers' reports keep file:line), which builds the heavy draw
+  # instantiations about 30 % faster than -g (debug_render.cpp: 156 s -> 108 s on this machine).
+  "$root/scripts/setup.sh" "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" \
+    "-DTESSERA_SANITIZE=address;undefined"
   cmake --build "$asan" --parallel "$(nproc)"
   LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0:intercept_tls_get_addr=0" \
     ctest --test-dir "$asan" --output-on-failure -j "$(nproc)"
