@@ -590,6 +590,32 @@ TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sh
   CHECK(json_of(accuracy.out)["max_relative"].get<double>() < 1e-6);
 }
 
+TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by adaptive where gregory refuses",
+          "[cli][issue34]") {
+  const fs::path dir = test::cli_temp_dir();
+  const std::string cage = (dir / "sphere40.obj").string();
+  REQUIRE(run_cli("make-cage sphere --pole-valence 40 --bands 6 -o " + cage).exit_code == 0);
+  const auto a = run_cli("analyze " + cage + " --json");
+  REQUIRE(a.exit_code == 0);
+  CHECK(json_of(a.out)["max_valence"] == 40);
+  CHECK(json_of(a.out)["boundary_vertices"] == 0);
+  // A pole quad's 1-ring (86 points) is more than a D3D11 patch takes: gregory refuses, naming the way out.
+  const auto g = run_cli("-q tessellate " + cage + " --check-watertight");
+  CHECK(g.exit_code == 1);
+  CHECK(g.err.find("use --scheme adaptive or exact") != std::string::npos);
+  const auto w = run_cli("-q tessellate " + cage + " --scheme adaptive --factor 7 --vary-factors 0.5 --check-watertight");
+  INFO(w.err);
+  CHECK(w.exit_code == 0);
+  // Near the poles the end caps converge: level 6 is the limit to round-off at points inside 2^-4.
+  const auto l6 = run_cli("-q accuracy " + cage + " --scheme adaptive --isolation 6 --factor 29 --json");
+  const auto l2 = run_cli("-q accuracy " + cage + " --scheme adaptive --isolation 2 --factor 29 --json");
+  REQUIRE(l6.exit_code == 0);
+  REQUIRE(l2.exit_code == 0);
+  CHECK(json_of(l6.out)["max_relative"].get<double>() < 1e-6);
+  CHECK(json_of(l2.out)["max_relative"].get<double>() > 1e-3);
+  CHECK(run_cli("make-cage sphere --pole-valence 2 -o " + cage).exit_code == 2);
+}
+
 TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {
   const auto r = run_cli("analyze " + data("osd-shapes/catmark_cube_creases1.obj") + " --json");
   REQUIRE(r.exit_code == 0);

@@ -49,4 +49,63 @@ Cage torus_cage(int around, int across, float major, float minor) {
   return c;
 }
 
+Cage sphere_cage(int pole_valence, int across, float radius) {
+  if (pole_valence < 3 || pole_valence > 2048 || across < 2 || across > 4096)
+    throw std::invalid_argument("sphere cage: pole valence " + std::to_string(pole_valence) + " and " +
+                                std::to_string(across) + " bands are outside 3..2048 and 2..4096");
+  if (!(radius > 0.0f && std::isfinite(radius))) throw std::invalid_argument("sphere cage: radius must be > 0");
+  Cage c;
+  c.name = "sphere, poles of valence " + std::to_string(pole_valence);
+  const int around = 2 * pole_valence, rings = across - 1;  // ring vertices per latitude, latitudes
+  const double pi = std::numbers::pi;
+  // Vertices: the rings from south to north, then the south and north poles.
+  for (int j = 1; j <= rings; ++j) {
+    const double lat = -0.5 * pi + pi * j / across;
+    for (int i = 0; i < around; ++i) {
+      const double lon = 2.0 * pi * i / around;
+      c.positions.push_back({float(radius * std::cos(lat) * std::cos(lon)), float(radius * std::sin(lat)),
+                             float(-radius * std::cos(lat) * std::sin(lon))});
+    }
+  }
+  const int south = rings * around, north = south + 1;
+  c.positions.push_back({0.0f, -radius, 0.0f});
+  c.positions.push_back({0.0f, radius, 0.0f});
+  // UVs: an (around + 1) x (rings) grid, then one per pole quad at each pole.
+  for (int j = 1; j <= rings; ++j)
+    for (int i = 0; i <= around; ++i) c.uvs.push_back({float(i) / float(around), float(j) / float(across)});
+  const int pole_uvs = int(c.uvs.size());
+  for (int k = 0; k < pole_valence; ++k) c.uvs.push_back({(2.0f * float(k) + 1.0f) / float(around), 0.0f});
+  for (int k = 0; k < pole_valence; ++k) c.uvs.push_back({(2.0f * float(k) + 1.0f) / float(around), 1.0f});
+  auto vertex = [&](int i, int j) { return (j - 1) * around + i % around; };
+  auto uv = [&](int i, int j) { return (j - 1) * (around + 1) + i; };
+  auto face = [&](std::initializer_list<std::pair<int, int>> corners) {  // (vertex, uv)
+    c.face_offsets.push_back(int(c.face_vertices.size()));
+    c.face_sizes.push_back(int(corners.size()));
+    for (const auto& [v, t] : corners) {
+      c.face_vertices.push_back(v);
+      c.face_uvs.push_back(t);
+    }
+  };
+  // Counter-clockwise seen from outside: +longitude (i) then +latitude (j); longitude runs so that
+  // d/dlon x d/dlat points out (z = -sin(lon)).
+  for (int j = 1; j < rings; ++j)
+    for (int i = 0; i < around; ++i)
+      face({{vertex(i, j), uv(i, j)},
+            {vertex(i + 1, j), uv(i + 1, j)},
+            {vertex(i + 1, j + 1), uv(i + 1, j + 1)},
+            {vertex(i, j + 1), uv(i, j + 1)}});
+  for (int k = 0; k < pole_valence; ++k) {
+    const int i = 2 * k;
+    face({{south, pole_uvs + k},
+          {vertex(i + 2, 1), uv(i + 2, 1)},
+          {vertex(i + 1, 1), uv(i + 1, 1)},
+          {vertex(i, 1), uv(i, 1)}});
+    face({{north, pole_uvs + pole_valence + k},
+          {vertex(i, rings), uv(i, rings)},
+          {vertex(i + 1, rings), uv(i + 1, rings)},
+          {vertex(i + 2, rings), uv(i + 2, rings)}});
+  }
+  return c;
+}
+
 }  // namespace tessera

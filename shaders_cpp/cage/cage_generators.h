@@ -15,4 +15,11 @@ namespace tessera {
 // (around + across seam edges), as a real unwrapped asset has seams.
 Cage torus_cage(int around, int across, float major, float minor);
 
+// A sphere of radius `radius` whose two poles have valence `pole_valence` (3..2048): `across` (2..4096)
+// bands of latitude; each band between the poles' rings has 2 * pole_valence quads, and at each pole
+// pole_valence quads (pole, ring vertices 2k, 2k+1, 2k+2) close the surface, all-quad. The cage for
+// measuring the ripples a scheme leaves around a high-valence vertex. UVs: u around, v from the south
+// pole (0) to the north (1), the poles' corners at the middle of their quad's u span.
+Cage sphere_cage(int pole_valence, int across, float radius);
+
 }  // namespace tessera

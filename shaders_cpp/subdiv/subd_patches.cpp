@@ -66,7 +66,7 @@ class Builder {
            const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0) {
     if (ring.size() > std::size_t(kMaxPatchControlPoints))
       throw CageError(where(cage_, face) + ": its 1-ring has " + std::to_string(ring.size()) +
-                      " vertices, more than the 32 control points of a patch (use --scheme exact)");
+                      " vertices, more than the 32 control points of a patch (use --scheme adaptive or exact)");
     std::map<int, int> position;
     for (std::size_t i = 0; i < ring.size(); ++i) position.emplace(ring[i], int(i));
     StencilTable table;
