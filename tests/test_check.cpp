@@ -162,4 +162,27 @@ TEST_CASE("Bad suites: one line naming the file and the field", "[check][cli]") 
   CHECK(test::run_cli("check --shard 3/2 " + (dir / "missing.json").string()).exit_code == 2);
 }
 
+TEST_CASE("check: what a scheme leaves out of a case's cage is in its report", "[check][cli][issue34]") {
+  // A creased cube under pn: the case's warning line reaches summary.json and report.html.
+  const fs::path dir = test::cli_temp_dir() / "check-warnings";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "cube.json") << R"({"tessera_scene": 1, "asset": ")" +
+                                          (fs::path(TESSERA_TEST_DATA_DIR) / "osd-shapes/catmark_cube_creases1.obj").string() +
+                                          R"(", "scheme": "pn", "resolution": [64, 48]})";
+  std::ofstream(dir / "suite.json")
+      << R"({"tessera_suite": 1, "name": "warnings", "golden": "golden", "cases": [{"name": "cube-pn", "scene": "cube.json"}]})";
+  const fs::path report = dir / "report";
+  const auto r = test::run_cli("-q check " + (dir / "suite.json").string() + " -o " + report.string());
+  INFO(r.err);
+  CHECK(r.exit_code == 1);  // new: no golden yet
+  const auto s = summary_of(report);
+  const std::string said = "--scheme pn draws the cage's 12 creased edges (12 semi-sharp) smooth";
+  REQUIRE(s["cases"][0].contains("warnings"));
+  CHECK(s["cases"][0]["warnings"][0].get<std::string>().find(said) != std::string::npos);
+  const std::string html = test::slurp(report / "report.html");
+  CHECK(html.find("<span class=\"note\">warning: ") != std::string::npos);
+  CHECK(html.find("12 creased edges (12 semi-sharp) smooth") != std::string::npos);
+}
+
 }  // namespace tessera

@@ -43,7 +43,7 @@ std::string html(const Json& summary) {
     << "table{border-collapse:collapse;width:100%}td,th{border-bottom:1px solid #ddd;padding:8px;vertical-align:top;"
        "text-align:left}\n"
     << ".s{font-weight:bold;padding:2px 8px;border-radius:4px;color:#fff}.pass{background:#2e7d32}"
-       ".warning{background:#b26a00}.fail,.error{background:#c62828}.new{background:#1565c0}\n"
+       ".warning{background:#b26a00}.note{color:#8a5300}.fail,.error{background:#c62828}.new{background:#1565c0}\n"
     << "img{max-width:320px;image-rendering:pixelated;border:1px solid #ccc;background:#fff}\n"
     << "figure{display:inline-block;margin:0 8px 0 0}figcaption{font-size:12px;color:#555}\n"
     << "code{font-size:12px;background:#eee;padding:2px 4px;word-break:break-all}\n"
@@ -60,7 +60,10 @@ std::string html(const Json& summary) {
   for (const Json& c : summary["cases"]) {
     const std::string status = text_of(c["status"]);
     h << "<tr><td><b>" << escape(text_of(c["name"])) << "</b><br><span class=\"s " << escape(status) << "\">"
-      << escape(status) << "</span><br>" << escape(text_of(c["message"])) << "<br><code>"
+      << escape(status) << "</span><br>" << escape(text_of(c["message"]));
+    if (c.contains("warnings"))
+      for (const Json& w : c["warnings"]) h << "<br><span class=\"note\">warning: " << escape(text_of(w)) << "</span>";
+    h << "<br><code>"
       << escape(text_of(c["command"])) << "</code></td><td>";
     const std::string golden_rel = "golden/" + text_of(c["name"]) + ".png";
     const bool has_golden = c.contains("report_golden") && c["report_golden"].get<bool>();

@@ -111,6 +111,7 @@ Json CaseResult::json() const {
   Json j = {{"name", name},           {"status", to_string(status)},  {"message", message},
             {"new_image", new_image}, {"golden_image", golden_image}, {"diff_image", diff_image},
             {"checks", checks},       {"command", command},           {"seconds", seconds}};
+  if (!warnings.empty()) j["warnings"] = warnings;
   if (diff) {
     j["compare"] = {{"verdict", verify::to_string(diff->verdict)},
                     {"identical", diff->identical},
@@ -210,6 +211,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
   r.command = case_command(c, c.name + ".png");
   try {
     const std::unique_ptr<PreparedScene> scene = prepare_scene(read_scene(c.scene));
+    r.warnings = scene->model.cage.warnings;
     Device device(device_options(threads >= 0 ? threads : scene->settings.threads));
     const bool geometry = !c.checks.empty();
     const SceneImage image = render_scene(device, *scene, geometry);

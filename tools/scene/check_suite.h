@@ -60,6 +60,9 @@ struct CaseResult {
   Json checks = Json::object();  // per check: {"golden", "new", "pass"}
   GeometryDigest digest;
   std::string command;  // reproduces the render
+  // What the loader and the scheme left out (make_subd_model's warnings: creases drawn smooth or
+  // capped, tags on no edge), one line each; in the report beside the case's verdict.
+  std::vector<std::string> warnings;
   double seconds = 0;
   Json json() const;
 };
