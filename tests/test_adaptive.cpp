@@ -56,8 +56,8 @@ double max_distance(const LimitSurface& a, const LimitSurface& b, int n) {
       for (int i = 0; i <= n; ++i)
         for (int j = 0; j <= n; ++j) {
           const float u = float(i) / float(n), v = float(j) / float(n);
-          worst = std::max(
-              worst, double(glm::length(a.evaluate_unowned(f, k, u, v).position - b.evaluate_unowned(f, k, u, v).position)));
+          worst = std::max(worst, double(glm::length(a.evaluate_unowned(f, k, u, v).position -
+                                                     b.evaluate_unowned(f, k, u, v).position)));
         }
   return worst / b.bounding_box_diagonal();
 }
@@ -137,8 +137,10 @@ TEST_CASE("adaptive: derivatives are those of the surface, on n-gons too", "[ada
         for (const float u : {0.3f, 0.55f, 0.8f})
           for (const float v : {0.2f, 0.45f, 0.7f}) {
             const SurfacePoint p = s.evaluate_unowned(f, k, u, v);
-            const glm::vec3 fu = (s.evaluate_unowned(f, k, u + h, v).position - s.evaluate_unowned(f, k, u - h, v).position) / (2 * h);
-            const glm::vec3 fv = (s.evaluate_unowned(f, k, u, v + h).position - s.evaluate_unowned(f, k, u, v - h).position) / (2 * h);
+            const glm::vec3 fu =
+                (s.evaluate_unowned(f, k, u + h, v).position - s.evaluate_unowned(f, k, u - h, v).position) / (2 * h);
+            const glm::vec3 fv =
+                (s.evaluate_unowned(f, k, u, v + h).position - s.evaluate_unowned(f, k, u, v - h).position) / (2 * h);
             worst = std::max({worst, double(glm::length(fu - p.du)), double(glm::length(fv - p.dv))});
             scale = std::max({scale, double(glm::length(p.du)), double(glm::length(p.dv))});
           }

@@ -167,9 +167,10 @@ TEST_CASE("check: what a scheme leaves out of a case's cage is in its report", "
   const fs::path dir = test::cli_temp_dir() / "check-warnings";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "cube.json") << R"({"tessera_scene": 1, "asset": ")" +
-                                          (fs::path(TESSERA_TEST_DATA_DIR) / "osd-shapes/catmark_cube_creases1.obj").string() +
-                                          R"(", "scheme": "pn", "resolution": [64, 48]})";
+  std::ofstream(dir / "cube.json")
+      << R"({"tessera_scene": 1, "asset": ")" +
+             (fs::path(TESSERA_TEST_DATA_DIR) / "osd-shapes/catmark_cube_creases1.obj").string() +
+             R"(", "scheme": "pn", "resolution": [64, 48]})";
   std::ofstream(dir / "suite.json")
       << R"({"tessera_suite": 1, "name": "warnings", "golden": "golden", "cases": [{"name": "cube-pn", "scene": "cube.json"}]})";
   const fs::path report = dir / "report";

@@ -352,7 +352,8 @@ TEST_CASE("pn normals are continuous to the bit: every welded point has one norm
   }
 }
 
-TEST_CASE("Flat, exact and adaptive schemes draw triangles and n-gons watertight next to quads and triangles", "[subd]") {
+TEST_CASE("Flat, exact and adaptive schemes draw triangles and n-gons watertight next to quads and triangles",
+          "[subd]") {
   // An n-gon is a fan of triangles whose outer edge is the whole cage edge, tessellated with that
   // edge's factor like the neighbour's; drawing it as quad sub-patches left T-junctions here (the
   // sub-patches' half edges against the neighbour's whole edge), which this weld finds.

@@ -38,10 +38,10 @@ glm::vec3 category_color(int i) {
 
 glm::vec3 adaptive_patch_color(AdaptivePatchKind kind, int level) {
   static constexpr std::array<glm::vec3, kAdaptivePatchKinds> base = {
-      glm::vec3(0.55f, 0.75f, 0.95f),  // regular: light blue
-      glm::vec3(0.97f, 0.72f, 0.35f),  // boundary (and infinitely sharp crease): orange
-      glm::vec3(0.92f, 0.35f, 0.35f),  // single-crease: red
-      glm::vec3(0.45f, 0.82f, 0.45f)}; // end cap: green
+      glm::vec3(0.55f, 0.75f, 0.95f),   // regular: light blue
+      glm::vec3(0.97f, 0.72f, 0.35f),   // boundary (and infinitely sharp crease): orange
+      glm::vec3(0.92f, 0.35f, 0.35f),   // single-crease: red
+      glm::vec3(0.45f, 0.82f, 0.45f)};  // end cap: green
   // Deeper levels darker, by 7% a level down to half: levels stay apart and the kind's hue readable
   // under shading; the sub-patch borders the view draws give the level exactly.
   return base[std::size_t(kind)] * std::max(0.5f, 1.0f - 0.07f * float(level));
@@ -141,10 +141,10 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
         // The sub-patch borders of a quad at this level: the face (u,v) at multiples of 2^-level.
         const float cells = std::ldexp(1.0f, f.level);
         const float fu = a[7] * cells, fv = a[8] * cells;
-        const float du = std::min(fu - std::floor(fu), std::ceil(fu) - fu) /
-                         (cells * std::max(gradient_length(in, 7), 1e-12f));
-        const float dv = std::min(fv - std::floor(fv), std::ceil(fv) - fv) /
-                         (cells * std::max(gradient_length(in, 8), 1e-12f));
+        const float du =
+            std::min(fu - std::floor(fu), std::ceil(fu) - fu) / (cells * std::max(gradient_length(in, 7), 1e-12f));
+        const float dv =
+            std::min(fv - std::floor(fv), std::ceil(fv) - fv) / (cells * std::max(gradient_length(in, 8), 1e-12f));
         c = glm::mix(c, glm::vec3(0.1f, 0.1f, 0.14f), 0.5f * line_coverage(std::min(du, dv), 1.0f));
       }
       break;

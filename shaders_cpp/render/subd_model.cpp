@@ -115,9 +115,8 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   if (uses_limit_surface(scheme)) {
-    m.limit = std::make_unique<LimitSurface>(scheme == Scheme::adaptive
-                                                 ? LimitSurface::create_adaptive(m.cage, isolation)
-                                                 : LimitSurface::create(m.cage));
+    m.limit = std::make_unique<LimitSurface>(
+        scheme == Scheme::adaptive ? LimitSurface::create_adaptive(m.cage, isolation) : LimitSurface::create(m.cage));
     // Faces OpenSubdiv gives no surface besides holes: boundary faces under `t interpolateboundary`
     // none. They draw nothing, like holes.
     auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };

@@ -6,12 +6,12 @@
 // Two users: the `adaptive` scheme (every face, single-crease patches on) and the exact limit surface,
 // for the faces where Debian's OpenSubdiv 3.5.0 cannot give it through Bfr.
 //
-// Why the exact surface needs it: 3.5.0's Bfr::IrregularPatchBuilder, for a face with a valence-2 interior corner, a boundary
-// corner and tagged sharp edges, writes the boundary's sharp edges over the tagged ones and then reads
-// as many entries past them uninitialized (fixed upstream after 3.5.0, commit 51eb6a0): the local
-// refiner it builds finds no such edge and the process crashes (catmark_val2_interior). Far's patch
-// tables do not go through that builder. needs_far_patches() names the faces; LimitSurface evaluates
-// them here and every other face through Bfr, so a cage without such a face is unchanged.
+// Why the exact surface needs it: 3.5.0's Bfr::IrregularPatchBuilder, for a face with a valence-2 interior corner, a
+// boundary corner and tagged sharp edges, writes the boundary's sharp edges over the tagged ones and then reads as many
+// entries past them uninitialized (fixed upstream after 3.5.0, commit 51eb6a0): the local refiner it builds finds no
+// such edge and the process crashes (catmark_val2_interior). Far's patch tables do not go through that builder.
+// needs_far_patches() names the faces; LimitSurface evaluates them here and every other face through Bfr, so a cage
+// without such a face is unchanged.
 //
 // Contract
 // - FarPatches(cage, level, faces, single_crease): builds the refiner, the patch table (double

@@ -159,9 +159,10 @@ void add_memory_options(CLI::App& cmd, MemoryOptions& o) {
   cmd.add_option("--levels", o.levels, "--memory: tessellation levels (integer factors 1..64)")->capture_default_str();
   cmd.add_option("--memory-scheme", o.scheme, "--memory: the scheme whose patch data is counted")
       ->capture_default_str();
-  add_setting_option(cmd, "--memory-isolation", o.isolation,
-                     [](const std::string& text) { return isolation_option(text, "--memory-isolation"); },
-                     "--memory-scheme adaptive: the isolation level")
+  add_setting_option(
+      cmd, "--memory-isolation", o.isolation,
+      [](const std::string& text) { return isolation_option(text, "--memory-isolation"); },
+      "--memory-scheme adaptive: the isolation level")
       ->default_str(std::to_string(o.isolation));
   cmd.add_option("--texel-bytes", o.texel_bytes,
                  "--memory: bytes per map texel (0: as Tessera keeps the map, a float per channel)")
@@ -202,9 +203,9 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
   model.texel_bytes = a.texel_bytes = texel_bytes;
   try {
     if (uses_limit_surface(scheme))
-      model.limit_surface_bytes = (scheme == Scheme::adaptive ? LimitSurface::create_adaptive(cage, o.isolation)
-                                                              : LimitSurface::create(cage))
-                                      .memory_bytes();
+      model.limit_surface_bytes =
+          (scheme == Scheme::adaptive ? LimitSurface::create_adaptive(cage, o.isolation) : LimitSurface::create(cage))
+              .memory_bytes();
     a.table = memory_table(cage, topology, build_patches(cage, topology, scheme), model);
   } catch (const CageError& e) {
     throw InputError(e.what());

@@ -21,7 +21,7 @@ namespace tessera::cli {
 struct MemoryOptions {
   bool enabled = false;
   std::string scheme = "gregory", levels = "8,16,32,64";
-  int isolation = kDefaultIsolation;  // --memory-scheme adaptive's level
+  int isolation = kDefaultIsolation;            // --memory-scheme adaptive's level
   std::string displacement, channel;            // the map, and the channel that holds the height (displacement_map.h)
   int texel_bytes = 0, mesh_vertex_bytes = 32;  // texel_bytes 0: as the map is kept
   bool measure = false;

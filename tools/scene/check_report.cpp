@@ -63,8 +63,7 @@ std::string html(const Json& summary) {
       << escape(status) << "</span><br>" << escape(text_of(c["message"]));
     if (c.contains("warnings"))
       for (const Json& w : c["warnings"]) h << "<br><span class=\"note\">warning: " << escape(text_of(w)) << "</span>";
-    h << "<br><code>"
-      << escape(text_of(c["command"])) << "</code></td><td>";
+    h << "<br><code>" << escape(text_of(c["command"])) << "</code></td><td>";
     const std::string golden_rel = "golden/" + text_of(c["name"]) + ".png";
     const bool has_golden = c.contains("report_golden") && c["report_golden"].get<bool>();
     h << "<figure><img src=\"" << escape(text_of(c["new_image"])) << "\" alt=\"new\""

@@ -129,11 +129,10 @@ RenderSettings read_scene(const std::string& path) {
                      ")");
   }
   const SceneReader r(path);
-  r.only(
-      root, "",
-      {"tessera_scene", "asset",     "scheme",       "isolation",    "partitioning", "factor",     "vary_factors", "factors_per_edge",
-       "lod",           "cull",      "displacement", "camera",       "resolution", "view",         "factor_kind",
-       "time",          "animation", "mesh",         "scene_index",  "threads",    "msaa"});
+  r.only(root, "",
+         {"tessera_scene",    "asset", "scheme",    "isolation",    "partitioning", "factor",     "vary_factors",
+          "factors_per_edge", "lod",   "cull",      "displacement", "camera",       "resolution", "view",
+          "factor_kind",      "time",  "animation", "mesh",         "scene_index",  "threads",    "msaa"});
   if (!root.contains("tessera_scene") || root["tessera_scene"] != 1)
     r.fail("tessera_scene", "must be 1 (this format's version)");
   if (!root.contains("asset")) r.fail("asset", "missing: the cage to render");
@@ -145,7 +144,8 @@ RenderSettings read_scene(const std::string& path) {
   if (root.contains("isolation")) {
     const Json& v = root["isolation"];
     if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > kMaxIsolation)
-      r.fail("isolation", "expected an isolation level from 1 to " + std::to_string(kMaxIsolation) + ", got " + v.dump());
+      r.fail("isolation",
+             "expected an isolation level from 1 to " + std::to_string(kMaxIsolation) + ", got " + v.dump());
     s.isolation = int(v.get<long long>());
   }
   if (root.contains("partitioning"))

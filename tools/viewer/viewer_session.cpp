@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 // Whether a kept scene loaded what `s` would load: the same scheme, displacement and glTF selection
 // (the cage, factor file and normal map are the session's own and never change).
 bool loads_alike(const RenderSettings& a, const RenderSettings& b) {
-  return a.scheme == b.scheme && a.isolation == b.isolation && a.displacement == b.displacement && a.asset.scene_index == b.asset.scene_index &&
-         a.asset.mesh == b.asset.mesh;
+  return a.scheme == b.scheme && a.isolation == b.isolation && a.displacement == b.displacement &&
+         a.asset.scene_index == b.asset.scene_index && a.asset.mesh == b.asset.mesh;
 }
 
 }  // namespace
