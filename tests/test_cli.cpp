@@ -524,7 +524,8 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
   const std::string cage = data("osd-shapes/catmark_cube_creases1.obj");
   const fs::path dir = test::cli_temp_dir();
   const std::string stats = (dir / "creases-stats.json").string(), png = (dir / "creases.png").string();
-  const auto fast = run_cli("render " + cage + " --scheme pn --resolution 32x32 --json --stats " + stats + " -o " + png);
+  const auto fast =
+      run_cli("render " + cage + " --scheme pn --resolution 32x32 --json --stats " + stats + " -o " + png);
   REQUIRE(fast.exit_code == 0);
   const std::string said = "--scheme pn draws the cage's 12 creased edges (12 semi-sharp) smooth";
   CHECK(fast.err.find(said) != std::string::npos);
@@ -538,8 +539,8 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
                                                     " draws the cage's 1 creased edge of sharpness below 1 smooth") !=
           std::string::npos);
   }
-  const auto infsharp = run_cli("-q render " + data("osd-shapes/catmark_inf_crease0.obj") +
-                                " --resolution 32x32 --json -o " + png);
+  const auto infsharp =
+      run_cli("-q render " + data("osd-shapes/catmark_inf_crease0.obj") + " --resolution 32x32 --json -o " + png);
   CHECK(json_of(infsharp.out)["warnings"].empty());
   // The exact scheme honours them: nothing to say.
   const auto exact = run_cli("render " + cage + " --scheme exact --resolution 32x32 --json -o " + png);
@@ -557,10 +558,12 @@ TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sh
   const fs::path dir = test::cli_temp_dir();
   const std::string png = (dir / "adaptive.png").string(), cage = data("osd-shapes/catmark_single_crease.obj");
   // catmark_single_crease has creases of sharpness 5.7 and 5: level 4 draws them as 4 and says so.
-  const auto capped = run_cli("render " + cage + " --scheme adaptive --isolation 4 --resolution 32x32 --json -o " + png);
+  const auto capped =
+      run_cli("render " + cage + " --scheme adaptive --isolation 4 --resolution 32x32 --json -o " + png);
   REQUIRE(capped.exit_code == 0);
-  const std::string said = "--scheme adaptive --isolation 4 draws the cage's 8 creased edges of sharpness above 4 as "
-                           "sharpness 4; --isolation 6 or --scheme exact honours them";
+  const std::string said =
+      "--scheme adaptive --isolation 4 draws the cage's 8 creased edges of sharpness above 4 as "
+      "sharpness 4; --isolation 6 or --scheme exact honours them";
   CHECK(capped.err.find(said) != std::string::npos);
   CHECK(json_of(capped.out)["warnings"].dump().find(said) != std::string::npos);
   const auto full = run_cli("render " + cage + " --scheme adaptive --isolation 6 --resolution 32x32 --json -o " + png);
@@ -579,9 +582,7 @@ TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sh
   const auto printed = run_cli("render " + cage + " --scheme adaptive --isolation 3 --print-scene -");
   REQUIRE(printed.exit_code == 0);
   CHECK(json_of(printed.out)["isolation"] == 3);
-  {
-    std::ofstream(scene) << printed.out;
-  }
+  { std::ofstream(scene) << printed.out; }
   const auto again = run_cli("render --scene " + scene + " --print-scene -");
   REQUIRE(again.exit_code == 0);
   CHECK(json_of(again.out)["isolation"] == 3);
@@ -603,7 +604,8 @@ TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by ad
   const auto g = run_cli("-q tessellate " + cage + " --check-watertight");
   CHECK(g.exit_code == 1);
   CHECK(g.err.find("use --scheme adaptive or exact") != std::string::npos);
-  const auto w = run_cli("-q tessellate " + cage + " --scheme adaptive --factor 7 --vary-factors 0.5 --check-watertight");
+  const auto w =
+      run_cli("-q tessellate " + cage + " --scheme adaptive --factor 7 --vary-factors 0.5 --check-watertight");
   INFO(w.err);
   CHECK(w.exit_code == 0);
   // Near the poles the end caps converge: level 6 is the limit to round-off at points inside 2^-4.
@@ -646,12 +648,13 @@ TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit,
       }
     }
   // Displaced (the frog's map over the cage's UVs): the owner frames and UVs keep creased edges closed.
-  const std::string map = " --displacement " + data("sdk-cages/monsterfrog.dds") +
-                          " --displacement-channel A --displacement-scale 0.2";
+  const std::string map =
+      " --displacement " + data("sdk-cages/monsterfrog.dds") + " --displacement-channel A --displacement-scale 0.2";
   for (const char* shape : {"catmark_cube_creases1", "catmark_cubes_infsharp"})
     for (const char* scheme : {"adaptive", "gregory"}) {
-      const auto r = run_cli("-q tessellate " + data(std::string("osd-shapes/") + shape + ".obj") + " --scheme " +
-                             scheme + map + " --factor 5 --vary-factors 0.7 --partitioning fractional_odd --check-watertight");
+      const auto r =
+          run_cli("-q tessellate " + data(std::string("osd-shapes/") + shape + ".obj") + " --scheme " + scheme + map +
+                  " --factor 5 --vary-factors 0.7 --partitioning fractional_odd --check-watertight");
       INFO(shape << " " << scheme << " displaced: " << r.err);
       CHECK(r.exit_code == 0);
     }

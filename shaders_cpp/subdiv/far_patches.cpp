@@ -18,7 +18,6 @@ namespace tessera::osd_detail {
 
 namespace far = osd::Far;
 
-
 std::vector<int> needs_far_patches(const Topology& t) {
   std::vector<int> faces;
   for (int f = 0; f < t.face_count(); ++f) {
@@ -39,8 +38,8 @@ struct FarPatches::Impl {
   std::unique_ptr<far::TopologyRefiner> refiner;
   std::unique_ptr<far::PatchTable> table;
   std::unique_ptr<far::PatchMap> map;
-  bool single_crease = false;  // the table has a sharpness per patch
-  std::vector<glm::dvec3> points;  // base vertices, refined vertices, local points
+  bool single_crease = false;        // the table has a sharpness per patch
+  std::vector<glm::dvec3> points;    // base vertices, refined vertices, local points
   std::vector<int> first_ptex_face;  // per base face; -1 where it has no patches
   std::vector<int> sizes;            // per base face
 
@@ -49,8 +48,8 @@ struct FarPatches::Impl {
     if (first < 0) throw std::logic_error("FarPatches: face " + std::to_string(face) + " has no patches");
     const far::PatchTable::PatchHandle* h = map->FindPatch(first + (sizes[std::size_t(face)] == 4 ? 0 : k), s, t);
     if (!h)
-      throw std::logic_error("FarPatches: no patch at face " + std::to_string(face) + " (" + std::to_string(s) +
-                             ", " + std::to_string(t) + ")");
+      throw std::logic_error("FarPatches: no patch at face " + std::to_string(face) + " (" + std::to_string(s) + ", " +
+                             std::to_string(t) + ")");
     return *h;
   }
   // A regular patch's single crease (0: none). Far keeps a sharpness for end caps too; they ignore it.
@@ -63,7 +62,8 @@ struct FarPatches::Impl {
     return kind_of(h.arrayIndex, sharpness(h), table->GetPatchParam(h));
   }
   AdaptivePatchKind kind_of(int array, float sharp, const far::PatchParam& param) const {
-    if (table->GetPatchArrayDescriptor(array).GetType() != far::PatchDescriptor::REGULAR) return AdaptivePatchKind::end_cap;
+    if (table->GetPatchArrayDescriptor(array).GetType() != far::PatchDescriptor::REGULAR)
+      return AdaptivePatchKind::end_cap;
     if (sharp > 0.0f) return AdaptivePatchKind::single_crease;
     return param.GetBoundary() ? AdaptivePatchKind::boundary : AdaptivePatchKind::regular;
   }
@@ -111,7 +111,8 @@ FarPatches::FarPatches(const Cage& cage, int level, const std::vector<int>& face
       p += weights[e] * m.points[std::size_t(indices[e])];
     }
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw CageError(cage_label(cage) + ": no finite limit surface (vertex positions that are not finite or overflow)");
+      throw CageError(cage_label(cage) +
+                      ": no finite limit surface (vertex positions that are not finite or overflow)");
     m.points[std::size_t(nv + i)] = p;
   }
   m.map = std::make_unique<far::PatchMap>(*m.table);
@@ -205,7 +206,8 @@ std::size_t FarPatches::memory_bytes() const {
   const Impl& m = *impl_;
   std::size_t cvs = 0;
   for (int a = 0; a < m.table->GetNumPatchArrays(); ++a)
-    cvs += std::size_t(m.table->GetNumPatches(a)) * std::size_t(m.table->GetPatchArrayDescriptor(a).GetNumControlVertices());
+    cvs += std::size_t(m.table->GetNumPatches(a)) *
+           std::size_t(m.table->GetPatchArrayDescriptor(a).GetNumControlVertices());
   // The points, and per patch its control point indices, PatchParam (8 bytes) and sharpness index.
   return m.points.capacity() * sizeof(glm::dvec3) + cvs * sizeof(int) +
          std::size_t(m.table->GetNumPatchesTotal()) * (8 + (m.single_crease ? sizeof(int) : 0)) +

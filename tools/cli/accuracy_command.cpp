@@ -75,7 +75,8 @@ int run_accuracy(const AccuracyOptions& o) {
           max_d = std::max(max_d, d);
           sum_d2 += d * d;
           const glm::dvec3 sn = glm::normalize(glm::dvec3(s.normal));
-          const double c = std::clamp(std::max(glm::dot(sn, glm::normalize(nrm)), glm::dot(sn, glm::normalize(owned))), -1.0, 1.0);
+          const double c =
+              std::clamp(std::max(glm::dot(sn, glm::normalize(nrm)), glm::dot(sn, glm::normalize(owned))), -1.0, 1.0);
           const double angle = std::acos(c) * 180.0 / std::numbers::pi;
           if (std::isfinite(angle)) {
             max_angle = std::max(max_angle, angle);
@@ -106,8 +107,8 @@ int run_accuracy(const AccuracyOptions& o) {
     std::snprintf(line, sizeof line,
                   "%s: scheme %s vs exact limit, %llu samples: max %.3e, rms %.3e of the diagonal (%.4g); normals max "
                   "%.3f deg, mean %.4f deg\n",
-                  o.s.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal, max_angle,
-                  samples ? sum_angle / double(samples) : 0.0);
+                  o.s.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal,
+                  max_angle, samples ? sum_angle / double(samples) : 0.0);
     std::cout << line;
   }
   return kExitOk;

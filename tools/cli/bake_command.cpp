@@ -196,11 +196,13 @@ Runner add_bake_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output,
                   "the displacement map: .exr (float), or .png or .tif (16-bit, its range in the file)")
       ->required();
-  add_setting_option(*cmd, "--scheme", o->scheme, [](const std::string& text) { return scheme_option(text); },
-                     "the base surface: acc, gregory, bspline, exact or adaptive (default gregory)");
-  add_setting_option(*cmd, "--isolation", o->isolation, [](const std::string& text) { return isolation_option(text); },
-                     "--scheme adaptive: the isolation level, 1 to " + std::to_string(kMaxIsolation) + " (default " +
-                         std::to_string(kDefaultIsolation) + ")");
+  add_setting_option(
+      *cmd, "--scheme", o->scheme, [](const std::string& text) { return scheme_option(text); },
+      "the base surface: acc, gregory, bspline, exact or adaptive (default gregory)");
+  add_setting_option(
+      *cmd, "--isolation", o->isolation, [](const std::string& text) { return isolation_option(text); },
+      "--scheme adaptive: the isolation level, 1 to " + std::to_string(kMaxIsolation) + " (default " +
+          std::to_string(kDefaultIsolation) + ")");
   cmd->add_option("--resolution", o->resolution, "texels: N (square) or WxH (default 1024)");
   cmd->add_option("--kind", o->kind, "vector (default) or scalar (along the normal)");
   cmd->add_option("--space", o->space, "vector maps: tangent (default) or object");

@@ -13,21 +13,23 @@
 namespace tessera::cli {
 
 void add_scheme_options(CLI::App& cmd, RenderSettings& s) {
-  add_setting_option(cmd, "--scheme", s.scheme, [](const std::string& text) { return scheme_option(text); },
-                 "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
-                 "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit), pn (PN triangles and quads) or adaptive "
-                 "(feature-adaptive patches to --isolation: creases, corners and every face)")
+  add_setting_option(
+      cmd, "--scheme", s.scheme, [](const std::string& text) { return scheme_option(text); },
+      "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
+      "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit), pn (PN triangles and quads) or adaptive "
+      "(feature-adaptive patches to --isolation: creases, corners and every face)")
       ->default_str(to_string(s.scheme));
-  add_setting_option(cmd, "--isolation", s.isolation, [](const std::string& text) { return isolation_option(text); },
-                     "--scheme adaptive: the isolation level, 1 to " + std::to_string(kMaxIsolation) +
-                         " (refinement around extraordinary vertices and creases; higher is closer to exact)")
+  add_setting_option(
+      cmd, "--isolation", s.isolation, [](const std::string& text) { return isolation_option(text); },
+      "--scheme adaptive: the isolation level, 1 to " + std::to_string(kMaxIsolation) +
+          " (refinement around extraordinary vertices and creases; higher is closer to exact)")
       ->default_str(std::to_string(s.isolation));
   cmd.add_option("--factor", s.factor, "tessellation factor on every edge")->capture_default_str();
   cmd.add_option("--vary-factors", s.vary, "spread edge factors over [F, F*(1+X)] by a hash of each cage edge");
   cmd.add_option("--factors-per-edge", s.factors_file, "file of 'v0 v1 factor' lines (cage vertex indices from 0)");
-  add_setting_option(cmd, "--partitioning", s.partitioning,
-                     [](const std::string& text) { return partitioning_option(text); },
-                     "integer, pow2, fractional_odd or fractional_even")
+  add_setting_option(
+      cmd, "--partitioning", s.partitioning, [](const std::string& text) { return partitioning_option(text); },
+      "integer, pow2, fractional_odd or fractional_even")
       ->default_str(std::string(ts::to_string(s.partitioning)));
   cmd.add_option("--threads", s.threads, "worker threads (0: all)");
 }
@@ -154,9 +156,9 @@ void add_displacement_options(CLI::App& cmd, DisplacementSettings& d) {
          "derived (from the height), or a tangent-space normal map file")
       ->capture_default_str();
   add_setting_option(cmd, "--uv-seams", d.uv_seams, uv_seams_option,
-                 "across UV seams: blend (shade each patch from its own chart, blend the two charts' normals at "
-                 "the seam, pad the displacement map beyond its charts) or raw (the maps as stored, the owner's "
-                 "UV shaded across seams: what the asset alone gives)")
+                     "across UV seams: blend (shade each patch from its own chart, blend the two charts' normals at "
+                     "the seam, pad the displacement map beyond its charts) or raw (the maps as stored, the owner's "
+                     "UV shaded across seams: what the asset alone gives)")
       ->default_str(to_string(d.uv_seams));
 }
 

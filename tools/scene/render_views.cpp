@@ -104,8 +104,10 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
                   " vertices; faint where the surface hides them"};
   const std::size_t creased = kinds[1].lines.size() + kinds[2].lines.size() + kinds[3].lines.size();
   if (creased > 0 || !corners.empty())
-    legend.lines.push_back(std::to_string(creased) + " creased edges by sharpness: yellow up to 1, orange up to 10, "
-                           "red infinite; " + std::to_string(corners.size()) + " sharp corners (red dots)");
+    legend.lines.push_back(std::to_string(creased) +
+                           " creased edges by sharpness: yellow up to 1, orange up to 10, "
+                           "red infinite; " +
+                           std::to_string(corners.size()) + " sharp corners (red dots)");
 }
 
 // The tessellation welded on exact bits over the shaded surface (drawn already); open and non-manifold
@@ -170,7 +172,8 @@ void adaptive_patch_legend(const LimitSurface& limit, Legend& legend) {
                                    std::string(to_string(AdaptivePatchKind(k))) + ": " + std::to_string(c.by_kind[k]));
   std::string levels;
   for (int l = 0; l < 16; ++l)
-    if (c.by_level[l] > 0) levels += (levels.empty() ? "" : ", ") + std::to_string(l) + ": " + std::to_string(c.by_level[l]);
+    if (c.by_level[l] > 0)
+      levels += (levels.empty() ? "" : ", ") + std::to_string(l) + ": " + std::to_string(c.by_level[l]);
   legend.lines = {"per level " + levels, "darker: deeper level; thin lines: sub-patch borders"};
 }
 
