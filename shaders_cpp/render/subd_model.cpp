@@ -55,54 +55,63 @@ std::vector<Box3> face_ring_boxes(std::span<const glm::vec3> positions, const To
 
 namespace {
 
+// The creased edges (not on the boundary) and sharp corners (of used vertices) whose sharpness `pick`
+// takes: how many, how many of the edges are semi-sharp, and the highest sharpness among them.
+struct TagCount {
+  int creased = 0, semi_sharp = 0, corners = 0;
+  float most = 0.0f;
+  int total() const { return creased + corners; }
+};
+template <class Pick>
+TagCount count_tags(const Topology& t, Pick&& pick) {
+  TagCount c;
+  for (int e = 0; e < t.edge_count(); ++e)
+    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && pick(s)) {
+      ++c.creased;
+      if (s < kSharpnessInfinite) ++c.semi_sharp;
+      c.most = std::max(c.most, s);
+    }
+  for (int v = 0; v < t.vertex_count(); ++v)
+    if (const float s = t.corner_sharpness(v); pick(s) && !t.is_isolated(v)) ++c.corners, c.most = std::max(c.most, s);
+  return c;
+}
+
+// "12 creased edges (12 semi-sharp) and 1 sharp corner"; the semi-sharp count when asked.
+std::string tag_phrase(const TagCount& c, bool semi_sharp) {
+  std::string what;
+  if (c.creased > 0)
+    what = std::to_string(c.creased) + " creased edge" + (c.creased == 1 ? "" : "s") +
+           (semi_sharp && c.semi_sharp > 0 ? " (" + std::to_string(c.semi_sharp) + " semi-sharp)" : "");
+  if (c.corners > 0)
+    what += (what.empty() ? "" : " and ") + std::to_string(c.corners) + " sharp corner" + (c.corners == 1 ? "" : "s");
+  return what;
+}
+
 // One line when `scheme` draws a surface without some of the creases and corners the cage tags, so no
 // approximation goes unsaid: pn and flat draw them all smooth; acc, gregory and bspline those of
 // sharpness below kCutSharpness (subd_patches.cpp cuts and blends the others); adaptive draws semi-sharp
 // sharpness above its isolation level as that level (Far clamps it to the levels left); exact honours
 // every one.
-std::optional<std::string> capped_sharpness(const Cage& cage, const Topology& t, int isolation) {
-  int creased = 0, corners = 0;
-  float most = 0.0f;
-  auto capped = [&](float s) { return s > float(isolation) && s < kSharpnessInfinite; };
-  for (int e = 0; e < t.edge_count(); ++e)
-    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && capped(s)) ++creased, most = std::max(most, s);
-  for (int v = 0; v < t.vertex_count(); ++v)
-    if (const float s = t.corner_sharpness(v); capped(s) && !t.is_isolated(v)) ++corners, most = std::max(most, s);
-  if (creased == 0 && corners == 0) return std::nullopt;
-  std::string what;
-  if (creased > 0) what = std::to_string(creased) + " creased edge" + (creased == 1 ? "" : "s");
-  if (corners > 0)
-    what += (what.empty() ? "" : " and ") + std::to_string(corners) + " sharp corner" + (corners == 1 ? "" : "s");
-  const int needed = std::min(kMaxIsolation, int(std::ceil(most)));
-  return cage.name + ": --scheme adaptive --isolation " + std::to_string(isolation) + " draws the cage's " + what +
-         " of sharpness above " + std::to_string(isolation) + " as sharpness " + std::to_string(isolation) + "; " +
-         (needed > isolation ? "--isolation " + std::to_string(needed) + " or " : std::string()) +
-         "--scheme exact honours " + (creased + corners == 1 ? "it" : "them");
-}
-
 std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t, Scheme scheme, int isolation) {
   if (scheme == Scheme::exact) return std::nullopt;
-  if (scheme == Scheme::adaptive) return capped_sharpness(cage, t, isolation);
+  if (scheme == Scheme::adaptive) {
+    const TagCount c = count_tags(t, [&](float s) { return s > float(isolation) && s < kSharpnessInfinite; });
+    if (c.total() == 0) return std::nullopt;
+    const int needed = std::min(kMaxIsolation, int(std::ceil(c.most)));
+    return cage.name + ": --scheme adaptive --isolation " + std::to_string(isolation) + " draws the cage's " +
+           tag_phrase(c, false) + " of sharpness above " + std::to_string(isolation) + " as sharpness " +
+           std::to_string(isolation) + "; " +
+           (needed > isolation ? "--isolation " + std::to_string(needed) + " or " : std::string()) +
+           "--scheme exact honours " + (c.total() == 1 ? "it" : "them");
+  }
   const bool per_face = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
   const float below = per_face ? kCutSharpness : INFINITY;
-  int creased = 0, semi_sharp = 0, corners = 0;
-  for (int e = 0; e < t.edge_count(); ++e)
-    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && s > 0.0f && s < below) {
-      ++creased;
-      if (s < kSharpnessInfinite) ++semi_sharp;
-    }
-  for (int v = 0; v < t.vertex_count(); ++v)
-    if (const float s = t.corner_sharpness(v); s > 0.0f && s < below && !t.is_isolated(v)) ++corners;
-  if (creased == 0 && corners == 0) return std::nullopt;
-  std::string what;
-  if (creased > 0)
-    what = std::to_string(creased) + " creased edge" + (creased == 1 ? "" : "s") +
-           (semi_sharp > 0 && !per_face ? " (" + std::to_string(semi_sharp) + " semi-sharp)" : "");
-  if (corners > 0)
-    what += (what.empty() ? "" : " and ") + std::to_string(corners) + " sharp corner" + (corners == 1 ? "" : "s");
+  const TagCount c = count_tags(t, [&](float s) { return s > 0.0f && s < below; });
+  if (c.total() == 0) return std::nullopt;
+  std::string what = tag_phrase(c, !per_face);
   if (per_face) what += " of sharpness below " + float_text(kCutSharpness);
   return cage.name + ": --scheme " + to_string(scheme) + " draws the cage's " + what +
-         " smooth; --scheme adaptive or exact honours " + (creased + corners == 1 ? "it" : "them");
+         " smooth; --scheme adaptive or exact honours " + (c.total() == 1 ? "it" : "them");
 }
 
 }  // namespace

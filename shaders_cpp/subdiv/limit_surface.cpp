@@ -316,39 +316,39 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
     total += cage.face_sizes[std::size_t(f)];
   }
 
-  std::vector<double> mesh(std::size_t(nv) * 3);
-  for (int v = 0; v < nv; ++v)
-    for (int c = 0; c < 3; ++c) mesh[std::size_t(v) * 3 + std::size_t(c)] = double(cage.positions[std::size_t(v)][c]);
   m->surfaces.resize(std::size_t(nf));
   m->by_far.assign(std::size_t(nf), 0);
-  if (!far_faces.empty()) {
-    m->far = std::make_unique<osd_detail::FarPatches>(cage, level, far_faces);
-    for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
-  }
-  if (adaptive)
-    for (int f = 0; f < nf; ++f) m->by_far[std::size_t(f)] = m->far->has_patches(f);
   m->pp_offset.assign(std::size_t(nf) + 1, 0);
-  const Surface::PointDescriptor desc(3);
-  for (int f = 0; f < nf; ++f) {
-    Surface& s = m->surfaces[std::size_t(f)];
-    if (m->by_far[std::size_t(f)] || m->adaptive) {
-      m->pp_offset[std::size_t(f)] = m->patch_points.size();
-      continue;
+  if (adaptive) {
+    for (int f = 0; f < nf; ++f) m->by_far[std::size_t(f)] = m->far->has_patches(f);
+  } else {
+    if (!far_faces.empty()) {
+      m->far = std::make_unique<osd_detail::FarPatches>(cage, level, far_faces);
+      for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
     }
-    if (m->factory->FaceHasLimitSurface(f) && !m->factory->InitVertexSurface(f, &s))
-      throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
-                      " has no OpenSubdiv limit surface");
-    m->pp_offset[std::size_t(f)] = m->patch_points.size();
-    if (!s.IsValid()) continue;
-    const std::size_t first = m->patch_points.size();
-    m->patch_points.resize(first + std::size_t(s.GetNumPatchPoints()) * 3);
-    s.PreparePatchPoints(mesh.data(), desc, m->patch_points.data() + first, desc);
-    for (std::size_t i = first; i < m->patch_points.size(); ++i)
-      if (!std::isfinite(m->patch_points[i]))
+    // Bfr's surfaces and their patch points, for every other face.
+    std::vector<double> mesh(std::size_t(nv) * 3);
+    for (int v = 0; v < nv; ++v)
+      for (int c = 0; c < 3; ++c) mesh[std::size_t(v) * 3 + std::size_t(c)] = double(cage.positions[std::size_t(v)][c]);
+    const Surface::PointDescriptor desc(3);
+    for (int f = 0; f < nf; ++f) {
+      Surface& s = m->surfaces[std::size_t(f)];
+      m->pp_offset[std::size_t(f)] = m->patch_points.size();
+      if (m->by_far[std::size_t(f)]) continue;
+      if (m->factory->FaceHasLimitSurface(f) && !m->factory->InitVertexSurface(f, &s))
         throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
-                        " has no finite limit surface (vertex positions that are not finite or overflow)");
+                        " has no OpenSubdiv limit surface");
+      if (!s.IsValid()) continue;
+      const std::size_t first = m->patch_points.size();
+      m->patch_points.resize(first + std::size_t(s.GetNumPatchPoints()) * 3);
+      s.PreparePatchPoints(mesh.data(), desc, m->patch_points.data() + first, desc);
+      for (std::size_t k = first; k < m->patch_points.size(); ++k)
+        if (!std::isfinite(m->patch_points[k]))
+          throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
+                          " has no finite limit surface (vertex positions that are not finite or overflow)");
+    }
+    m->pp_offset[std::size_t(nf)] = m->patch_points.size();
   }
-  m->pp_offset[std::size_t(nf)] = m->patch_points.size();
 
   // Owners: lowest-index face with a surface, first occurrence within it.
   struct FirstUse {
@@ -508,12 +508,6 @@ SurfacePoint LimitSurface::evaluate_fan(int face, int triangle, float u, float v
     return m.to_point(face, l.sub, l.s, l.t, Raw{r.p, pu, pv}, r);
   }
   return {sh.position, glm::vec3(pu), glm::vec3(pv), sh.normal};
-}
-
-LimitSurface::PatchFacts LimitSurface::patch_at(int face, int sub_patch, float u, float v) const {
-  if (!impl_->adaptive) throw std::logic_error("LimitSurface::patch_at: not the adaptive method");
-  check_patch(*this, face, sub_patch, u, v);
-  return impl_->far->patch_at(face, sub_patch, u, v);
 }
 
 LimitSurface::PatchFacts LimitSurface::patch_at_face_frame(int face, int sub, float u, float v) const {

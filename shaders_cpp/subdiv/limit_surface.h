@@ -117,15 +117,13 @@ class LimitSurface {
   int approx_level() const;
   bool adaptive() const;
 
-  // The adaptive method only (std::logic_error otherwise): the patch evaluate() uses at a point of the
-  // quad domain (same checks as evaluate()), and the patch table's counts.
+  // The adaptive method only (std::logic_error otherwise): the patch evaluate() uses at a point given as
+  // the domain shader's face frame (a quad's (u,v), a triangle's barycentric (u,v), or fan triangle
+  // `sub` of a larger face; coordinates clamped to [0,1]), and the patch table's counts.
   struct PatchFacts {
     AdaptivePatchKind kind = AdaptivePatchKind::regular;
     int level = 0;
   };
-  PatchFacts patch_at(int face, int sub_patch, float u, float v) const;
-  // The same at a point given as the domain shader's face frame: a quad's (u,v), a triangle's
-  // barycentric (u,v), or fan triangle `sub` of a larger face; no range checks beyond the face's.
   PatchFacts patch_at_face_frame(int face, int sub, float u, float v) const;
   struct PatchCounts {
     int by_kind[kAdaptivePatchKinds] = {};

@@ -98,15 +98,4 @@ RegularCurves single_crease_curves(int edge, double sharpness, double s, double 
   return r;
 }
 
-void single_crease_patch_basis(int edge, double sharpness, double s, double t, double w[16], double ws[16],
-                               double wt[16]) {
-  const RegularCurves c = single_crease_curves(edge, sharpness, s, t);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      w[4 * i + j] = c.s[j] * c.t[i];
-      ws[4 * i + j] = c.ds[j] * c.t[i];
-      wt[4 * i + j] = c.s[j] * c.dt[i];
-    }
-}
-
 }  // namespace tessera::osd_detail

@@ -17,23 +17,19 @@
 //   [0,1] across the span Q1 (x = 0) .. Q2 (x = 1), with the crease on row Q2; sharpness <= 0 gives the
 //   uniform cubic B-spline basis. Sharpness is taken as is (the caller clamps, Far clamps to the levels
 //   left); the loop runs at most ceil(sharpness) steps, each exact in binary fractions of x.
-// - single_crease_patch_basis(edge, sharpness, s, t, w, ws, wt): the 16 weights of a regular patch's
-//   points (Far's order: row-major, s along a row, t across rows; the face is rows and columns 1..2)
-//   with the crease on face edge `edge` (Far's boundary bits: 0 t=0, 1 s=1, 2 t=1, 3 s=0), at (s,t) in
-//   the patch's own unit square, derivatives with respect to (s,t).
-// - RegularCurves: a regular patch's basis as the two curves whose tensor product it is (weights per
-//   column in s, per row in t, and their derivatives): regular_patch_curves with Far's boundary bits
-//   (phantom rows and columns folded into the ones inside, as Far's basis does) and no crease, or
-//   single_crease_curves. The domain shader sums the 16 points row by row instead of by 16 weights.
+// - RegularCurves: a regular patch's basis as the two curves whose tensor product it is: weights per
+//   column in s and per row in t, and their derivatives (Far's point order: row-major, s along a row, t
+//   across rows; the face is rows and columns 1..2), at (s,t) in the patch's own unit square.
+//   regular_patch_curves: Far's boundary bits (0 t=0, 1 s=1, 2 t=1, 3 s=0 as bit values 1, 2, 4, 8),
+//   phantom rows and columns folded into the ones inside as Far's basis does, no crease.
+//   single_crease_curves: the crease on face edge `edge` (0 t=0, 1 s=1, 2 t=1, 3 s=0). The domain shader
+//   sums the 16 points row by row instead of by 16 weights.
 #pragma once
 
 namespace tessera::osd_detail {
 
 void cubic_bspline_basis(double x, double w[4], double dw[4]);
 void crease_curve_basis(double x, double sharpness, double w[4], double dw[4]);
-void single_crease_patch_basis(int edge, double sharpness, double s, double t, double w[16], double ws[16],
-                               double wt[16]);
-
 struct RegularCurves {
   double s[4], ds[4], t[4], dt[4];
 };
