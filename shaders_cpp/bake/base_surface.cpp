@@ -11,7 +11,7 @@ constexpr int kPoints = SubdHS::kOutputControlPoints;
 
 SubdHS hull_shader(const SubdModel& m, const SubdFactors& factors) {
   const PatchGroup& g = m.patches.quads;
-  return SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, ts::Partitioning::integer};
+  return SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, ts::Partitioning::integer, m.precomputed};
 }
 
 }  // namespace

@@ -106,8 +106,36 @@ PatchFrames build_patch_frames(const Cage& cage, const Topology& t, const PatchG
     }
     return it->second;
   };
+  out.precomputed_first.assign(group.size(), -1);
+  int precomputed_rows = 0;
   for (std::size_t p = 0; p < group.size(); ++p) {
     const SubdPatch& patch = group.patches[p];
+    if (patch.precomputed >= 0 && !uses_limit_surface(scheme)) {
+      // The 40 stencils over the cage vertices they reach, in ascending order; empty units.
+      std::vector<const Stencil*> rows;
+      for (int k = 0; k < 4; ++k)
+        for (const Stencil& s : edge_stencils(t.face_offset(patch.face) + (k + patch.rotation) % 4)) rows.push_back(&s);
+      for (int k = 0; k < 4; ++k)
+        for (const Stencil& s : vertex_stencils(t.origin(t.face_offset(patch.face) + (k + patch.rotation) % 4)))
+          rows.push_back(&s);
+      std::map<int, std::size_t> column;
+      for (const Stencil* s : rows)
+        for (const auto& [v, w] : s->terms) column.emplace(v, 0);
+      PrecomputedPatch pre;
+      pre.rows = int(rows.size());
+      for (auto& [v, c] : column) c = pre.vertices.size(), pre.vertices.push_back(v);
+      pre.weights.assign(rows.size() * pre.vertices.size(), 0.0f);
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        for (const auto& [v, w] : rows[r]->terms) pre.weights[r * pre.vertices.size() + column[v]] = float(w);
+      out.precomputed_first[p] = precomputed_rows;
+      precomputed_rows += pre.rows;
+      out.precomputed.push_back(std::move(pre));
+      for (int k = 0; k < 8; ++k) {
+        masks.assign(k < 4 ? 8 : 2, 0u), weights.clear();
+        out.units.push_back(intern());
+      }
+      continue;
+    }
     std::map<int, std::uint32_t> position;  // cage vertex -> its first ring position
     for (int i = 0; i < patch.ring_size; ++i)
       position.emplace(int(group.indices[p * std::size_t(group.control_points) + std::size_t(i)]), std::uint32_t(i));

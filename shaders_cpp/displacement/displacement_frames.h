@@ -28,7 +28,9 @@
 // nonzero weights in ascending ring position (the weight of position j is at the popcount of the mask
 // below j), so the sum runs in the patch's own global order whatever patch shares the unit.
 //
-// Contract: quad patches (as watertight_uv.h), rings of at most 32 positions (kMaxPatchControlPoints).
+// Contract: quad patches (as watertight_uv.h), rings of at most 32 positions (kMaxPatchControlPoints);
+// a precomputed patch (a larger ring) keeps its 40 stencils over cage vertices instead, summed by the
+// control-point pre-pass in the same order and arithmetic.
 // Per patch 40 stencils: edge k (patch edge k, corner k -> k+1) at 8k .. 8k+7 (along 0..3, cross 0..3,
 // in the OWNER's direction and parameter), corner k's two tangents at 32 + 2k, 33 + 2k; `exact` patches
 // get empty stencils (no terms). A vertex appearing twice in a ring is read at its first position.
@@ -55,6 +57,11 @@ struct PatchFrames {
   std::vector<std::uint32_t> starts;  // per stored stencil: its first weight in `weights`
   std::vector<float> weights;         // per stored stencil, its nonzero weights by ascending ring position
   int unit_count = 0;                 // distinct units (edge and corner)
+  // Precomputed patches (a 1-ring over 32 points, subd_patches.h): their 40 stencils over cage vertices,
+  // summed before the draw (precompute_rows); patch p's stencil r is row precomputed_first[p] + r of
+  // that sum (-1: an ordinary patch). Their units hold empty stencils.
+  std::vector<PrecomputedPatch> precomputed;
+  std::vector<std::int32_t> precomputed_first;  // per patch
 
   std::uint32_t stencil(std::size_t patch, int r) const {
     return r < 32 ? units[8 * patch + std::size_t(r / 8)] + std::uint32_t(r % 8)

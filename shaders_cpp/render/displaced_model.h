@@ -22,6 +22,7 @@
 #include "shaders_cpp/displacement/displacement_map.h"
 #include "shaders_cpp/render/displaced_shaders.h"
 #include "shaders_cpp/render/subd_model.h"
+#include "shaders_cpp/subdiv/control_point_prepass.h"
 
 namespace tessera {
 
@@ -93,8 +94,10 @@ DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const
   const PatchGroup& g = m.patches.quads;
   if (g.patches.empty()) return {};
   const TessellatorState ts{g.domain, partitioning, ts::OutputPrimitive::triangle_cw};
-  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning}, d.texcoords,
-                       &d.frames, glm::vec2(float(d.map->width()), float(d.map->height()))};
+  // The frames of precomputed patches follow the pose: summed here, before the draw.
+  const std::vector<glm::vec3> frame_rows = precompute_rows(d.frames.precomputed, m.positions());
+  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning, m.precomputed},
+                       d.texcoords, &d.frames, glm::vec2(float(d.map->width()), float(d.map->height())), frame_rows};
   const DisplacedDS ds{SubdDS{g.patches, m.limit.get(), m.cage.tags.left_handed, false}, d.texcoords, d.params()};
   return draw(g, ts, hs, ds);
 }

@@ -86,6 +86,7 @@ struct DisplacedHS {
   std::span<const PatchTexcoords> texcoords;
   const PatchFrames* frames = nullptr;
   glm::vec2 map_size{1.0f};
+  std::span<const glm::vec3> precomputed_frames{};  // precompute_rows(frames->precomputed, posed cage)
 
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
     return base.control_point(in, i, patch_id);
@@ -99,6 +100,8 @@ struct DisplacedHS {
     // In the patch's global vertex order, skipping zero weights: the bits every patch sharing the
     // element computes (displacement_frames.h).
     auto stencil = [&](int r) {
+      if (patch.precomputed >= 0)
+        return precomputed_frames[std::size_t(frames->precomputed_first[patch_id] + r)];
       const std::uint32_t s = frames->stencil(patch_id, r), mask = frames->masks[s];
       const float* w = frames->weights.data() + frames->starts[s];
       glm::dvec3 sum(0.0);

@@ -11,6 +11,7 @@
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/cage/corner_ring.h"
 #include "shaders_cpp/cage/one_line.h"
+#include "shaders_cpp/subdiv/control_point_prepass.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 
 namespace tessera {
@@ -123,6 +124,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   m.patches = build_patches(m.cage, *m.topology, scheme);
   if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
+  m.precomputed = precompute_control_points(m.patches, m.cage.positions);
   if (uses_limit_surface(scheme)) {
     m.limit = std::make_unique<LimitSurface>(
         scheme == Scheme::adaptive ? LimitSurface::create_adaptive(m.cage, isolation) : LimitSurface::create(m.cage));
@@ -142,6 +144,7 @@ void set_pose(SubdModel& m, RigPose pose) {
   // The passes before the draw see the surface the vertex shader will output: normals and ring boxes
   // from the posed positions.
   if (!m.normals.empty()) m.normals = vertex_normals(m.cage, m.posed_positions, *m.topology);
+  m.precomputed = precompute_control_points(m.patches, m.posed_positions);
   if (m.limit) {
     // OpenSubdiv's Bfr surfaces hold their control points: the exact scheme rebuilds them per pose,
     // from the cage with the posed positions lent to it (swapped in and back, even on a throw) rather

@@ -29,6 +29,7 @@ struct SubdModel {
   std::unique_ptr<LimitSurface> limit;  // exact and adaptive only (of the posed cage)
   std::vector<glm::vec3> normals;       // pn only: per cage vertex (pn_patch.h), of the posed cage
   std::vector<Box3> ring_boxes;         // exact and adaptive: per face, the box of its 1-ring (culling)
+  std::vector<glm::vec3> precomputed;   // the control-point pre-pass's rows (1-rings over 32), posed
   // Animation (glTF): the rig, and once set_pose ran, the pose the vertex shader applies and its
   // result over every control point, for the passes that need positions before the draw.
   std::shared_ptr<const CageRig> rig;
@@ -60,7 +61,7 @@ SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSele
                           int isolation = kDefaultIsolation);
 SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation = kDefaultIsolation);
 // Poses an animated model: the vertex shader will apply `pose`, and what depends on positions before
-// the draw (PN normals, the exact limit surface, culling boxes) follows it. The model must have a rig.
+// the draw (PN normals, the exact limit surface, culling boxes, the control-point pre-pass) follows it. The model must have a rig.
 void set_pose(SubdModel& m, RigPose pose);
 
 // Adds one draw's report to a total: statistics and stage times summed, geometry peak the largest.
@@ -83,7 +84,7 @@ DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, 
     if (g->patches.empty()) continue;
     const bool tri = g->domain == ts::Domain::tri;
     const TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
-    const SubdHS hs{g->patches, m.patches.tables, factors, tri, m.ring_boxes, partitioning};
+    const SubdHS hs{g->patches, m.patches.tables, factors, tri, m.ring_boxes, partitioning, m.precomputed};
     const SubdDS ds{g->patches, m.limit.get(), m.cage.tags.left_handed, tri};
     DrawResult r = draw(*g, ts, hs, ds);
     if (!r.ok()) return r;

@@ -3,7 +3,8 @@
 //   rig_pose.h; or an affine transform; identity by default), and the per-vertex normal (`pn` only)
 //   read by SV_VertexID from a second vertex stream.
 // - SubdHS: control-point phase = the patch's stencil table applied to its 1-ring, summed in vertex
-//   index order, or for `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
+//   index order (or, for a 1-ring over 32 points, the pre-pass's rows: control_point_prepass.h), or for
+//   `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
 //   tessellation factors per cage edge (SubdFactors).
 // - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample.
 // - ProjectingDS (ProjectDS for SurfaceSample) wraps a DS into one that returns ClipVertex for rendering.
@@ -75,6 +76,9 @@ struct SubdHS {
   bool triangles = false;              // the tri domain: three edge factors, one inside factor
   std::span<const Box3> ring_boxes{};  // per face, `exact` only: the box of its 1-ring (culling)
   ts::Partitioning partitioning = ts::Partitioning::integer;
+  // The control-point pre-pass's output (control_point_prepass.h): the rows of the patches whose 1-ring
+  // is larger than an IA patch, read in place of the sum over `in`.
+  std::span<const glm::vec3> precomputed{};
 
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
     const SubdPatch& patch = patches[patch_id];
@@ -98,6 +102,7 @@ struct SubdHS {
     if (patch.table < 0) return cp;
     const StencilTable& t = tables[std::size_t(patch.table)];
     auto row = [&](int r) {
+      if (patch.precomputed >= 0) return precomputed[std::size_t(patch.precomputed + r)];
       glm::dvec3 sum(0.0);
       const float* w = t.weights.data() + std::size_t(r) * std::size_t(t.ring);
       for (int k = 0; k < patch.ring_size; ++k) {

@@ -61,12 +61,16 @@ class Builder {
  public:
   Builder(const Cage& cage, SubdPatches& out) : cage_(cage), out_(out) {}
 
-  // Adds a patch whose control points are `stencils` over the gathered ring.
+  // Adds a patch whose control points are `stencils` over the gathered ring. A ring larger than an IA
+  // patch (only the stencil schemes' rings can be) makes a precomputed patch: its IA patch is the face's
+  // `corners` (the ring's first entries) and its rows go to the pre-pass.
   void add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
-           const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0) {
-    if (ring.size() > std::size_t(kMaxPatchControlPoints))
-      throw CageError(where(cage_, face) + ": its 1-ring has " + std::to_string(ring.size()) +
-                      " vertices, more than the 32 control points of a patch (use --scheme adaptive or exact)");
+           const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0,
+           int corners = 0) {
+    const bool precompute = ring.size() > std::size_t(kMaxPatchControlPoints);
+    if (precompute && (corners == 0 || stencils.empty()))
+      throw CageError(where(cage_, face) + ": internal error, a 1-ring of " + std::to_string(ring.size()) +
+                      " vertices for a patch that cannot be precomputed");
     std::map<int, int> position;
     for (std::size_t i = 0; i < ring.size(); ++i) position.emplace(ring[i], int(i));
     StencilTable table;
@@ -85,17 +89,36 @@ class Builder {
     p.face = face;
     p.sub = sub;
     p.kind = kind;
-    p.ring_size = int(ring.size());
-    // Patches evaluated without control points (exact) need no table.
+    const std::vector<int> ia = precompute ? std::vector<int>(ring.begin(), ring.begin() + corners) : ring;
+    p.ring_size = int(ia.size());
+    if (precompute) {
+      // The rows over the whole ring, its vertices in ascending order (the hull shader's order).
+      PrecomputedPatch pre;
+      pre.rows = table.rows;
+      std::vector<int> by_vertex(ring.size());
+      std::iota(by_vertex.begin(), by_vertex.end(), 0);
+      std::sort(by_vertex.begin(), by_vertex.end(),
+                [&](int a, int b) { return ring[std::size_t(a)] < ring[std::size_t(b)]; });
+      for (const int i : by_vertex) pre.vertices.push_back(ring[std::size_t(i)]);
+      pre.weights.resize(table.weights.size());
+      for (std::size_t r = 0; r < std::size_t(table.rows); ++r)
+        for (std::size_t k = 0; k < ring.size(); ++k)
+          pre.weights[r * ring.size() + k] = table.weights[r * ring.size() + std::size_t(by_vertex[k])];
+      p.precomputed = out_.precomputed_rows;
+      out_.precomputed_rows += pre.rows;
+      out_.precomputed.push_back(std::move(pre));
+    }
+    // Patches evaluated without control points (exact) need no table. A precomputed patch's table
+    // (over its whole ring) still names its topology combination and row count.
     p.table = stencils.empty() ? -1 : intern(std::move(table));
-    std::vector<int> order(ring.size());
+    std::vector<int> order(ia.size());
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return ring[std::size_t(a)] < ring[std::size_t(b)]; });
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return ia[std::size_t(a)] < ia[std::size_t(b)]; });
     for (std::size_t i = 0; i < order.size(); ++i) p.order[i] = std::uint8_t(order[i]);
     p.edge_keys = edges;
     p.rotation = std::uint8_t(rotation);
     group.patches.push_back(p);
-    rings_.push_back(ring);
+    rings_.push_back(ia);
     groups_.push_back(&group);
   }
 
@@ -291,7 +314,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
       std::vector<Stencil> stencils = gregory_triangle_stencils(corners);
       if (creased) stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
-      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot);
+      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
       continue;
     }
     std::array<CornerRing, 4> corners;
@@ -309,12 +332,12 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     if (scheme == Scheme::acc) {
       std::vector<Stencil> stencils = acc_quad_stencils(corners);
       if (creased) stencils = blend_by_corner(stencils, acc_quad_stencils(cut), w, true);
-      builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot);
+      builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot, 4);
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
       std::vector<Stencil> stencils = gregory_quad_stencils(corners);
       if (creased) stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
-      builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot);
+      builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot, 4);
     }
   }
   builder.finish();

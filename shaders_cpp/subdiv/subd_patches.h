@@ -1,6 +1,9 @@
 // Turns a cage into patch draws for one subdivision scheme: per face its IA patch (the face with its
 // 1-ring, at most 32 control points), and per topology combination one stencil table that the hull
-// shader (subd_shaders.h) applies to that 1-ring.
+// shader (subd_shaders.h) applies to that 1-ring. A face whose 1-ring is larger than a D3D11 patch's 32
+// control points (beside a vertex of high valence) is precomputed instead: its IA patch is the face's
+// corners, and its hull-shader control points come from a pre-pass at control-point rate
+// (control_point_prepass.h), as GPU engines do with a compute pass before the draw.
 //
 // Contract
 // - Every non-hole face becomes patches in face order within each domain: a quad one quad-domain patch;
@@ -13,8 +16,11 @@
 //   (the talk's topology combinations); `tables.size()` is how many distinct ones the cage needs.
 // - A patch's `order` lists its ring positions sorted by cage vertex index: the hull shader sums in
 //   that order, so shared control points come out bit-identical on both patches (stencil.h).
+// - Precomputed patches (acc, gregory, bspline) sum their stencil rows over the whole 1-ring in the
+//   same order and arithmetic as the hull shader (ascending vertex index, zero weights skipped, double,
+//   rounded once), so a point they share with an ordinary neighbour has the neighbour's bits.
 // - Faces a scheme cannot handle give a CageError naming the face and why (a triangle for acc, an
-//   n-gon for gregory or pn, a 1-ring of more than 32 vertices, ...). `bspline` draws faces that are not
+//   n-gon for gregory or pn, ...). `bspline` draws faces that are not
 //   regular as Gregory patches (triangles as triangular Gregory patches) and counts them in
 //   `fallback_faces`.
 // - `pn` patches are the face's corners only (no table): the hull shader builds the PN points from
@@ -86,6 +92,7 @@ struct SubdPatch {
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
   std::uint8_t rotation = 0;                                 // patch corner k is face corner (k + rotation) % (3 or 4)
+  std::int32_t precomputed = -1;  // its first row in the pre-pass's points (a 1-ring over 32), or -1
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan
   // triangle's Veq0 is its cage edge, Ueq0 the spoke to vertex k, Weq0 the spoke to vertex k+1.
@@ -100,10 +107,20 @@ struct PatchGroup {
   std::size_t size() const { return patches.size(); }
 };
 
+// A patch whose 1-ring is larger than an IA patch holds: its stencil rows over the ring's cage
+// vertices, in ascending vertex order.
+struct PrecomputedPatch {
+  int rows = 0;
+  std::vector<int> vertices;   // ascending
+  std::vector<float> weights;  // rows x vertices, row-major
+};
+
 struct SubdPatches {
   Scheme scheme = Scheme::gregory;
   std::vector<StencilTable> tables;
   PatchGroup quads, tris;
+  std::vector<PrecomputedPatch> precomputed;  // in the order of their rows (SubdPatch::precomputed)
+  int precomputed_rows = 0;                   // the pre-pass's point count
   int fallback_faces = 0;
   int holes = 0;  // faces that draw nothing: hole tags (and, for exact, faces without a limit surface)
 };
