@@ -591,8 +591,7 @@ TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sh
   CHECK(json_of(accuracy.out)["max_relative"].get<double>() < 1e-6);
 }
 
-TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by every curved scheme",
-          "[cli][issue34]") {
+TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by every curved scheme", "[cli][issue34]") {
   const fs::path dir = test::cli_temp_dir();
   const std::string cage = (dir / "sphere40.obj").string();
   REQUIRE(run_cli("make-cage sphere --pole-valence 40 --bands 6 -o " + cage).exit_code == 0);
@@ -600,7 +599,7 @@ TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by ev
   REQUIRE(a.exit_code == 0);
   CHECK(json_of(a.out)["max_valence"] == 40);
   CHECK(json_of(a.out)["boundary_vertices"] == 0);
-  // A pole quad's 1-ring (83 points) is more than a D3D11 patch takes: gregory precomputes its control
+  // A pole quad's 1-ring (86 points) is more than a D3D11 patch takes: gregory precomputes its control
   // points before the hull shader, watertight beside the ordinary patches, displaced too, and near the limit.
   const auto g = run_cli("-q tessellate " + cage + " --factor 5 --vary-factors 0.5 --check-watertight");
   INFO(g.err);
@@ -611,8 +610,11 @@ TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by ev
   CHECK(d.exit_code == 0);
   const auto ga = run_cli("-q accuracy " + cage + " --factor 15 --json");
   REQUIRE(ga.exit_code == 0);
-  CHECK(json_of(ga.out)["max_relative"].get<double>() < 3e-2);
+  CHECK(json_of(ga.out)["max_relative"].get<double>() < 4e-2);
   CHECK(json_of(ga.out)["mean_normal_degrees"].get<double>() < 1.0);
+  // The ripple a per-face patch leaves around a valence-40 pole: its curvature is off by many times the
+  // sphere's own (about 3.5 per diagonal), where adaptive level 6 is within a few hundredths.
+  CHECK(json_of(ga.out)["max_curvature_error"].get<double>() > 10.0);
   const auto w =
       run_cli("-q tessellate " + cage + " --scheme adaptive --factor 7 --vary-factors 0.5 --check-watertight");
   INFO(w.err);
@@ -623,6 +625,7 @@ TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by ev
   REQUIRE(l6.exit_code == 0);
   REQUIRE(l2.exit_code == 0);
   CHECK(json_of(l6.out)["max_relative"].get<double>() < 1e-6);
+  CHECK(json_of(l6.out)["max_curvature_error"].get<double>() < 0.5);
   CHECK(json_of(l2.out)["max_relative"].get<double>() > 1e-3);
   CHECK(run_cli("make-cage sphere --pole-valence 2 -o " + cage).exit_code == 2);
 }

@@ -233,9 +233,8 @@ TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fra
     }
 }
 
-TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, watertight to the bit",
-          "[subd][issue34]") {
-  // Poles of valence 24: a pole quad's 1-ring has 51 points, more than an IA patch's 32. Those 48 faces
+TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, watertight to the bit", "[subd][issue34]") {
+  // Poles of valence 24: a pole quad's 1-ring has 54 points, more than an IA patch's 32. Those 48 faces
   // are precomputed; the faces around them are ordinary patches, and the edges between the two kinds
   // must weld on exact bits.
   for (Scheme s : {Scheme::bspline, Scheme::acc, Scheme::gregory}) {
@@ -263,7 +262,8 @@ TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, water
     rig->bind_positions = m.cage.positions;
     rig->vertex_instance.assign(m.cage.positions.size(), 0);
     std::vector<glm::vec3> bulge;
-    for (const glm::vec3& p : m.cage.positions) bulge.push_back(glm::vec3(0.1f * p.x * p.y, 0.2f * p.z * p.z, 0.3f * p.x));
+    for (const glm::vec3& p : m.cage.positions)
+      bulge.push_back(glm::vec3(0.1f * p.x * p.y, 0.2f * p.z * p.z, 0.3f * p.x));
     rig->target_deltas = {bulge};
     m.rig = rig;
     const std::vector<glm::vec3> rest = m.precomputed;
@@ -283,8 +283,8 @@ TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, water
   // catmark_bishop: valences 16 to 24 among triangles and creases, open at its base. Both are open
   // only where the cage is: the border's segments, as many as the exact limit's.
   for (const char* cage : {"osd-shapes/catmark_pole64.obj", "osd-shapes/catmark_bishop.obj"}) {
-    const verify::WeldReport border = weld(load_subd_model(data(cage), Scheme::exact), 2.6f, 1.3f,
-                                           ts::Partitioning::fractional_even);
+    const verify::WeldReport border =
+        weld(load_subd_model(data(cage), Scheme::exact), 2.6f, 1.3f, ts::Partitioning::fractional_even);
     REQUIRE(border.boundary_edges > 0);
     for (Scheme s : {Scheme::bspline, Scheme::gregory}) {
       INFO(cage << " " << to_string(s));

@@ -100,8 +100,7 @@ struct DisplacedHS {
     // In the patch's global vertex order, skipping zero weights: the bits every patch sharing the
     // element computes (displacement_frames.h).
     auto stencil = [&](int r) {
-      if (patch.precomputed >= 0)
-        return precomputed_frames[std::size_t(frames->precomputed_first[patch_id] + r)];
+      if (patch.precomputed >= 0) return precomputed_frames[std::size_t(frames->precomputed_first[patch_id] + r)];
       const std::uint32_t s = frames->stencil(patch_id, r), mask = frames->masks[s];
       const float* w = frames->weights.data() + frames->starts[s];
       glm::dvec3 sum(0.0);

@@ -61,7 +61,8 @@ SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSele
                           int isolation = kDefaultIsolation);
 SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation = kDefaultIsolation);
 // Poses an animated model: the vertex shader will apply `pose`, and what depends on positions before
-// the draw (PN normals, the exact limit surface, culling boxes, the control-point pre-pass) follows it. The model must have a rig.
+// the draw (PN normals, the exact limit surface, culling boxes, the control-point pre-pass) follows it.
+// The model must have a rig.
 void set_pose(SubdModel& m, RigPose pose);
 
 // Adds one draw's report to a total: statistics and stage times summed, geometry peak the largest.

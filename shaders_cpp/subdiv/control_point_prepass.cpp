@@ -6,7 +6,8 @@ std::vector<glm::vec3> precompute_control_points(const SubdPatches& patches, std
   return precompute_rows(patches.precomputed, positions);
 }
 
-std::vector<glm::vec3> precompute_rows(std::span<const PrecomputedPatch> patches, std::span<const glm::vec3> positions) {
+std::vector<glm::vec3> precompute_rows(std::span<const PrecomputedPatch> patches,
+                                       std::span<const glm::vec3> positions) {
   std::vector<glm::vec3> out;
   for (const PrecomputedPatch& p : patches) {
     const std::size_t n = p.vertices.size();

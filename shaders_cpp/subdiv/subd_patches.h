@@ -91,7 +91,7 @@ struct SubdPatch {
   int table = -1;  // into SubdPatches::tables, -1 for exact
   PatchKind kind = PatchKind::gregory;
   int ring_size = 0;
-  std::uint8_t rotation = 0;                                 // patch corner k is face corner (k + rotation) % (3 or 4)
+  std::uint8_t rotation = 0;      // patch corner k is face corner (k + rotation) % (3 or 4)
   std::int32_t precomputed = -1;  // its first row in the pre-pass's points (a 1-ring over 32), or -1
   std::array<std::uint8_t, kMaxPatchControlPoints> order{};  // ring positions by ascending vertex index
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan

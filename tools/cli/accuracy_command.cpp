@@ -2,11 +2,16 @@
 // limit surface (OpenSubdiv at its highest isolation level), measured at the domain points the scheme
 // actually produces. Distances are parametric (the scheme's point against the limit's point at the same
 // face and domain location), an upper bound of the distance to the surface, relative to the limit
-// surface's bounding-box diagonal; normal errors are angles between the two unit normals.
+// surface's bounding-box diagonal; normal errors are angles between the two unit normals. The ripple
+// (curvature): along every edge of the tessellation, the normal curvature (n1 - n0) . (p1 - p0) / |p1 - p0|^2
+// of the scheme's points and normals against the limit's at the same domain points, the difference
+// times the diagonal (so a sphere's curvature is about 3.5 whatever its size).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 #include "shaders_cpp/render/subd_model.h"
 #include "tools/cli/commands.h"
@@ -45,12 +50,19 @@ int run_accuracy(const AccuracyOptions& o) {
   const LimitSurface& reference = own_reference ? *own_reference : *model.limit;
   const double diagonal = reference.bounding_box_diagonal();
   Device device(device_options(o.s.threads));
-  double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0;
-  std::uint64_t samples = 0;
+  double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0, max_k = 0, sum_k = 0;
+  std::uint64_t samples = 0, edges = 0;
+  // One patch's points and unit normals, the scheme's and the limit's, for the curvature along its edges.
+  std::vector<glm::dvec3> scheme_p, scheme_n, limit_p, limit_n;
+  auto curvature = [](const glm::dvec3& p0, const glm::dvec3& n0, const glm::dvec3& p1, const glm::dvec3& n1) {
+    const glm::dvec3 d = p1 - p0;
+    return glm::dot(n1 - n0, d) / glm::dot(d, d);
+  };
   const DrawResult r =
       stream_subd(device, model, factors, partitioning, [&](const PatchOutput<SurfaceSample>& p, const PatchGroup& g) {
         const SubdPatch& patch = g.patches[p.patch_id];
         const int n = reference.face_size(patch.face);
+        scheme_p.clear(), scheme_n.clear(), limit_p.clear(), limit_n.clear();
         for (std::size_t i = 0; i < p.points.size(); ++i) {
           const SurfaceSample& s = p.points[i];
           const ts::DomainPoint q = p.domain[i];
@@ -75,6 +87,8 @@ int run_accuracy(const AccuracyOptions& o) {
           max_d = std::max(max_d, d);
           sum_d2 += d * d;
           const glm::dvec3 sn = glm::normalize(glm::dvec3(s.normal));
+          scheme_p.push_back(glm::dvec3(s.position)), scheme_n.push_back(sn);
+          limit_p.push_back(pos), limit_n.push_back(glm::normalize(nrm));
           const double c =
               std::clamp(std::max(glm::dot(sn, glm::normalize(nrm)), glm::dot(sn, glm::normalize(owned))), -1.0, 1.0);
           const double angle = std::acos(c) * 180.0 / std::numbers::pi;
@@ -84,6 +98,18 @@ int run_accuracy(const AccuracyOptions& o) {
           }
           ++samples;
         }
+        for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3)
+          for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t a = p.indices[t + k], b = p.indices[t + (k + 1) % 3];
+            if (limit_p[a] == limit_p[b]) continue;  // a collapsed edge (a pole of the domain) has no direction
+            const double ks = curvature(scheme_p[a], scheme_n[a], scheme_p[b], scheme_n[b]);
+            const double kl = curvature(limit_p[a], limit_n[a], limit_p[b], limit_n[b]);
+            const double e = std::abs(ks - kl);
+            if (!std::isfinite(e)) continue;
+            max_k = std::max(max_k, e);
+            sum_k += e;
+            ++edges;
+          }
       });
   if (!r.ok()) throw InputError(o.s.cage + ": " + r.error);
   const double rms = samples ? std::sqrt(sum_d2 / double(samples)) : 0.0;
@@ -100,15 +126,18 @@ int run_accuracy(const AccuracyOptions& o) {
                     {"rms_relative", rel_rms},
                     {"max_normal_degrees", max_angle},
                     {"mean_normal_degrees", samples ? sum_angle / double(samples) : 0.0},
+                    {"max_curvature_error", max_k * diagonal},
+                    {"mean_curvature_error", edges ? sum_k / double(edges) * diagonal : 0.0},
                     {"fallback_faces", model.patches.fallback_faces}};
     std::cout << json_text(j) << "\n";
   } else {
-    char line[256];
+    char line[512];
     std::snprintf(line, sizeof line,
                   "%s: scheme %s vs exact limit, %llu samples: max %.3e, rms %.3e of the diagonal (%.4g); normals max "
-                  "%.3f deg, mean %.4f deg\n",
+                  "%.3f deg, mean %.4f deg; curvature error max %.3g, mean %.3g (per diagonal)\n",
                   o.s.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal,
-                  max_angle, samples ? sum_angle / double(samples) : 0.0);
+                  max_angle, samples ? sum_angle / double(samples) : 0.0, max_k * diagonal,
+                  edges ? sum_k / double(edges) * diagonal : 0.0);
     std::cout << line;
   }
   return kExitOk;
