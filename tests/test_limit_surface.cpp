@@ -653,7 +653,8 @@ TEST_CASE("limit surface measurements", "[.][limit-bench]") {
 TEST_CASE("limit surface: Far patches agree with Bfr where both work", "[limit][issue34]") {
   // far_patches.h evaluates the faces Bfr 3.5.0 fails on; on cages where Bfr works, the same faces
   // through Far give the same surface to within the end caps' difference at the isolation level.
-  for (const char* name : {"catmark_cube_creases1", "catmark_xord_interior", "catmark_nonquads", "catmark_edgecorner"}) {
+  for (const char* name :
+       {"catmark_cube_creases1", "catmark_xord_interior", "catmark_nonquads", "catmark_edgecorner"}) {
     INFO(name);
     const Cage cage = load_obj_cage(osd_shape(name));
     const LimitSurface bfr = LimitSurface::create(cage);
@@ -699,7 +700,43 @@ TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided",
   CHECK(osd_detail::needs_far_patches(Topology(smooth)).empty());
   const LimitSurface a = LimitSurface::create(cage), b = LimitSurface::create(smooth);
   double apart = 0.0;
-  for (int f : far_faces) apart = std::max(apart, double(glm::length(a.evaluate(f, 0, 0.5f, 0.5f).position -
-                                                                    b.evaluate(f, 0, 0.5f, 0.5f).position)));
+  for (int f : far_faces)
+    apart = std::max(
+        apart, double(glm::length(a.evaluate(f, 0, 0.5f, 0.5f).position - b.evaluate(f, 0, 0.5f, 0.5f).position)));
   CHECK(apart > 1e-3);
+}
+
+TEST_CASE("limit surface: a pose moves only the points, to the bits of a surface built from the posed cage",
+          "[limit][issue34]") {
+  // Bfr faces, Far faces (catmark_val2_interior's, where Bfr 3.5.0 fails) and the adaptive method: a
+  // surface built from the rest cage and reposed must evaluate to the bits of one built from the moved
+  // cage, at owned points (cage vertices and edges) and inside.
+  for (const char* name : {"osd-shapes/catmark_cubes_semisharp.obj", "osd-shapes/catmark_val2_interior.obj"})
+    for (const bool adaptive : {false, true}) {
+      INFO(name << (adaptive ? " adaptive" : " exact"));
+      const Cage rest = load_obj_cage(data(name));
+      Cage moved = rest;
+      for (glm::vec3& p : moved.positions) p = glm::vec3(p.x * 1.25f + 0.5f * p.y * p.y, p.y - 0.3f * p.z, p.z + 0.1f);
+      LimitSurface reposed = adaptive ? LimitSurface::create_adaptive(rest, 3) : LimitSurface::create(rest, 6);
+      const LimitSurface fresh = adaptive ? LimitSurface::create_adaptive(moved, 3) : LimitSurface::create(moved, 6);
+      const SurfacePoint before = reposed.evaluate(0, 0, 0.25f, 0.5f);
+      reposed.repose(moved.positions);
+      CHECK(reposed.bounds_min() == fresh.bounds_min());
+      CHECK(reposed.bounds_max() == fresh.bounds_max());
+      int compared = 0;
+      for (int f = 0; f < fresh.face_count(); ++f)
+        for (int k = 0; k < fresh.sub_patch_count(f); ++k)
+          for (const float u : {0.0f, 0.25f, 1.0f})
+            for (const float v : {0.0f, 0.5f, 1.0f}) {
+              const SurfacePoint a = reposed.evaluate(f, k, u, v), b = fresh.evaluate(f, k, u, v);
+              CHECK(std::bit_cast<std::array<std::uint32_t, 3>>(a.position) ==
+                    std::bit_cast<std::array<std::uint32_t, 3>>(b.position));
+              CHECK(std::bit_cast<std::array<std::uint32_t, 3>>(a.normal) ==
+                    std::bit_cast<std::array<std::uint32_t, 3>>(b.normal));
+              ++compared;
+            }
+      CHECK(compared > 0);
+      CHECK(before.position != reposed.evaluate(0, 0, 0.25f, 0.5f).position);
+      CHECK_THROWS_AS(reposed.repose(std::span<const glm::vec3>(moved.positions).first(3)), std::logic_error);
+    }
 }

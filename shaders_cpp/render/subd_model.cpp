@@ -146,22 +146,9 @@ void set_pose(SubdModel& m, RigPose pose) {
   if (!m.normals.empty()) m.normals = vertex_normals(m.cage, m.posed_positions, *m.topology);
   m.precomputed = precompute_control_points(m.patches, m.posed_positions);
   if (m.limit) {
-    // OpenSubdiv's Bfr surfaces hold their control points: the exact scheme rebuilds them per pose,
-    // from the cage with the posed positions lent to it (swapped in and back, even on a throw) rather
-    // than a copy of the whole cage, its faces, UVs and tags, per pose.
-    struct Lend {
-      SubdModel& model;
-      explicit Lend(SubdModel& owner) : model(owner) { std::swap(model.cage.positions, model.posed_positions); }
-      ~Lend() { std::swap(model.cage.positions, model.posed_positions); }
-      Lend(const Lend&) = delete;
-      Lend& operator=(const Lend&) = delete;
-    };
-    {
-      const Lend lend(m);
-      m.limit = std::make_unique<LimitSurface>(m.limit->adaptive()
-                                                   ? LimitSurface::create_adaptive(m.cage, m.limit->approx_level())
-                                                   : LimitSurface::create(m.cage, m.limit->approx_level()));
-    }
+    // The limit surface keeps its topology (Bfr's surfaces, Far's refinement and patch table) and moves
+    // its points: the bits a surface built from the posed cage would have.
+    m.limit->repose(m.posed_positions);
     m.ring_boxes = face_ring_boxes(m.posed_positions, *m.topology);
   }
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -38,8 +39,45 @@ struct FarPatches::Impl {
   std::unique_ptr<far::TopologyRefiner> refiner;
   std::unique_ptr<far::PatchTable> table;
   std::unique_ptr<far::PatchMap> map;
-  bool single_crease = false;        // the table has a sharpness per patch
-  std::vector<glm::dvec3> points;    // base vertices, refined vertices, local points
+  bool single_crease = false;      // the table has a sharpness per patch
+  std::vector<glm::dvec3> points;  // base vertices, refined vertices, local points
+  std::string label;               // the cage's, for errors
+  // Every refined vertex and local point as a stencil of the base vertices: made for the points, and
+  // kept once repose() needs it again (an animated cage), so a static one does not hold it.
+  std::unique_ptr<const far::StencilTableReal<double>> stencils;
+
+  void make_stencils() {
+    far::StencilTableFactoryReal<double>::Options so;
+    so.generateIntermediateLevels = true;
+    so.generateOffsets = true;
+    std::unique_ptr<const far::StencilTableReal<double>> refined(
+        far::StencilTableFactoryReal<double>::Create(*refiner, so));
+    if (const auto* local = table->GetLocalPointStencilTable<double>())
+      stencils.reset(
+          far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(*refiner, refined.get(), local));
+    else
+      stencils = std::move(refined);
+  }
+  // The points of `positions` (one per base vertex) through the stencils.
+  void place(std::span<const glm::vec3> positions) {
+    const std::size_t nv = positions.size();
+    points.resize(nv + std::size_t(stencils->GetNumStencils()));
+    for (std::size_t v = 0; v < nv; ++v) points[v] = glm::dvec3(positions[v]);
+    const auto& lengths = stencils->GetSizes();
+    const auto& offsets = stencils->GetOffsets();
+    const auto& indices = stencils->GetControlIndices();
+    const auto& weights = stencils->GetWeights();
+    for (int i = 0; i < stencils->GetNumStencils(); ++i) {
+      glm::dvec3 p(0.0);
+      for (int j = 0; j < lengths[std::size_t(i)]; ++j) {
+        const std::size_t e = std::size_t(offsets[std::size_t(i)] + j);
+        p += weights[e] * points[std::size_t(indices[e])];
+      }
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw CageError(label + ": no finite limit surface (vertex positions that are not finite or overflow)");
+      points[nv + std::size_t(i)] = p;
+    }
+  }
   std::vector<int> first_ptex_face;  // per base face; -1 where it has no patches
   std::vector<int> sizes;            // per base face
 
@@ -87,34 +125,10 @@ FarPatches::FarPatches(const Cage& cage, int level, const std::vector<int>& face
   m.table.reset(far::PatchTableFactory::Create(*m.refiner, options, selected));
   if (!m.table) throw CageError(cage_label(cage) + ": OpenSubdiv gave no patch table");
 
-  // Every refined vertex and local (end cap) point as a stencil of the base vertices.
-  far::StencilTableFactoryReal<double>::Options so;
-  so.generateIntermediateLevels = true;
-  so.generateOffsets = true;
-  std::unique_ptr<const far::StencilTableReal<double>> refined(
-      far::StencilTableFactoryReal<double>::Create(*m.refiner, so));
-  std::unique_ptr<const far::StencilTableReal<double>> all;
-  if (const auto* local = m.table->GetLocalPointStencilTable<double>())
-    all.reset(far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(*m.refiner, refined.get(), local));
-  const far::StencilTableReal<double>& stencils = all ? *all : *refined;
-  const int nv = cage.vertex_count();
-  m.points.resize(std::size_t(nv) + std::size_t(stencils.GetNumStencils()));
-  for (int v = 0; v < nv; ++v) m.points[std::size_t(v)] = glm::dvec3(cage.positions[std::size_t(v)]);
-  const auto& sizes = stencils.GetSizes();
-  const auto& offsets = stencils.GetOffsets();
-  const auto& indices = stencils.GetControlIndices();
-  const auto& weights = stencils.GetWeights();
-  for (int i = 0; i < stencils.GetNumStencils(); ++i) {
-    glm::dvec3 p(0.0);
-    for (int j = 0; j < sizes[std::size_t(i)]; ++j) {
-      const std::size_t e = std::size_t(offsets[std::size_t(i)] + j);
-      p += weights[e] * m.points[std::size_t(indices[e])];
-    }
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw CageError(cage_label(cage) +
-                      ": no finite limit surface (vertex positions that are not finite or overflow)");
-    m.points[std::size_t(nv + i)] = p;
-  }
+  m.label = cage_label(cage);
+  m.make_stencils();
+  m.place(cage.positions);
+  m.stencils.reset();
   m.map = std::make_unique<far::PatchMap>(*m.table);
   const far::PtexIndices ptex(*m.refiner);
   m.first_ptex_face.assign(m.sizes.size(), -1);
@@ -129,6 +143,15 @@ FarPatches::FarPatches(const Cage& cage, int level, const std::vector<int>& face
 }
 
 FarPatches::~FarPatches() = default;
+
+void FarPatches::repose(std::span<const glm::vec3> positions) {
+  Impl& m = *impl_;
+  if (positions.size() != std::size_t(m.refiner->GetLevel(0).GetNumVertices()))
+    throw std::logic_error("FarPatches::repose: " + std::to_string(positions.size()) + " positions for " +
+                           std::to_string(m.refiner->GetLevel(0).GetNumVertices()) + " vertices");
+  if (!m.stencils) m.make_stencils();
+  m.place(positions);
+}
 
 bool FarPatches::has_patches(int face) const {
   return face >= 0 && face < int(impl_->sizes.size()) && impl_->first_ptex_face[std::size_t(face)] >= 0;
@@ -208,10 +231,16 @@ std::size_t FarPatches::memory_bytes() const {
   for (int a = 0; a < m.table->GetNumPatchArrays(); ++a)
     cvs += std::size_t(m.table->GetNumPatches(a)) *
            std::size_t(m.table->GetPatchArrayDescriptor(a).GetNumControlVertices());
+  std::size_t stencils = 0;  // kept only once reposed
   // The points, and per patch its control point indices, PatchParam (8 bytes) and sharpness index.
+  if (m.stencils)
+    stencils =
+        m.stencils->GetWeights().size() * sizeof(double) +
+        (m.stencils->GetControlIndices().size() + m.stencils->GetSizes().size() + m.stencils->GetOffsets().size()) *
+            sizeof(int);
   return m.points.capacity() * sizeof(glm::dvec3) + cvs * sizeof(int) +
          std::size_t(m.table->GetNumPatchesTotal()) * (8 + (m.single_crease ? sizeof(int) : 0)) +
-         m.first_ptex_face.capacity() * sizeof(int);
+         m.first_ptex_face.capacity() * sizeof(int) + stencils;
 }
 
 }  // namespace tessera::osd_detail

@@ -24,11 +24,15 @@
 //   a patch there (has_patches).
 // - patch_at: the kind and isolation level of the patch that evaluate() uses at that point; counts():
 //   patches per kind and per level.
+// - repose(positions): the same cage's vertices moved (an animation's pose): only the points are
+//   recomputed, through the same stencils as the constructor's, so the result has the bits a new
+//   FarPatches of the moved cage would have. Keeps the stencils from its first call on.
 #pragma once
 
 #include <glm/ext/vector_double3.hpp>
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "shaders_cpp/cage/cage.h"
@@ -54,6 +58,7 @@ class FarPatches {
   FarPatches(const FarPatches&) = delete;
   FarPatches& operator=(const FarPatches&) = delete;
 
+  void repose(std::span<const glm::vec3> positions);
   bool has_patches(int face) const;
   Point evaluate(int face, int k, double s, double t) const;
   PatchInfo patch_at(int face, int k, double s, double t) const;

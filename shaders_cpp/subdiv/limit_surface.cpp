@@ -87,6 +87,57 @@ struct LimitSurface::Impl {
   std::vector<SharedPoint> vertex_limit;  // per cage vertex (unused vertices stay zero)
 
   glm::dvec3 lo{0.0}, hi{0.0};
+  std::string label;  // the cage's, for errors
+
+  // Bfr's patch points of every face it draws, from `positions` (one per cage vertex).
+  void place_bfr_points(std::span<const glm::vec3> positions) {
+    std::vector<double> mesh(positions.size() * 3);
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      for (int c = 0; c < 3; ++c) mesh[v * 3 + std::size_t(c)] = double(positions[v][c]);
+    const Surface::PointDescriptor desc(3);
+    for (std::size_t f = 0; f < surfaces.size(); ++f) {
+      const Surface& s = surfaces[f];
+      if (by_far[f] || !s.IsValid()) continue;
+      double* first = patch_points.data() + pp_offset[f];
+      s.PreparePatchPoints(mesh.data(), desc, first, desc);
+      for (double* x = first; x != patch_points.data() + pp_offset[f + 1]; ++x)
+        if (!std::isfinite(*x))
+          throw CageError(label + ": face " + std::to_string(f) +
+                          " has no finite limit surface (vertex positions that are not finite or overflow)");
+    }
+  }
+  // What depends on the points besides the patches: each vertex's limit, evaluated once by its owner
+  // (the lowest-index face with a surface, its first corner there), and the bounds of the surface from
+  // a 9x9 grid on every sub-patch.
+  void place_shared() {
+    std::fill(vertex_limit.begin(), vertex_limit.end(), SharedPoint{glm::vec3(0.0f), glm::vec3(0.0f)});
+    std::vector<char> vertex_done(vertex_limit.size(), 0);
+    for (int f = 0; f < int(sizes.size()); ++f) {
+      if (!has_surface(f)) continue;
+      const int n = sizes[std::size_t(f)], base = corner_base[std::size_t(f)];
+      for (int e = 0; e < n; ++e) {
+        const int a = corners[std::size_t(base + e)];
+        if (vertex_done[std::size_t(a)]) continue;
+        vertex_done[std::size_t(a)] = 1;
+        vertex_limit[std::size_t(a)] =
+            n == 4 ? shared(f, 0, e == 1 || e == 2 ? 1.0 : 0.0, e >= 2 ? 1.0 : 0.0) : shared(f, e, 0.0, 0.0);
+      }
+    }
+    lo = glm::dvec3(std::numeric_limits<double>::infinity());
+    hi = glm::dvec3(-std::numeric_limits<double>::infinity());
+    for (int f = 0; f < int(sizes.size()); ++f) {
+      if (!has_surface(f)) continue;
+      const int subs = sizes[std::size_t(f)] == 4 ? 1 : sizes[std::size_t(f)];
+      for (int k = 0; k < subs; ++k)
+        for (int i = 0; i <= 8; ++i)
+          for (int j = 0; j <= 8; ++j) {
+            const glm::dvec3 p = raw(f, k, i / 8.0, j / 8.0).p;
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+          }
+    }
+    if (lo.x > hi.x) lo = hi = glm::dvec3(0.0);
+  }
 
   bool has_surface(int f) const { return surfaces[std::size_t(f)].IsValid() || by_far[std::size_t(f)]; }
 
@@ -295,6 +346,7 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
   m->level = level;
   m->adaptive = adaptive;
   m->left_handed = cage.tags.left_handed;
+  m->label = osd_detail::cage_label(cage);
   std::vector<int> far_faces;
   if (adaptive) {
     // validate_cage and OpenSubdiv's limits are checked as the patches' refiner is built.
@@ -327,38 +379,25 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
       for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
     }
     // Bfr's surfaces and their patch points, for every other face.
-    std::vector<double> mesh(std::size_t(nv) * 3);
-    for (int v = 0; v < nv; ++v)
-      for (int c = 0; c < 3; ++c) mesh[std::size_t(v) * 3 + std::size_t(c)] = double(cage.positions[std::size_t(v)][c]);
-    const Surface::PointDescriptor desc(3);
     for (int f = 0; f < nf; ++f) {
       Surface& s = m->surfaces[std::size_t(f)];
       m->pp_offset[std::size_t(f)] = m->patch_points.size();
       if (m->by_far[std::size_t(f)]) continue;
       if (m->factory->FaceHasLimitSurface(f) && !m->factory->InitVertexSurface(f, &s))
-        throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
-                        " has no OpenSubdiv limit surface");
-      if (!s.IsValid()) continue;
-      const std::size_t first = m->patch_points.size();
-      m->patch_points.resize(first + std::size_t(s.GetNumPatchPoints()) * 3);
-      s.PreparePatchPoints(mesh.data(), desc, m->patch_points.data() + first, desc);
-      for (std::size_t k = first; k < m->patch_points.size(); ++k)
-        if (!std::isfinite(m->patch_points[k]))
-          throw CageError(osd_detail::cage_label(cage) + ": face " + std::to_string(f) +
-                          " has no finite limit surface (vertex positions that are not finite or overflow)");
+        throw CageError(m->label + ": face " + std::to_string(f) + " has no OpenSubdiv limit surface");
+      if (s.IsValid()) m->patch_points.resize(m->patch_points.size() + std::size_t(s.GetNumPatchPoints()) * 3);
     }
     m->pp_offset[std::size_t(nf)] = m->patch_points.size();
+    m->place_bfr_points(cage.positions);
   }
 
-  // Owners: lowest-index face with a surface, first occurrence within it.
+  // Edge owners: lowest-index face with a surface, first occurrence within it.
   struct FirstUse {
     int face, edge, from;
   };
   std::unordered_map<std::uint64_t, FirstUse> first;
   first.reserve(std::size_t(total));
   m->edge_owner.resize(std::size_t(total));
-  m->vertex_limit.assign(std::size_t(nv), SharedPoint{glm::vec3(0.0f), glm::vec3(0.0f)});
-  std::vector<char> vertex_done(std::size_t(nv), 0);
   for (int f = 0; f < nf; ++f) {
     if (!m->has_surface(f)) continue;
     const int n = m->sizes[std::size_t(f)], base = m->corner_base[std::size_t(f)];
@@ -366,31 +405,21 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
       const int a = m->corners[std::size_t(base + e)], b = m->corners[std::size_t(base + (e + 1) % n)];
       const FirstUse& o = first.try_emplace(edge_key(a, b), FirstUse{f, e, a}).first->second;
       m->edge_owner[std::size_t(base + e)] = {o.face, o.edge, o.from != a};
-      if (!vertex_done[std::size_t(a)]) {
-        vertex_done[std::size_t(a)] = 1;
-        m->vertex_limit[std::size_t(a)] =
-            n == 4 ? m->shared(f, 0, e == 1 || e == 2 ? 1.0 : 0.0, e >= 2 ? 1.0 : 0.0) : m->shared(f, e, 0.0, 0.0);
-      }
     }
   }
-
-  // Bounds of the limit surface from a 9x9 grid on every sub-patch.
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (int f = 0; f < nf; ++f) {
-    if (!m->has_surface(f)) continue;
-    const int subs = m->sizes[std::size_t(f)] == 4 ? 1 : m->sizes[std::size_t(f)];
-    for (int k = 0; k < subs; ++k)
-      for (int i = 0; i <= 8; ++i)
-        for (int j = 0; j <= 8; ++j) {
-          const glm::dvec3 p = m->raw(f, k, i / 8.0, j / 8.0).p;
-          lo = glm::min(lo, p);
-          hi = glm::max(hi, p);
-        }
-  }
-  if (lo.x > hi.x) lo = hi = glm::dvec3(0.0);
-  m->lo = lo;
-  m->hi = hi;
+  m->vertex_limit.resize(std::size_t(nv));
+  m->place_shared();
   return LimitSurface(std::move(m));
+}
+
+void LimitSurface::repose(std::span<const glm::vec3> positions) {
+  Impl& m = *impl_;
+  if (positions.size() != m.vertex_limit.size())
+    throw std::logic_error("LimitSurface::repose: " + std::to_string(positions.size()) + " positions for a cage of " +
+                           std::to_string(m.vertex_limit.size()) + " vertices");
+  if (m.far) m.far->repose(positions);
+  if (!m.adaptive) m.place_bfr_points(positions);
+  m.place_shared();
 }
 
 int LimitSurface::face_count() const { return int(impl_->sizes.size()); }

@@ -54,6 +54,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include "shaders_cpp/cage/cage.h"
 
@@ -103,6 +104,13 @@ class LimitSurface {
   // The adaptive method at `isolation` (1..kMaxIsolation; std::invalid_argument outside); the same
   // CageErrors as create().
   static LimitSurface create_adaptive(const Cage& cage, int isolation);
+
+  // The same cage with its vertices moved (an animation's pose; one position per cage vertex): only
+  // what depends on the points is recomputed (Bfr's patch points, Far's points through its kept
+  // stencils, each vertex's owned limit, the bounds), so a pose costs a fraction of create() and gives
+  // the bits a surface created from the moved cage would. The same CageErrors as create() for a limit
+  // that is not finite; std::logic_error for a wrong count.
+  void repose(std::span<const glm::vec3> positions);
 
   LimitSurface(LimitSurface&&) noexcept;
   LimitSurface& operator=(LimitSurface&&) noexcept;
