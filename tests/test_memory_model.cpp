@@ -148,3 +148,23 @@ TEST_CASE("memory_table on the monster frog: the mesh grows as the square of the
   // All quads: L^2 * 2 triangles per face.
   CHECK(m.levels[0].mesh_triangles == 1292u * 128u);
 }
+
+TEST_CASE("memory_table counts the precomputed patches' rows and pre-pass points", "[memory][issue34]") {
+  // A sphere with valence-20 poles: its 40 pole quads have 1-rings of 46 points, precomputed; the patch
+  // data holds their rows over the ring and the pre-pass's 20 points per patch besides the tables.
+  const Cage c = sphere_cage(20, 4, 1.0f);
+  const Topology t(c);
+  const SubdPatches p = build_patches(c, t, Scheme::gregory);
+  REQUIRE(p.precomputed.size() == 40);
+  std::uint64_t rows = 0, tables = 0;
+  for (const PrecomputedPatch& q : p.precomputed)
+    rows += q.weights.size() * sizeof(float) + q.vertices.size() * sizeof(int);
+  for (const StencilTable& s : p.tables) tables += s.weights.size() * sizeof(float);
+  const std::uint64_t records = (p.quads.size() + p.tris.size()) * sizeof(SubdPatch);
+  const std::uint64_t indices = (p.quads.indices.size() + p.tris.indices.size()) * sizeof(std::uint32_t);
+  MemoryModelOptions o;
+  o.levels = {4};
+  o.displacement_data_bytes = 0;
+  const MemoryTable m = memory_table(c, t, p, o);
+  CHECK(m.patch_bytes == indices + tables + records + rows + 40 * 20 * sizeof(glm::vec3));
+}

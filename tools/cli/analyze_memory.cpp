@@ -226,7 +226,7 @@ MemoryAnalysis analyze_memory(const std::string& cage_path, const Cage& cage, co
 std::string memory_text(const MemoryAnalysis& a) {
   const MemoryTable& t = a.table;
   std::ostringstream s;
-  s << "Memory (level L: integer factor L on every edge; the model is in shaders_cpp/memory_model.h):\n";
+  s << "Memory (level L: integer factor L on every edge; the model is in tools/measure/memory_model.h):\n";
   s << "- pre-tessellated mesh: " << a.options.mesh_vertex_bytes
     << " B per vertex (position, normal, UV; split on UV seams), 32-bit indices\n";
   s << "- Tessera: cage " << megabytes(t.cage_bytes) << " MB + patch data (" << a.options.scheme

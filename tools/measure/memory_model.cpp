@@ -69,10 +69,14 @@ MemoryTable memory_table(const Cage& cage, const Topology& topology, const SubdP
                      (cage.face_vertices.size() + cage.face_uvs.size() + 2 * cage.face_sizes.size()) * sizeof(int);
   std::uint64_t weights = 0;
   for (const StencilTable& t : patches.tables) weights += t.weights.size();
+  // Precomputed patches (1-rings over 32 points): their rows over the ring, and the pre-pass's points.
+  std::uint64_t precomputed = std::uint64_t(patches.precomputed_rows) * sizeof(glm::vec3);
+  for (const PrecomputedPatch& p : patches.precomputed)
+    precomputed += p.weights.size() * sizeof(float) + p.vertices.size() * sizeof(int);
   const std::uint64_t patch_count = patches.quads.size() + patches.tris.size();
   table.patch_bytes =
       (patches.quads.indices.size() + patches.tris.indices.size()) * sizeof(std::uint32_t) + weights * sizeof(float) +
-      patch_count * sizeof(SubdPatch) +
+      precomputed + patch_count * sizeof(SubdPatch) +
       options.displacement_data_bytes.value_or(cage.has_uvs() ? patch_count * 16 * sizeof(glm::vec2) : 0) +
       options.limit_surface_bytes;
 

@@ -13,7 +13,8 @@
 //   them (the n-gon's n inner edges and its centre). Each vertex is `mesh_vertex_bytes` (default 32:
 //   float3 position, float3 normal, float2 UV); each triangle is 3 indices of `index_bytes` (default 4).
 // - Tessera keeps the cage (positions, UVs, face and face-UV index lists), its patches (IA index
-//   buffer, stencil tables, per-patch records, and the displacement's per-patch data: its watertight
+//   buffer, stencil tables, per-patch records, precomputed patches' rows and pre-pass points (1-rings
+//   over 32), and the displacement's per-patch data: its watertight
 //   texture coordinates and owner frames as built, or 16 texture coordinates per patch when not given),
 //   and the displacement map.
 // - The map a level needs holds one texel per generated vertex over the cage's UV area: a square atlas
