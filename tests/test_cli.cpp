@@ -304,7 +304,7 @@ TEST_CASE("tessera tessellate, render and accuracy: bad input is one line and a 
                         Case{"render " + cube + " --resolution 0x10 -o x.png", "--resolution", 2},
                         Case{"render " + cube + " --view sketch -o x.png", "--view", 2},
                         Case{"tessellate " + cube + " --threads -3 --check-watertight", "--threads", 2},
-                        Case{"accuracy " + pentagons + " --scheme gregory", "triangles and quads only", 1},
+                        Case{"accuracy " + pentagons + " --scheme acc", "--scheme acc", 1},
                         Case{"tessellate " + pentagons + " --scheme pn --check-watertight", "has 5 sides", 1}}) {
     INFO(c.args);
     const auto r = run_cli(c.args);

@@ -14,8 +14,13 @@
 //   (Loop et al. 2009 after Kovacs; evaluated by patch_eval.h). P and E are built exactly as for quads,
 //   so a triangle and a quad sharing an edge share its four boundary points bit for bit; the face points
 //   are re-derived for the quartic (patch_stencils.cpp states the derivation).
-// acc needs a quad whose corner rings have only quads; gregory takes quads and triangles whose corner
-// rings have triangles and quads (other faces in a ring act through their "virtual quad" far point,
+// - gregory_fan_stencils: 15 stencils in the triangle's layout for fan triangle k of a face of n >= 5
+//   sides (corner 0 = face corner k, corner 1 = face corner k + 1, corner 2 = the face's centre, as the
+//   exact scheme's fan, limit_surface.h). Its outer edge is the cage edge k -> k+1 with the P and E points
+//   every other face beside that edge computes, bit for bit; the centre is the exact limit
+//   (face_centre_limit.h). The derivation is stated in patch_stencils.cpp.
+// acc needs a quad whose corner rings have only quads; gregory takes any face (larger faces in a
+// corner ring act through their "virtual quad" far point,
 // limit_masks.h). The caller (subd_patches.cpp) checks.
 #pragma once
 
@@ -23,6 +28,7 @@
 #include <vector>
 
 #include "shaders_cpp/cage/corner_ring.h"
+#include "shaders_cpp/subdiv/face_centre_limit.h"
 #include "shaders_cpp/subdiv/stencil.h"
 
 namespace tessera {
@@ -34,5 +40,7 @@ inline constexpr int kGregoryTriangleStencils = 15;
 std::vector<Stencil> acc_quad_stencils(const std::array<CornerRing, 4>& corners);
 std::vector<Stencil> gregory_quad_stencils(const std::array<CornerRing, 4>& corners);
 std::vector<Stencil> gregory_triangle_stencils(const std::array<CornerRing, 3>& corners);
+// `a` and `b`: the rings of face corners k and k + 1 (gather_corner_ring, or the creased rings).
+std::vector<Stencil> gregory_fan_stencils(const CornerRing& a, const CornerRing& b, const FaceCentre& centre, int k);
 
 }  // namespace tessera

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "shaders_cpp/cage/corner_ring.h"
+#include "shaders_cpp/subdiv/face_centre_limit.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/cage/topology_combinations.h"
 
@@ -288,16 +289,48 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       }
       continue;
     }
-    // acc: quads whose corner rings are all quads. gregory and bspline: quads and triangles; faces of
-    // other sizes in a corner ring act through their virtual quad point (limit_masks.h).
-    if (n != 4 && (n != 3 || scheme == Scheme::acc))
-      throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme " + to_string(scheme) +
-                      (scheme == Scheme::acc ? " handles quads only" : " handles triangles and quads only") +
-                      " (use --scheme adaptive, exact or flat)");
+    // acc: quads whose corner rings are all quads. gregory and bspline: every face; faces of other sizes
+    // in a corner ring act through their virtual quad point (limit_masks.h).
+    if (n != 4 && scheme == Scheme::acc)
+      throw CageError(where(cage, f) + " has " + std::to_string(n) + " sides; --scheme acc handles quads only" +
+                      " (use --scheme gregory, adaptive, exact or flat)");
     // The rings cut at creases, and each corner's blend weight (crease_weight), for a face with a
     // tagged corner (`creased`); a smooth face is built once, as before creases were drawn.
     bool creased = false;
     for (int k = 0; k < n; ++k) creased |= t.has_sharpness_at(cage.face_vertex(f, k));
+    if (n > 4) {
+      // The fan of the exact scheme: triangle k = (face corner k, corner k + 1, centre), unrotated (the
+      // limit surface's fan_location names it by k), with the same edge keys (spokes take the mean of
+      // the cage edges beside them). Its ring is the union of every corner's ring, which the centre reads.
+      if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
+      std::vector<CornerRing> rings, cut(static_cast<std::size_t>(n));
+      std::vector<double> w(static_cast<std::size_t>(n), 0.0);
+      for (int k = 0; k < n; ++k) {
+        rings.push_back(gather_corner_ring(cage, t, f, k));
+        float sharpness = 0.0f;
+        if (creased) cut[std::size_t(k)] = gather_creased_corner_ring(cage, t, f, k, &sharpness);
+        w[std::size_t(k)] = crease_weight(sharpness);
+      }
+      const FaceCentre centre = face_centre_limit(cage, t, f);
+      auto at = [&](int k) { return std::size_t(((k % n) + n) % n); };
+      for (int k = 0; k < n; ++k) {
+        auto face_vertex = [&](int j) { return cage.face_vertex(f, int(at(j))); };
+        const std::int64_t before = cage_edge_key(face_vertex(k - 1), face_vertex(k)),
+                           outer = cage_edge_key(face_vertex(k), face_vertex(k + 1)),
+                           after = cage_edge_key(face_vertex(k + 1), face_vertex(k + 2));
+        const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
+                                                     EdgeFactorKey{outer, after}, EdgeFactorKey{}};
+        std::vector<Stencil> stencils = gregory_fan_stencils(rings[at(k)], rings[at(k + 1)], centre, k);
+        if (creased)
+          stencils = blend_by_corner(stencils, gregory_fan_stencils(cut[at(k)], cut[at(k + 1)], centre, k),
+                                     std::array<double, 3>{w[at(k)], w[at(k + 1)], 0.0}, false);
+        // The ring from corner k on, so the fans of one face (and of faces alike) share a table.
+        std::vector<CornerRing> from_k;
+        for (int j = 0; j < n; ++j) from_k.push_back(rings[at(k + j)]);
+        builder.add(out.tris, f, k, PatchKind::gregory_triangle, gather_ring(from_k), stencils, fan_edges, 0, n);
+      }
+      continue;
+    }
     auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
       if (!creased) return;
       for (std::size_t k = 0; k < N; ++k) {

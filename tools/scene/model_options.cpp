@@ -16,7 +16,7 @@ void add_scheme_options(CLI::App& cmd, RenderSettings& s) {
   add_setting_option(
       cmd, "--scheme", s.scheme, [](const std::string& text) { return scheme_option(text); },
       "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
-      "(Gregory ACC: quads and triangles), exact (OpenSubdiv limit), pn (PN triangles and quads) or adaptive "
+      "(Gregory ACC: quads, triangles, n-gons as fans), exact (OpenSubdiv limit), pn (PN triangles and quads) or adaptive "
       "(feature-adaptive patches to --isolation: creases, corners and every face)")
       ->default_str(to_string(s.scheme));
   add_setting_option(
