@@ -10,7 +10,8 @@ Device::Device(DeviceOptions options) : options_(options) {
   options_.tile_size = std::clamp(options_.tile_size & ~1, 8, 1024);
   options_.chunk_primitives = std::max<std::size_t>(options_.chunk_primitives, 64);
   options_.window_patches = std::max(options_.window_patches, 1);
-  options_.chunks_in_flight = std::max(options_.chunks_in_flight, 1);
+  // Enough chunks per round that every thread has one to produce beside those still rasterizing.
+  if (options_.chunks_in_flight <= 0) options_.chunks_in_flight = std::max(4, 2 * threads_);
   // oneTBB caps its workers at the hardware concurrency and says so on stderr when an arena asks for
   // more. A device asked for more threads than cores (to test determinism, or on an oversubscribed
   // machine) raises the cap while it lives. Active controls combine by their minimum, so two such

@@ -6,9 +6,10 @@
 //   from run to run. Work is split into chunks of primitives in draw order; each tile rasterizes the
 //   chunks' primitives in draw order; every computation on a primitive is a pure function of it.
 // - Bounded memory: the front end (front_end.h) handles at most `window_patches` patches at a time
-//   (VS and HS outputs), and cuts their output into chunks of about `chunk_primitives` primitives, at
-//   most `chunks_in_flight` of which exist at once before they are flushed to the rasterizer. Peak memory
-//   therefore does not grow with the tessellation factor (one patch is at most 8192 triangles).
+//   (VS and HS outputs), and cuts their output into chunks of about `chunk_primitives` primitives, in
+//   rounds of `chunks_in_flight`; at most two rounds exist at once (one rasterized while the next is
+//   produced). Peak memory therefore does not grow with the tessellation factor (one patch is at most
+//   8192 triangles); it grows linearly with the thread count (2 x chunks_in_flight chunk buffers).
 // - A Device runs one draw at a time (draws on one device from several threads take turns): its chunk
 //   slots are reused from draw to draw, so their storage is allocated and touched once, not per frame.
 // - Bad data is reported, not crashed on: validate() errors are returned as one-line messages;
@@ -31,6 +32,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -53,7 +55,9 @@ struct DeviceOptions {
   int tile_size = 64;                   // screen tile edge in pixels (even, 8..1024)
   std::size_t chunk_primitives = 4096;  // a chunk is cut before its primitive count would pass this
   int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
-  int chunks_in_flight = 8;             // chunks produced before they are flushed to the rasterizer
+  // Chunks per round: a round is produced in parallel, then rasterized while the next is produced, so
+  // two rounds exist at once. 0: twice the thread count, at least 4.
+  int chunks_in_flight = 0;
 };
 
 // Called on the drawing thread after each round of chunks of a patch draw: the draw's patches done
@@ -113,32 +117,51 @@ namespace detail {
 template <std::size_t N, class Ps>
 class Backend {
  public:
+  // `slot_count` chunks per round; the slots hold two rounds, one rasterized while the next is produced.
   Backend(const SetupContext& setup, const DepthState& depth, const Ps& ps, Framebuffer& fb,
           std::vector<ChunkBuffer<N>>& slots, int slot_count)
-      : setup_(setup), rc_{depth, setup.min_depth, setup.max_depth}, ps_(ps), fb_(fb), slots_(slots) {
-    slots_.resize(std::size_t(slot_count));
+      : setup_(setup),
+        rc_{depth, setup.min_depth, setup.max_depth},
+        ps_(ps),
+        fb_(fb),
+        slots_(slots),
+        per_round_(std::size_t(std::max(slot_count, 1))) {
+    slots_.resize(2 * per_round_);
   }
 
   const SetupContext& setup() const { return setup_; }
 
-  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&) in parallel, `slots` at a time, and
-  // rasterizes each round before the next; after_round(chunks done) follows each round.
+  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), a round of `slot_count` in parallel,
+  // and rasterizes each round while the next one is produced (geometry and raster overlap; each tile
+  // still takes the rounds, and the chunks within a round, in draw order). after_round(chunks done)
+  // follows each round's rasterization.
   template <class Produce, class AfterRound>
   void run(std::size_t count, Produce&& produce, DrawReport& report, AfterRound&& after_round) {
-    for (std::size_t first = 0; first < count; first += slots_.size()) {
-      const std::size_t n = std::min(slots_.size(), count - first);
+    if (count == 0) return;
+    const auto produce_round = [&](std::size_t first, std::size_t set) {
+      const std::size_t n = std::min(per_round_, count - first);
       detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const auto& r) {
         for (std::size_t s = r.begin(); s != r.end(); ++s) {
-          slots_[s].reset(setup_.tiles.count());
-          produce(first + s, slots_[s]);
-          slots_[s].finish_bins();
+          ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
+          slot.reset(setup_.tiles.count());
+          produce(first + s, slot);
+          slot.finish_bins();
         }
       });
-      flush(n, report);
+    };
+    produce_round(0, 0);
+    std::size_t set = 0;
+    for (std::size_t first = 0; first < count; first += per_round_, set ^= 1) {
+      const std::size_t n = std::min(per_round_, count - first), next = first + n;
+      if (next < count)
+        tbb::parallel_invoke([&] { flush(set, n, report); }, [&] { produce_round(next, set ^ 1); });
+      else
+        flush(set, n, report);
       for (std::size_t s = 0; s < n; ++s) {
-        report.statistics += slots_[s].statistics;
-        report.times += slots_[s].times;
-        report.patches_back_culled += slots_[s].patches_back_culled;
+        const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
+        report.statistics += slot.statistics;
+        report.times += slot.times;
+        report.patches_back_culled += slot.patches_back_culled;
       }
       report.memory.chunks += n;
       std::size_t bytes = 0;
@@ -155,21 +178,24 @@ class Backend {
   std::size_t chunk_bytes_peak() const { return chunk_bytes_peak_; }
 
  private:
-  void flush(std::size_t used, DrawReport& report) {
+  // Rasterizes the first `used` chunks of slot set `set`. It alone writes the report's PS invocations
+  // and raster time, so it may run beside the production of the other set.
+  void flush(std::size_t set, std::size_t used, DrawReport& report) {
+    const ChunkBuffer<N>* round = slots_.data() + set * per_round_;
     const TileGrid& g = setup_.tiles;
     tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
     detail::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& r) {
       auto& mine = local.local();
       for (int t = r.begin(); t != r.end(); ++t) {
         bool any = false;
-        for (std::size_t s = 0; s < used && !any; ++s) any = !slots_[s].bin(t).empty();
+        for (std::size_t s = 0; s < used && !any; ++s) any = !round[s].bin(t).empty();
         if (!any) continue;
         const auto start = Clock::now();
         const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
         const int tx1 = std::min(tx0 + g.tile_size, fb_.width()), ty1 = std::min(ty0 + g.tile_size, fb_.height());
         const auto for_each_primitive = [&](const auto& visit) {
           for (std::size_t s = 0; s < used; ++s) {
-            const auto& chunk = slots_[s];
+            const auto& chunk = round[s];
             for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
           }
         };
@@ -188,6 +214,7 @@ class Backend {
   const Ps& ps_;
   Framebuffer& fb_;
   std::vector<ChunkBuffer<N>>& slots_;
+  std::size_t per_round_;
   std::size_t chunk_bytes_peak_ = 0;
 };
 
