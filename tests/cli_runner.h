@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,8 +19,13 @@ struct CliResult {
 };
 
 // A directory of this test process's own (tests may run in parallel processes).
+// The name also holds the process's start time: PIDs are reused, and a directory that a finished test
+// process left behind handed its files to a later process of the same PID (a fake harness's call log
+// that had three lines too many).
 inline std::filesystem::path cli_temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / ("tessera-test-" + std::to_string(::getpid()));
+  static const std::string name = "tessera-test-" + std::to_string(::getpid()) + "-" +
+                                  std::to_string(std::chrono::system_clock::now().time_since_epoch().count());
+  const auto dir = std::filesystem::temp_directory_path() / name;
   std::filesystem::create_directories(dir);
   return dir;
 }

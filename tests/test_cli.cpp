@@ -174,6 +174,7 @@ TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports
   // round runs it once, and the speed-up is the median of the rounds' ratios.
   const fs::path dir = temp_dir();
   const fs::path harness = dir / "fake-tessbench.sh", calls = dir / "calls.txt";
+  fs::remove(calls);  // the harness appends to it
   {
     std::ofstream f(harness);
     f << "#!/bin/sh\n"
@@ -375,6 +376,40 @@ TEST_CASE("gregory draws a cage of pentagons from the CLI: watertight, close to 
     } else {  // the negative control: the cage's own pentagons are far from the limit
       CHECK(acc["max_relative"].get<double>() > 5e-2);
     }
+  }
+}
+
+TEST_CASE("tessera bench scaling times a scene over thread counts and checks the image is the same", "[cli]") {
+  for (const char* scene : {"torus", "frog"}) {
+    const auto r = run_cli(std::string("bench scaling --scene ") + scene +
+                           " --factor 4 --resolution 160x90 --frames 1 --max-threads 3 --json");
+    INFO(scene << ": " << r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["scene"] == scene);
+    CHECK(j["same_image"] == true);
+    CHECK(!j["cpu"].get<std::string>().empty());
+    const auto& rows = j["rows"];
+    REQUIRE(rows.size() == 3);  // 1, 2, then the largest, 3
+    CHECK(rows[0]["threads"] == 1);
+    CHECK(rows[1]["threads"] == 2);
+    CHECK(rows[2]["threads"] == 3);
+    CHECK(rows[0]["speedup"].get<double>() == 1.0);
+    for (const auto& row : rows) {
+      CHECK(row["median_s"].get<double>() > 0);
+      CHECK(row["min_s"].get<double>() <= row["median_s"].get<double>());
+      CHECK(row["efficiency"].get<double>() ==
+            Approx(row["speedup"].get<double>() / row["threads"].get<double>()).epsilon(1e-12));
+    }
+  }
+  const auto text = run_cli("bench scaling --factor 2 --resolution 64x36 --frames 1 --max-threads 2");
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("threads  time (ms)  speed-up  efficiency") != std::string::npos);
+  for (const char* bad : {"--scene cube", "--factor 0", "--factor 65", "--frames 0", "--max-threads -1"}) {
+    const auto b = run_cli(std::string("bench scaling ") + bad);
+    INFO(bad << ": " << b.err);
+    CHECK(b.exit_code == 2);
+    CHECK(std::count(b.err.begin(), b.err.end(), '\n') == 1);
   }
 }
 

@@ -105,16 +105,18 @@ Runner add_bench_command(CLI::App& app, std::span<const BenchAdder> more) {
   Runner torus = add_bench_torus_command(*cmd);
   Runner frog = add_bench_subd_command(*cmd);
   Runner dolly = add_bench_dolly_command(*cmd);
+  Runner scaling = add_bench_scaling_command(*cmd);
   std::vector<Runner> others;
   for (const BenchAdder add : more) others.push_back(add(*cmd));
-  return [o, tess, torus, frog, dolly, others]() -> int {
+  return [o, tess, torus, frog, dolly, scaling, others]() -> int {
     if (tess->parsed()) return run_bench_tessellator(*o);
     if (const int rc = torus(); rc >= 0) return rc;
     if (const int rc = frog(); rc >= 0) return rc;
     if (const int rc = dolly(); rc >= 0) return rc;
+    if (const int rc = scaling(); rc >= 0) return rc;
     for (const Runner& other : others)
       if (const int rc = other(); rc >= 0) return rc;
-    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly, view)");
+    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly, scaling, view)");
   };
 }
 

@@ -39,6 +39,7 @@ std::vector<std::string> idiff_arguments(int argc, char** argv);
 Runner add_bench_torus_command(CLI::App& bench);
 Runner add_bench_subd_command(CLI::App& bench);
 Runner add_bench_dolly_command(CLI::App& bench);
+Runner add_bench_scaling_command(CLI::App& bench);
 Runner add_bench_view_command(CLI::App& bench);  // tools/cli/bench_view.cpp
 
 }  // namespace tessera::cli

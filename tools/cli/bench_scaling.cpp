@@ -1,0 +1,169 @@
+// `tessera bench scaling`: one scene rendered with 1, 2, 4, ... threads up to all cores (or
+// --max-threads), each count on its own device, median of --frames after one warm-up frame; a table of
+// time, speed-up over one thread and parallel efficiency (speed-up / threads), so that a user can size a
+// machine. The CPU's name (from /proc/cpuinfo, where there is one) heads the table; it changes no
+// result. The image is the same bytes for every thread count (device.h); this command checks it and
+// fails if not.
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "pipeline/device.h"
+#include "shaders_cpp/render/displaced_render.h"
+#include "shaders_cpp/render/subd_render.h"
+#include "shaders_cpp/render/torus_scene.h"
+#include "tools/cli/commands.h"
+#include "tools/scene/common.h"
+#include "tools/scene/json_output.h"
+#include "tools/scene/scene_render.h"
+
+namespace tessera::cli {
+namespace {
+
+struct ScalingOptions {
+  std::string scene = "torus";
+  float factor = 64;
+  std::string resolution = "1920x1080";
+  int frames = 5;
+  int max_threads = 0;  // 0: the hardware's
+  bool json = false;
+};
+
+std::string cpu_name() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  return "unknown CPU";
+}
+
+// 1, 2, 4, ... below `most`, then `most`.
+std::vector<int> thread_counts(int most) {
+  std::vector<int> counts;
+  for (int t = 1; t < most; t *= 2) counts.push_back(t);
+  counts.push_back(most);
+  return counts;
+}
+
+int run_bench_scaling(const ScalingOptions& o) {
+  if (o.scene != "torus" && o.scene != "frog")
+    throw UsageError("--scene: '" + o.scene + "' is not a scaling scene (torus or frog)");
+  if (!std::isfinite(o.factor) || o.factor < 1.0f || o.factor > 64.0f)
+    throw UsageError("--factor: must be in 1..64 (the tessellator's range)");
+  if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
+  const int hardware = int(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.max_threads < 0 || o.max_threads > 4096) throw UsageError("--max-threads: must be in 0..4096 (0: all cores)");
+  const int most = o.max_threads > 0 ? o.max_threads : hardware;
+  const auto [w, h] = parse_resolution(o.resolution);
+
+  // One frame of the scene on a device: a function of the device and the target.
+  std::function<DrawResult(Device&, Framebuffer&)> frame;
+  std::optional<scenes::TorusScene> torus;
+  std::unique_ptr<PreparedScene> subd;
+  if (o.scene == "torus") {
+    log_info("building the torus scene");
+    torus = scenes::make_torus_scene(w, h);
+    frame = [&, draw = scenes::make_torus_draw(*torus, o.factor, ts::Partitioning::integer, w, h)](
+                Device& device, Framebuffer& fb) { return device.draw(draw, fb); };
+  } else {
+    RenderSettings s;
+    s.factor = o.factor;
+    s.camera.width = w, s.camera.height = h;
+    subd = prepare_bench_scene(s);
+    frame = [&](Device& device, Framebuffer& fb) {
+      return render_surface(device, subd->model, subd->displacement ? &*subd->displacement : nullptr, subd->factors,
+                            subd->settings.partitioning, SubdView::shaded, subd->view.camera, fb);
+    };
+  }
+
+  struct Row {
+    int threads;
+    double median_s, min_s;
+  };
+  std::vector<Row> rows;
+  std::vector<std::uint8_t> first_image;
+  for (const int threads : thread_counts(most)) {
+    Device device(device_options(threads));
+    std::string error;
+    auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
+    if (!fb) throw UsageError("--resolution: " + error);
+    std::vector<double> times;
+    for (int k = 0; k <= o.frames; ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      device.clear(*fb, kBackgroundColor, 1.0f);
+      const DrawResult r = frame(device, *fb);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!r.ok()) throw InputError(r.error);
+      if (k > 0) times.push_back(s);
+    }
+    std::sort(times.begin(), times.end());
+    rows.push_back({threads, times[times.size() / 2], times.front()});
+    const std::vector<std::uint8_t>& image = fb->color_bytes();
+    if (first_image.empty())
+      first_image = image;
+    else if (image != first_image)
+      throw InputError("bench scaling: the image with " + std::to_string(threads) +
+                       " threads differs from the 1-thread image (a determinism bug; please report it)");
+    log_info("threads " + std::to_string(threads) + ": median " + std::to_string(rows.back().median_s) + " s");
+  }
+
+  const double one = rows.front().median_s;
+  const std::string cpu = cpu_name();
+  if (o.json) {
+    Json list = Json::array();
+    for (const Row& r : rows)
+      list.push_back({{"threads", r.threads},
+                      {"median_s", r.median_s},
+                      {"min_s", r.min_s},
+                      {"speedup", one / r.median_s},
+                      {"efficiency", one / r.median_s / r.threads}});
+    const Json j = {{"scene", o.scene},
+                    {"factor", json_float(o.factor)},
+                    {"resolution", std::to_string(w) + "x" + std::to_string(h)},
+                    {"frames", o.frames},
+                    {"cpu", cpu},
+                    {"hardware_threads", hardware},
+                    {"same_image", true},
+                    {"rows", list}};
+    std::cout << json_text(j) << "\n";
+  } else {
+    std::ostringstream out;
+    out << "bench scaling: " << o.scene << " factor " << o.factor << ", " << w << "x" << h << ", median of " << o.frames
+        << " frames; " << cpu << ", " << hardware << " hardware threads\n";
+    out << "threads  time (ms)  speed-up  efficiency\n";
+    char line[128];
+    for (const Row& r : rows) {
+      std::snprintf(line, sizeof line, "%7d  %9.2f  %7.2fx  %9.0f%%\n", r.threads, r.median_s * 1e3, one / r.median_s,
+                    100.0 * one / r.median_s / r.threads);
+      out << line;
+    }
+    out << "the same image bytes for every thread count\n";
+    std::cout << out.str();
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Runner add_bench_scaling_command(CLI::App& bench) {
+  auto o = std::make_shared<ScalingOptions>();
+  CLI::App* cmd = bench.add_subcommand(
+      "scaling", "One scene over 1, 2, 4, ... threads up to all cores: time, speed-up and efficiency per count");
+  cmd->add_option("--scene", o->scene, "torus (the benchmark torus) or frog (the monster frog, gregory)")
+      ->capture_default_str();
+  cmd->add_option("--factor", o->factor, "tessellation factor on every edge (1..64)")->capture_default_str();
+  cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "timed frames per thread count (after one warm-up)")->capture_default_str();
+  cmd->add_option("--max-threads", o->max_threads, "the largest thread count (0: all cores)")->capture_default_str();
+  cmd->add_flag("--json", o->json, "print results as JSON");
+  return [o, cmd]() -> int { return cmd->parsed() ? run_bench_scaling(*o) : -1; };
+}
+
+}  // namespace tessera::cli
