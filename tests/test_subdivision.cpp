@@ -7,6 +7,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -73,6 +74,20 @@ verify::WeldReport weld(const SubdModel& m, float factor, float vary, ts::Partit
   f.factor = factor;
   f.vary = vary;
   return weld(m, f, p);
+}
+
+// A rig of one node with one morph target, whose delta at each cage vertex is `delta(position)`.
+std::shared_ptr<CageRig> morph_rig(const Cage& cage, const std::function<glm::vec3(const glm::vec3&)>& delta) {
+  auto rig = std::make_shared<CageRig>();
+  rig->nodes.resize(1);
+  rig->node_order = {0};
+  rig->instances = {RigInstance{0, -1, 0, 1}};
+  rig->bind_positions = cage.positions;
+  rig->vertex_instance.assign(cage.positions.size(), 0);
+  std::vector<glm::vec3> deltas;
+  for (const glm::vec3& p : cage.positions) deltas.push_back(delta(p));
+  rig->target_deltas = {deltas};
+  return rig;
 }
 
 // A pentagonal pyramid (a pentagon among triangles) and a hexagonal prism (hexagons among quads).
@@ -273,17 +288,8 @@ TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, water
   // precomputed patches would part from their posed neighbours if it kept the rest pose's points).
   {
     SubdModel m = make_subd_model(sphere_cage(24, 6, 1.0f), Scheme::gregory);
-    auto rig = std::make_shared<CageRig>();
-    rig->nodes.resize(1);
-    rig->node_order = {0};
-    rig->instances = {RigInstance{0, -1, 0, 1}};
-    rig->bind_positions = m.cage.positions;
-    rig->vertex_instance.assign(m.cage.positions.size(), 0);
-    std::vector<glm::vec3> bulge;
-    for (const glm::vec3& p : m.cage.positions)
-      bulge.push_back(glm::vec3(0.1f * p.x * p.y, 0.2f * p.z * p.z, 0.3f * p.x));
-    rig->target_deltas = {bulge};
-    m.rig = rig;
+    m.rig =
+        morph_rig(m.cage, [](const glm::vec3& p) { return glm::vec3(0.1f * p.x * p.y, 0.2f * p.z * p.z, 0.3f * p.x); });
     const std::vector<glm::vec3> rest = m.precomputed;
     RigPose pose;
     pose.instance_matrices = {glm::mat4(glm::vec4(0.8f, 0.6f, 0.0f, 0.0f), glm::vec4(-0.6f, 0.8f, 0.0f, 0.0f),
@@ -605,17 +611,8 @@ TEST_CASE("gregory draws an n-gon as a fan of Gregory triangles: exact centre, w
       }
     }
   {
-    auto rig = std::make_shared<CageRig>();
-    rig->nodes.resize(1);
-    rig->node_order = {0};
-    rig->instances = {RigInstance{0, -1, 0, 1}};
-    rig->bind_positions = fans.cage.positions;
-    rig->vertex_instance.assign(fans.cage.positions.size(), 0);
-    std::vector<glm::vec3> bulge;
-    for (const glm::vec3& p : fans.cage.positions)
-      bulge.push_back(glm::vec3(0.1f * p.x * p.y, 0.2f * p.y, 0.3f * p.x * p.x));
-    rig->target_deltas = {bulge};
-    fans.rig = rig;
+    fans.rig = morph_rig(fans.cage,
+                         [](const glm::vec3& p) { return glm::vec3(0.1f * p.x * p.y, 0.2f * p.y, 0.3f * p.x * p.x); });
     const verify::WeldReport rest = weld(fans, 3.0f, 1.0f, ts::Partitioning::fractional_odd);
     RigPose pose;
     pose.instance_matrices = {glm::mat4(1.0f)};

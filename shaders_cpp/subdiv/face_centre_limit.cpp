@@ -1,11 +1,10 @@
 #include "shaders_cpp/subdiv/face_centre_limit.h"
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 
 #include "shaders_cpp/cage/cage.h"
 #include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/subdiv/limit_masks.h"
 
 namespace tessera {
 
@@ -83,17 +82,9 @@ FaceCentre face_centre_limit(const Cage& cage, const Topology& t, int f) {
   out.position = double(n) * n * c;
   for (int i = 0; i < n; ++i) out.position.add(m[std::size_t(i)], 4.0).add(d[std::size_t(i)], 1.0);
   out.position.scale(1.0 / (double(n) * (n + 5)));
-  // Loop & Schaefer's tangent mask on the all-quad ring (limit_masks.cpp), from edge j.
-  const double cpn = std::cos(std::numbers::pi / n), root = std::sqrt(4.0 + cpn * cpn);
-  for (int j = 0; j < n; ++j) {
-    Stencil tangent;
-    for (int i = 0; i < n; ++i) {
-      const double alpha = (1.0 / n + cpn / (n * root)) * std::cos(2.0 * std::numbers::pi * i / n);
-      const double beta = (1.0 / (n * root)) * std::cos(2.0 * std::numbers::pi * (i + 0.5) / n);
-      tangent.add(m[std::size_t((j + i) % n)], alpha).add(d[std::size_t((j + i) % n)], beta);
-    }
-    out.tangents.push_back(std::move(tangent));
-  }
+  // The ACC tangent mask on the all-quad ring (limit_masks.h), from edge j.
+  auto at = [n](const std::vector<Stencil>& v) { return [&v, n](int i) { return v[std::size_t(i % n)]; }; };
+  for (int j = 0; j < n; ++j) out.tangents.push_back(acc_tangent(n, j, at(m), at(d)));
   return out;
 }
 

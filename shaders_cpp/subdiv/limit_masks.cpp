@@ -104,15 +104,19 @@ Stencil limit_tangent(const CornerRing& r, int j) {
     t.add(r1, std::cos(j * theta));
     return t;
   }
-  // Loop & Schaefer's ACC tangent mask, indexed from edge j.
+  return acc_tangent(
+      n, j, [&](int i) { return Stencil::vertex(r.e(i)); }, [&](int i) { return far_point(r, i); });
+}
+
+Stencil acc_tangent(int n, int j, const std::function<Stencil(int)>& e, const std::function<Stencil(int)>& d) {
   const double cpn = std::cos(kPi / n);
   const double root = std::sqrt(4.0 + cpn * cpn);
   Stencil t;
   for (int i = 0; i < n; ++i) {
     const double alpha = (1.0 / n + cpn / (n * root)) * std::cos(2.0 * kPi * i / n);
     const double beta = (1.0 / (n * root)) * std::cos(2.0 * kPi * (i + 0.5) / n);
-    t.add_vertex(r.e(j + i), alpha);
-    t.add(far_point(r, j + i), beta);
+    t.add(e(j + i), alpha);
+    t.add(d(j + i), beta);
   }
   return t;
 }

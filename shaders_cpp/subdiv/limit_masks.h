@@ -20,6 +20,8 @@
 //   from the ring turned to start at its lowest-index neighbour.
 #pragma once
 
+#include <functional>
+
 #include "shaders_cpp/cage/corner_ring.h"
 #include "shaders_cpp/subdiv/stencil.h"
 
@@ -28,6 +30,10 @@ namespace tessera {
 Stencil limit_position(const CornerRing& ring);
 // The limit tangent at the ring's centre in the direction of edge e_j.
 Stencil limit_tangent(const CornerRing& ring, int j);
+// Loop & Schaefer's ACC tangent mask at an interior vertex of valence n along edge j of an all-quad ring
+// (real or virtual quads): sum_i alpha_i e(j + i) + beta_i d(j + i), i = 0..n-1, where d(i) is the far
+// point of the face between e(i) and e(i + 1); e and d take their index modulo n.
+Stencil acc_tangent(int n, int j, const std::function<Stencil(int)>& e, const std::function<Stencil(int)>& d);
 // The valence the masks use: n for interior vertices, 2 (n - 1) for boundary ones (4 at a valence-2
 // boundary corner), as Castano's boundary extension of ACC.
 int pseudo_valence(const CornerRing& ring);

@@ -197,6 +197,17 @@ std::vector<Stencil> blend_by_corner(const std::vector<Stencil>& smooth, const s
   return out;
 }
 
+// The SV_TessFactor keys of fan triangle k of face f (vertex k, vertex k + 1, centre): Ueq0 is the spoke
+// to vertex k, keyed by the two cage edges there; Veq0 the cage edge k -> k+1; Weq0 the spoke to
+// vertex k + 1. Both triangles beside a spoke name its two edges in the same order.
+std::array<EdgeFactorKey, 4> fan_edge_keys(const Cage& cage, int f, int k) {
+  const int n = cage.face_sizes[std::size_t(f)];
+  auto vertex = [&](int j) { return cage.face_vertex(f, ((j % n) + n) % n); };
+  const std::int64_t before = cage_edge_key(vertex(k - 1), vertex(k)), outer = cage_edge_key(vertex(k), vertex(k + 1)),
+                     after = cage_edge_key(vertex(k + 1), vertex(k + 2));
+  return {EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1}, EdgeFactorKey{outer, after}, EdgeFactorKey{}};
+}
+
 // The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
 // neighbours and far vertices, counter-clockwise from the face).
 std::vector<int> gather_ring(std::span<const CornerRing> rings) {
@@ -278,11 +289,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       Stencil centre;
       for (int k = 0; k < n; ++k) centre.add_vertex(corner(k), 1.0 / n);
       for (int k = 0; k < n; ++k) {
-        const std::int64_t before = cage_edge_key(corner(k - 1), corner(k)),
-                           outer = cage_edge_key(corner(k), corner(k + 1)),
-                           after = cage_edge_key(corner(k + 1), corner(k + 2));
-        const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
-                                                     EdgeFactorKey{outer, after}, EdgeFactorKey{}};
+        const std::array<EdgeFactorKey, 4> fan_edges = fan_edge_keys(cage, f, k);
         std::vector<Stencil> points;
         if (scheme == Scheme::flat) points = {Stencil::vertex(corner(k)), Stencil::vertex(corner(k + 1)), centre};
         builder.add(out.tris, f, k, tri_kind, corners_from(k), points, fan_edges);
@@ -314,12 +321,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       const FaceCentre centre = face_centre_limit(cage, t, f);
       auto at = [&](int k) { return std::size_t(((k % n) + n) % n); };
       for (int k = 0; k < n; ++k) {
-        auto face_vertex = [&](int j) { return cage.face_vertex(f, int(at(j))); };
-        const std::int64_t before = cage_edge_key(face_vertex(k - 1), face_vertex(k)),
-                           outer = cage_edge_key(face_vertex(k), face_vertex(k + 1)),
-                           after = cage_edge_key(face_vertex(k + 1), face_vertex(k + 2));
-        const std::array<EdgeFactorKey, 4> fan_edges{EdgeFactorKey{before, outer}, EdgeFactorKey{outer, -1},
-                                                     EdgeFactorKey{outer, after}, EdgeFactorKey{}};
+        const std::array<EdgeFactorKey, 4> fan_edges = fan_edge_keys(cage, f, k);
         std::vector<Stencil> stencils = gregory_fan_stencils(rings[at(k)], rings[at(k + 1)], centre, k);
         if (creased)
           stencils = blend_by_corner(stencils, gregory_fan_stencils(cut[at(k)], cut[at(k + 1)], centre, k),
