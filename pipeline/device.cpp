@@ -30,6 +30,15 @@ void Device::clear(Framebuffer& fb, glm::vec4 color, float depth) {
   });
 }
 
+void Device::resolve(const Framebuffer& fb, Framebuffer& out) {
+  constexpr int kRows = 16;  // rows per task (a row of a 1920-wide 8x target is 60 KB of colour)
+  detail::arena_execute(*arena_, [&] {
+    detail::parallel_for(tbb::blocked_range<int>(0, (fb.height() + kRows - 1) / kRows, 1), [&](const auto& r) {
+      fb.resolve_rows(out, r.begin() * kRows, std::min(r.end() * kRows, fb.height()));
+    });
+  });
+}
+
 std::string validate_viewport(const Viewport& vp, const Framebuffer& fb) {
   const bool finite = std::isfinite(vp.x) && std::isfinite(vp.y) && std::isfinite(vp.width) &&
                       std::isfinite(vp.height) && std::isfinite(vp.min_depth) && std::isfinite(vp.max_depth);

@@ -248,6 +248,9 @@ class Device {
   // Clears the colour and depth buffers on the device's threads (bands of rows); the same bytes as
   // Framebuffer::clear.
   void clear(Framebuffer& fb, glm::vec4 color, float depth);
+  // Framebuffer::resolve into `out` (single-sampled, of fb's size and format) on the device's threads
+  // (bands of rows); the same bytes.
+  void resolve(const Framebuffer& fb, Framebuffer& out);
 
   template <class Vertex, class Vs, class Hs, class Ds, class Ps>
   DrawResult draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb);

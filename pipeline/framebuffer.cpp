@@ -1,6 +1,7 @@
 #include "pipeline/framebuffer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -78,31 +79,52 @@ void Framebuffer::set_other_samples(int x, int y, glm::vec4 c) {
 
 Framebuffer Framebuffer::resolve() const {
   Framebuffer out(width_, height_, format_, 1);
-  const std::size_t n = plane_pixels();
-  for (std::size_t i = 0; i < n; ++i) {
-    float nearest = depth_[i];
-    for (int s = 1; s < samples_; ++s) nearest = std::min(nearest, depth_[i + plane_offset(s)]);
-    out.depth_[i] = nearest;
-  }
-  if (format_ == ColorFormat::rgba8_unorm) {
-    const unsigned half = unsigned(samples_) / 2;
-    for (std::size_t i = 0; i < n * 4; ++i) {
-      unsigned sum = 0;
-      for (int s = 0; s < samples_; ++s) sum += color_[i + plane_offset(s) * 4];
-      out.color_[i] = std::uint8_t((sum + half) / unsigned(samples_));
-    }
-  } else {
-    for (std::size_t i = 0; i < n * 4; ++i) {
-      float sum = 0.0f, v = 0.0f;
-      for (int s = 0; s < samples_; ++s) {
-        std::memcpy(&v, &color_[(i + plane_offset(s) * 4) * 4], 4);
-        sum += v;
-      }
-      const float mean = sum / float(samples_);
-      std::memcpy(&out.color_[i * 4], &mean, 4);
-    }
-  }
+  resolve_rows(out, 0, height_);
   return out;
+}
+
+void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
+  // Row by row, plane by plane: each inner loop runs over contiguous values of one plane (vectorized),
+  // the same sums and minima in the same sample order as one pixel at a time.
+  const std::size_t row = std::size_t(width_);
+  std::vector<std::uint16_t> sums(format_ == ColorFormat::rgba8_unorm ? row * 4 : 0);  // 16 x 255 fits
+  std::vector<float> fsums(format_ == ColorFormat::rgba8_unorm ? 0 : row * 4);
+  for (int y = y0; y < y1; ++y) {
+    const std::size_t begin = index(0, y);
+    float* nearest = &out.depth_[begin];
+    std::copy_n(&depth_[begin], row, nearest);
+    for (int s = 1; s < samples_; ++s) {
+      const float* d = &depth_[begin + plane_offset(s)];
+      for (std::size_t i = 0; i < row; ++i) nearest[i] = std::min(nearest[i], d[i]);
+    }
+    if (format_ == ColorFormat::rgba8_unorm) {
+      const unsigned half = unsigned(samples_) / 2;
+      std::fill(sums.begin(), sums.end(), std::uint16_t(half));
+      for (int s = 0; s < samples_; ++s) {
+        const std::uint8_t* c = &color_[(begin + plane_offset(s)) * 4];
+        for (std::size_t i = 0; i < row * 4; ++i) sums[i] = std::uint16_t(sums[i] + c[i]);
+      }
+      // samples_ is a power of two: the division is a shift.
+      const int shift = std::countr_zero(unsigned(samples_));
+      std::uint8_t* o = &out.color_[begin * 4];
+      for (std::size_t i = 0; i < row * 4; ++i) o[i] = std::uint8_t(sums[i] >> shift);
+    } else {
+      std::fill(fsums.begin(), fsums.end(), 0.0f);
+      for (int s = 0; s < samples_; ++s) {
+        const std::uint8_t* c = &color_[(begin + plane_offset(s)) * 16];
+        for (std::size_t i = 0; i < row * 4; ++i) {
+          float v = 0.0f;
+          std::memcpy(&v, c + i * 4, 4);
+          fsums[i] += v;
+        }
+      }
+      std::uint8_t* o = &out.color_[begin * 16];
+      for (std::size_t i = 0; i < row * 4; ++i) {
+        const float mean = fsums[i] / float(samples_);
+        std::memcpy(o + i * 4, &mean, 4);
+      }
+    }
+  }
 }
 
 glm::vec4 Framebuffer::color(int x, int y) const {

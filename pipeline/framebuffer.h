@@ -54,6 +54,9 @@ class Framebuffer {
   // box filter): RGBA8 as the rounded mean of the samples' bytes, RGBA32F as their mean summed in sample
   // order; depth is the nearest sample's (overlays test against it). A copy when samples() == 1.
   Framebuffer resolve() const;
+  // resolve() of rows [y0, y1) into `out`, a single-sampled target of this size and format: disjoint
+  // row ranges may be resolved by different threads (Device::resolve does).
+  void resolve_rows(Framebuffer& out, int y0, int y1) const;
 
   void clear(glm::vec4 color, float depth) { clear_rows(0, height_, color, depth); }
   // Clears rows [y0, y1) only: disjoint row ranges may be cleared by different threads

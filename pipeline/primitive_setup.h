@@ -52,9 +52,9 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
 }
 
 // setup_snapped_triangle on a multisampled target: the box of the pixels whose samples the triangle's
-// box may reach (samples lie within half a pixel of their pixel's centre), the vertices kept for the
-// rasterizer's per-sample edge tests, no pixel-centre rejection. Out of line: single-sampled draws never
-// take it.
+// box may reach (samples lie within half a pixel of their pixel's centre), the edges (or the vertices of
+// a large triangle) kept for the rasterizer's per-sample edge tests, no pixel-centre rejection. Out of
+// line: single-sampled draws never take it.
 template <std::size_t N>
 [[gnu::noinline]] void setup_multisample_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
                                                   const SetupVertex<N>& b, const SetupVertex<N>& d,
@@ -74,11 +74,22 @@ template <std::size_t N>
   ScreenPrimitive<N>& p = chunk.append_primitive();
   p.kind = PrimitiveKind::triangle;
   p.min_x = box.min_x, p.max_x = box.max_x, p.min_y = box.min_y, p.max_y = box.max_y;
-  for (int i = 0; i < 3; ++i) {
-    p.xy.x[i] = vx[i];
-    p.xy.y[i] = vy[i];
+  // AVX2 builds keep the edges of a triangle small enough in 32 bits, as the lanes of
+  // setup_triangle_list do: every sample point lies within a pixel of the vertex box (kEdges32MaxExtent).
+#if defined(__AVX2__)
+  const bool edges32 = hx - lx <= kEdges32MaxExtent && hy - ly <= kEdges32MaxExtent;
+#else
+  const bool edges32 = false;
+#endif
+  if (edges32) {
+    store_edges32(p, setup_edges32<N>(v, vx, vy, box, false));
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      p.xy.x[i] = vx[i];
+      p.xy.y[i] = vy[i];
+    }
   }
-  p.edges32 = false;
+  p.edges32 = edges32;
   p.box_coverage = 0;
   set_triangle_planes(p, v, vx, vy);
   p.front_face = front;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "pipeline/pixel_shading.h"
 #include "pipeline/sample_pattern.h"
@@ -16,15 +17,141 @@ namespace tessera::detail {
 // pixels with any sample passing, at the pixel centres (attributes are not centroid-interpolated: a
 // centre outside the triangle extrapolates, as D3D's default interpolation does), and its colour
 // written to the samples that passed. Out of line: single-sampled draws never take it.
+// The covered samples of a quad: bit k of covered[s] is sample s of pixel k (k = 0 (x, y), 1 (x + 1, y),
+// 2 (x, y + 1), 3 (x + 1, y + 1)).
+struct SampleCoverage {
+  unsigned covered[16] = {};
+  unsigned any = 0;  // the union over samples
+};
+
+// Depth test, one pixel shader call and the writes of one quad whose covered samples are `c`.
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+[[gnu::always_inline]] inline std::uint64_t shade_multisample_quad(const ScreenPrimitive<N>& p, int qx, int qy,
+                                                                   const SampleCoverage& c,
+                                                                   std::span<const SampleOffset> pattern, const Ps& ps,
+                                                                   const RasterContext& rc, Framebuffer& fb) {
+  using simd::F4;
+  const int samples = int(pattern.size());
+  const bool inside = fb.quad_inside(qx, qy);
+  const Framebuffer::QuadSite site = fb.quad_site(qx, qy);
+  const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
+  const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
+           dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
+  // Depth at each sample, tested against that sample's plane.
+  F4 z[16], stored[16];
+  unsigned passed[16], any = 0;
+  for (int s = 0; s < samples; ++s) {
+    passed[s] = c.covered[s];
+    if (!c.covered[s]) continue;
+    const float ox = float(pattern[std::size_t(s)].x) * (1.0f / 16.0f),
+                oy = float(pattern[std::size_t(s)].y) * (1.0f / 16.0f);
+    const F4 zs =
+        (F4::splat(p.z[0]) + F4::splat(p.z[1]) * (dxk + F4::splat(ox))) + F4::splat(p.z[2]) * (dyk + F4::splat(oy));
+    z[s] = simd::min(simd::max(zs, F4::splat(rc.min_depth)), F4::splat(rc.max_depth));
+    if (rc.depth.test) {
+      unsigned pass_bits = 0;
+      if (inside) {
+        stored[s] = fb.depth_quad(fb.sample_site(site, s));
+        pass_bits = depth_pass_mask<kDepthFunc>(z[s], stored[s]);
+      } else {
+        std::array<float, 4> zl;
+        z[s].store(zl);
+        for (int k = 0; k < 4; ++k) {
+          const float st = (c.covered[s] >> k) & 1u ? fb.sample_depth(qx + (k & 1), qy + (k >> 1), s) : 0.0f;
+          pass_bits |= unsigned(depth_passes(kDepthFunc, zl[std::size_t(k)], st)) << k;
+        }
+      }
+      passed[s] &= pass_bits;
+    }
+    any |= passed[s];
+  }
+  if (!any) return 0;
+  QuadInput<N> q;
+  const F4 zc = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
+  simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
+  QuadColor color;
+  shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, color);
+  for (int s = 0; s < samples; ++s) {
+    if (!passed[s]) continue;
+    const Framebuffer::QuadSite ss = fb.sample_site(site, s);
+    fb.write_quad(ss, inside, passed[s], color.c);
+    if (rc.depth.test && rc.depth.write) {
+      if (inside) {
+        fb.set_depth_quad(ss, simd::select(passed[s], stored[s], z[s]));
+      } else {
+        std::array<float, 4> zl;
+        z[s].store(zl);
+        for (int k = 0; k < 4; ++k)
+          if (passed[s] & (1u << k)) fb.set_sample_depth(qx + (k & 1), qy + (k >> 1), s, zl[std::size_t(k)]);
+      }
+    }
+  }
+  return kQuadLanes[any];
+}
+
+#if defined(__AVX2__)
+// A triangle with edges32 (setup kept its 32-bit edge functions; the box is small enough that every
+// sample of it fits, kEdges32MaxExtent) in blocks of 8x8 pixels from quad-aligned corners: each sample's
+// coverage of a block is grid_coverage with the edges moved by the sample's offset, an exact integer
+// (offset in 1/16 pixel times 16 subpixel units times dx or dy). The same integers as the 64-bit edge
+// functions at the same points, so the same samples are covered.
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+std::uint64_t rasterize_multisample_edges32(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin, int y_end,
+                                            std::span<const SampleOffset> pattern, const Ps& ps,
+                                            const RasterContext& rc, Framebuffer& fb) {
+  const int samples = int(pattern.size());
+  std::int32_t offset[16][3];  // sample s's edge i, minus its pixel centre's
+  for (int s = 0; s < samples; ++s)
+    for (int i = 0; i < 3; ++i)
+      offset[s][i] = -std::int32_t(p.edges.dy[std::size_t(i)]) * (16 * pattern[std::size_t(s)].x) +
+                     std::int32_t(p.edges.dx[std::size_t(i)]) * (16 * pattern[std::size_t(s)].y);
+  std::uint64_t invocations = 0;
+  for (int by = y_begin & ~1; by <= y_end; by += 8)
+    for (int bx = x_begin & ~1; bx <= x_end; bx += 8) {
+      BoxQuads keep(~std::uint64_t(0));
+      keep.keep(x_begin - bx, x_end + 1 - bx, y_begin - by, y_end + 1 - by);
+      const int rows = std::min(8, y_end + 1 - by);
+      std::uint64_t grid[16];
+      std::uint64_t any = 0;
+      for (int s = 0; s < samples; ++s) {
+        grid[s] = grid_coverage(p.edges, bx - p.min_x, by - p.min_y, rows, offset[s]) & keep.grid;
+        any |= grid[s];
+      }
+      BoxQuads quads(any);
+      int i = 0, j = 0;
+      SampleCoverage c;
+      while (quads.next(i, j, c.any)) {
+        const int shift = 16 * j + 2 * i;
+        for (int s = 0; s < samples; ++s) {
+          const std::uint64_t pair = grid[s] >> shift;
+          c.covered[s] = unsigned(pair & 3u) | unsigned((pair >> 6) & 0xCu);
+        }
+        invocations += shade_multisample_quad<N, Ps, kDepthFunc>(p, bx + 2 * i, by + 2 * j, c, pattern, ps, rc, fb);
+      }
+    }
+  return invocations;
+}
+#endif
+
+// A triangle on a multisampled target (D3D11's multisample rasterization): coverage by each sample of
+// the standard pattern (sample_pattern.h) with the same exact edge functions and top-left rule as a
+// pixel centre, depth interpolated and tested per sample, the pixel shader once per 2x2 quad for the
+// pixels with any sample passing, at the pixel centres (attributes are not centroid-interpolated: a
+// centre outside the triangle extrapolates, as D3D's default interpolation does), and its colour
+// written to the samples that passed. Out of line: single-sampled draws never take it.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 [[gnu::noinline]] std::uint64_t rasterize_triangle_multisample(const ScreenPrimitive<N>& p, int tx0, int ty0, int tx1,
                                                                int ty1, const Ps& ps, const RasterContext& rc,
                                                                Framebuffer& fb) {
-  using simd::F4;
   const int x_begin = std::max(p.min_x, tx0), x_end = std::min(p.max_x, tx1 - 1);
   const int y_begin = std::max(p.min_y, ty0), y_end = std::min(p.max_y, ty1 - 1);
   if (x_begin > x_end || y_begin > y_end) return 0;
   const std::span<const SampleOffset> pattern = standard_sample_pattern(fb.samples());
+#if defined(__AVX2__)
+  // Only AVX2 builds' setup keeps a multisampled triangle's edges32 (triangle_list_setup.h).
+  if (p.edges32)
+    return rasterize_multisample_edges32<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, pattern, ps, rc, fb);
+#endif
   const int samples = int(pattern.size());
   const int qx0 = x_begin & ~1, qy0 = y_begin & ~1;
   // Each sample's edge values at the first quad's top-left pixel; the steps are the same for all.
@@ -46,74 +173,19 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
       if (qx < x_begin) mask &= 0xA;
       if (qx + 1 > x_end) mask &= 0x5;
       const std::int64_t dqx = qx - qx0, dqy = qy - qy0;
-      unsigned covered[16], any_covered = 0;
+      SampleCoverage c;
       for (int s = 0; s < samples; ++s) {
-        unsigned c = 0;
+        unsigned covered = 0;
         for (int k = 0; k < 4; ++k) {
           const std::int64_t dx = dqx + (k & 1), dy = dqy + (k >> 1);
-          c |= unsigned(((e0[s][0] + dx * sx[0] + dy * sy[0]) | (e0[s][1] + dx * sx[1] + dy * sy[1]) |
-                         (e0[s][2] + dx * sx[2] + dy * sy[2])) >= 0)
-               << k;
+          covered |= unsigned(((e0[s][0] + dx * sx[0] + dy * sy[0]) | (e0[s][1] + dx * sx[1] + dy * sy[1]) |
+                               (e0[s][2] + dx * sx[2] + dy * sy[2])) >= 0)
+                     << k;
         }
-        covered[s] = c & mask;
-        any_covered |= covered[s];
+        c.covered[s] = covered & mask;
+        c.any |= c.covered[s];
       }
-      if (!any_covered) continue;
-      const bool inside = fb.quad_inside(qx, qy);
-      const Framebuffer::QuadSite site = fb.quad_site(qx, qy);
-      const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
-      const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
-               dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
-      // Depth at each sample, tested against that sample's plane.
-      F4 z[16], stored[16];
-      unsigned passed[16], any = 0;
-      for (int s = 0; s < samples; ++s) {
-        passed[s] = covered[s];
-        if (!covered[s]) continue;
-        const float ox = float(pattern[std::size_t(s)].x) * (1.0f / 16.0f),
-                    oy = float(pattern[std::size_t(s)].y) * (1.0f / 16.0f);
-        const F4 zs =
-            (F4::splat(p.z[0]) + F4::splat(p.z[1]) * (dxk + F4::splat(ox))) + F4::splat(p.z[2]) * (dyk + F4::splat(oy));
-        z[s] = simd::min(simd::max(zs, F4::splat(rc.min_depth)), F4::splat(rc.max_depth));
-        if (rc.depth.test) {
-          unsigned pass_bits = 0;
-          if (inside) {
-            stored[s] = fb.depth_quad(fb.sample_site(site, s));
-            pass_bits = depth_pass_mask<kDepthFunc>(z[s], stored[s]);
-          } else {
-            std::array<float, 4> zl;
-            z[s].store(zl);
-            for (int k = 0; k < 4; ++k) {
-              const float st = (covered[s] >> k) & 1u ? fb.sample_depth(qx + (k & 1), qy + (k >> 1), s) : 0.0f;
-              pass_bits |= unsigned(depth_passes(kDepthFunc, zl[std::size_t(k)], st)) << k;
-            }
-          }
-          passed[s] &= pass_bits;
-        }
-        any |= passed[s];
-      }
-      if (!any) continue;
-      QuadInput<N> q;
-      const F4 zc = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
-      simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
-      QuadColor color;
-      shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, color);
-      invocations += kQuadLanes[any];
-      for (int s = 0; s < samples; ++s) {
-        if (!passed[s]) continue;
-        const Framebuffer::QuadSite ss = fb.sample_site(site, s);
-        fb.write_quad(ss, inside, passed[s], color.c);
-        if (rc.depth.test && rc.depth.write) {
-          if (inside) {
-            fb.set_depth_quad(ss, simd::select(passed[s], stored[s], z[s]));
-          } else {
-            std::array<float, 4> zl;
-            z[s].store(zl);
-            for (int k = 0; k < 4; ++k)
-              if (passed[s] & (1u << k)) fb.set_sample_depth(qx + (k & 1), qy + (k >> 1), s, zl[std::size_t(k)]);
-          }
-        }
-      }
+      if (c.any) invocations += shade_multisample_quad<N, Ps, kDepthFunc>(p, qx, qy, c, pattern, ps, rc, fb);
     }
   }
   return invocations;

@@ -134,13 +134,16 @@ struct BoxQuads {
 // The centres covered by a triangle with edges32 among the grid's first `rows` rows (BoxQuads' layout,
 // corner (origin_x, origin_y)): each edge at a row's eight centres in the lanes of one vector, the
 // rows stepped down by adds. Centres up to eight pixels past the box may wrap modulo 2^32; the caller
-// keeps only the box's pixels, whose values are exact (kEdges32MaxExtent).
+// keeps only the box's pixels, whose values are exact (kEdges32MaxExtent). `offset`, when given, moves
+// the points from the centres by a sample's offset: offset[i] is edge i's change (raster_multisample.h).
 inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x_from_min, int origin_y_from_min,
-                                   int rows) {
+                                   int rows, const std::int32_t* offset = nullptr) {
   const __m256i columns = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i e[3], down[3];
   for (int i = 0; i < 3; ++i) {
-    e[i] = _mm256_add_epi32(_mm256_set1_epi32(edges.value_at(i, origin_x_from_min, origin_y_from_min)),
+    std::uint32_t at = std::uint32_t(edges.value_at(i, origin_x_from_min, origin_y_from_min));
+    if (offset) at += std::uint32_t(offset[i]);
+    e[i] = _mm256_add_epi32(_mm256_set1_epi32(std::int32_t(at)),
                             _mm256_mullo_epi32(_mm256_set1_epi32(edges.step_x(i)), columns));
     down[i] = _mm256_set1_epi32(edges.step_y(i));
   }

@@ -12,7 +12,8 @@
 // Lanes run the common case only: all three vertices finite and inside the clipping volume (clip code 0)
 // and a vertex box small enough for 32-bit edge functions (kEdges32MaxExtent). A group of eight with any
 // other triangle goes through setup_triangle one triangle at a time, so the chunk keeps draw order. Builds
-// without AVX2, and wireframe fill, use setup_triangle throughout.
+// without AVX2, and wireframe fill, use setup_triangle throughout. Multisampled targets take the lanes
+// too, with setup_multisample_triangle's records.
 #pragma once
 
 #include <bit>
@@ -92,7 +93,13 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   using V = SetupVertex<N>;
   static_assert(sizeof(V) >= offsetof(V, finite) + 4 && sizeof(V) % 4 == 0);
   // Gathers address vertices by byte offsets in signed 32-bit lanes.
-  const bool lanes = c.fill == FillMode::solid && c.samples == 1 && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
+  const bool lanes = c.fill == FillMode::solid && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
+  // A multisampled target's triangles (setup_multisample_triangle's records, with their edges kept in
+  // 32 bits): the box of the pixels whose samples the vertex box may reach (samples lie within half a
+  // pixel of their pixel's centre), no coverage test here (raster_multisample.h tests each sample).
+  // Every sample point then lies within a pixel of the vertex box, inside kEdges32MaxExtent's margin.
+  const bool multisampled = c.samples > 1;
+  const __m256i sample_reach = _mm256_set1_epi32(multisampled ? kSubpixelOne / 2 : 0);
   const char* const base = reinterpret_cast<const char*>(vertices);
   const auto gather = [&](std::size_t field, __m256i offsets) {
     return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + field), offsets, 1);
@@ -162,7 +169,9 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     if (c.cull == CullMode::back) keep = _mm256_and_si256(keep, front);
     if (c.cull == CullMode::front) keep = _mm256_andnot_si256(front, keep);
     using simd::I8;
-    const detail::PixelBox<I8> box = detail::clipped_pixel_box(c, I8(lx), I8(hx), I8(ly), I8(hy));
+    const detail::PixelBox<I8> box =
+        detail::clipped_pixel_box(c, I8(_mm256_sub_epi32(lx, sample_reach)), I8(_mm256_add_epi32(hx, sample_reach)),
+                                  I8(_mm256_sub_epi32(ly, sample_reach)), I8(_mm256_add_epi32(hy, sample_reach)));
     const __m256i min_x = box.min_x.v, max_x = box.max_x.v, min_y = box.min_y.v, max_y = box.max_y.v;
     keep = _mm256_and_si256(keep, _mm256_and_si256(cmple(min_x, max_x), cmple(min_y, max_y)));
     if (_mm256_testz_si256(keep, keep)) continue;
@@ -187,7 +196,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     const __m256i width_less_one = _mm256_sub_epi32(max_x, min_x), height_less_one = _mm256_sub_epi32(max_y, min_y);
     const __m256i small_box = _mm256_and_si256(cmple(width_less_one, three), cmple(height_less_one, three));
     __m256i coverage = zero;
-    if (!_mm256_testz_si256(small_box, keep)) {
+    if (!multisampled && !_mm256_testz_si256(small_box, keep)) {
       __m256i step_x[3], step_y[3], row[3];
       for (int i = 0; i < 3; ++i) {
         step_x[i] = _mm256_slli_epi32(_mm256_sub_epi32(zero, dy[i]), kSubpixelBits);
