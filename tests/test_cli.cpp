@@ -155,9 +155,10 @@ TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cl
 }
 
 TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli][pipeline]") {
-  for (const char* args : {"--resolution 0x10", "--resolution 100000x100000", "--resolution big",
-                           "--partitioning bogus", "--factor nan", "--frames 0", "--threads -3", "--tile-size 7",
-                           "--tile-size 2048", "--chunk-primitives 0", "--rounds 0", "--rounds 101"}) {
+  for (const char* args :
+       {"--resolution 0x10", "--resolution 100000x100000", "--resolution big", "--partitioning bogus", "--factor nan",
+        "--frames 0", "--threads -3", "--tile-size 7", "--tile-size 2048", "--chunk-primitives 0", "--rounds 0",
+        "--rounds 101", "--msaa 8 --llvmpipe /nonexistent/tessbench"}) {
     INFO(args);
     const auto r = run_cli(std::string("bench torus --frames 1 ") + args);
     CHECK(r.exit_code == 2);
@@ -178,7 +179,7 @@ TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports
   {
     std::ofstream f(harness);
     f << "#!/bin/sh\n"
-         "echo \"$*\" >> '"
+         "echo \"$TESSBENCH_SAMPLES $TESSBENCH_UPPER_LEFT $*\" >> '"
       << calls.string()
       << "'\n"
          "{ printf 'P6\\n%d %d\\n255\\n' \"$2\" \"$3\"; head -c $(($2 * $3 * 3)) /dev/zero; } > \"$6\"\n"
@@ -202,6 +203,15 @@ TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports
   // Each ratio is 0.5 s over one round's median frame, which is no shorter than the fastest frame.
   for (double q : ratios) CHECK(q <= 0.5 / j["min_s"].get<double>() * (1 + 1e-9));
   CHECK(lp["pixels_over_2"].get<int>() > 0);  // the torus against a black image
+  // Single-sampled runs leave the harness's convention alone; --msaa 4 asks it for 4 samples in D3D11's
+  // upper-left pixel convention, and compares the resolved images.
+  CHECK(slurp(calls).rfind("1 0 2 48 32 2 ", 0) == 0);
+  const auto ms =
+      run_cli("bench torus --factor 2 --resolution 48x32 --frames 1 --msaa 4 --json --llvmpipe " + harness.string());
+  REQUIRE(ms.exit_code == 0);
+  CHECK(nlohmann::json::parse(ms.out)["msaa"] == 4);
+  const std::string log = slurp(calls);
+  CHECK(log.substr(log.rfind('\n', log.size() - 2) + 1).rfind("4 1 2 48 32 1 ", 0) == 0);
 }
 
 TEST_CASE("tessera analyze --json describes the monster frog", "[cli][cage]") {
