@@ -41,6 +41,7 @@ struct TorusOptions {
   std::string llvmpipe;
   int tile_size = DeviceOptions{}.tile_size;
   std::size_t chunk_primitives = DeviceOptions{}.chunk_primitives;
+  int chunks_in_flight = 0;
   bool json = false;
 };
 
@@ -102,6 +103,8 @@ int run_bench_torus(const TorusOptions& o) {
     throw UsageError("--tile-size: " + std::to_string(o.tile_size) + " is not an even size in 8..1024");
   if (o.chunk_primitives < 64 || o.chunk_primitives > (std::size_t(1) << 24))
     throw UsageError("--chunk-primitives: " + std::to_string(o.chunk_primitives) + " is not in 64..16777216");
+  if (o.chunks_in_flight < 0 || o.chunks_in_flight > 4096)
+    throw UsageError("--chunks-in-flight: " + std::to_string(o.chunks_in_flight) + " is not in 0..4096");
   const auto [w, h] = parse_resolution(o.resolution);
   // Mesa's llvmpipe makes multisampled framebuffers of 2 and 4 samples only (8 and 16 are incomplete).
   if (!o.llvmpipe.empty() && o.msaa > 4)
@@ -112,6 +115,7 @@ int run_bench_torus(const TorusOptions& o) {
   DeviceOptions dopt = device_options(o.threads);
   dopt.tile_size = o.tile_size;
   dopt.chunk_primitives = o.chunk_primitives;
+  dopt.chunks_in_flight = o.chunks_in_flight;
   Device device(dopt);
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.msaa);
@@ -263,6 +267,9 @@ Runner add_bench_torus_command(CLI::App& bench) {
   cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");
   cmd->add_option("--tile-size", o->tile_size, "screen tile size in pixels")->capture_default_str();
   cmd->add_option("--chunk-primitives", o->chunk_primitives, "primitives per geometry chunk")->capture_default_str();
+  cmd->add_option("--chunks-in-flight", o->chunks_in_flight,
+                  "chunks produced per round, 0 = the device's default (2 x threads, at least 4)")
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "print results as JSON");
   cmd->fallthrough();
   return [o, cmd]() -> int { return cmd->parsed() ? run_bench_torus(*o) : -1; };
