@@ -132,23 +132,29 @@ class Framebuffer {
   [[gnu::always_inline]] void write_quad(QuadSite q, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
 #if defined(__SSE2__)
     if (format_ == ColorFormat::rgba8_unorm) {
-      std::uint8_t* r0 = &color_[q.top * 4];
-      std::uint8_t* r1 = &color_[q.bottom * 4];
-      const __m128i px = quad_to_rgba8(c);
-      __m128i out = px;
-      if (mask != 0xFu) {
-        const __m128i m = simd::lane_mask(mask);
-        const __m128i old = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r0)),
-                                               _mm_loadl_epi64(reinterpret_cast<const __m128i*>(r1)));
-        out = _mm_or_si128(_mm_and_si128(m, px), _mm_andnot_si128(m, old));
-      }
-      _mm_storel_epi64(reinterpret_cast<__m128i*>(r0), out);
-      _mm_storel_epi64(reinterpret_cast<__m128i*>(r1), _mm_srli_si128(out, 8));
+      write_quad_rgba8(q, mask, quad_to_rgba8(c));
       return;
     }
 #endif
     write_pixels(q, mask, c);
   }
+#if defined(__SSE2__)
+  // write_quad on an RGBA8 target of a quad inside it, its colours already packed by quad_to_rgba8 (a
+  // multisampled quad writes one shaded colour to several sample planes, converted once).
+  [[gnu::always_inline]] void write_quad_rgba8(QuadSite q, unsigned mask, __m128i px) {
+    std::uint8_t* r0 = &color_[q.top * 4];
+    std::uint8_t* r1 = &color_[q.bottom * 4];
+    __m128i out = px;
+    if (mask != 0xFu) {
+      const __m128i m = simd::lane_mask(mask);
+      const __m128i old = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r0)),
+                                             _mm_loadl_epi64(reinterpret_cast<const __m128i*>(r1)));
+      out = _mm_or_si128(_mm_and_si128(m, px), _mm_andnot_si128(m, old));
+    }
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(r0), out);
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(r1), _mm_srli_si128(out, 8));
+  }
+#endif
   // A quad at `q` (of any plane) that is inside the target or not.
   [[gnu::always_inline]] void write_quad(QuadSite q, bool inside, unsigned mask,
                                          const std::array<std::array<float, 4>, 4>& c) {
@@ -165,6 +171,13 @@ class Framebuffer {
     else
       write_pixels(q, mask, c);
   }
+
+#if defined(__SSE2__)
+  // float_to_unorm8 of a quad's colours c[channel][pixel], packed as write_quad_rgba8 takes them.
+  [[gnu::always_inline]] static __m128i pack_quad_rgba8(const std::array<std::array<float, 4>, 4>& c) {
+    return quad_to_rgba8(c);
+  }
+#endif
 
   // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
   const std::vector<std::uint8_t>& color_bytes() const { return color_; }

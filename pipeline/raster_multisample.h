@@ -71,10 +71,20 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
   QuadColor color;
   shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, color);
+#if defined(__SSE2__)
+  // One conversion of the shaded colours for every sample plane it goes to.
+  const bool packed = inside && fb.format() == ColorFormat::rgba8_unorm;
+  const __m128i px = packed ? Framebuffer::pack_quad_rgba8(color.c) : _mm_setzero_si128();
+#endif
   for (int s = 0; s < samples; ++s) {
     if (!passed[s]) continue;
     const Framebuffer::QuadSite ss = fb.sample_site(site, s);
-    fb.write_quad(ss, inside, passed[s], color.c);
+#if defined(__SSE2__)
+    if (packed)
+      fb.write_quad_rgba8(ss, passed[s], px);
+    else
+#endif
+      fb.write_quad(ss, inside, passed[s], color.c);
     if (rc.depth.test && rc.depth.write) {
       if (inside) {
         fb.set_depth_quad(ss, simd::select(passed[s], stored[s], z[s]));

@@ -68,8 +68,12 @@ TEST_CASE("A changed scene fails with a diff and leaves the golden, --update rew
   const std::string before = test::slurp(golden);
 
   const fs::path report = dir / "report";
-  const auto r = test::run_cli("check " + suite.string() + " -o " + report.string());
+  // --threads 1: the same verdict (the bytes do not depend on the thread count).
+  const auto r = test::run_cli("check " + suite.string() + " --threads 1 -o " + report.string());
   CHECK(r.exit_code == 1);
+  // The next step is named: look at the report, then --update if the change is intended.
+  CHECK(r.err.find("the failed cases' changes") != std::string::npos);
+  CHECK(r.err.find("check " + suite.string() + " --update") != std::string::npos);
   const auto s = summary_of(report);
   CHECK(s["counts"]["fail"] == 1);
   CHECK(s["counts"]["pass"] == s["cases"].size() - 1);
@@ -92,7 +96,10 @@ TEST_CASE("A changed scene fails with a diff and leaves the golden, --update rew
   CHECK(test::run_cli("check " + suite.string() + " -o " + report.string()).exit_code == 0);
   // The environment switch: a new case (its golden removed) is written back.
   fs::remove(dir / "suite/views/frog-pn-factors.png");
-  CHECK(test::run_cli("check " + suite.string() + " -o " + report.string()).exit_code == 1);
+  const auto fresh = test::run_cli("check " + suite.string() + " -o " + report.string());
+  CHECK(fresh.exit_code == 1);
+  CHECK(fresh.err.find("the new cases' images") != std::string::npos);
+  CHECK(test::run_cli("check " + suite.string() + " --threads -2").exit_code == 2);
   const int env = std::system(("TESSERA_UPDATE_GOLDEN=1 " + std::string(TESSERA_BIN) + " -q check " + suite.string() +
                                " -o " + report.string() + " >/dev/null 2>&1")
                                   .c_str());

@@ -99,6 +99,38 @@ TEST_CASE("Every render view draws the displaced frog, the views differ, bytes d
   CHECK(bytes_of(dir / "factors-1.png") == bytes_of(dir / "factors-2.png"));
 }
 
+TEST_CASE("The crack view does not count the borders of culled patches as cracks, and two-pass views count once",
+          "[views][cli]") {
+  // A camera inside the displaced frog culls hundreds of patches; their neighbours' borders used to be
+  // reported as 1446 open edges of a watertight surface. With --json the summary has the count.
+  const fs::path dir = test::cli_temp_dir();
+  const std::string inside = " --camera-position 20,5,12 --camera-target -3,-2.5,2 --resolution 320x180";
+  const auto r =
+      run_cli("render " + kFrog + kDisplaced + " --lod screen --partitioning fractional_odd --view cracks --json" +
+              inside + " -o " + (dir / "cracks.png").string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["open_edges"] == 0);
+  CHECK(j["patches_culled"].get<int>() > 100);
+  // Views of two passes count the surface once: wire-on-shaded reports shaded's triangles.
+  std::uint64_t triangles[2] = {0, 0};
+  int k = 0;
+  for (const char* v : {"shaded", "wire-on-shaded"}) {
+    const auto w = run_cli("render " + kFrog + " --view " + v + " --json" + inside + " -o " +
+                           (dir / (std::string(v) + ".png")).string());
+    REQUIRE(w.exit_code == 0);
+    triangles[k++] = nlohmann::json::parse(w.out)["triangles"].get<std::uint64_t>();
+  }
+  CHECK(triangles[0] > 0);
+  CHECK(triangles[1] == triangles[0]);
+  // The negative control: an open cage has open edges in the same view, culled or not.
+  const auto open = run_cli("render " + test::data("osd-shapes/catmark_edgeonly.obj") +
+                            " --view cracks --json --resolution 320x180 -o " + (dir / "open.png").string());
+  REQUIRE(open.exit_code == 0);
+  CHECK(nlohmann::json::parse(open.out)["open_edges"].get<int>() > 0);
+}
+
 TEST_CASE("render --stats: a row per patch, totals that match the pipeline's counters, histograms that sum",
           "[views][cli]") {
   const fs::path dir = test::cli_temp_dir();

@@ -54,6 +54,23 @@ TEST_CASE("A printed scene renders the same bytes as its command line", "[scene]
   CHECK(fs::path(nlohmann::json::parse(out.out)["asset"].get<std::string>()).is_absolute());
 }
 
+TEST_CASE("A printed scene holds the framed camera, and renders the same bytes", "[scene][cli]") {
+  // Without --camera-position and --camera-target the framing places the camera; the printed scene
+  // writes where it went, so the scene no longer depends on the framing heuristic.
+  const fs::path dir = test::cli_temp_dir() / "scene-framed";
+  fs::create_directories(dir);
+  const std::string line = kFrog + " --factor 3 --resolution 160x90";
+  REQUIRE(test::run_cli("render " + line + " -o " + (dir / "direct.png").string()).exit_code == 0);
+  REQUIRE(test::run_cli("render " + line + " --print-scene " + (dir / "frog.json").string()).exit_code == 0);
+  const auto scene = nlohmann::json::parse(test::slurp(dir / "frog.json"));
+  REQUIRE(scene["camera"].contains("position"));
+  REQUIRE(scene["camera"].contains("target"));
+  REQUIRE(scene["camera"].contains("up"));
+  REQUIRE(test::run_cli("render --scene " + (dir / "frog.json").string() + " -o " + (dir / "scene.png").string())
+              .exit_code == 0);
+  CHECK(test::slurp(dir / "scene.png") == test::slurp(dir / "direct.png"));
+}
+
 TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
   const fs::path dir = test::cli_temp_dir() / "scene-roundtrip";
   cli::RenderSettings s;
@@ -73,8 +90,13 @@ TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
   s.lod.dicing_eye = glm::vec3(1.5f, 0.2f, -7.0f);
   s.threads = 3;
   s.msaa = 4;
-  s.displacement = {(dir / "maps/h.exr").string(), "R,G,B", DisplacementSpace::object, (dir / "maps/n.png").string(),
-                    0.7f, -0.35f, cli::UvSeams::raw};
+  s.displacement = {(dir / "maps/h.exr").string(),
+                    "R,G,B",
+                    DisplacementSpace::object,
+                    (dir / "maps/n.png").string(),
+                    0.7f,
+                    -0.35f,
+                    cli::UvSeams::raw};
   s.asset.time = 0.25;
   s.asset.animation = "walk";
   const fs::path file = write(dir / "scenes/s.json", cli::scene_json(s, (dir / "scenes").string()).dump(2));

@@ -309,7 +309,8 @@ TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad re
   one_line_error("/api/pick?x=1&y=1e99", 400, "not an integer");
   one_line_error("/api/pick?x=100000&y=1", 400, "outside");
   one_line_error("/api/frame?factor=3&factor=4", 400, "given twice");
-  one_line_error("/api/frame?time=5", 400, "is not animated");  // an OBJ cage
+  one_line_error("/api/frame?time=5", 400, "is not animated");                // an OBJ cage
+  one_line_error("/api/frame?factor=abc", 400, "factor: cannot read 'abc'");  // not CLI11's own words
   one_line_error("/etc/passwd", 404, "not part of the viewer");
   one_line_error("/../../etc/passwd", 404, "");
   // The server still draws after all that.
@@ -321,6 +322,28 @@ TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad re
   CHECK(get(tiny + "&client=old&seq=5").status == 409);
   for (int i = 0; i < 256; ++i) REQUIRE(get(tiny + "&client=c" + std::to_string(i) + "&seq=1").status == 200);
   CHECK(get(tiny + "&client=old&seq=5").status == 200);
+  server.stop();
+  serving.join();
+}
+
+TEST_CASE("viewer: settings the asset refuses are a one-line 422 with the CLI's reason, not a 500", "[viewer]") {
+  // pn patches carry no 1-ring, so the displaced frog cannot be drawn with them: the request is well
+  // formed and the asset refuses it.
+  ViewerSession session(frog(true));
+  ViewerServer server(session);
+  const int port = server.bind("127.0.0.1", 0);
+  std::thread serving([&] { server.serve(); });
+  httplib::Client client("127.0.0.1", port);
+  client.set_read_timeout(120, 0);
+  const auto r = client.Get("/api/frame?scheme=pn&resolution=32x32");
+  REQUIRE(r);
+  INFO(r->body);
+  CHECK(r->status == 422);
+  CHECK(r->body.find("--scheme pn cannot be displaced") != std::string::npos);
+  CHECK(std::count(r->body.begin(), r->body.end(), '\n') == 1);
+  const auto ok = client.Get("/api/frame?scheme=acc&resolution=32x32");  // the server still draws
+  REQUIRE(ok);
+  CHECK(ok->status == 200);
   server.stop();
   serving.join();
 }

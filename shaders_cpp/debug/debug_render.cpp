@@ -38,7 +38,15 @@ DrawResult render_debug(Device& device, const SubdModel& model, const Displaceme
           return go(ps);
         });
     if (!r.ok()) return r;
-    add_draw_report(total.report, r.report);
+    if (!wire) {
+      add_draw_report(total.report, r.report);
+    } else {
+      // The wire pass draws the same surface again: its counts would double every count of the view
+      // (triangles, pixels, patches culled); only its time and memory are the view's.
+      total.report.times += r.report.times;
+      total.report.memory.geometry_peak_bytes =
+          std::max(total.report.memory.geometry_peak_bytes, r.report.memory.geometry_peak_bytes);
+    }
   }
   total.report.memory.framebuffer_bytes = fb.bytes();
   return total;

@@ -35,6 +35,8 @@ struct DebugRender {
   bool wire_pass = false;  // draw the triangle edges over the surface
 };
 
+// Draws the view's surface pass (and its wire pass when asked). The report counts the surface once:
+// a wire pass adds its time and memory, not its counts.
 DrawResult render_debug(Device& device, const SubdModel& model, const Displacement* displacement,
                         const SubdFactors& factors, ts::Partitioning partitioning, const DebugRender& view,
                         const PatchTables& tables, const SubdCamera& camera, Framebuffer& fb);

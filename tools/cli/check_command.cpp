@@ -23,6 +23,7 @@ struct CheckOptions {
   std::string suite, report = "check-report", shard;
   std::vector<std::string> merge;
   bool update = false, json = false;
+  int threads = -1;  // -1: each scene file's own (its default: all cores)
 };
 
 // Copies a file into the report directory (the report stands alone as a CI artifact).
@@ -48,6 +49,16 @@ int finish(const Json& summary, const CheckOptions& o) {
     std::cout << json_text(summary) << "\n";
   } else {
     std::cout << text_of_counts(n) << " -> " << (fs::path(o.report) / "report.html").string() << "\n";
+  }
+  // What to do next, on stderr: a new case has no golden until --update writes one, and a failed case
+  // is either a regression or an intended change to bless.
+  const int fresh = n["new"].get<int>(), failed = n["fail"].get<int>();
+  if ((fresh > 0 || failed > 0) && o.merge.empty()) {
+    const std::string what = fresh > 0 && failed > 0 ? "the new cases' images and the failed cases' changes"
+                             : fresh > 0             ? "the new cases' images"
+                                                     : "the failed cases' changes";
+    std::cerr << "tessera check: look at " << what << " in " << (fs::path(o.report) / "report.html").string()
+              << "; if they are right, `tessera check " << o.suite << " --update` writes their goldens\n";
   }
   return bad == 0 ? kExitOk : kExitFailure;
 }
@@ -99,6 +110,7 @@ int run_check(const CheckOptions& o) {
     return run_merge(o);
   }
   if (o.suite.empty()) throw UsageError("give a SUITE file (or --merge DIR...)");
+  if (o.threads < -1 || o.threads > 4096) throw UsageError("--threads: expected 0..4096 (0: all cores)");
   int shard = 1, shards = 1;
   if (!o.shard.empty()) {
     std::smatch m;
@@ -120,7 +132,7 @@ int run_check(const CheckOptions& o) {
   int done = 0;
   for (const std::size_t i : mine) {
     const SuiteCase& c = suite.cases[i];
-    CaseResult r = run_case(suite, c, o.report);
+    CaseResult r = run_case(suite, c, o.report, o.threads);
     ++done;
     log_info("[" + std::to_string(done) + "/" + std::to_string(mine.size()) + "] " + c.name + ": " +
              to_string(r.status) + (r.message.empty() ? "" : " (" + r.message + ")"));
@@ -161,6 +173,9 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_option("--shard", o->shard, "I/N: run only cases I, I+N, I+2N, ... (1-based), for spreading a suite");
   cmd->add_option("--merge", o->merge, "join the report directories of shards into -o")->expected(1, -1);
   cmd->add_flag("--json", o->json, "print the summary as JSON");
+  cmd->add_option("--threads", o->threads,
+                  "worker threads for every case, 0 = all cores (default: each scene file's; the bytes do not "
+                  "depend on it, the time does)");
   return [o, cmd]() -> int { return cmd->parsed() ? run_check(*o) : -1; };
 }
 

@@ -170,6 +170,15 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   RenderOptions o = given;
   o.s = settings_of(given, cmd);
   if (!o.print_scene.empty()) {
+    // The camera as resolved: where the command line leaves it to the framing, the scene gets the
+    // framing's position, target and up, so it does not change when the framing heuristic does (the
+    // floats are written to round-trip, so the scene renders the same bytes).
+    if (!o.s.camera.eye || !o.s.camera.target || !o.s.camera.up) {
+      const std::unique_ptr<PreparedScene> framed = prepare_scene(o.s);
+      if (!o.s.camera.eye) o.s.camera.eye = framed->view.camera.eye;
+      if (!o.s.camera.target) o.s.camera.target = framed->view.camera.target;
+      if (!o.s.camera.up) o.s.camera.up = framed->view.camera.up;
+    }
     // Paths relative to where the scene goes (absolute on stdout), so the file can move with them.
     if (o.print_scene == "-") {
       std::cout << scene_json(o.s, "").dump(2) << "\n";

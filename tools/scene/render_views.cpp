@@ -111,10 +111,15 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
 }
 
 // The tessellation welded on exact bits over the shaded surface (drawn already); open and non-manifold
-// edges drawn thick.
+// edges drawn thick. Welded with culling off: a culled patch draws nothing, so the borders of the
+// patches beside it would be open edges, though nothing is missing there. Every edge factor is a
+// function of its cage edge alone (the LOD does not depend on the cull), so the visible patches have
+// the same triangles either way, and the culled ones are checked too.
 void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, ViewOutput& out) {
   verify::WeldChecker weld;
-  const DrawResult s = stream_surface(device, in.model, in.displacement, in.factors, in.partitioning,
+  SubdFactors all = in.factors;
+  all.cull.enabled = false;
+  const DrawResult s = stream_surface(device, in.model, in.displacement, all, in.partitioning,
                                       [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
   if (!s.ok()) {
     out.result = s;
@@ -132,6 +137,8 @@ void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, Vie
       std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
       std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
           " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
+  if (in.factors.cull.enabled)
+    out.legend.lines.push_back("welded with culling off: culled patches' borders are not cracks");
 }
 
 void factors_legend(const ViewInputs& in, const PatchTables& tables, Legend& legend) {

@@ -81,6 +81,10 @@ struct ViewerServer::Impl {
       fail(res, 400, e.what());
     } catch (const UsageError& e) {
       fail(res, 400, e.what());
+    } catch (const InputError& e) {
+      // Settings this asset cannot take (a scheme that cannot draw its faces or be displaced): the
+      // request is well formed, the asset refuses it. The message is the CLI's.
+      fail(res, 422, e.what());
     } catch (const std::exception& e) {
       fail(res, 500, e.what());
     }

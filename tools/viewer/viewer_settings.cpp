@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 #include <set>
 
 #include "tools/scene/common.h"
@@ -109,6 +110,16 @@ RenderSettings settings_from_query(const RenderSettings& base, const QueryParams
   std::reverse(args.begin(), args.end());  // CLI11 takes them last to first
   try {
     app.parse(args);
+  } catch (const CLI::ConversionError& e) {
+    // CLI11 says "Could not convert: --factor = abc"; a request names the setting, not an option.
+    static const std::regex kConvert(R"(Could not convert: --([a-z-]+) = (.*))");
+    std::smatch m;
+    const std::string text = one_line_message(e.what());
+    if (std::regex_match(text, m, kConvert)) {
+      const std::string value = m[2].str().size() > 40 ? m[2].str().substr(0, 40) + "..." : m[2].str();
+      throw RequestError(m[1].str() + ": cannot read '" + value + "' (see GET /api/info for the settings)");
+    }
+    throw RequestError(text);
   } catch (const CLI::ParseError& e) {
     throw RequestError(one_line_message(e.what()));
   } catch (const UsageError& e) {  // a value the settings' readers refuse
