@@ -11,7 +11,7 @@ shift || true
 packages=(
   build-essential cmake ninja-build pkg-config git python3 bc
   libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev catch2 libosd-dev libtbb-dev
-  libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev fonts-dejavu-core
+  libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   # The Python package and Dask batches (python/), and idiff for tessera diff's agreement test.
   pybind11-dev python3-dev python3-numpy python3-distributed
   # Mesa llvmpipe and libepoxy: the oracle and benchmark peer in ../shared/bench.

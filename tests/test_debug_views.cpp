@@ -131,6 +131,39 @@ TEST_CASE("The crack view does not count the borders of culled patches as cracks
   CHECK(nlohmann::json::parse(open.out)["open_edges"].get<int>() > 0);
 }
 
+TEST_CASE("Legends are drawn with the font tessera ships, and never without their text", "[views][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "legend-font";
+  fs::create_directories(dir);
+  const fs::path with = dir / "with.png";
+  REQUIRE(run_cli("render " + kFrog + " --view factors" + kCamera + " -o " + with.string()).exit_code == 0);
+  CHECK(pixels_near(with, glm::vec3(0.06f, 0.06f, 0.08f)) > 100);  // the text's ink
+  // The binaries alone, without the share/tessera/ beside them: the legend cannot be drawn, so the view
+  // fails in one line naming the font and writes nothing; a view without a legend still renders.
+  const fs::path bin = dir / "bare" / "bin";
+  fs::create_directories(bin);
+  for (const auto& f : fs::directory_iterator(fs::path(TESSERA_BIN).parent_path()))
+    if (f.is_regular_file()) fs::copy_file(f.path(), bin / f.path().filename(), fs::copy_options::overwrite_existing);
+  const auto bare = [&](const std::string& view, const fs::path& out) {
+    const std::string cmd = (bin / "tessera").string() + " render " + kFrog + " --view " + view + kCamera + " -o " +
+                            out.string() + " >/dev/null 2>" + (dir / "err.txt").string();
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  CHECK(bare("factors", dir / "bare.png") == 1);
+  const std::string err = test::slurp(dir / "err.txt");
+  CHECK(err.find("DejaVuSans.ttf") != std::string::npos);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(dir / "bare.png"));
+  CHECK(bare("shaded", dir / "bare-shaded.png") == 0);
+  CHECK(fs::exists(dir / "bare-shaded.png"));
+  // Views with and without a legend are written alike: RGBA.
+  for (const fs::path& p : {with, dir / "bare-shaded.png"}) {
+    auto in = OIIO::ImageInput::open(p.string());
+    REQUIRE(in);
+    CHECK(in->spec().nchannels == 4);
+  }
+}
+
 TEST_CASE("render --stats: a row per patch, totals that match the pipeline's counters, histograms that sum",
           "[views][cli]") {
   const fs::path dir = test::cli_temp_dir();

@@ -3,6 +3,8 @@
 #include "pipeline/framebuffer.h"
 #include "shaders_cpp/image_io/atomic_file.h"
 
+#include <dlfcn.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -96,13 +98,23 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& what,
 }
 
 std::string shared_data_file(const std::string& name, const std::string& option) {
+  namespace fs = std::filesystem;
+  // Beside the tessera binary (share/tessera/ next to bin/), or beside the shared object this code is
+  // in when a host process loaded it (the Python package keeps its data in its own directory).
+  std::vector<fs::path> places;
   std::error_code error;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-  const std::filesystem::path path = exe.parent_path().parent_path() / "share" / "tessera" / name;
-  if (error || !std::filesystem::is_regular_file(path, error))
-    throw InputError(path.string() + ": tessera's shipped data file is missing (reinstall tessera, or give " + option +
-                     ")");
-  return path.string();
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  if (!error) places.push_back(exe.parent_path().parent_path() / "share" / "tessera" / name);
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&shared_data_file), &info) != 0 && info.dli_fname != nullptr) {
+    const fs::path module = fs::absolute(info.dli_fname, error).parent_path();
+    places.push_back(module / name);
+    places.push_back(module.parent_path() / "share" / "tessera" / name);
+  }
+  for (const fs::path& p : places)
+    if (fs::is_regular_file(p, error)) return p.string();
+  throw InputError((places.empty() ? fs::path(name) : places.front()).string() +
+                   ": tessera's shipped data file is missing (reinstall tessera, or give " + option + ")");
 }
 
 std::string cage_or_shipped_frog(const std::string& cage) {

@@ -1,6 +1,7 @@
 // The legend of a debug view: a panel in the image's lower-left corner with a title, lines of text,
 // and a colour bar with tick labels or a list of colour swatches. Text is drawn by the image codec
-// (OpenImageIO's render_text) in DejaVu Sans at a size that follows the image height (readable at 1280x720).
+// (OpenImageIO's render_text) in DejaVu Sans at a size that follows the image height (readable at 1280x720),
+// smaller and wrapped where the legend would not fit.
 #pragma once
 
 #include <string>
@@ -25,8 +26,9 @@ struct Legend {
 };
 
 // Writes the framebuffer's colour with the legend drawn over it to `target` (a file, atomically, or
-// memory). Without the font the image is written without text (one log line says why). InputError if
-// it cannot be written.
+// memory). The text is drawn in the font shipped with tessera (share/tessera/DejaVuSans.ttf); on a
+// small image it is made smaller and wrapped so that it stays whole. InputError if the font is
+// missing or cannot draw (a legend is never written without its text) or the image cannot be written.
 void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageTarget& target);
 
 }  // namespace tessera::cli
