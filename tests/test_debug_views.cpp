@@ -124,6 +124,15 @@ TEST_CASE("The crack view does not count the borders of culled patches as cracks
   }
   CHECK(triangles[0] > 0);
   CHECK(triangles[1] == triangles[0]);
+  // An open sheet seen from behind (catmark_edgeonly from the default camera) is named on stderr; the
+  // frog, a closed surface, is not.
+  const auto back = run_cli("render " + test::data("osd-shapes/catmark_edgeonly.obj") + " --resolution 160x90 -o " +
+                            (dir / "back.png").string());
+  REQUIRE(back.exit_code == 0);
+  CHECK(back.err.find("faces away from the camera") != std::string::npos);
+  const auto front = run_cli("render " + kFrog + " --resolution 160x90 -o " + (dir / "front.png").string());
+  REQUIRE(front.exit_code == 0);
+  CHECK(front.err.find("faces away") == std::string::npos);
   // The negative control: an open cage has open edges in the same view, culled or not.
   const auto open = run_cli("render " + test::data("osd-shapes/catmark_edgeonly.obj") +
                             " --view cracks --json --resolution 320x180 -o " + (dir / "open.png").string());

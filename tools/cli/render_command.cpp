@@ -211,6 +211,19 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   const ViewOutput& out = image.out;
   const DrawReport& total = out.result.report;
   write_scene_image(image, {o.output});
+  // Back faces are culled, so an open surface seen from behind draws little or nothing: say so when
+  // most of the patches in view were proven to face away (a closed surface shows about half), or when
+  // triangles in view lit no pixel at all.
+  const std::uint64_t in_view =
+      total.statistics.HSInvocations - std::min(total.statistics.HSInvocations, total.patches_culled);
+  const bool mostly_away = in_view > 0 && total.patches_back_culled * 4 > in_view * 3;
+  const bool nothing_lit = total.statistics.CPrimitives >= 64 && total.statistics.PSInvocations == 0;
+  if (mostly_away || nothing_lit)
+    log_info("warning: the surface in view faces away from the camera (" + std::to_string(total.patches_back_culled) +
+             " of " + std::to_string(in_view) + " patches proven to, " +
+             std::to_string(total.statistics.PSInvocations) +
+             " pixels shaded), and back faces are culled: an open surface seen from behind? Try the other side "
+             "(--camera-position)");
   const ViewKind kind = scene->settings.view;
   const Scheme scheme = scene->settings.scheme;
   const ViewSetup& view = scene->view;
