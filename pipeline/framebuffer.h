@@ -173,9 +173,20 @@ class Framebuffer {
   }
 
 #if defined(__SSE2__)
-  // float_to_unorm8 of a quad's colours c[channel][pixel], packed as write_quad_rgba8 takes them.
-  [[gnu::always_inline]] static __m128i pack_quad_rgba8(const std::array<std::array<float, 4>, 4>& c) {
-    return quad_to_rgba8(c);
+  // float_to_unorm8 on a quad's 16 values, as RGBA8 bytes in pixel order: max(x, 0) and min(., 1) with
+  // std::max/std::min's NaN behaviour (maxps returns its second operand for NaN), scale and add 0.5,
+  // then (after a transpose to pixel order, which moves bits only) truncation, as the scalar cast does.
+  // The results are in 0..255, so the saturating packs to 16 and 8 bits keep them unchanged. Public: a
+  // multisampled quad converts its colour once for all its sample planes (write_quad_rgba8).
+  [[gnu::always_inline]] static __m128i quad_to_rgba8(const std::array<std::array<float, 4>, 4>& c) {
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f),
+                 half = _mm_set1_ps(0.5f);
+    __m128 v[4];
+    for (std::size_t ch = 0; ch < 4; ++ch)
+      v[ch] = _mm_add_ps(_mm_mul_ps(_mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero)), scale), half);
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);  // v[k]: pixel k's r, g, b, a
+    return _mm_packus_epi16(_mm_packs_epi32(_mm_cvttps_epi32(v[0]), _mm_cvttps_epi32(v[1])),
+                            _mm_packs_epi32(_mm_cvttps_epi32(v[2]), _mm_cvttps_epi32(v[3])));
   }
 #endif
 
@@ -188,22 +199,6 @@ class Framebuffer {
   Framebuffer(int w, int h, ColorFormat f, int samples);
   std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
 
-#if defined(__SSE2__)
-  // float_to_unorm8 on a quad's 16 values, as RGBA8 bytes in pixel order: max(x, 0) and min(., 1) with
-  // std::max/std::min's NaN behaviour (maxps returns its second operand for NaN), scale and add 0.5,
-  // then (after a transpose to pixel order, which moves bits only) truncation, as the scalar cast does.
-  // The results are in 0..255, so the saturating packs to 16 and 8 bits keep them unchanged.
-  [[gnu::always_inline]] static __m128i quad_to_rgba8(const std::array<std::array<float, 4>, 4>& c) {
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f),
-                 half = _mm_set1_ps(0.5f);
-    __m128 v[4];
-    for (std::size_t ch = 0; ch < 4; ++ch)
-      v[ch] = _mm_add_ps(_mm_mul_ps(_mm_min_ps(one, _mm_max_ps(_mm_loadu_ps(c[ch].data()), zero)), scale), half);
-    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);  // v[k]: pixel k's r, g, b, a
-    return _mm_packus_epi16(_mm_packs_epi32(_mm_cvttps_epi32(v[0]), _mm_cvttps_epi32(v[1])),
-                            _mm_packs_epi32(_mm_cvttps_epi32(v[2]), _mm_cvttps_epi32(v[3])));
-  }
-#endif
   // Pixel k of the quad at `q` gets colour c[.][k] where bit k of `mask` is set, pixel by pixel.
   void write_pixels(QuadSite q, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {
     const std::size_t pixel[4] = {q.top, q.top + 1, q.bottom, q.bottom + 1};

@@ -11,12 +11,6 @@
 
 namespace tessera::detail {
 
-// A triangle on a multisampled target (D3D11's multisample rasterization): coverage by each sample of
-// the standard pattern (sample_pattern.h) with the same exact edge functions and top-left rule as a
-// pixel centre, depth interpolated and tested per sample, the pixel shader once per 2x2 quad for the
-// pixels with any sample passing, at the pixel centres (attributes are not centroid-interpolated: a
-// centre outside the triangle extrapolates, as D3D's default interpolation does), and its colour
-// written to the samples that passed. Out of line: single-sampled draws never take it.
 // The covered samples of a quad: bit k of covered[s] is sample s of pixel k (k = 0 (x, y), 1 (x + 1, y),
 // 2 (x, y + 1), 3 (x + 1, y + 1)).
 struct SampleCoverage {
@@ -74,7 +68,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 #if defined(__SSE2__)
   // One conversion of the shaded colours for every sample plane it goes to.
   const bool packed = inside && fb.format() == ColorFormat::rgba8_unorm;
-  const __m128i px = packed ? Framebuffer::pack_quad_rgba8(color.c) : _mm_setzero_si128();
+  const __m128i px = packed ? Framebuffer::quad_to_rgba8(color.c) : _mm_setzero_si128();
 #endif
   for (int s = 0; s < samples; ++s) {
     if (!passed[s]) continue;

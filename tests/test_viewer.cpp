@@ -47,6 +47,20 @@ std::string rendered(const RenderSettings& s, const std::string& name) {
   return test::slurp(out);
 }
 
+// A session served on 127.0.0.1 (an ephemeral port) for the test's lifetime, and a client of it.
+struct ServedSession {
+  ViewerSession session;
+  ViewerServer server{session};
+  int port = server.bind("127.0.0.1", 0);
+  std::thread serving{[this] { server.serve(); }};
+  httplib::Client client{"127.0.0.1", port};
+  explicit ServedSession(const RenderSettings& s) : session(s) { client.set_read_timeout(120, 0); }
+  ~ServedSession() {
+    server.stop();
+    serving.join();
+  }
+};
+
 }  // namespace
 
 TEST_CASE("viewer settings: requests name render's options, paths, repeats and absurd sizes are refused",
@@ -254,12 +268,8 @@ TEST_CASE("viewer picks name the patch an independent id buffer has under the pi
 
 TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad requests, 404 elsewhere",
           "[viewer][issue23]") {
-  ViewerSession session(frog(false));
-  ViewerServer server(session);
-  const int port = server.bind("127.0.0.1", 0);
-  std::thread serving([&] { server.serve(); });
-  httplib::Client client("127.0.0.1", port);
-  client.set_read_timeout(120, 0);
+  ServedSession served(frog(false));
+  httplib::Client& client = served.client;
   const auto get = [&](const std::string& path) {
     auto r = client.Get(path.c_str());
     REQUIRE(r);
@@ -322,19 +332,13 @@ TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad re
   CHECK(get(tiny + "&client=old&seq=5").status == 409);
   for (int i = 0; i < 256; ++i) REQUIRE(get(tiny + "&client=c" + std::to_string(i) + "&seq=1").status == 200);
   CHECK(get(tiny + "&client=old&seq=5").status == 200);
-  server.stop();
-  serving.join();
 }
 
 TEST_CASE("viewer: settings the asset refuses are a one-line 422 with the CLI's reason, not a 500", "[viewer]") {
   // pn patches carry no 1-ring, so the displaced frog cannot be drawn with them: the request is well
   // formed and the asset refuses it.
-  ViewerSession session(frog(true));
-  ViewerServer server(session);
-  const int port = server.bind("127.0.0.1", 0);
-  std::thread serving([&] { server.serve(); });
-  httplib::Client client("127.0.0.1", port);
-  client.set_read_timeout(120, 0);
+  ServedSession served(frog(true));
+  httplib::Client& client = served.client;
   const auto r = client.Get("/api/frame?scheme=pn&resolution=32x32");
   REQUIRE(r);
   INFO(r->body);
@@ -344,8 +348,6 @@ TEST_CASE("viewer: settings the asset refuses are a one-line 422 with the CLI's 
   const auto ok = client.Get("/api/frame?scheme=acc&resolution=32x32");  // the server still draws
   REQUIRE(ok);
   CHECK(ok->status == 200);
-  server.stop();
-  serving.join();
 }
 
 TEST_CASE("tessera view: bad ports and addresses, and --scene with settings, fail in one line",
