@@ -84,6 +84,16 @@ TEST_CASE("A changed scene fails with a diff and leaves the golden, --update rew
   CHECK(c["compare"]["identical"] == false);
   CHECK(fs::exists(report / c["diff_image"].get<std::string>()));
   CHECK(c["command"].get<std::string>().find("tessera render --scene") == 0);
+  // The golden records its scene: the failure names the field that changed, and the report shows it.
+  CHECK(c["scene_changes"] == nlohmann::json::parse(R"([{"field": "factor", "golden": 6.0, "new": 7.0}])"));
+  CHECK(c["message"].get<std::string>().find("the scene differs from the golden's in factor") != std::string::npos);
+  const std::string html = test::slurp(report / "report.html");
+  CHECK(html.find("<td>factor</td><td>6.0</td><td>7.0</td>") != std::string::npos);
+  // Full size, a wipe slider and a flip for new against golden; metrics to four digits.
+  CHECK(html.find("(full size)</a>") != std::string::npos);
+  CHECK(html.find("type=\"range\"") != std::string::npos);
+  CHECK(html.find("onclick=\"flip(this)\"") != std::string::npos);
+  CHECK(!std::regex_search(html, std::regex(R"((max error|mean|RMS|PSNR) [0-9]*\.[0-9]{7,})")));
   const std::string junit = test::slurp(report / "junit.xml");
   CHECK(junit.find("<failure message=\"fail: image:") != std::string::npos);
   CHECK(test::slurp(golden) == before);  // never written without a switch

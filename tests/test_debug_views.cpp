@@ -1,6 +1,8 @@
 // The debug views of `tessera render` and the per-patch statistics: every view draws, views differ,
 // images are the same bytes for any thread count, statistics agree with the pipeline's counters, the
 // crack finder finds open edges, overlays draw where they should, and bad options are one-line errors.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -44,6 +46,53 @@ long pixels_near(const fs::path& p, glm::vec3 rgb) {
     n += near;
   }
   return n;
+}
+
+// The box of the pixels that differ from the background (any channel by more than 8 of 255):
+// {left, top, right, bottom}, inclusive; {-1, ...} when there are none. And the image's size.
+struct DrawnBox {
+  int left = -1, top = -1, right = -1, bottom = -1, width = 0, height = 0;
+};
+DrawnBox drawn_box(const fs::path& p) {
+  auto in = OIIO::ImageInput::open(p.string());
+  REQUIRE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<unsigned char> px(std::size_t(spec.width) * std::size_t(spec.height) * 3);
+  REQUIRE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+  DrawnBox b;
+  b.width = spec.width, b.height = spec.height;
+  const int bg[3] = {int(255.0f * 0.93f + 0.5f), int(255.0f * 0.94f + 0.5f), int(255.0f * 0.96f + 0.5f)};
+  for (int y = 0; y < spec.height; ++y)
+    for (int x = 0; x < spec.width; ++x) {
+      const unsigned char* q = &px[(std::size_t(y) * std::size_t(spec.width) + std::size_t(x)) * 3];
+      bool differs = false;
+      for (int c = 0; c < 3; ++c) differs |= std::abs(int(q[c]) - bg[c]) > 8;
+      if (!differs) continue;
+      if (b.left < 0) b = {x, y, x, y, b.width, b.height};
+      b.left = std::min(b.left, x), b.right = std::max(b.right, x);
+      b.top = std::min(b.top, y), b.bottom = std::max(b.bottom, y);
+    }
+  return b;
+}
+
+// The surface is whole (a margin on every side) and fills the image in its tighter direction.
+void check_framed(const fs::path& p) {
+  INFO(p.string());
+  const DrawnBox b = drawn_box(p);
+  INFO("drawn " << b.left << "," << b.top << " .. " << b.right << "," << b.bottom << " of " << b.width << "x"
+                << b.height);
+  REQUIRE(b.left >= 0);
+  CHECK(b.left > 0);
+  CHECK(b.top > 0);
+  CHECK(b.right < b.width - 1);
+  CHECK(b.bottom < b.height - 1);
+  const double fill_x = double(b.right - b.left + 1) / b.width, fill_y = double(b.bottom - b.top + 1) / b.height;
+  CHECK(std::max(fill_x, fill_y) > 0.75);
+  // Centred: the margins on either side of the tighter direction differ by little.
+  if (fill_y > fill_x)
+    CHECK(std::abs(b.top - (b.height - 1 - b.bottom)) <= b.height / 10);
+  else
+    CHECK(std::abs(b.left - (b.width - 1 - b.right)) <= b.width / 10);
 }
 
 }  // namespace
@@ -303,6 +352,109 @@ TEST_CASE("View, LOD and cull options: bad values are one-line usage errors", "[
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   }
   CHECK_FALSE(fs::exists(test::cli_temp_dir() / "bad.png"));
+}
+
+TEST_CASE("Automatic framing fits the posed surface, whole and centred, in every orbit view", "[views][cli][issue36]") {
+  // A tall piece (the bishop, +z up) in a wide image, seen from three sides; a glTF skin at t = 0 and a
+  // morph (which used to be a small blob at the bottom): each whole, with a margin, filling the image
+  // in its tighter direction. The frog is the control the old framing already held.
+  const fs::path dir = test::cli_temp_dir() / "framing";
+  fs::create_directories(dir);
+  const auto bishop =
+      run_cli("-q render " + test::data("osd-shapes/catmark_bishop.obj") +
+              " --camera-up 0,0,1 --resolution 320x180 --orbit 3 -o " + (dir / "bishop_%d.png").string());
+  INFO(bishop.err);
+  REQUIRE(bishop.exit_code == 0);
+  for (int i = 0; i < 3; ++i) check_framed(dir / ("bishop_" + std::to_string(i) + ".png"));
+  for (const char* asset : {"SimpleSkin.gltf", "SimpleMorph.gltf"}) {
+    const fs::path out = dir / (std::string(asset) + ".png");
+    const auto r = run_cli("-q render " + test::data(std::string("gltf-samples/") + asset) +
+                           " --resolution 320x180 --time 0.5 -o " + out.string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    check_framed(out);
+  }
+  const fs::path frog = dir / "frog.png";
+  REQUIRE(run_cli("-q render " + kFrog + " --resolution 320x180 -o " + frog.string()).exit_code == 0);
+  check_framed(frog);
+  // A single view is framed on its own (a turntable keeps the distance its widest view needs).
+  const std::string single =
+      "-q render " + test::data("osd-shapes/catmark_bishop.obj") + " --camera-up 0,0,1 --resolution 320x180 ";
+  REQUIRE(run_cli(single + "-o " + (dir / "bishop.png").string()).exit_code == 0);
+  check_framed(dir / "bishop.png");
+  // --print-scene writes the framed camera; rendering that scene gives the same bytes.
+  const fs::path scene = dir / "bishop.json";
+  REQUIRE(run_cli(single + "--print-scene " + scene.string()).exit_code == 0);
+  REQUIRE(run_cli("-q render --scene " + scene.string() + " -o " + (dir / "again.png").string()).exit_code == 0);
+  CHECK(bytes_of(dir / "again.png") == bytes_of(dir / "bishop.png"));
+}
+
+TEST_CASE("render and analyze say which axis a cage's shape suggests is up", "[views][cli][issue36]") {
+  // The bishop stands on a flat base at its lowest z: +z. The frog's lowest y holds its belly: +y, and
+  // render says nothing. A glTF asset is +y by definition.
+  const fs::path dir = test::cli_temp_dir() / "up-hint";
+  fs::create_directories(dir);
+  const std::string bishop = test::data("osd-shapes/catmark_bishop.obj");
+  const auto a = run_cli("analyze " + bishop + " --json");
+  REQUIRE(a.exit_code == 0);
+  const auto j = nlohmann::json::parse(a.out);
+  CHECK(j["up"]["axis"] == "+z");
+  CHECK(j["up"]["camera_up"] == nlohmann::json::array({0, 0, 1}));
+  CHECK(nlohmann::json::parse(run_cli("analyze " + kFrog + " --json").out)["up"]["axis"] == "+y");
+  CHECK(nlohmann::json::parse(
+            run_cli("analyze " + test::data("gltf-samples/SimpleSkin.gltf") + " --json").out)["up"]["reason"] ==
+        "glTF is +y up");
+  const auto r = run_cli("render " + bishop + " --resolution 64x36 -o " + (dir / "b.png").string());
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("looks +z up") != std::string::npos);
+  CHECK(r.err.find("--camera-up 0,0,1") != std::string::npos);
+  // Given an up, no hint.
+  const auto given =
+      run_cli("render " + bishop + " --camera-up 0,0,1 --resolution 64x36 -o " + (dir / "c.png").string());
+  CHECK(given.err.find("looks +z up") == std::string::npos);
+  const auto frog = run_cli("render " + kFrog + " --resolution 64x36 -o " + (dir / "f.png").string());
+  CHECK(frog.err.find("looks +z up") == std::string::npos);
+}
+
+TEST_CASE(
+    "Two-sided drawing draws an open sheet seen from behind, lit, and changes next to nothing on a closed surface",
+    "[views][cli][issue36]") {
+  // catmark_edgeonly's sheets seen from above show their inner side: one-sided, nothing is drawn and
+  // render warns; two-sided, the sheets are drawn with their normals turned to the viewer (lit clay, not
+  // the dark ambient of a normal facing away), and the warning is gone.
+  const fs::path dir = test::cli_temp_dir() / "two-sided";
+  fs::create_directories(dir);
+  const std::string sheet =
+      test::data("osd-shapes/catmark_edgeonly.obj") + " --camera-position 0.3,6,1 --resolution 160x90 --json -o ";
+  const auto one = run_cli("render " + sheet + (dir / "one.png").string());
+  REQUIRE(one.exit_code == 0);
+  CHECK(nlohmann::json::parse(one.out)["pixels_shaded"] == 0);
+  CHECK(one.err.find("faces away") != std::string::npos);
+  const auto two = run_cli("render --two-sided " + sheet + (dir / "two.png").string());
+  INFO(two.err);
+  REQUIRE(two.exit_code == 0);
+  const long drawn = nlohmann::json::parse(two.out)["pixels_shaded"].get<long>();
+  CHECK(drawn > 1000);
+  CHECK(two.err.find("faces away") == std::string::npos);
+  // Seen face on, lit clay is bright: no pixel is as dark as the ambient term alone (0.18 of the clay
+  // colour), which is what a normal facing away would give.
+  CHECK(pixels_near(dir / "two.png", glm::vec3(0.78f, 0.74f, 0.68f) * 0.18f) == 0);
+  CHECK(pixels_near(dir / "two.png", glm::vec3(0.78f, 0.74f, 0.68f) * 0.95f) > drawn / 2);
+  // On the frog (closed) the inner side hides behind the outer: the image differs at most where a
+  // back-facing triangle of the tessellation pokes out on the silhouette (a pixel or two).
+  const std::string frog = " --camera-position 48,15,66 --camera-target -3,-2.5,2 --resolution 160x90 -o ";
+  REQUIRE(run_cli("render " + kFrog + frog + (dir / "f1.png").string()).exit_code == 0);
+  REQUIRE(run_cli("render " + kFrog + " --two-sided" + frog + (dir / "f2.png").string()).exit_code == 0);
+  const auto d = run_cli("diff " + (dir / "f1.png").string() + " " + (dir / "f2.png").string() + " --json");
+  CHECK(nlohmann::json::parse(d.out)["over_fail"].get<long>() <= 8);
+  // A scene file carries it.
+  const fs::path scene = dir / "two.json";
+  REQUIRE(run_cli("render --two-sided " + test::data("osd-shapes/catmark_edgeonly.obj") +
+                  " --camera-position 0.3,6,1 --resolution 160x90 --print-scene " + scene.string())
+              .exit_code == 0);
+  CHECK(nlohmann::json::parse(bytes_of(scene))["two_sided"] == true);
+  REQUIRE(run_cli("render --scene " + scene.string() + " -o " + (dir / "two-scene.png").string()).exit_code == 0);
+  CHECK(bytes_of(dir / "two-scene.png") == bytes_of(dir / "two.png"));
 }
 
 }  // namespace tessera

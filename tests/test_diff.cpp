@@ -187,6 +187,21 @@ TEST_CASE("tessera diff --json, --exact and its pictures", "[diff][cli]") {
   CHECK(j["max_error"].get<double>() == Approx(10.0 / 255.0).epsilon(1e-6));
   CHECK(j["identical"] == false);
   CHECK(j["pixels"] == 16 * 12);
+  CHECK(j["max_channel_name"] == "B");
+  CHECK(j["max_values"][1][2].get<double>() - j["max_values"][0][2].get<double>() ==
+        Approx(10.0 / 255.0).epsilon(1e-5));
+  // The text names the channel and both pixels as idiff does, to the character.
+  const std::string pair = a.string() + " " + off.string();
+  const std::string ours = test::run_cli("diff " + pair).out;
+  const fs::path idiff_out = dir / "idiff.txt";
+  exit_code_of("idiff " + pair + " >" + idiff_out.string() + " 2>&1");
+  const std::string theirs = test::slurp(idiff_out);
+  const auto max_line = [](const std::string& text) {
+    const std::size_t at = text.find("  Max error");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  CHECK(max_line(ours).find("@ (11, 7, B)  values are ") != std::string::npos);
+  CHECK(max_line(ours) == max_line(theirs));
 
   // Exact: the same decoded pixels from PNG and TIFF are identical, with one hash.
   const auto e = test::run_cli("diff --exact --json " + a.string() + " " + same_tif.string());

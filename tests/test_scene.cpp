@@ -253,7 +253,7 @@ TEST_CASE("configure_scene redoes only what the settings change, and draws as a 
   // After view_scene (render --orbit), the settings' camera is computed again even though its text
   // did not change.
   const auto* orbit_table = p->factors.per_edge.get();
-  view_scene(*p, orbit_view(c.camera, p->model.cage, p->view, 1, 4));
+  view_scene(*p, orbit_view(c.camera, p->model, p->view, 1, 4));
   configure_scene(*p, c);
   CHECK(p->factors.per_edge.get() != orbit_table);
   CHECK(bytes(*p) == bytes(*prepare_scene(c)));

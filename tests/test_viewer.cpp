@@ -219,7 +219,11 @@ TEST_CASE("viewer picks name the patch an independent id buffer has under the pi
   const Displacement d = make_displacement(model, o);
   SubdFactors factors;
   factors.factor = 8.0f;
-  const SubdCamera camera = frame_cage(model.cage, w, h, 35.0f, std::nullopt, std::nullopt);
+  // The session's framing camera (the same bits: the JSON holds each float's shortest exact text).
+  const Json info = session.info();
+  const auto vec = [](const Json& v) { return glm::vec3(v[0].get<float>(), v[1].get<float>(), v[2].get<float>()); };
+  const SubdCamera camera =
+      frame_cage(model.cage, w, h, 35.0f, vec(info["camera"]["position"]), vec(info["camera"]["target"]));
   Device device(DeviceOptions{2});
   std::string error;
   auto ids = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
@@ -348,6 +352,29 @@ TEST_CASE("viewer: settings the asset refuses are a one-line 422 with the CLI's 
   const auto ok = client.Get("/api/frame?scheme=acc&resolution=32x32");  // the server still draws
   REQUIRE(ok);
   CHECK(ok->status == 200);
+  // The page is offered only the schemes that draw this asset; the others come with their reason.
+  const auto i = client.Get("/api/info");
+  REQUIRE(i);
+  const Json info = Json::parse(i->body);
+  std::vector<std::string> names;
+  for (const auto& s : info["schemes"]) names.push_back(s.get<std::string>());
+  CHECK(std::find(names.begin(), names.end(), "pn") == names.end());
+  CHECK(std::find(names.begin(), names.end(), "flat") == names.end());
+  CHECK(std::find(names.begin(), names.end(), "gregory") != names.end());
+  CHECK(info["schemes_refused"]["pn"].get<std::string>().find("cannot be displaced") != std::string::npos);
+}
+
+TEST_CASE("viewer info leaves out the schemes an n-gon cage refuses", "[viewer][issue36]") {
+  // The dodecahedron's pentagons: acc takes quads only and pn triangles and quads only.
+  RenderSettings s;
+  s.cage = test::data("ngon-cages/dodecahedron.obj");
+  ViewerSession session(s);
+  const Json info = session.info();
+  std::vector<std::string> names;
+  for (const auto& n : info["schemes"]) names.push_back(n.get<std::string>());
+  CHECK(names == std::vector<std::string>{"flat", "bspline", "gregory", "exact", "adaptive"});
+  CHECK(info["schemes_refused"]["acc"].get<std::string>().find("5 sides") != std::string::npos);
+  CHECK(info["schemes_refused"].contains("pn"));
 }
 
 TEST_CASE("tessera view: bad ports and addresses, and --scene with settings, fail in one line",

@@ -32,9 +32,10 @@ DrawResult render_debug(Device& device, const SubdModel& model, const Displaceme
           const DebugDS<Ds> debug_ds{ds, camera.view_projection, camera.eye, wire ? 2e-3f : 0.0f};
           auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, hs, debug_ds, ps, st, fb); };
           const std::vector<PatchInfo>& rows = tables.of(g.domain);
-          if (wire) return go(DebugWirePS{rows, view.ps.light, view.ps.paper});
+          if (wire) return go(DebugWirePS{rows, view.ps.light, view.ps.paper, face_sides(model)});
           DebugPS ps = view.ps;
           ps.patches = rows;
+          ps.sides = face_sides(model);
           return go(ps);
         });
     if (!r.ok()) return r;

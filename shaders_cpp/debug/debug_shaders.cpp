@@ -88,7 +88,7 @@ std::array<float, 4> domain_edge_pixels(const PixelInput<kDebugAttributes>& in, 
 
 glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
   const auto& a = in.attributes;
-  const glm::vec3 n = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
+  const glm::vec3 n = sides.facing(unit_or_zero(glm::vec3(a[0], a[1], a[2])), in.front_face);
   const float diffuse = std::max(0.0f, glm::dot(n, light));
   const std::size_t id = std::size_t(std::max(0.0f, a[6]) + 0.5f);
   if (id >= patches.size()) return {1.0f, 0.0f, 1.0f, 1.0f};  // magenta: a patch the table does not know
@@ -200,7 +200,7 @@ glm::vec4 DebugWirePS::operator()(const PixelInput<kDebugAttributes>& in) const 
   const auto& a = in.attributes;
   const std::size_t id = std::size_t(std::max(0.0f, a[6]) + 0.5f);
   const PatchInfo* p = id < patches.size() ? &patches[id] : nullptr;
-  const glm::vec3 n = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
+  const glm::vec3 n = sides.facing(unit_or_zero(glm::vec3(a[0], a[1], a[2])), in.front_face);
   const glm::vec3 under = paper ? glm::vec3(0.97f, 0.97f, 0.96f) : glm::vec3(clay(n, light, kClayColor));
   // An edge on the patch boundary interpolates a domain coordinate that is exactly 0 (or 1) at both
   // ends: it keeps the border's dark colour, so the wires do not lighten the surface pass's border.

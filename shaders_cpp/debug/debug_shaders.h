@@ -102,6 +102,7 @@ struct DebugPS {
   // patch_type under the adaptive scheme: the surface whose patch at each point is coloured (by kind,
   // darker per isolation level, quads with their sub-patch borders) instead of the face's type.
   const LimitSurface* adaptive = nullptr;
+  FaceSides sides;
 
   // The factor range the factors view maps to its colour bar (log2 from 1 to 64).
   static float factor_position(float f) { return std::clamp(std::log2(std::max(f, 1.0f)) / 6.0f, 0.0f, 1.0f); }
@@ -119,6 +120,7 @@ struct DebugWirePS {
   std::span<const PatchInfo> patches;
   glm::vec3 light{0.0f, 0.0f, 1.0f};
   bool paper = false;
+  FaceSides sides;
   glm::vec4 operator()(const PixelInput<kDebugAttributes>& in) const;
 };
 

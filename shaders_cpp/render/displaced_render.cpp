@@ -18,6 +18,7 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
           if (wire) return go(ConstantPS<kDisplacedAttributes>{});
           DisplacedPS ps;
           ps.light = light;
+          ps.sides = face_sides(model);
           if (displacement.seam_blending) ps.texcoords = displacement.texcoords;
           if (displacement.normal_map) {
             ps.normal_map = &displacement.normal_map->texture();

@@ -330,6 +330,7 @@ struct DisplacedPS {
   glm::vec3 color = kClayColor;
   std::span<const PatchTexcoords> texcoords{};  // per patch of the draw; empty: no seam blending
   float seam_band_texels = 8.0f;
+  FaceSides sides;
 
   glm::vec4 operator()(const PixelInput<kDisplacedAttributes>& in) const {
     const auto& a = in.attributes;
@@ -339,11 +340,11 @@ struct DisplacedPS {
     const glm::vec2 ddx = in.ddx_attributes ? glm::vec2(in.ddx(9), in.ddx(10)) : glm::vec2(0.0f);
     const glm::vec2 ddy = in.ddy_attributes ? glm::vec2(in.ddy(9), in.ddy(10)) : glm::vec2(0.0f);
     const Texture2D* map = normal_map ? normal_map : height;
-    if (map == nullptr) return clay(n0, light, color);
+    if (map == nullptr) return clay(sides.facing(n0, in.front_face), light, color);
     glm::vec3 n = surface_normal(n0, uv, dpdu, dpdv, ddx, ddy);
     if (!texcoords.empty() && in.primitive_id < texcoords.size())
       n = blend_seams(n, n0, a[11], a[12], dpdu, dpdv, ddx, ddy, texcoords[in.primitive_id], *map);
-    return clay(n, light, color);
+    return clay(sides.facing(n, in.front_face), light, color);
   }
 
  private:

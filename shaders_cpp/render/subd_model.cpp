@@ -166,4 +166,22 @@ SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSele
   return m;
 }
 
+std::string scheme_refusal(const Cage& cage, Scheme scheme, bool displaced) {
+  if (displaced && (scheme == Scheme::flat || scheme == Scheme::pn))
+    return std::string("--scheme ") + to_string(scheme) +
+           " cannot be displaced (its patches carry no 1-ring for the shared normals)";
+  for (int f = 0; f < cage.face_count(); ++f) {
+    const int n = cage.face_sizes[std::size_t(f)];
+    const bool refused = scheme == Scheme::pn    ? n > 4
+                         : scheme == Scheme::acc ? n != 4
+                         : (scheme == Scheme::flat || scheme == Scheme::exact || scheme == Scheme::adaptive)
+                             ? n > kMaxPatchControlPoints
+                             : false;
+    if (refused)
+      return "face " + std::to_string(f) + " has " + std::to_string(n) + " sides, which --scheme " + to_string(scheme) +
+             " does not draw";
+  }
+  return {};
+}
+
 }  // namespace tessera

@@ -37,6 +37,9 @@ struct SubdModel {
   std::vector<glm::vec3> posed_positions;
   // glTF: the material's normal and displacement maps (the CLI's defaults for --displacement).
   GltfMaterialMaps material;
+  // Drawn from both sides (--two-sided): a draw setting kept with the model because every pass derives
+  // its rasterizer state and pixel shaders' FaceSides from the model (subd_render.h).
+  bool two_sided = false;
 
   // The control points as the vertex shader outputs them (the posed cage, or the cage).
   const std::vector<glm::vec3>& positions() const { return pose ? posed_positions : cage.positions; }
@@ -60,6 +63,13 @@ Cage load_cage(const std::string& path, const GltfSelection& selection = {});
 SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection = {},
                           int isolation = kDefaultIsolation);
 SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation = kDefaultIsolation);
+// Why `scheme` would refuse the cage (displaced or not), in words, or empty when it draws it: the
+// faces it cannot take (pn: more than 4 sides; acc: other than 4; flat, exact, adaptive: more than
+// kMaxPatchControlPoints) and, displaced, the schemes whose patches carry no 1-ring (flat, pn). What
+// make_subd_model and displacement_texcoords refuse with a CageError, answered without building, so a
+// caller can offer only the schemes that work (the viewer's list).
+std::string scheme_refusal(const Cage& cage, Scheme scheme, bool displaced);
+
 // Poses an animated model: the vertex shader will apply `pose`, and what depends on positions before
 // the draw (PN normals, the exact limit surface, culling boxes, the control-point pre-pass) follows it.
 // The model must have a rig.

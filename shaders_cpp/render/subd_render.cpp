@@ -24,6 +24,24 @@ glm::vec3 default_view_direction(glm::vec3 up) {
   return glm::vec3(glm::normalize(r));
 }
 
+SubdCamera look_at(std::span<const glm::vec3> bounds, int width, int height, float fov_degrees, glm::vec3 eye,
+                   glm::vec3 target, glm::vec3 up) {
+  const Box3 box = bounding_box(bounds);
+  const glm::vec3 centre = box.centre();
+  const float radius = std::max(1e-6f, 0.5f * glm::length(box.hi - box.lo));
+  SubdCamera c;
+  c.eye = eye;
+  c.target = target;
+  c.up = up;
+  const float distance = glm::length(c.eye - c.target);
+  const float reach = distance + glm::length(centre - c.target) + radius;
+  const glm::mat4 view = glm::lookAtRH(c.eye, c.target, up);
+  const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(fov_degrees), float(width) / float(height),
+                                               std::max(reach * 1e-4f, distance - reach), reach * 1.01f);
+  c.view_projection = proj * view;
+  return c;
+}
+
 SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees, std::optional<glm::vec3> eye,
                       std::optional<glm::vec3> target, glm::vec3 up) {
   const Box3 box = bounding_box(cage.positions);
@@ -32,28 +50,23 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
   const float aspect = float(width) / float(height);
   const float fov = glm::radians(fov_degrees);
   const float fit = std::min(fov, 2.0f * std::atan(std::tan(0.5f * fov) * aspect));
-  SubdCamera c;
-  c.target = target.value_or(centre);
+  const glm::vec3 aim = target.value_or(centre);
   // The limit surface lies well inside the cage's bounding sphere: frame 80 % of it.
-  c.up = up;
-  c.eye = eye.value_or(centre + default_view_direction(up) * (radius / std::tan(0.5f * fit) * 0.8f));
-  const float distance = glm::length(c.eye - c.target);
-  const float reach = distance + glm::length(centre - c.target) + radius;
-  const glm::mat4 view = glm::lookAtRH(c.eye, c.target, up);
-  const glm::mat4 proj = glm::perspectiveRH_ZO(fov, aspect, std::max(reach * 1e-4f, distance - reach), reach * 1.01f);
-  c.view_projection = proj * view;
-  return c;
+  const glm::vec3 from = eye.value_or(centre + default_view_direction(up) * (radius / std::tan(0.5f * fit) * 0.8f));
+  return look_at(cage.positions, width, height, fov_degrees, from, aim, up);
 }
 
 RasterizerState subd_rasterizer(const SubdModel& model, bool wire) {
   RasterizerState r;
-  r.cull = model.cage.tags.left_handed ? CullMode::front : CullMode::back;
+  r.cull = model.two_sided ? CullMode::none : model.cage.tags.left_handed ? CullMode::front : CullMode::back;
   // Patches emit triangle_cw: counter-clockwise seen from outside a counter-clockwise cage, which
   // after the viewport's y flip is counter-clockwise on screen.
   r.front_counter_clockwise = true;
   if (wire) r.fill = FillMode::wireframe;
   return r;
 }
+
+FaceSides face_sides(const SubdModel& model) { return {model.two_sided, !model.cage.tags.left_handed}; }
 
 int subd_culled_screen_sign(const SubdModel& model) {
   const RasterizerState state = subd_rasterizer(model, false);
@@ -85,7 +98,7 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
           pass_hs.factors.cull.z_bias = st.z_bias;
           pass_hs.factors.back.z_bias = st.z_bias;
           auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
-          return wire ? go(ConstantPS<>{}) : go(ClayPS{light});
+          return wire ? go(ConstantPS<>{}) : go(ClayPS{light, kClayColor, face_sides(model)});
         });
   };
   return draw_view_passes(view, fb, pass);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 
 #include "pipeline/framebuffer.h"
 #include "shaders_cpp/render/subd_model.h"
@@ -27,6 +28,9 @@ struct SubdCamera {
 // The caller checks that the view direction is not along `up` (the orientation would be undefined).
 SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees, std::optional<glm::vec3> eye,
                       std::optional<glm::vec3> target, glm::vec3 up = {0.0f, 1.0f, 0.0f});
+// The camera at `eye` looking at `target`, its near and far planes enclosing the box of `bounds`.
+SubdCamera look_at(std::span<const glm::vec3> bounds, int width, int height, float fov_degrees, glm::vec3 eye,
+                   glm::vec3 target, glm::vec3 up);
 // The default eye direction of frame_cage for the world's `up` (unit length), a unit vector.
 glm::vec3 default_view_direction(glm::vec3 up);
 
@@ -35,8 +39,9 @@ DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors
                        ts::Partitioning partitioning, SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
 // The fixed-function state of one pass over a subdivision model: back faces culled (front faces on a
-// left-handed cage), solid or wireframe, depth less_equal (the wireframe pass draws over the shaded
-// one), the whole target; and the depth bias the wireframe's domain shader pulls points forward by.
+// left-handed cage; none when the model is drawn two-sided), solid or wireframe, depth less_equal (the wireframe pass
+// draws over the shaded one), the whole target; and the depth bias the wireframe's domain shader pulls points forward
+// by.
 struct SubdPassState {
   RasterizerState rasterizer;
   DepthState depth;
@@ -44,8 +49,10 @@ struct SubdPassState {
   float z_bias = 0.0f;
 };
 SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, bool wire);
-// Its rasterizer state alone.
+// Its rasterizer state alone (CullMode NONE when the model is drawn two-sided).
 RasterizerState subd_rasterizer(const SubdModel& model, bool wire);
+// How the pixel shaders tell the surface's sides apart (two-sided drawing).
+FaceSides face_sides(const SubdModel& model);
 // The screen orientation (pipeline/patch_orientation.h: +1 clockwise) of the patches whose every
 // triangle the solid passes cull, for their triangle_cw patterns.
 int subd_culled_screen_sign(const SubdModel& model);

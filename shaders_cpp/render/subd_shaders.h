@@ -376,11 +376,25 @@ inline glm::vec4 clay(const glm::vec3& unit_normal, const glm::vec3& light, cons
 }
 inline constexpr glm::vec3 kClayColor{0.78f, 0.74f, 0.68f};
 
+// Two-sided drawing (D3D11's CullMode NONE): a pixel of the surface's inner side is shaded with its
+// normal turned toward the viewer. `outward_front` is SV_IsFrontFace on the outer side: false on a
+// left-handed cage, whose outer side the rasterizer sees as its back. One-sided drawing culls the inner
+// side, so its pixels never reach a pixel shader and `two_sided` false changes nothing.
+struct FaceSides {
+  bool two_sided = false;
+  bool outward_front = true;
+  glm::vec3 facing(const glm::vec3& n, bool front_face) const {
+    return two_sided && front_face != outward_front ? -n : n;
+  }
+};
+
 struct ClayPS {
   glm::vec3 light{0.0f, 0.0f, 1.0f};  // toward the light, world space
   glm::vec3 color = kClayColor;
+  FaceSides sides;
   glm::vec4 operator()(const PixelInput<3>& in) const {
-    return clay(unit_or_zero(glm::vec3(in.attributes[0], in.attributes[1], in.attributes[2])), light, color);
+    const glm::vec3 n = unit_or_zero(glm::vec3(in.attributes[0], in.attributes[1], in.attributes[2]));
+    return clay(sides.facing(n, in.front_face), light, color);
   }
 };
 

@@ -101,6 +101,15 @@ void cage_section(Report& r, const CageAnalysis& a) {
   r.count("uv_seam_edges", "uv seam edge count", std::count(seams.begin(), seams.end(), true));
   r.count("isolated_vertices", "isolated vertex count", static_cast<long long>(t.isolated_vertices().size()));
   bounding_box_section(r, c);
+  if (!c.positions.empty()) {
+    const UpAxisAdvice up = up_axis_advice(c.name, c);
+    r.line(std::string("up = ") + (up.axis == 2 ? "+z" : "+y") + " (" + up.reason + ")" +
+           (up.axis == 2 ? ": render with --camera-up 0,0,1" : ""));
+    r.json()["up"] = {{"axis", up.axis == 2 ? "+z" : "+y"},
+                      {"reason", up.reason},
+                      {"camera_up", up.axis == 2 ? nlohmann::ordered_json::array({0, 0, 1})
+                                                 : nlohmann::ordered_json::array({0, 1, 0})}};
+  }
 
   std::map<int, int> valences;
   int max_valence = 0, boundary_vertices = 0;

@@ -28,7 +28,7 @@ namespace tessera::cli {
 namespace {
 
 struct DollyOptions {
-  RenderSettings s;  // s.cage empty: the monster frog shipped beside the binary
+  RenderSettings s;             // s.cage empty: the monster frog shipped beside the binary
   std::optional<glm::vec3> to;  // not given: halfway to the target
   int frames = 30;
   bool json = false;
@@ -124,7 +124,7 @@ int run_dolly(const DollyOptions& o) {
   for (int f = 0; f < o.frames; ++f) {
     const float t = float(f) / float(o.frames - 1);
     const glm::vec3 eye = glm::mix(from, to, t);
-    const ViewSetup view = view_at(o.s.camera, model.cage, eye, target);
+    const ViewSetup view = view_at(o.s.camera, model, eye, target);
     SubdFactors factors = base_factors;
     apply_lod_options(o.s.lod, view, model, d, factors);
     const auto t0 = Clock::now();
@@ -175,9 +175,8 @@ int run_dolly(const DollyOptions& o) {
     std::cout << json_text(j) << "\n";
   } else {
     std::cout << cage << ", " << to_string(scheme) << ", " << ts::to_string(partitioning) << ", lod "
-              << to_string(o.s.lod.mode) << ", "
-              << o.frames << " frames: largest vertex move " << max_move << " px (median " << median_move
-              << "), median frame " << times[times.size() / 2] << " s\n";
+              << to_string(o.s.lod.mode) << ", " << o.frames << " frames: largest vertex move " << max_move
+              << " px (median " << median_move << "), median frame " << times[times.size() / 2] << " s\n";
   }
   return kExitOk;
 }
@@ -193,8 +192,9 @@ Runner add_bench_dolly_command(CLI::App& bench) {
       "dolly", "The camera moves toward its target with view-dependent LOD: per-frame triangles, time, vertex moves");
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
   add_model_settings_options(*cmd, o->s, PatchCullMode::all);
-  add_setting_option(*cmd, "--to", o->to, [](const std::string& text) { return vec3_option(text, "--to"); },
-                     "x,y,z: where the camera ends (default: halfway to the target)");
+  add_setting_option(
+      *cmd, "--to", o->to, [](const std::string& text) { return vec3_option(text, "--to"); },
+      "x,y,z: where the camera ends (default: halfway to the target)");
   cmd->add_option("--frames", o->frames, "frames along the path")->capture_default_str();
   cmd->add_flag("--json", o->json, "print results (and every frame) as JSON");
   cmd->fallthrough();

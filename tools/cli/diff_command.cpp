@@ -71,6 +71,11 @@ int run_diff(const DiffOptions& o) {
   }
 
   if (o.json) {
+    const auto floats = [](const std::vector<float>& v) {
+      Json a = Json::array();
+      for (const float x : v) a.push_back(json_float(x));
+      return a;
+    };
     Json j = {{"a", o.a},
               {"b", o.b},
               {"verdict", to_string(r.verdict)},
@@ -88,6 +93,8 @@ int run_diff(const DiffOptions& o) {
               {"max_error", json_number(r.max_error)},
               {"max_pixel", {r.max_x, r.max_y}},
               {"max_channel", r.max_channel},
+              {"max_channel_name", r.max_channel_name},
+              {"max_values", {floats(r.max_values_a), floats(r.max_values_b)}},
               {"over_warn", r.over_warn},
               {"over_fail", r.over_fail},
               {"warn", json_float(o.t.warn)},
@@ -103,7 +110,20 @@ int run_diff(const DiffOptions& o) {
       char line[160];
       std::cout << "  Mean error = " << number(r.mean_error) << "\n  RMS error = " << number(r.rms_error)
                 << "\n  Peak SNR = " << number(r.psnr) << "\n  Max error  = " << number(r.max_error);
-      if (r.max_error != 0.0) std::cout << " @ (" << r.max_x << ", " << r.max_y << ", channel " << r.max_channel << ")";
+      if (r.max_error != 0.0) {
+        // idiff's line: the channel by its name, then both images' values at that pixel.
+        std::cout << " @ (" << r.max_x << ", " << r.max_y << ", "
+                  << (r.max_channel_name.empty() ? "channel " + std::to_string(r.max_channel) : r.max_channel_name)
+                  << ")";
+        if (!r.max_values_a.empty()) {
+          const auto values = [](const std::vector<float>& v) {
+            std::string s;
+            for (const float x : v) s += (s.empty() ? "" : ", ") + float_text(x);
+            return s;
+          };
+          std::cout << "  values are " << values(r.max_values_a) << " vs " << values(r.max_values_b);
+        }
+      }
       std::cout << "\n";
       std::snprintf(line, sizeof line, "  %llu pixels (%.3g%%) over %g\n  %llu pixels (%.3g%%) over %g\n",
                     (unsigned long long)r.over_warn, 100.0 * double(r.over_warn) / n, double(o.t.warn),
@@ -146,7 +166,8 @@ Runner add_diff_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "diff",
       "compare two images as OpenImageIO's idiff 2.4 does (same flags, defaults, exit codes: 0 pass, 1 warning, "
-      "2 failure, 3 different sizes or deep against flat, 4 file error); idiff's -fail style flags work as written");
+      "2 failure (images of different sizes are compared over their union, as idiff does), 3 deep against "
+      "flat (with --exact: any difference of shape), 4 file error); idiff's -fail style flags work as written");
   cmd->add_option("a", o->a, "first image (any format OpenImageIO reads)")->required();
   cmd->add_option("b", o->b, "second image")->required();
   cmd->add_option("--fail", o->t.fail, "failure absolute difference threshold")->capture_default_str();

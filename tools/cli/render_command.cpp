@@ -66,7 +66,8 @@ int render_sequence(const RenderOptions& o) {
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
   if (!orbit && !scene->model.rig)
     throw UsageError("--frames: " + o.s.cage + " is not animated (no skin, morph target or animation)");
-  const ViewSetup base = scene->view;
+  const ViewSetup base = orbit ? orbit_base(o.s.camera, scene->model, scene->view, count) : scene->view;
+  if (orbit && !o.s.camera.eye) view_scene(*scene, base);
   Device device(device_options(o.s.threads));
   std::vector<std::string> partial;
   auto remove_partial = [&] {
@@ -84,7 +85,7 @@ int render_sequence(const RenderOptions& o) {
       // view (orbit view 0 is the base view itself).
       if (i > 0) {
         if (orbit)
-          view_scene(*scene, orbit_view(o.s.camera, scene->model.cage, base, i, count));
+          view_scene(*scene, orbit_view(o.s.camera, scene->model, base, i, count));
         else
           pose_scene(*scene, time);
       }
@@ -202,6 +203,11 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   log_debug(describe_scene(*scene) + ", prepared in " +
             float_text(float(std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count())) +
             " s");
+  if (!o.s.camera.up) {
+    const UpAxisAdvice up = up_axis_advice(o.s.cage, scene->model.cage);
+    if (up.axis == 2)
+      log_info("hint: " + o.s.cage + " looks +z up (" + up.reason + "); give --camera-up 0,0,1 if it lies on its side");
+  }
   Progress progress("render", "patches", 0);
   Device device(device_options(o.s.threads));
   device.set_progress([&](std::size_t done, std::size_t total) { progress.update(done, total); });
@@ -218,12 +224,12 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
       total.statistics.HSInvocations - std::min(total.statistics.HSInvocations, total.patches_culled);
   const bool mostly_away = in_view > 0 && total.patches_back_culled * 4 > in_view * 3;
   const bool nothing_lit = total.statistics.CPrimitives >= 64 && total.statistics.PSInvocations == 0;
-  if (mostly_away || nothing_lit)
+  if (!scene->settings.two_sided && (mostly_away || nothing_lit))
     log_info("warning: the surface in view faces away from the camera (" + std::to_string(total.patches_back_culled) +
              " of " + std::to_string(in_view) + " patches proven to, " +
              std::to_string(total.statistics.PSInvocations) +
              " pixels shaded), and back faces are culled: an open surface seen from behind? Try the other side "
-             "(--camera-position)");
+             "(--camera-position), or draw both sides (--two-sided)");
   const ViewKind kind = scene->settings.view;
   const Scheme scheme = scene->settings.scheme;
   const ViewSetup& view = scene->view;

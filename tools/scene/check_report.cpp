@@ -34,6 +34,32 @@ std::string fixed_seconds(double s) {
 
 std::string text_of(const Json& j) { return j.is_string() ? j.get<std::string>() : j.dump(); }
 
+// A metric as a reader wants it: four significant digits (exact integers stay whole); null is "n/a"
+// (PSNR of identical images).
+std::string rounded(const Json& j) {
+  if (j.is_null()) return "n/a";
+  if (j.is_number_integer() || j.is_number_unsigned()) return j.dump();
+  if (!j.is_number()) return text_of(j);
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", j.get<double>());
+  return b;
+}
+
+// The page's behaviour, kept small and offline: a wipe slider between new (left) and golden (right), a
+// flip button (or the f key over a case) that alternates them in place, and a click on any image
+// toggling 1:1 size.
+constexpr const char* kReportScript = R"(
+function wipe(range){var box=range.parentNode.querySelector('.wipe');
+  box.querySelector('.top').style.clipPath='inset(0 '+(100-range.value)+'% 0 0)';}
+function flip(button){var box=button.parentNode.querySelector('.wipe');var top=box.querySelector('.top');
+  var showing=top.dataset.flipped==='1';top.dataset.flipped=showing?'0':'1';
+  top.style.visibility=showing?'visible':'hidden';
+  button.textContent=showing?'flip: showing new':'flip: showing golden';}
+function zoom(img){img.classList.toggle('full');var box=img.closest('.wipe');if(box)box.classList.toggle('full');}
+document.addEventListener('keydown',function(e){if(e.key!=='f')return;
+  var hovered=document.querySelector('tr:hover button.flip');if(hovered)flip(hovered);});
+)";
+
 std::string html(const Json& summary) {
   std::ostringstream h;
   const Json& counts = summary["counts"];
@@ -44,46 +70,69 @@ std::string html(const Json& summary) {
        "text-align:left}\n"
     << ".s{font-weight:bold;padding:2px 8px;border-radius:4px;color:#fff}.pass{background:#2e7d32}"
        ".warning{background:#b26a00}.note{color:#8a5300}.fail,.error{background:#c62828}.new{background:#1565c0}\n"
-    << "img{max-width:320px;image-rendering:pixelated;border:1px solid #ccc;background:#fff}\n"
-    << "figure{display:inline-block;margin:0 8px 0 0}figcaption{font-size:12px;color:#555}\n"
+    << "img{max-width:480px;image-rendering:pixelated;border:1px solid #ccc;background:#fff;cursor:zoom-in}\n"
+    << "img.full{max-width:none;cursor:zoom-out}\n"
+    << "figure{display:inline-block;margin:0 8px 8px 0;vertical-align:top}figcaption{font-size:12px;color:#555}\n"
+    << ".wipe{position:relative;display:inline-block;max-width:480px}.wipe.full{max-width:none}"
+       ".wipe img{display:block;max-width:100%}.wipe img.full{max-width:none}"
+       ".wipe .top{position:absolute;left:0;top:0}\n"
+    << "input[type=range]{width:480px;display:block}\n"
     << "code{font-size:12px;background:#eee;padding:2px 4px;word-break:break-all}\n"
-    << "</style>\n<script>\n"
-    << "// Hovering a new image shows the golden in its place.\n"
-    << "function swap(img, on){var g=img.getAttribute('data-golden'); if(!g) return;"
-       " if(on){img.dataset.own=img.src; img.src=g;} else if(img.dataset.own){img.src=img.dataset.own;}}\n"
+    << ".changes td{border:none;padding:0 8px 0 0;font-size:12px}\n"
+    << "</style>\n<script>" << kReportScript
     << "</script></head><body>\n<h1>tessera check: " << escape(text_of(summary["suite"])) << "</h1>\n<p>";
   for (const auto& [status, n] : counts.items())
     if (n.get<int>() > 0)
       h << "<span class=\"s " << escape(status) << "\">" << n.get<int>() << " " << escape(status) << "</span> ";
   h << " &middot; " << summary["cases"].size() << " cases, " << fixed_seconds(summary["seconds"].get<double>())
-    << " s</p>\n<table><tr><th>case</th><th>images (hover new: golden)</th><th>metrics</th></tr>\n";
+    << " s &middot; images: drag the slider to wipe between new (left) and golden (right), flip (or press f "
+       "over a case) to alternate them, click an image for 1:1, or open it alone from its caption</p>\n"
+    << "<table><tr><th>case</th><th>images</th><th>metrics</th></tr>\n";
   for (const Json& c : summary["cases"]) {
     const std::string status = text_of(c["status"]);
     h << "<tr><td><b>" << escape(text_of(c["name"])) << "</b><br><span class=\"s " << escape(status) << "\">"
       << escape(status) << "</span><br>" << escape(text_of(c["message"]));
     if (c.contains("warnings"))
       for (const Json& w : c["warnings"]) h << "<br><span class=\"note\">warning: " << escape(text_of(w)) << "</span>";
-    h << "<br><code>" << escape(text_of(c["command"])) << "</code></td><td>";
+    h << "<br><code>" << escape(text_of(c["command"])) << "</code>";
+    if (c.contains("scene_changes") && !c["scene_changes"].empty()) {
+      h << "<br>scene fields that differ from the golden's:<table class=\"changes\"><tr><td>field</td><td>golden</td>"
+           "<td>new</td></tr>";
+      for (const Json& d : c["scene_changes"])
+        h << "<tr><td>" << escape(text_of(d["field"])) << "</td><td>" << escape(d["golden"].dump()) << "</td><td>"
+          << escape(d["new"].dump()) << "</td></tr>";
+      h << "</table>";
+    }
+    h << "</td><td>";
     const std::string golden_rel = "golden/" + text_of(c["name"]) + ".png";
+    const std::string new_rel = text_of(c["new_image"]);
     const bool has_golden = c.contains("report_golden") && c["report_golden"].get<bool>();
-    h << "<figure><img src=\"" << escape(text_of(c["new_image"])) << "\" alt=\"new\""
-      << (has_golden
-              ? " data-golden=\"" + escape(golden_rel) + "\" onmouseover=\"swap(this,1)\" onmouseout=\"swap(this,0)\""
-              : "")
-      << "><figcaption>new</figcaption></figure>";
-    if (has_golden)
-      h << "<figure><img src=\"" << escape(golden_rel) << "\" alt=\"golden\"><figcaption>golden</figcaption></figure>";
+    const auto caption = [](const std::string& src, const std::string& what) {
+      return "<figcaption><a href=\"" + escape(src) + "\" target=\"_blank\">" + what + " (full size)</a></figcaption>";
+    };
+    if (has_golden) {
+      h << "<figure><div class=\"wipe\"><img src=\"" << escape(golden_rel)
+        << "\" alt=\"golden\" onclick=\"zoom(this)\">"
+        << "<img class=\"top\" src=\"" << escape(new_rel) << "\" alt=\"new\" onclick=\"zoom(this)\"></div>"
+        << "<input type=\"range\" min=\"0\" max=\"100\" value=\"50\" oninput=\"wipe(this)\" "
+           "aria-label=\"wipe between new and golden\">"
+        << "<button class=\"flip\" onclick=\"flip(this)\">flip: showing new</button> " << caption(new_rel, "new")
+        << caption(golden_rel, "golden") << "</figure>";
+    } else {
+      h << "<figure><img src=\"" << escape(new_rel) << "\" alt=\"new\" onclick=\"zoom(this)\">"
+        << caption(new_rel, "new") << "</figure>";
+    }
     if (!text_of(c["diff_image"]).empty())
-      h << "<figure><img src=\"" << escape(text_of(c["diff_image"]))
-        << "\" alt=\"diff\"><figcaption>difference</figcaption></figure>";
+      h << "<figure><img src=\"" << escape(text_of(c["diff_image"])) << "\" alt=\"diff\" onclick=\"zoom(this)\">"
+        << caption(text_of(c["diff_image"]), "difference") << "</figure>";
     h << "</td><td>";
     if (c.contains("compare")) {
       const Json& m = c["compare"];
       h << "verdict " << escape(text_of(m["verdict"])) << (m["identical"].get<bool>() ? " (identical)" : "")
-        << "<br>max error " << escape(text_of(m["max_error"])) << " at " << escape(m["max_pixel"].dump()) << "<br>mean "
-        << escape(text_of(m["mean_error"])) << ", RMS " << escape(text_of(m["rms_error"])) << ", PSNR "
-        << escape(text_of(m["psnr"])) << "<br>pixels over warn " << escape(text_of(m["over_warn"])) << ", over fail "
-        << escape(text_of(m["over_fail"])) << " of " << escape(text_of(m["pixels"]));
+        << "<br>max error " << rounded(m["max_error"]) << " at " << escape(m["max_pixel"].dump()) << "<br>mean "
+        << rounded(m["mean_error"]) << ", RMS " << rounded(m["rms_error"]) << ", PSNR " << rounded(m["psnr"])
+        << (m["psnr"].is_null() ? "" : " dB") << "<br>pixels over warn " << rounded(m["over_warn"]) << ", over fail "
+        << rounded(m["over_fail"]) << " of " << rounded(m["pixels"]);
     }
     for (const auto& [key, v] : c["checks"].items())
       h << "<br>" << escape(key) << ": " << escape(text_of(v["new"])) << (v["pass"].get<bool>() ? " = " : " &ne; ")

@@ -1,7 +1,8 @@
 // The reports of `tessera check`, written from the cases' JSON (CaseResult::json(), plus "index", the
-// case's place in the suite) so that shards merged later give the same files: report.html (new,
-// golden and diff side by side, hover a new image to see the golden, metrics, the reproducing
-// command), junit.xml for CI systems, and summary.json.
+// case's place in the suite) so that shards merged later give the same files: report.html (new
+// and golden under a wipe slider and a flip button, the heat map beside them, every image at full size
+// on a click or its own page, metrics to four digits, the reproducing command, the scene fields that
+// differ from the golden's), junit.xml for CI systems, and summary.json.
 #pragma once
 
 #include <string>

@@ -112,6 +112,7 @@ Json CaseResult::json() const {
             {"new_image", new_image}, {"golden_image", golden_image}, {"diff_image", diff_image},
             {"checks", checks},       {"command", command},           {"seconds", seconds}};
   if (!warnings.empty()) j["warnings"] = warnings;
+  if (!scene_changes.is_null()) j["scene_changes"] = scene_changes;
   if (diff) {
     j["compare"] = {{"verdict", verify::to_string(diff->verdict)},
                     {"identical", diff->identical},
@@ -201,6 +202,53 @@ Suite read_suite(const std::string& path) {
   return s;
 }
 
+namespace {
+// A metric in a message: four significant digits, as the report shows it.
+std::string four_digits(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+void flatten_scene(const Json& j, const std::string& prefix, std::vector<std::pair<std::string, Json>>& out) {
+  if (j.is_object() && !j.empty()) {
+    for (const auto& [k, v] : j.items()) flatten_scene(v, prefix.empty() ? k : prefix + "." + k, out);
+  } else {
+    out.emplace_back(prefix, j);
+  }
+}
+}  // namespace
+
+// Files are named relative to the golden directory, which a copied or moved suite changes: they are
+// compared by file name.
+bool same_scene_value(const std::string& field, const Json& a, const Json& b) {
+  static const std::set<std::string> files = {"asset", "factors_per_edge", "displacement.map",
+                                              "displacement.normal_map"};
+  if (files.count(field) && a.is_string() && b.is_string())
+    return fs::path(a.get<std::string>()).filename() == fs::path(b.get<std::string>()).filename();
+  return a == b;
+}
+
+Json scene_differences(const Json& golden, const Json& now) {
+  std::vector<std::pair<std::string, Json>> a, b;
+  flatten_scene(golden, "", a);
+  flatten_scene(now, "", b);
+  const auto find = [](const std::vector<std::pair<std::string, Json>>& v, const std::string& k) -> const Json* {
+    for (const auto& [key, value] : v)
+      if (key == k) return &value;
+    return nullptr;
+  };
+  Json out = Json::array();
+  for (const auto& [k, v] : b) {
+    const Json* g = find(a, k);
+    if (!g || !same_scene_value(k, *g, v))
+      out.push_back({{"field", k}, {"golden", g ? *g : Json(nullptr)}, {"new", v}});
+  }
+  for (const auto& [k, v] : a)
+    if (!find(b, k)) out.push_back({{"field", k}, {"golden", v}, {"new", nullptr}});
+  return out;
+}
+
 CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir, int threads) {
   const auto start = std::chrono::steady_clock::now();
   CaseResult r;
@@ -210,7 +258,13 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
   const std::string new_path = (fs::path(report_dir) / r.new_image).string();
   r.command = case_command(c, c.name + ".png");
   try {
-    const std::unique_ptr<PreparedScene> scene = prepare_scene(read_scene(c.scene));
+    const RenderSettings settings = read_scene(c.scene);
+    r.scene = scene_json(settings, suite.golden_dir);
+    const std::string digest_path = (fs::path(suite.golden_dir) / (c.name + ".json")).string();
+    Json golden;
+    if (fs::exists(digest_path)) golden = read_json_file(digest_path, "golden digest");
+    if (golden.is_object() && golden.contains("scene")) r.scene_changes = scene_differences(golden["scene"], r.scene);
+    const std::unique_ptr<PreparedScene> scene = prepare_scene(settings);
     r.warnings = scene->model.cage.warnings;
     Device device(device_options(threads >= 0 ? threads : scene->settings.threads));
     const bool geometry = !c.checks.empty();
@@ -240,12 +294,9 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
         problems.push_back("image sizes differ");
       else if (v == verify::DiffVerdict::failure)
         problems.push_back("image: " + std::to_string(r.diff->over_fail) + " pixels over " +
-                           float_text(c.thresholds.fail) + ", max error " + float_text(float(r.diff->max_error)));
+                           float_text(c.thresholds.fail) + ", max error " + four_digits(r.diff->max_error));
     }
     if (geometry) {
-      const std::string digest_path = (fs::path(suite.golden_dir) / (c.name + ".json")).string();
-      Json golden;
-      if (fs::exists(digest_path)) golden = read_json_file(digest_path, "golden digest");
       const Json now = r.digest.json();
       for (const std::string& k : c.checks) {
         const std::vector<std::string> keys = k == "watertight"
@@ -271,6 +322,12 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
                : r.diff && r.diff->verdict == verify::DiffVerdict::warning ? CaseStatus::warning
                                                                            : CaseStatus::pass;
     for (const std::string& p : problems) r.message += (r.message.empty() ? "" : "; ") + p;
+    // A failure whose scene changed since the golden was blessed says which fields, first of all.
+    if (r.status == CaseStatus::fail && r.scene_changes.is_array() && !r.scene_changes.empty()) {
+      std::string fields;
+      for (const Json& d : r.scene_changes) fields += (fields.empty() ? "" : ", ") + d["field"].get<std::string>();
+      r.message += "; the scene differs from the golden's in " + fields;
+    }
   } catch (const std::exception& e) {
     r.status = CaseStatus::error;
     r.message = e.what();
@@ -287,8 +344,17 @@ void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, con
     fs::copy_file(from, temp, fs::copy_options::overwrite_existing, ec);
     if (ec) throw InputError(r.golden_image + ": cannot write (" + ec.message() + ")");
   });
-  if (!c.checks.empty())
-    write_text_atomically((fs::path(suite.golden_dir) / (c.name + ".json")).string(), r.digest.json().dump(2) + "\n");
+  Json digest = c.checks.empty() ? Json::object() : r.digest.json();
+  digest["scene"] = r.scene;  // what the golden was rendered from: a later failure names the fields that changed
+  write_text_atomically((fs::path(suite.golden_dir) / (c.name + ".json")).string(), digest.dump(2) + "\n");
+}
+
+void record_golden_scene(const Suite& suite, const SuiteCase& c, const CaseResult& r) {
+  const std::string path = (fs::path(suite.golden_dir) / (c.name + ".json")).string();
+  Json digest = fs::exists(path) ? read_json_file(path, "golden digest") : Json::object();
+  if (!digest.is_object()) throw InputError(path + ": expected a JSON object");
+  digest["scene"] = r.scene;
+  write_text_atomically(path, digest.dump(2) + "\n");
 }
 
 }  // namespace tessera::cli

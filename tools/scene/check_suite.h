@@ -1,6 +1,7 @@
 // Golden suites for `tessera check`: a suite file lists cases (a scene, how its image is compared, which
 // geometry checks apply); the golden directory holds each case's blessed image (<name>.png) and digest
-// (<name>.json). run_case() renders one case and compares it; nothing here writes a golden.
+// (<name>.json: the geometry digest and the scene the golden was rendered from). run_case() renders one
+// case and compares it; nothing here writes a golden.
 //
 // Suite file (JSON; relative paths from the suite file):
 //   {"tessera_suite": 1, "name": "frog", "golden": "golden-dir",
@@ -49,6 +50,11 @@ struct GeometryDigest {
 enum class CaseStatus { pass, warning, fail, new_case, error };
 const char* to_string(CaseStatus s);  // "pass", "warning", "fail", "new", "error"
 
+// The fields of two scene JSON objects (scene_json) whose values differ, as dotted paths in the order
+// of `now`, then those only `golden` has: [{"field", "golden", "new"}] (a missing side is null). Files
+// (asset, maps, factors) are compared by file name: a copied or moved suite names them differently.
+Json scene_differences(const Json& golden, const Json& now);
+
 struct CaseResult {
   std::string name;
   CaseStatus status = CaseStatus::error;
@@ -60,6 +66,10 @@ struct CaseResult {
   Json checks = Json::object();  // per check: {"golden", "new", "pass"}
   GeometryDigest digest;
   std::string command;  // reproduces the render
+  // The scene fields (dotted paths, "camera.position") whose values differ from the scene recorded with
+  // the golden: [{"field", "golden", "new"}]; null when the golden records no scene.
+  Json scene_changes = nullptr;
+  Json scene;  // scene_json of the case's settings, paths relative to the golden directory
   // What the loader and the scheme left out (make_subd_model's warnings: creases drawn smooth or
   // capped, tags on no edge), one line each; in the report beside the case's verdict.
   std::vector<std::string> warnings;
@@ -72,7 +82,10 @@ struct CaseResult {
 // `threads` >= 0 overrides the scene's thread count (the bytes are the same for any count).
 CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& report_dir, int threads = -1);
 
-// Writes the case's golden image and digest from its new render (check --update).
+// Writes the case's golden image, and its digest with the scene it was rendered from, from its new
+// render (check --update).
 void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, const std::string& report_dir);
+// Adds the case's scene to a golden digest that has none, leaving the golden's image and values.
+void record_golden_scene(const Suite& suite, const SuiteCase& c, const CaseResult& r);
 
 }  // namespace tessera::cli

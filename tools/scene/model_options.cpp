@@ -8,6 +8,8 @@
 #include <unordered_map>
 
 #include "shaders_cpp/animation/animation_sampler.h"
+#include "shaders_cpp/cage/up_axis_hint.h"
+#include "shaders_cpp/gltf/gltf_cage.h"
 #include "tools/scene/common.h"
 
 namespace tessera::cli {
@@ -16,7 +18,8 @@ void add_scheme_options(CLI::App& cmd, RenderSettings& s) {
   add_setting_option(
       cmd, "--scheme", s.scheme, [](const std::string& text) { return scheme_option(text); },
       "flat (bilinear/linear), bspline (regular faces; others Gregory), acc (quads only), gregory "
-      "(Gregory ACC: quads, triangles, n-gons as fans), exact (OpenSubdiv limit), pn (PN triangles and quads) or adaptive "
+      "(Gregory ACC: quads, triangles, n-gons as fans), exact (OpenSubdiv limit), pn (PN triangles and quads) or "
+      "adaptive "
       "(feature-adaptive patches to --isolation: creases, corners and every face)")
       ->default_str(to_string(s.scheme));
   add_setting_option(
@@ -220,6 +223,15 @@ std::optional<Displacement> displacement_option(const DisplacementSettings& d, c
   } catch (const CageError& e) {
     throw InputError(e.what());
   }
+}
+
+UpAxisAdvice up_axis_advice(const std::string& path, const Cage& cage) {
+  if (is_gltf_path(path)) return {1, "glTF is +y up"};
+  const UpAxisHint h = suggest_up_axis(cage.positions);
+  const auto base = [&](int a) {
+    return std::to_string(h.base_vertices[a]) + " cage vertices on the lowest " + "xyz"[a] + " plane";
+  };
+  return {h.axis, base(h.axis) + ", " + base(3 - h.axis)};
 }
 
 }  // namespace tessera::cli

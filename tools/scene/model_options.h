@@ -39,6 +39,15 @@ void pose_model(SubdModel& m, const AssetSettings& asset, double time);
 void pose_or_refuse(SubdModel& m, const std::string& path, const AssetSettings& asset);
 
 // --displacement MAP and its companions (render, tessellate, bench frog).
+// The up axis the asset at `path` suggests (cage/up_axis_hint.h), in words for a log line or a report:
+// "+y (glTF is +y up)", "+z (24 cage vertices on the lowest z plane, 6 on the lowest y)", ...; `axis`
+// is 1 or 2.
+struct UpAxisAdvice {
+  int axis = 1;
+  std::string reason;
+};
+UpAxisAdvice up_axis_advice(const std::string& path, const Cage& cage);
+
 void add_displacement_options(CLI::App& cmd, DisplacementSettings& d);
 // Nothing without --displacement (or with `--displacement none`), unless the asset is a glTF whose
 // material has a KHR_materials_displacement texture: then that map (its R channel, scaled by the

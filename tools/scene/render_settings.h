@@ -108,7 +108,8 @@ struct RenderSettings {
   DisplacementSettings displacement;
   AssetSettings asset;
   int threads = 0;
-  int msaa = 1;  // samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard patterns)
+  int msaa = 1;            // samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard patterns)
+  bool two_sided = false;  // CullMode NONE, the inner side shaded with its normal turned to the viewer
   friend bool operator==(const RenderSettings&, const RenderSettings&) = default;
 };
 

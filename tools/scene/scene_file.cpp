@@ -29,6 +29,9 @@ void add_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_d
                  "samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard sample patterns; coverage and depth per "
                  "sample, shading per pixel, a box-filter resolve)")
       ->capture_default_str();
+  cmd.add_flag("--two-sided", s.two_sided,
+               "draw both sides of the surface (D3D11's CullMode NONE), the inner side shaded with its normal turned "
+               "toward the viewer: for open sheets seen from behind");
   add_setting_option(cmd, "--factor-kind", s.factor_kind, factor_kind_option,
                      "--view factors: raw (as the hull shader gave them) or processed")
       ->default_str(to_string(s.factor_kind));
@@ -132,7 +135,8 @@ RenderSettings read_scene(const std::string& path) {
   r.only(root, "",
          {"tessera_scene",    "asset", "scheme",    "isolation",    "partitioning", "factor",     "vary_factors",
           "factors_per_edge", "lod",   "cull",      "displacement", "camera",       "resolution", "view",
-          "factor_kind",      "time",  "animation", "mesh",         "scene_index",  "threads",    "msaa"});
+          "factor_kind",      "time",  "animation", "mesh",         "scene_index",  "threads",    "msaa",
+          "two_sided"});
   if (!root.contains("tessera_scene") || root["tessera_scene"] != 1)
     r.fail("tessera_scene", "must be 1 (this format's version)");
   if (!root.contains("asset")) r.fail("asset", "missing: the cage to render");
@@ -227,6 +231,10 @@ RenderSettings read_scene(const std::string& path) {
       r.fail("msaa", "expected 1, 2, 4, 8 or 16 samples per pixel, got " + m.dump());
     s.msaa = int(m.get<long long>());
   }
+  if (root.contains("two_sided")) {
+    if (!root["two_sided"].is_boolean()) r.fail("two_sided", "expected true or false, got " + root["two_sided"].dump());
+    s.two_sided = root["two_sided"].get<bool>();
+  }
   return s;
 }
 
@@ -272,6 +280,7 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   if (s.asset.scene_index >= 0) j["scene_index"] = s.asset.scene_index;
   j["threads"] = s.threads;
   if (s.msaa != 1) j["msaa"] = s.msaa;
+  if (s.two_sided) j["two_sided"] = true;
   return j;
 }
 

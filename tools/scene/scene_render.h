@@ -32,7 +32,8 @@ struct PreparedScene {
 };
 std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
 // prepare_scene for a benchmark: `s` with its cage, or the monster frog shipped with tessera when it
-// names none (cage_or_shipped_frog).
+// names none (cage_or_shipped_frog); without a camera position, the benchmarks' fixed camera (frame_cage
+// on the rest cage) instead of the surface framing, so times stay comparable across versions.
 std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s);
 // Applies `s` to a prepared scene whose asset, scheme and displacement it shares (the caller checks
 // that: cage, asset selection, scheme and displacement settings equal the scene's): what `s` changes is

@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "shaders_cpp/cage/bounding_box.h"
 #include "shaders_cpp/render/subd_render.h"
+#include "shaders_cpp/render/surface_framing.h"
 #include "tools/scene/common.h"
 
 namespace tessera::cli {
@@ -60,50 +62,82 @@ void check_camera_orientation(const SubdCamera& camera, const CameraSettings& c)
                      "), which leaves its orientation undefined; move it off that axis or give --camera-up");
 }
 
-ViewSetup view_option(const CameraSettings& c, const Cage& cage) {
+ViewSetup view_option(const CameraSettings& c, const SubdModel& model) {
   ViewSetup v = view_frame(c);
   if (c.eye && c.target && glm::length(*c.eye - *c.target) <= 0.0f)
     throw UsageError("camera position and target coincide");
-  v.camera = frame_cage(cage, v.width, v.height, c.fov, c.eye, c.target, unit_up(c));
-  if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
-    throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
+  const std::vector<glm::vec3>& posed = model.positions();
+  if (c.eye) {
+    v.camera =
+        look_at(posed, v.width, v.height, v.fov, *c.eye, c.target.value_or(bounding_box(posed).centre()), unit_up(c));
+    if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
+      throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
+  } else {
+    const std::vector<glm::vec3> points = surface_points(model);
+    v.camera =
+        fit_camera(points, posed, v.width, v.height, v.fov, default_view_direction(unit_up(c)), c.target, unit_up(c));
+  }
   check_camera_orientation(v.camera, c);
   return v;
 }
 
-ViewSetup view_at(const CameraSettings& c, const Cage& cage, glm::vec3 eye, glm::vec3 target) {
+ViewSetup view_at(const CameraSettings& c, const SubdModel& model, glm::vec3 eye, glm::vec3 target) {
   ViewSetup v = view_frame(c);
   if (glm::length(eye - target) <= 0.0f) throw UsageError("camera position and target coincide");
-  v.camera = frame_cage(cage, v.width, v.height, c.fov, eye, target, unit_up(c));
+  v.camera = look_at(model.positions(), v.width, v.height, v.fov, eye, target, unit_up(c));
   check_camera_orientation(v.camera, c);
   return v;
 }
 
-ViewSetup orbit_view(const CameraSettings& c, const Cage& cage, const ViewSetup& base, int i, int n) {
+namespace {
+// `v` turned by `angle` about the unit axis `up` (Rodrigues), in double.
+glm::dvec3 turn_about(glm::dvec3 v, glm::dvec3 up, double angle) {
+  const double cos_a = std::cos(angle), sin_a = std::sin(angle);
+  return v * cos_a + glm::cross(up, v) * sin_a + up * glm::dot(up, v) * (1.0 - cos_a);
+}
+}  // namespace
+
+ViewSetup orbit_base(const CameraSettings& c, const SubdModel& model, const ViewSetup& base, int n) {
+  if (c.eye || n < 2) return base;
+  // One distance for the whole turntable, the largest any view needs: every view holds the surface
+  // whole and the camera does not move in and out as it turns.
+  const glm::dvec3 up(base.camera.up), target(base.camera.target);
+  const glm::vec3 start = glm::normalize(base.camera.eye - base.camera.target);
+  const std::vector<glm::vec3> points = surface_points(model);
+  double distance = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2.0 * 3.14159265358979323846 * double(i) / double(n);
+    const glm::vec3 direction(glm::normalize(turn_about(glm::dvec3(start), up, angle)));
+    const SubdCamera fit = fit_camera(points, model.positions(), base.width, base.height, base.fov, direction,
+                                      base.camera.target, base.camera.up);
+    distance = std::max(distance, glm::length(glm::dvec3(fit.eye) - target));
+  }
+  return view_at(c, model, glm::vec3(target + glm::dvec3(start) * distance), base.camera.target);
+}
+
+ViewSetup orbit_view(const CameraSettings& c, const SubdModel& model, const ViewSetup& base, int i, int n) {
   if (i == 0) return base;
   // In double, the angle from the integers, so view i is the same for any n that names the same angle.
   const glm::dvec3 up(base.camera.up), target(base.camera.target);
-  const glm::dvec3 offset = glm::dvec3(base.camera.eye) - target;
   const double angle = 2.0 * 3.14159265358979323846 * double(i) / double(n);
-  const double cos_a = std::cos(angle), sin_a = std::sin(angle);
-  const glm::dvec3 turned = offset * cos_a + glm::cross(up, offset) * sin_a + up * glm::dot(up, offset) * (1.0 - cos_a);
-  return view_at(c, cage, glm::vec3(target + turned), base.camera.target);
+  const glm::dvec3 turned = turn_about(glm::dvec3(base.camera.eye) - target, up, angle);
+  return view_at(c, model, glm::vec3(target + turned), base.camera.target);
 }
 
 void add_lod_options(CLI::App& cmd, LodCullSettings& l, PatchCullMode cull_default) {
   l.cull = cull_default;
   add_setting_option(cmd, "--lod", l.mode, lod_mode_option,
-                 "tessellation factors: uniform (--factor), distance (falling with each edge's distance to the "
-                 "dicing camera) or screen (each cage edge's projected size over --edge-pixels)")
+                     "tessellation factors: uniform (--factor), distance (falling with each edge's distance to the "
+                     "dicing camera) or screen (each cage edge's projected size over --edge-pixels)")
       ->default_str(to_string(l.mode));
   cmd.add_option("--edge-pixels", l.edge_pixels, "--lod screen: target pixels per segment")->capture_default_str();
   cmd.add_option("--lod-distance", l.lod_distance,
                  "--lod distance: the distance at which an edge gets --factor (default: camera to target)");
   add_setting_option(cmd, "--dicing-camera-position", l.dicing_eye, optional_vec3("--dicing-camera-position", false),
-                 "x,y,z: measure LOD from here instead of the view camera (a frozen tessellation to fly around)");
+                     "x,y,z: measure LOD from here instead of the view camera (a frozen tessellation to fly around)");
   add_setting_option(cmd, "--cull", l.cull, cull_option,
-                 "patch culling: none, frustum (the control-point hull outside the view), backface (every "
-                 "triangle proven to face away; undisplaced Bezier patches) or all (both; neither changes a pixel)")
+                     "patch culling: none, frustum (the control-point hull outside the view), backface (every "
+                     "triangle proven to face away; undisplaced Bezier patches) or all (both; neither changes a pixel)")
       ->default_str(to_string(l.cull));
 }
 

@@ -20,7 +20,9 @@ namespace tessera::cli {
 // --resolution, --camera-position, --camera-target, --fov, --camera-up, read into `c`.
 void add_camera_options(CLI::App& cmd, CameraSettings& c);
 
-// The view camera: WxH, the vertical field of view, and the camera that frames the cage unless given.
+// The view camera: WxH, the vertical field of view, and without --camera-position the camera that frames
+// the posed surface along the default direction (render/surface_framing.h; looking at --camera-target
+// when given); near and far enclose the posed control points.
 // UsageError for a bad resolution, fov, up vector, a position equal to the target, or a view direction
 // along the up vector.
 struct ViewSetup {
@@ -28,12 +30,18 @@ struct ViewSetup {
   float fov = 35.0f;  // degrees
   SubdCamera camera;
 };
-ViewSetup view_option(const CameraSettings& c, const Cage& cage);
+ViewSetup view_option(const CameraSettings& c, const SubdModel& model);
+// --camera-up as a unit vector (+y when not given).
+glm::vec3 unit_up(const CameraSettings& c);
 // The same with the camera's position and target given (a path of cameras).
-ViewSetup view_at(const CameraSettings& c, const Cage& cage, glm::vec3 eye, glm::vec3 target);
+ViewSetup view_at(const CameraSettings& c, const SubdModel& model, glm::vec3 eye, glm::vec3 target);
+// The base view of an orbit of n views: `base` itself when the camera was given; a framed camera (no
+// --camera-position) moved out along its direction to the largest distance any of the n views needs to
+// hold the surface whole (surface_framing.h), so the turntable keeps one distance and crops nothing.
+ViewSetup orbit_base(const CameraSettings& c, const SubdModel& model, const ViewSetup& base, int n);
 // View i of n around `base`'s target: its eye turned by 2 pi i / n about the up axis through the target
 // (counter-clockwise seen from above), at the same distance and height. View 0 is `base` itself.
-ViewSetup orbit_view(const CameraSettings& c, const Cage& cage, const ViewSetup& base, int i, int n);
+ViewSetup orbit_view(const CameraSettings& c, const SubdModel& model, const ViewSetup& base, int i, int n);
 
 // --lod, --edge-pixels, --lod-distance, --dicing-camera-position, and --cull with its default.
 void add_lod_options(CLI::App& cmd, LodCullSettings& l, PatchCullMode cull_default);
@@ -45,7 +53,7 @@ struct LodResult {
   LodSettings settings;
   PatchCullMode cull = PatchCullMode::none;
 };
-LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model, Displacement* displacement,
-                            SubdFactors& factors);
+LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model,
+                            Displacement* displacement, SubdFactors& factors);
 
 }  // namespace tessera::cli

@@ -24,6 +24,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace tessera::verify {
 
@@ -48,6 +49,8 @@ struct DiffReport {
   std::uint64_t pixels = 0;                       // compared (A's, as idiff divides by)
   double mean_error = 0, rms_error = 0, psnr = 0, max_error = 0;
   int max_x = 0, max_y = 0, max_channel = 0;
+  std::string max_channel_name;                   // A's name of that channel ("B"); empty if it has none
+  std::vector<float> max_values_a, max_values_b;  // both images' pixel there, every channel (as idiff prints)
   std::uint64_t over_warn = 0, over_fail = 0;
   bool identical = false;
   std::string hash_a, hash_b;  // SHA-1 of the decoded pixels and shape

@@ -78,6 +78,13 @@ DiffReport compare(const std::string& path_a, const std::string& path_b, const D
   // (cr.error is set whenever a value fails -- compare's own result, not a read error: idiff ignores it.)
   r.mean_error = cr.meanerror, r.rms_error = cr.rms_error, r.psnr = cr.PSNR, r.max_error = cr.maxerror;
   r.max_x = cr.maxx, r.max_y = cr.maxy, r.max_channel = cr.maxc;
+  if (cr.maxc >= 0 && cr.maxc < int(sa.channelnames.size())) r.max_channel_name = sa.channelnames[std::size_t(cr.maxc)];
+  if (cr.maxerror != 0.0 && !im.a.deep()) {
+    r.max_values_a.resize(std::size_t(sa.nchannels));
+    r.max_values_b.resize(std::size_t(sb.nchannels));
+    im.a.getpixel(cr.maxx, cr.maxy, cr.maxz, r.max_values_a.data(), sa.nchannels);
+    im.b.getpixel(cr.maxx, cr.maxy, cr.maxz, r.max_values_b.data(), sb.nchannels);
+  }
   r.over_warn = cr.nwarn, r.over_fail = cr.nfail;
 
   if (exact) {

@@ -43,8 +43,9 @@ std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, in
   std::lock_guard lock(mutex_);
   PreparedScene& p = scene_for(s);
   std::vector<RenderSettings> out;
+  const ViewSetup base = orbit_base(s.camera, p.model, p.view, frames);
   for (int i = 0; i < frames; ++i) {
-    const ViewSetup v = orbit_view(s.camera, p.model.cage, p.view, i, frames);
+    const ViewSetup v = orbit_view(s.camera, p.model, base, i, frames);
     RenderSettings t = s;
     t.camera.eye = v.camera.eye;
     t.camera.target = v.camera.target;
@@ -62,8 +63,15 @@ Json ViewerSession::info() {
   if (p.model.rig)
     for (const Animation& a : p.model.rig->animations)
       animations.push_back({{"name", a.name}, {"start", json_float(a.start)}, {"end", json_float(a.end)}});
-  Json schemes = Json::array();
-  for (int k = 0; k < kSchemeCount; ++k) schemes.push_back(to_string(Scheme(k)));
+  // Only the schemes that draw this asset; the others with their reason (a request for one is a 422).
+  Json schemes = Json::array(), refused = Json::object();
+  for (int k = 0; k < kSchemeCount; ++k) {
+    const std::string why = scheme_refusal(cage, Scheme(k), p.displacement.has_value());
+    if (why.empty())
+      schemes.push_back(to_string(Scheme(k)));
+    else
+      refused[to_string(Scheme(k))] = why;
+  }
   Json views = Json::array();
   for (int k = 0; k <= int(ViewKind::culled); ++k) views.push_back(to_string(ViewKind(k)));
   return {{"asset", fs::path(base_.cage).filename().string()},
@@ -81,6 +89,7 @@ Json ViewerSession::info() {
             {"fov", json_float(p.view.fov)}}},
           {"views", views},
           {"schemes", schemes},
+          {"schemes_refused", refused},
           {"settings", settings_json(base_)},
           {"settable", settable_settings()}};
 }

@@ -51,7 +51,8 @@ class ViewerSession {
 
   const RenderSettings& base() const { return base_; }
   // The asset and what the page needs to build its controls: names, counts, animations and their time
-  // ranges, the bounding box, the framing camera, the views, schemes and the starting settings.
+  // ranges, the bounding box, the framing camera, the views, the schemes that draw it (and those that
+  // refuse it, with why) and the starting settings.
   Json info();
 
   // `wanted`, when given, is asked once the session's turn comes: a frame nobody wants any more (a

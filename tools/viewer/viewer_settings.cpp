@@ -197,6 +197,7 @@ std::vector<std::string> render_arguments(const RenderSettings& s, const std::st
   vector("--dicing-camera-position", s.lod.dicing_eye);
   name("--cull", s.lod.cull, d.lod.cull);
   if (s.msaa != d.msaa) w.insert(w.end(), {"--msaa", std::to_string(s.msaa)});
+  if (s.two_sided) w.push_back("--two-sided");
   const DisplacementSettings& m = s.displacement;
   text("--displacement", m.map == "none" ? m.map : absolute(m.map), "");
   text("--displacement-channel", m.channel, "");
