@@ -404,15 +404,15 @@ TEST_CASE("render and analyze say which axis a cage's shape suggests is up", "[v
   CHECK(nlohmann::json::parse(
             run_cli("analyze " + test::data("gltf-samples/SimpleSkin.gltf") + " --json").out)["up"]["reason"] ==
         "glTF is +y up");
-  const auto r = run_cli("render " + bishop + " --resolution 64x36 -o " + (dir / "b.png").string());
+  const auto r = run_cli("-v render " + bishop + " --resolution 64x36 -o " + (dir / "b.png").string());
   REQUIRE(r.exit_code == 0);
   CHECK(r.err.find("looks +z up") != std::string::npos);
   CHECK(r.err.find("--camera-up 0,0,1") != std::string::npos);
   // Given an up, no hint.
   const auto given =
-      run_cli("render " + bishop + " --camera-up 0,0,1 --resolution 64x36 -o " + (dir / "c.png").string());
+      run_cli("-v render " + bishop + " --camera-up 0,0,1 --resolution 64x36 -o " + (dir / "c.png").string());
   CHECK(given.err.find("looks +z up") == std::string::npos);
-  const auto frog = run_cli("render " + kFrog + " --resolution 64x36 -o " + (dir / "f.png").string());
+  const auto frog = run_cli("-v render " + kFrog + " --resolution 64x36 -o " + (dir / "f.png").string());
   CHECK(frog.err.find("looks +z up") == std::string::npos);
 }
 

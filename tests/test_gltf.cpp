@@ -9,8 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <numbers>
+#include <sstream>
 
 #include "cli_runner.h"
 #include "shaders_cpp/animation/animation_sampler.h"
@@ -365,14 +367,22 @@ TEST_CASE("glTF: render --frames writes a sequence whose frames equal single ren
   const fs::path dir = test::cli_temp_dir() / "frames";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const auto r =
-      run_cli("render " + kSkinned + " --frames 3 --fps 2 --resolution 320x180 -o " + (dir / "f_%03d.png").string());
+  const auto r = run_cli("render " + kSkinned + " --frames 3 --fps 2 --resolution 320x180 --json -o " +
+                         (dir / "f_%03d.png").string());
   REQUIRE(r.exit_code == 0);
   CHECK(fs::exists(dir / "f_000.png"));
   CHECK(fs::exists(dir / "f_002.png"));
-  REQUIRE(
-      run_cli("render " + kSkinned + " --time 0.5 --resolution 320x180 -o " + (dir / "one.png").string()).exit_code ==
-      0);
+  // The sequence keeps the camera that framed its first pose: a single render with that camera.
+  const auto camera = nlohmann::json::parse(r.out)["images"][1]["camera"];
+  const auto vec = [](const nlohmann::json& v) {
+    std::ostringstream s;
+    s << std::setprecision(9) << v[0].get<double>() << "," << v[1].get<double>() << "," << v[2].get<double>();
+    return s.str();
+  };
+  REQUIRE(run_cli("render " + kSkinned + " --time 0.5 --resolution 320x180 --camera-position " +
+                  vec(camera["position"]) + " --camera-target " + vec(camera["target"]) + " -o " +
+                  (dir / "one.png").string())
+              .exit_code == 0);
   CHECK(bytes_of(dir / "f_001.png") == bytes_of(dir / "one.png"));
   CHECK(bytes_of(dir / "f_000.png") != bytes_of(dir / "f_001.png"));
   CHECK(
@@ -636,6 +646,32 @@ TEST_CASE("glTF: eight influences through JOINTS_1 and WEIGHTS_1 skin as the sum
   CHECK(b.rig->weights[100][5] == a.rig->weights[100][1]);
   const auto pa = pose_positions(*a.rig, pose_at(*a.rig, 0, 1.0)), pb = pose_positions(*b.rig, pose_at(*b.rig, 0, 1.0));
   CHECK(pa == pb);
+}
+
+}  // namespace tessera
+
+namespace tessera {
+
+TEST_CASE("SimpleMorph's fold at t = 1.5 under gregory is the patch construction's, not the morph's",
+          "[gltf][cli][issue36]") {
+  // The morph poses the triangle (0,0,0), (1,0,0), (1,2,0) at t = 1.5; the same triangle as a static
+  // OBJ draws the same bytes, dark sliver included (three valence-2 boundary corners: both patch edges
+  // leave each corner along the one boundary tangent, and the Gregory triangle folds near the right
+  // angle).
+  const fs::path dir = test::cli_temp_dir() / "morph-fold";
+  fs::create_directories(dir);
+  const std::string morph = test::data("gltf-samples/SimpleMorph.gltf");
+  const std::string camera = " --resolution 320x180 --camera-position 0.5,0.9,4 --camera-target 0.5,0.9,0 -o ";
+  {
+    std::ofstream obj(dir / "posed.obj");
+    obj << "v 0 0 0\nv 1 0 0\nv 1 2 0\nf 1 2 3\n";
+  }
+  REQUIRE(run_cli("-q render " + morph + " --time 1.5" + camera + (dir / "morph.png").string()).exit_code == 0);
+  REQUIRE(run_cli("-q render " + (dir / "posed.obj").string() + camera + (dir / "posed.png").string()).exit_code == 0);
+  CHECK(bytes_of(dir / "morph.png") == bytes_of(dir / "posed.png"));
+  const auto accuracy = run_cli("accuracy " + (dir / "posed.obj").string() + " --scheme gregory --factor 16 --json");
+  REQUIRE(accuracy.exit_code == 0);
+  CHECK(nlohmann::json::parse(accuracy.out)["max_normal_degrees"].get<double>() > 90.0);  // the fold, measured
 }
 
 }  // namespace tessera

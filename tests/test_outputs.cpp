@@ -96,6 +96,32 @@ TEST_CASE("Empty values, unknown commands and quiet failures are named", "[cli][
   one_line(r, "not watertight (256 open edges");
 }
 
+TEST_CASE("Misspelt commands, options and names get the closest one and the command's own help",
+          "[cli][outputs][issue36]") {
+  auto r = test::run_cli("render " + kCube + " --samples 4 -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "tessera render: unknown option --samples; did you mean --msaa? (see tessera render --help)");
+  r = test::run_cli("-q render " + kCube + " --resolutoin 32x32 -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "unknown option --resolutoin; did you mean --resolution? (see tessera render --help)");
+  r = test::run_cli("tessellate " + kCube + " --frobnicate");
+  CHECK(r.exit_code == 2);
+  one_line(r, "tessera tessellate: unknown option --frobnicate (see tessera tessellate --help)");
+  r = test::run_cli("rendr " + kCube);
+  CHECK(r.exit_code == 2);
+  one_line(r, "'rendr' is not a command; did you mean render? (");
+  r = test::run_cli("render " + kCube + " --scheme gregry -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "'gregry' is not one of flat, bspline, acc, gregory, exact, pn or adaptive; did you mean gregory?");
+  r = test::run_cli("render " + kCube + " --view wirefrme -o x.png");
+  one_line(r, "did you mean wireframe?");
+  // Nothing close: no guess.
+  r = test::run_cli("render " + kCube + " --scheme loop -o x.png");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("did you mean") == std::string::npos);
+  CHECK_FALSE(fs::exists("x.png"));
+}
+
 TEST_CASE("Silent successes refused: cameras along the up axis, factor files that do not fit, maps named right",
           "[cli][outputs]") {
   const fs::path dir = test::cli_temp_dir() / "silent";

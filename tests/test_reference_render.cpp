@@ -220,6 +220,10 @@ TEST_CASE("Progress and -v on stderr, nothing with -q", "[cli][issue22]") {
   CHECK(r.err.find("tessera: loaded " + kFrog + ": 1308 vertices, 1292 faces") != std::string::npos);
   CHECK(r.err.find("thread-ms: IA+VS") != std::string::npos);
   CHECK(r.err.find("tessera: render done (1292/1292 patches)") != std::string::npos);  // a log's last line
+  // A cage of quads and triangles draws two patch groups: the last line counts both (50 + 32).
+  const auto mixed = run_ok("-v render " + test::data("osd-shapes/catmark_val2_interior.obj") +
+                            " --scheme exact --resolution 32x18 -o " + (dir / "mixed.png").string());
+  CHECK(mixed.err.find("tessera: render done (82 patches in 2 passes)") != std::string::npos);
   r = run_ok("-q" + args);
   CHECK(r.err.empty());
   r = run_ok(args);

@@ -22,7 +22,7 @@ Progress::Progress(std::string what, std::string unit, std::uint64_t total)
 void Progress::update(std::uint64_t done, std::uint64_t total) {
   if (finished_ || verbosity() < 0) return;
   if (total != total_ || done < done_) {
-    if (done_ > 0) ++pass_;
+    if (done_ > 0) ++pass_, earlier_ += done_;
     total_ = total;
   }
   done_ = done;
@@ -60,9 +60,14 @@ void Progress::finish() {
   } else {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     char line[256];
-    std::snprintf(line, sizeof line, "tessera: %s done (%llu/%llu %s), %.1f s\n", what_.c_str(),
-                  static_cast<unsigned long long>(done_), static_cast<unsigned long long>(total_), unit_.c_str(),
-                  elapsed);
+    // The whole work, not its last pass: a render of two patch groups counts both.
+    if (pass_ > 1)
+      std::snprintf(line, sizeof line, "tessera: %s done (%llu %s in %d passes), %.1f s\n", what_.c_str(),
+                    static_cast<unsigned long long>(earlier_ + done_), unit_.c_str(), pass_, elapsed);
+    else
+      std::snprintf(line, sizeof line, "tessera: %s done (%llu/%llu %s), %.1f s\n", what_.c_str(),
+                    static_cast<unsigned long long>(done_), static_cast<unsigned long long>(total_), unit_.c_str(),
+                    elapsed);
     std::cerr << line << std::flush;
   }
 }

@@ -1,7 +1,8 @@
 // Progress of long work on stderr, as command-line tools show it: a bar redrawn in place when stderr is
 // a terminal, a plain line every few seconds otherwise (CI logs), nothing with -q. Work that ends within
 // its first half second shows nothing at all, so short commands stay quiet; with -v all of it shows.
-// A log gets a last line when the work is done.
+// A log gets a last line when the work is done, counting every pass (a render of quads and triangles
+// draws two).
 //
 // Not thread-safe: updates come from one thread (the Device calls its progress hook on the drawing
 // thread, between rounds of chunks). Progress only reads counters; it cannot change a result.
@@ -31,6 +32,7 @@ class Progress {
   using Clock = std::chrono::steady_clock;
   std::string what_, unit_;
   std::uint64_t done_ = 0, total_ = 0;
+  std::uint64_t earlier_ = 0;  // done in the passes before this one
   int pass_ = 1;
   Clock::time_point start_ = Clock::now(), last_shown_{};
   bool terminal_ = false, shown_ = false, finished_ = false;

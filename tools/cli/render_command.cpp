@@ -206,7 +206,8 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   if (!o.s.camera.up) {
     const UpAxisAdvice up = up_axis_advice(o.s.cage, scene->model.cage);
     if (up.axis == 2)
-      log_info("hint: " + o.s.cage + " looks +z up (" + up.reason + "); give --camera-up 0,0,1 if it lies on its side");
+      log_debug("hint: " + o.s.cage + " looks +z up (" + up.reason +
+                "); give --camera-up 0,0,1 if it lies on its side");
   }
   Progress progress("render", "patches", 0);
   Device device(device_options(o.s.threads));

@@ -55,6 +55,13 @@ struct InputError : std::runtime_error {
 // readers below use for what their libraries say.
 using tessera::one_line_message;
 
+// The candidate a user most likely meant by `word` (a misspelt command, option or name): the one at the
+// smallest edit distance (Damerau: a swap of two neighbours counts one), if that distance is at most a
+// third of the word's length (at least 1, at most 3) and no other candidate is as close; else empty.
+std::string closest_name(std::string_view word, const std::vector<std::string>& candidates);
+// "; did you mean NAME?" for closest_name, or empty.
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates);
+
 // -q: -1, default 0, -v: 1. Logs go to stderr.
 void set_verbosity(int level);
 int verbosity();

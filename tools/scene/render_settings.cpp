@@ -31,13 +31,21 @@ constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
   throw UsageError(what + ": '" + std::string(text) + "' is not " + allowed);
 }
 
+// A name that is none of `names`: the list, and the closest name when the text looks like a misspelling.
+[[noreturn]] void refuse_name(const std::string& what, std::string_view text, const std::vector<std::string>& names) {
+  std::string list;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  throw UsageError(what + ": '" + std::string(text) + "' is not one of " + list + did_you_mean(text, names));
+}
+
 }  // namespace
 
 Scheme scheme_option(std::string_view text, const std::string& what) {
   if (const auto s = parse_scheme(text)) return *s;
-  std::string names;
-  for (int k = 0; k < kSchemeCount; ++k) names += std::string(k ? ", " : "") + to_string(Scheme(k));
-  refuse(what, text, "one of " + names);
+  std::vector<std::string> names;
+  for (int k = 0; k < kSchemeCount; ++k) names.push_back(to_string(Scheme(k)));
+  refuse_name(what, text, names);
 }
 
 int isolation_option(std::string_view text, const std::string& what) {
@@ -50,13 +58,15 @@ int isolation_option(std::string_view text, const std::string& what) {
 
 ts::Partitioning partitioning_option(std::string_view text, const std::string& what) {
   if (const auto p = ts::parse_partitioning(text)) return *p;
-  refuse(what, text, "one of integer, pow2, fractional_odd, fractional_even");
+  refuse_name(what, text, {"integer", "pow2", "fractional_odd", "fractional_even"});
 }
 
 ViewKind view_kind_option(std::string_view text) {
   for (const auto& [kind, name] : kViews)
     if (text == name) return kind;
-  refuse("--view", text, "one of " + view_names());
+  std::vector<std::string> names;
+  for (const auto& [kind, name] : kViews) names.push_back(name);
+  refuse_name("--view", text, names);
 }
 
 FactorKind factor_kind_option(std::string_view text) {
@@ -67,12 +77,12 @@ FactorKind factor_kind_option(std::string_view text) {
 
 LodMode lod_mode_option(std::string_view text) {
   if (const auto m = parse_lod_mode(text)) return *m;
-  refuse("--lod", text, "uniform, distance or screen");
+  refuse_name("--lod", text, {"uniform", "distance", "screen"});
 }
 
 PatchCullMode cull_option(std::string_view text) {
   if (const auto m = parse_patch_cull_mode(text)) return *m;
-  refuse("--cull", text, "none, frustum, backface or all");
+  refuse_name("--cull", text, {"none", "frustum", "backface", "all"});
 }
 
 DisplacementSpace displacement_space_option(std::string_view text) {
