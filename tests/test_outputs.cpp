@@ -112,7 +112,7 @@ TEST_CASE("Misspelt commands, options and names get the closest one and the comm
   one_line(r, "'rendr' is not a command; did you mean render? (");
   r = test::run_cli("render " + kCube + " --scheme gregry -o x.png");
   CHECK(r.exit_code == 2);
-  one_line(r, "'gregry' is not one of flat, bspline, acc, gregory, exact, pn or adaptive; did you mean gregory?");
+  one_line(r, "'gregry' is not one of flat, bspline, acc, gregory, exact, pn, adaptive; did you mean gregory?");
   r = test::run_cli("render " + kCube + " --view wirefrme -o x.png");
   one_line(r, "did you mean wireframe?");
   // Nothing close: no guess.

@@ -265,70 +265,99 @@ struct SubdDS {
         default: s.u = loc.u, s.v = loc.v; break;
       }
     }
-    PatchPoint p;
-    std::optional<glm::vec3> field_normal;
-    switch (patch.kind) {
-      case PatchKind::bilinear: p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, loc.u, loc.v); break;
-      case PatchKind::linear: {
-        p = linear_triangle(cp[0].p, cp[1].p, cp[2].p, loc.u, loc.v, loc.w);
-        break;
-      }
-      case PatchKind::acc: {
-        std::array<glm::vec3, 16> b;
-        std::array<glm::vec3, 12> du, dv;
-        for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
-        for (int i = 0; i < 12; ++i)
-          du[std::size_t(i)] = cp[std::size_t(i)].du, dv[std::size_t(i)] = cp[std::size_t(i)].dv;
-        p = bezier_patch(b, loc.u, loc.v);
-        acc_tangents(du, dv, loc.u, loc.v, p.du, p.dv);
-        break;
-      }
-      case PatchKind::gregory: {
-        std::array<glm::vec3, 20> g;
-        for (int i = 0; i < 20; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
-        const auto b = gregory_to_bezier(g, loc.u, loc.v);
-        p = bezier_patch(b, loc.u, loc.v);
-        break;
-      }
-      case PatchKind::gregory_triangle: {
-        std::array<glm::vec3, 15> g;
-        for (int i = 0; i < 15; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
-        p = gregory_triangle(g, loc.u, loc.v, loc.w);
-        break;
-      }
-      case PatchKind::pn_triangle: {
-        std::array<glm::vec3, 10> b;
-        std::array<glm::vec3, 6> n;
-        for (int i = 0; i < 10; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
-        for (int i = 0; i < 6; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
-        p = cubic_triangle(b, loc.u, loc.v, loc.w);
-        field_normal = quadratic_triangle_normal(n, loc.u, loc.v, loc.w);
-        break;
-      }
-      case PatchKind::pn_quad: {
-        std::array<glm::vec3, 16> b;
-        std::array<glm::vec3, 9> n;
-        for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
-        for (int i = 0; i < 9; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
-        p = bezier_patch(b, loc.u, loc.v);
-        field_normal = biquadratic_normal(n, loc.u, loc.v);
-        break;
-      }
-      case PatchKind::exact: {
-        const SurfacePoint l = !triangles ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
-                               : limit->face_size(patch.face) == 3
-                                   ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
-                                   : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
-        s.position = positive_zero(l.position);
-        s.normal = l.normal;
-        s.du = l.du, s.dv = l.dv;
-        return s;
-      }
+    if (patch.kind == PatchKind::exact) {
+      const SurfacePoint l = !triangles ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
+                             : limit->face_size(patch.face) == 3
+                                 ? limit->evaluate_triangle(patch.face, loc.u, loc.v, loc.w)
+                                 : limit->evaluate_fan(patch.face, patch.sub, loc.u, loc.v, loc.w);
+      s.position = positive_zero(l.position);
+      s.normal = l.normal;
+      s.du = l.du, s.dv = l.dv;
+      return s;
     }
+    std::optional<glm::vec3> field_normal;
+    const auto evaluate = [&](const DomainLocation& at) {
+      PatchPoint p;
+      switch (patch.kind) {
+        case PatchKind::bilinear: p = bilinear_patch(cp[0].p, cp[1].p, cp[2].p, cp[3].p, at.u, at.v); break;
+        case PatchKind::linear: {
+          p = linear_triangle(cp[0].p, cp[1].p, cp[2].p, at.u, at.v, at.w);
+          break;
+        }
+        case PatchKind::acc: {
+          std::array<glm::vec3, 16> b;
+          std::array<glm::vec3, 12> du, dv;
+          for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+          for (int i = 0; i < 12; ++i)
+            du[std::size_t(i)] = cp[std::size_t(i)].du, dv[std::size_t(i)] = cp[std::size_t(i)].dv;
+          p = bezier_patch(b, at.u, at.v);
+          acc_tangents(du, dv, at.u, at.v, p.du, p.dv);
+          break;
+        }
+        case PatchKind::gregory: {
+          std::array<glm::vec3, 20> g;
+          for (int i = 0; i < 20; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+          const auto b = gregory_to_bezier(g, at.u, at.v);
+          p = bezier_patch(b, at.u, at.v);
+          break;
+        }
+        case PatchKind::gregory_triangle: {
+          std::array<glm::vec3, 15> g;
+          for (int i = 0; i < 15; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+          p = gregory_triangle(g, at.u, at.v, at.w);
+          break;
+        }
+        case PatchKind::pn_triangle: {
+          std::array<glm::vec3, 10> b;
+          std::array<glm::vec3, 6> n;
+          for (int i = 0; i < 10; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+          for (int i = 0; i < 6; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
+          p = cubic_triangle(b, at.u, at.v, at.w);
+          field_normal = quadratic_triangle_normal(n, at.u, at.v, at.w);
+          break;
+        }
+        case PatchKind::pn_quad: {
+          std::array<glm::vec3, 16> b;
+          std::array<glm::vec3, 9> n;
+          for (int i = 0; i < 16; ++i) b[std::size_t(i)] = cp[std::size_t(i)].p;
+          for (int i = 0; i < 9; ++i) n[std::size_t(i)] = cp[std::size_t(i)].du;
+          p = bezier_patch(b, at.u, at.v);
+          field_normal = biquadratic_normal(n, at.u, at.v);
+          break;
+        }
+        case PatchKind::exact: break;  // evaluated above
+      }
+      return p;
+    };
+    const PatchPoint p = evaluate(loc);
     s.position = positive_zero(p.position);
     s.du = p.du, s.dv = p.dv;
     // PN patches carry their own normal field; the others' normal is that of the surface.
-    s.normal = field_normal ? *field_normal : unit_or_zero(glm::cross(p.du, p.dv));
+    if (field_normal) {
+      s.normal = *field_normal;
+    } else {
+      glm::vec3 n = glm::cross(p.du, p.dv);
+      // Where the two derivatives are parallel (a patch corner at a vertex with one face, whose two
+      // edges leave along the one boundary tangent), their cross product is round-off and its sign is
+      // anyone's: the normal is taken a step into the patch, where the surface's tangent plane is
+      // spanned (the limit of the normal there). Such a corner belongs to one patch only.
+      const float scale = glm::dot(p.du, p.du) * glm::dot(p.dv, p.dv);
+      if (scale > 0.0f && glm::dot(n, n) <= 1e-10f * scale) {
+        constexpr float step = 1.0f / 1024.0f;
+        DomainLocation inner = loc;
+        if (triangles) {
+          inner.u = loc.u + (1.0f / 3.0f - loc.u) * step;
+          inner.v = loc.v + (1.0f / 3.0f - loc.v) * step;
+          inner.w = 1.0f - inner.u - inner.v;
+        } else {
+          inner.u = loc.u + (0.5f - loc.u) * step;
+          inner.v = loc.v + (0.5f - loc.v) * step;
+        }
+        const PatchPoint q = evaluate(inner);
+        n = glm::cross(q.du, q.dv);
+      }
+      s.normal = unit_or_zero(n);
+    }
     if (flip_normals) s.normal = -s.normal;
     return s;
   }

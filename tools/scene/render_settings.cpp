@@ -31,12 +31,11 @@ constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
   throw UsageError(what + ": '" + std::string(text) + "' is not " + allowed);
 }
 
-// A name that is none of `names`: the list, and the closest name when the text looks like a misspelling.
-[[noreturn]] void refuse_name(const std::string& what, std::string_view text, const std::vector<std::string>& names) {
-  std::string list;
-  for (std::size_t k = 0; k < names.size(); ++k)
-    list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
-  throw UsageError(what + ": '" + std::string(text) + "' is not one of " + list + did_you_mean(text, names));
+// A name that is none of `names`: what is allowed, and the closest name when the text looks like a
+// misspelling of one.
+[[noreturn]] void refuse_name(const std::string& what, std::string_view text, const std::string& allowed,
+                              const std::vector<std::string>& names) {
+  throw UsageError(what + ": '" + std::string(text) + "' is not " + allowed + did_you_mean(text, names));
 }
 
 }  // namespace
@@ -44,8 +43,12 @@ constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
 Scheme scheme_option(std::string_view text, const std::string& what) {
   if (const auto s = parse_scheme(text)) return *s;
   std::vector<std::string> names;
-  for (int k = 0; k < kSchemeCount; ++k) names.push_back(to_string(Scheme(k)));
-  refuse_name(what, text, names);
+  std::string list;
+  for (int k = 0; k < kSchemeCount; ++k) {
+    names.push_back(to_string(Scheme(k)));
+    list += std::string(k ? ", " : "") + names.back();
+  }
+  refuse_name(what, text, "one of " + list, names);
 }
 
 int isolation_option(std::string_view text, const std::string& what) {
@@ -58,7 +61,8 @@ int isolation_option(std::string_view text, const std::string& what) {
 
 ts::Partitioning partitioning_option(std::string_view text, const std::string& what) {
   if (const auto p = ts::parse_partitioning(text)) return *p;
-  refuse_name(what, text, {"integer", "pow2", "fractional_odd", "fractional_even"});
+  refuse_name(what, text, "one of integer, pow2, fractional_odd, fractional_even",
+              {"integer", "pow2", "fractional_odd", "fractional_even"});
 }
 
 ViewKind view_kind_option(std::string_view text) {
@@ -66,7 +70,7 @@ ViewKind view_kind_option(std::string_view text) {
     if (text == name) return kind;
   std::vector<std::string> names;
   for (const auto& [kind, name] : kViews) names.push_back(name);
-  refuse_name("--view", text, names);
+  refuse_name("--view", text, "one of " + view_names(), names);
 }
 
 FactorKind factor_kind_option(std::string_view text) {
@@ -77,12 +81,12 @@ FactorKind factor_kind_option(std::string_view text) {
 
 LodMode lod_mode_option(std::string_view text) {
   if (const auto m = parse_lod_mode(text)) return *m;
-  refuse_name("--lod", text, {"uniform", "distance", "screen"});
+  refuse_name("--lod", text, "uniform, distance or screen", {"uniform", "distance", "screen"});
 }
 
 PatchCullMode cull_option(std::string_view text) {
   if (const auto m = parse_patch_cull_mode(text)) return *m;
-  refuse_name("--cull", text, {"none", "frustum", "backface", "all"});
+  refuse_name("--cull", text, "none, frustum, backface or all", {"none", "frustum", "backface", "all"});
 }
 
 DisplacementSpace displacement_space_option(std::string_view text) {
