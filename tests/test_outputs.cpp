@@ -68,6 +68,12 @@ TEST_CASE("Outputs: all or none, never over an input, never two on one path, nev
   r = test::run_cli("bench torus --frames 1 --factor 2 --resolution 64x64 -o " + (dir / "nope/t.png").string());
   CHECK(r.exit_code == 2);
   one_line(r, "does not exist");
+  // A bad --stats path is found before the image is written: nothing is left behind.
+  r = test::run_cli("-q bench torus --frames 1 --factor 2 --resolution 64x64 -o " + (dir / "t.png").string() +
+                    " --stats " + (dir / "nope/stats.json").string());
+  CHECK(r.exit_code == 2);
+  one_line(r, "does not exist");
+  CHECK_FALSE(fs::exists(dir / "t.png"));
 
   const std::string a = (dir / "a.png").string();
   REQUIRE(test::run_cli("render " + kCube + " --resolution 32x32 -o " + a).exit_code == 0);

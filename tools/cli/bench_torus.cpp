@@ -97,7 +97,7 @@ int run_bench_torus(const TorusOptions& o) {
     throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
   if (o.rounds < 1 || o.rounds > 100) throw UsageError("--rounds: must be in 1..100");
-  check_output_paths({{"-o", o.output}}, {});
+  check_output_paths({{"-o", o.output}, {"--stats", o.stats}}, {});
   // The device would clamp these silently; a benchmark must run what it was asked to.
   if (o.tile_size < 8 || o.tile_size > 1024 || o.tile_size % 2 != 0)
     throw UsageError("--tile-size: " + std::to_string(o.tile_size) + " is not an even size in 8..1024");
