@@ -362,24 +362,24 @@ TEST_CASE("Automatic framing fits the posed surface, whole and centred, in every
   fs::create_directories(dir);
   const auto bishop =
       run_cli("-q render " + test::data("osd-shapes/catmark_bishop.obj") +
-              " --camera-up 0,0,1 --resolution 320x180 --orbit 3 -o " + (dir / "bishop_%d.png").string());
+              " --camera-up 0,0,1 --factor 2 --resolution 320x180 --orbit 3 -o " + (dir / "bishop_%d.png").string());
   INFO(bishop.err);
   REQUIRE(bishop.exit_code == 0);
   for (int i = 0; i < 3; ++i) check_framed(dir / ("bishop_" + std::to_string(i) + ".png"));
   for (const char* asset : {"SimpleSkin.gltf", "SimpleMorph.gltf"}) {
     const fs::path out = dir / (std::string(asset) + ".png");
     const auto r = run_cli("-q render " + test::data(std::string("gltf-samples/") + asset) +
-                           " --resolution 320x180 --time 0.5 -o " + out.string());
+                           " --factor 2 --resolution 320x180 --time 0.5 -o " + out.string());
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     check_framed(out);
   }
   const fs::path frog = dir / "frog.png";
-  REQUIRE(run_cli("-q render " + kFrog + " --resolution 320x180 -o " + frog.string()).exit_code == 0);
+  REQUIRE(run_cli("-q render " + kFrog + " --factor 2 --resolution 320x180 -o " + frog.string()).exit_code == 0);
   check_framed(frog);
   // A single view is framed on its own (a turntable keeps the distance its widest view needs).
-  const std::string single =
-      "-q render " + test::data("osd-shapes/catmark_bishop.obj") + " --camera-up 0,0,1 --resolution 320x180 ";
+  const std::string single = "-q render " + test::data("osd-shapes/catmark_bishop.obj") +
+                             " --camera-up 0,0,1 --factor 2 --resolution 320x180 ";
   REQUIRE(run_cli(single + "-o " + (dir / "bishop.png").string()).exit_code == 0);
   check_framed(dir / "bishop.png");
   // --print-scene writes the framed camera; rendering that scene gives the same bytes.
@@ -442,7 +442,7 @@ TEST_CASE(
   CHECK(pixels_near(dir / "two.png", glm::vec3(0.78f, 0.74f, 0.68f) * 0.95f) > drawn / 2);
   // On the frog (closed) the inner side hides behind the outer: the image differs at most where a
   // back-facing triangle of the tessellation pokes out on the silhouette (a pixel or two).
-  const std::string frog = " --camera-position 48,15,66 --camera-target -3,-2.5,2 --resolution 160x90 -o ";
+  const std::string frog = " --camera-position 48,15,66 --camera-target -3,-2.5,2 --factor 3 --resolution 160x90 -o ";
   REQUIRE(run_cli("render " + kFrog + frog + (dir / "f1.png").string()).exit_code == 0);
   REQUIRE(run_cli("render " + kFrog + " --two-sided" + frog + (dir / "f2.png").string()).exit_code == 0);
   const auto d = run_cli("diff " + (dir / "f1.png").string() + " " + (dir / "f2.png").string() + " --json");
