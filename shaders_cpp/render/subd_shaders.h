@@ -116,6 +116,17 @@ struct SubdHS {
       cp.du = row(16 + i);
       cp.dv = row(28 + i);
     }
+    // Averaged crease edges: the neighbours' cross-derivative coefficients, kCrossRows per edge, after
+    // the patch's own rows (cross_coefficient reads them back).
+    if (patch.averaged_edges != 0) {
+      if (patch.kind == PatchKind::acc) {  // du and dv of control points 12..19, which ACC leaves free
+        if (i >= 12 && 40 + (i - 12) < t.rows) cp.du = row(40 + (i - 12));
+        if (i >= 12 && 48 + (i - 12) < t.rows) cp.dv = row(48 + (i - 12));
+      } else {
+        const int own = patch.kind == PatchKind::gregory ? 20 : 15;
+        if (own + i < t.rows) cp.du = row(own + i);
+      }
+    }
     return cp;
   }
 
@@ -238,6 +249,49 @@ struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with deriva
 inline glm::vec3 positive_zero(const glm::vec3& p) { return p + glm::vec3(0.0f); }
 
 struct SubdDS {
+  // A point on a semi-sharp crease edge (SubdPatch::averaged_edges) takes the mean of this patch's unit
+  // normal `n` and the unit normals of the patches across its averaged edges (a patch corner may lie on
+  // two): each from the neighbour's inward cross derivative D (a cubic from corner k, kCrossRows
+  // coefficients in cp[kCrossRows k ..].du) and the edge's direction T k -> k+1, as D x T (the neighbour
+  // runs the edge the other way, its interior on its left). Returns `n` unchanged elsewhere.
+  // Coefficient j (kCrossRows per edge) of the neighbours' cross derivatives, where SubdHS put it.
+  static glm::vec3 cross_coefficient(const SubdPatch& patch, std::span<const SubdControlPoint> cp, int j) {
+    if (patch.kind != PatchKind::acc) return cp[std::size_t(j)].du;
+    return j < 8 ? cp[std::size_t(12 + j)].du : cp[std::size_t(4 + j)].dv;
+  }
+
+  glm::vec3 crease_line_normal(const SubdPatch& patch, std::span<const SubdControlPoint> cp, DomainLocation at,
+                               const PatchPoint& p, glm::vec3 n) const {
+    const int edges = triangles ? 3 : 4;
+    glm::vec3 sum = unit_or_zero(n);
+    bool any = false;
+    for (int k = 0; k < edges; ++k) {
+      if (!(patch.averaged_edges & (1u << k))) continue;
+      float t = 0.0f;
+      glm::vec3 along(0.0f);
+      bool on = false;
+      if (triangles) {  // patch corners 0, 1, 2 at w = 1, u = 1, v = 1
+        if (k == 0) on = at.v == 0.0f, t = at.u, along = p.du;
+        if (k == 1) on = at.w <= 0.0f, t = at.v, along = p.dv - p.du;
+        if (k == 2) on = at.u == 0.0f, t = 1.0f - at.v, along = -p.dv;
+      } else {  // corners (0,0), (1,0), (1,1), (0,1)
+        if (k == 0) on = at.v == 0.0f, t = at.u, along = p.du;
+        if (k == 1) on = at.u == 1.0f, t = at.v, along = p.dv;
+        if (k == 2) on = at.v == 1.0f, t = 1.0f - at.u, along = -p.du;
+        if (k == 3) on = at.u == 0.0f, t = 1.0f - at.v, along = -p.dv;
+      }
+      if (!on) continue;
+      const int r = kCrossRows * k;
+      const float s = 1.0f - t;
+      const glm::vec3 d =
+          (s * s * s) * cross_coefficient(patch, cp, r) + (3.0f * t * s * s) * cross_coefficient(patch, cp, r + 1) +
+          (3.0f * t * t * s) * cross_coefficient(patch, cp, r + 2) + (t * t * t) * cross_coefficient(patch, cp, r + 3);
+      sum += unit_or_zero(glm::cross(d, along));
+      any = true;
+    }
+    return any ? sum : n;
+  }
+
   std::span<const SubdPatch> patches;
   const LimitSurface* limit = nullptr;
   bool flip_normals = false;  // left-handed cages (the limit surface flips its own)
@@ -337,6 +391,7 @@ struct SubdDS {
       s.normal = *field_normal;
     } else {
       glm::vec3 n = glm::cross(p.du, p.dv);
+      if (patch.averaged_edges != 0) n = crease_line_normal(patch, cp, loc, p, n);
       // Where the two derivatives are parallel (a patch corner at a vertex with one face, whose two
       // edges leave along the one boundary tangent), their cross product is round-off and its sign is
       // anyone's: the normal is taken a step into the patch, where the surface's tangent plane is

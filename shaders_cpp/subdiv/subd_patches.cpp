@@ -197,6 +197,57 @@ std::vector<Stencil> blend_by_corner(const std::vector<Stencil>& smooth, const s
   return out;
 }
 
+// The Gregory stencils of face g (a triangle or a quad) from its corner 0, blended at its creases as
+// its own patch is: the rows a neighbour reads its cross derivative from.
+std::vector<Stencil> face_gregory_stencils(const Cage& cage, const Topology& t, int g) {
+  const int m = t.face_size(g);
+  bool creased = false;
+  for (int k = 0; k < m; ++k) creased |= t.has_sharpness_at(cage.face_vertex(g, k));
+  auto build = [&]<std::size_t N>(std::array<CornerRing, N>& c, auto&& stencils) {
+    std::array<CornerRing, N> cut;
+    std::array<double, N> w{};
+    for (std::size_t k = 0; k < N; ++k) {
+      c[k] = gather_corner_ring(cage, t, g, int(k));
+      float sharpness = 0.0f;
+      if (creased) cut[k] = gather_creased_corner_ring(cage, t, g, int(k), &sharpness);
+      w[k] = crease_weight(sharpness);
+    }
+    std::vector<Stencil> s = stencils(c);
+    return creased ? blend_by_corner(s, stencils(cut), w, false) : s;
+  };
+  if (m == 3) {
+    std::array<CornerRing, 3> c;
+    return build(c, [](const std::array<CornerRing, 3>& r) { return gregory_triangle_stencils(r); });
+  }
+  std::array<CornerRing, 4> c;
+  return build(c, [](const std::array<CornerRing, 4>& r) { return gregory_quad_stencils(r); });
+}
+
+// The kCrossRows rows of patch edge k of face f (patch corner k is face corner k + rot) when the edge is
+// a semi-sharp crease between f and a triangle or quad; empty otherwise. The neighbour g traverses the
+// edge from its corner j (our corner k + 1) to j + 1 (our corner k); its inward cross derivative there,
+// in its Gregory points (P, E+, E-, F+, F- at 5 j), is the cubic 3 (E-_j - P_j), d (F+_j - E+_j),
+// d (F-_{j+1} - E-_{j+1}), 3 (E+_{j+1} - P_{j+1}), d the patch degree across the edge (3 quad, 4 triangle;
+// gregory_stencils' G1 condition on the quad view). Returned from our corner k: reversed.
+std::vector<Stencil> neighbour_cross_rows(const Cage& cage, const Topology& t, int f, int n, int rot, int k) {
+  const int h = t.face_offset(f) + (k + rot) % n;
+  const int twin = t.twin(h);
+  const float s = t.edge_sharpness(t.edge(h));
+  if (twin < 0 || !(s >= kCutSharpness) || s >= kSharpnessInfinite) return {};
+  const int g = t.face(twin), m = t.face_size(g);
+  if ((m != 3 && m != 4) || t.is_hole(g)) return {};
+  const std::vector<Stencil> rows = face_gregory_stencils(cage, t, g);
+  const int a = twin - t.face_offset(g), b = (a + 1) % m;
+  const double d = m == 3 ? 4.0 : 3.0;
+  auto row = [&](int corner, int r) -> const Stencil& { return rows[std::size_t(5 * corner + r)]; };
+  auto diff = [](double scale, const Stencil& x, const Stencil& y) {
+    Stencil out;
+    return out.add(x, scale).add(y, -scale);
+  };
+  return {diff(3.0, row(b, 1), row(b, 0)), diff(d, row(b, 4), row(b, 2)), diff(d, row(a, 3), row(a, 1)),
+          diff(3.0, row(a, 2), row(a, 0))};
+}
+
 // The SV_TessFactor keys of fan triangle k of face f (vertex k, vertex k + 1, centre): Ueq0 is the spoke
 // to vertex k, keyed by the two cage edges there; Veq0 the cage edge k -> k+1; Weq0 the spoke to
 // vertex k + 1. Both triangles beside a spoke name its two edges in the same order.
@@ -333,6 +384,22 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       }
       continue;
     }
+    // The neighbours' cross-derivative rows of the patch's semi-sharp crease edges, appended after its
+    // own (kCrossRows per edge, zero rows for the others); the mask of the edges that have them.
+    auto add_cross_rows = [&](std::vector<Stencil>& stencils, int corners) {
+      std::uint8_t mask = 0;
+      std::vector<Stencil> extra;
+      for (int k = 0; k < corners; ++k) {
+        std::vector<Stencil> rows = neighbour_cross_rows(cage, t, f, n, rot, k);
+        if (rows.empty())
+          rows.assign(kCrossRows, Stencil{});
+        else
+          mask = std::uint8_t(mask | (1u << k));
+        extra.insert(extra.end(), rows.begin(), rows.end());
+      }
+      if (mask != 0) stencils.insert(stencils.end(), extra.begin(), extra.end());
+      return mask;
+    };
     auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
       if (!creased) return;
       for (std::size_t k = 0; k < N; ++k) {
@@ -349,7 +416,9 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
       std::vector<Stencil> stencils = gregory_triangle_stencils(corners);
       if (creased) stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
+      const std::uint8_t averaged = creased ? add_cross_rows(stencils, 3) : 0;
       builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
+      out.tris.patches.back().averaged_edges = averaged;
       continue;
     }
     std::array<CornerRing, 4> corners;
@@ -367,12 +436,16 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     if (scheme == Scheme::acc) {
       std::vector<Stencil> stencils = acc_quad_stencils(corners);
       if (creased) stencils = blend_by_corner(stencils, acc_quad_stencils(cut), w, true);
+      const std::uint8_t averaged = creased ? add_cross_rows(stencils, 4) : 0;
       builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot, 4);
+      out.quads.patches.back().averaged_edges = averaged;
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
       std::vector<Stencil> stencils = gregory_quad_stencils(corners);
       if (creased) stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
+      const std::uint8_t averaged = creased ? add_cross_rows(stencils, 4) : 0;
       builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot, 4);
+      out.quads.patches.back().averaged_edges = averaged;
     }
   }
   builder.finish();

@@ -97,7 +97,17 @@ struct SubdPatch {
   // Per domain edge in SV_TessFactor order (quad: Ueq0, Veq0, Ueq1, Veq1; tri: Ueq0, Veq0, Weq0). A fan
   // triangle's Veq0 is its cage edge, Ueq0 the spoke to vertex k, Weq0 the spoke to vertex k+1.
   std::array<EdgeFactorKey, 4> edge_keys{};
+  // acc, gregory and bspline: bit k set when patch edge k -> k+1 is a semi-sharp crease (finite sharpness, at
+  // least kCutSharpness) with a triangle or quad across it. The exact limit there is smooth on the crease
+  // line itself (one normal, about the mean of the two sides') and creased a band of width 2^-s away, so
+  // the domain shader gives points on that edge the mean of this patch's normal and the neighbour's,
+  // from the neighbour's inward cross derivative: four more table rows per edge (kCrossRows).
+  std::uint8_t averaged_edges = 0;
 };
+
+// The rows a patch with averaged edges adds after its own (20 for a quad, 15 for a triangle): per patch
+// edge k, the Bezier coefficients of the neighbour's inward cross derivative along it, from corner k.
+inline constexpr int kCrossRows = 4;
 
 struct PatchGroup {
   ts::Domain domain = ts::Domain::quad;
