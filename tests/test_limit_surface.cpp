@@ -28,6 +28,7 @@
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/osd_refiner.h"
+#include "shaders_cpp/subdiv/semi_sharp_limit.h"
 #include "shaders_cpp/cage/topology.h"
 
 using namespace tessera;
@@ -740,3 +741,44 @@ TEST_CASE("limit surface: a pose moves only the points, to the bits of a surface
       CHECK_THROWS_AS(reposed.repose(std::span<const glm::vec3>(moved.positions).first(3)), std::logic_error);
     }
 }
+
+namespace tessera {
+
+TEST_CASE("semi-sharp vertices: the locally refined limit position equals OpenSubdiv's", "[limit][issue34]") {
+  // semi_sharp_limit_position refines a vertex's 1-ring until its tags relax and applies the smooth
+  // mask; OpenSubdiv (Bfr) evaluates the same limit at the face corner. Corner tags of sharpness 0.7,
+  // 1.4, 2.8, 3; two creases of 2 meeting; three creases of 5 (a corner rule that relaxes); the mixed
+  // tags of cubes_semisharp; fractional creases on a pyramid and on a sheet.
+  for (const char* name :
+       {"catmark_cube_corner0", "catmark_cube_corner1", "catmark_cube_corner2", "catmark_cube_corner3",
+        "catmark_cube_creases0", "catmark_cube_creases1", "catmark_cubes_semisharp", "catmark_pyramid_creases0",
+        "catmark_chaikin0", "catmark_single_crease"}) {
+    const Cage cage = load_obj_cage(test::data(std::string("osd-shapes/") + name + ".obj"));
+    const Topology t(cage);
+    const LimitSurface s = LimitSurface::create(cage);
+    const double diag = s.bounding_box_diagonal();
+    int checked = 0;
+    for (int v = 0; v < t.vertex_count(); ++v) {
+      const std::optional<Stencil> p = semi_sharp_limit_position(cage, t, v);
+      if (!p) continue;
+      glm::dvec3 mine(0.0);
+      for (const auto& [i, w] : p->terms) mine += w * glm::dvec3(cage.positions[std::size_t(i)]);
+      // The corner of a quad face at v: corner k sits at (0,0), (1,0), (1,1), (0,1).
+      for (int f = 0; f < t.face_count(); ++f) {
+        if (t.face_size(f) != 4) continue;
+        for (int k = 0; k < 4; ++k) {
+          if (cage.face_vertex(f, k) != v) continue;
+          const float u = k == 1 || k == 2 ? 1.0f : 0.0f, w = k >= 2 ? 1.0f : 0.0f;
+          const glm::dvec3 exact(s.evaluate(f, 0, u, w).position);
+          INFO(name << " vertex " << v << " face " << f);
+          CHECK(glm::length(mine - exact) / diag < 1e-5);
+          ++checked;
+        }
+      }
+    }
+    INFO(name);
+    CHECK(checked > 0);
+  }
+}
+
+}  // namespace tessera

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
+#include <optional>
 #include <numeric>
 #include <span>
 #include <string>
 
 #include "shaders_cpp/cage/corner_ring.h"
 #include "shaders_cpp/subdiv/face_centre_limit.h"
+#include "shaders_cpp/subdiv/semi_sharp_limit.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/cage/topology_combinations.h"
 
@@ -248,6 +251,23 @@ std::vector<Stencil> neighbour_cross_rows(const Cage& cage, const Topology& t, i
           diff(3.0, row(a, 2), row(a, 0))};
 }
 
+// A semi-sharp vertex's corner: row `p_row` becomes the exact limit (semi_sharp_limit.h). Its edge points
+// (rows `e_rows`, a fan's spoke among them): at a crease vertex the crease runs the length of its edges
+// and the blended points stand; a corner tag alone pulls the surface only within about 2^-s of the
+// vertex, so its edge points, a third along the edges, are the smooth ones (`smooth`, the unblended
+// rows) moved by that share of P's move (catmark_cube_corner2: 6.6e-2 of the diagonal blended, 2.0e-2
+// so). Every face at the vertex makes the same rows from the same stencils: shared points share bits.
+void exact_corner(std::vector<Stencil>& stencils, const std::vector<Stencil>& smooth, const Topology& t, int vertex,
+                  const std::optional<Stencil>& exact, std::size_t p_row, std::initializer_list<std::size_t> e_rows) {
+  if (!exact) return;
+  const Stencil shift = *exact - smooth[p_row];
+  stencils[p_row] = *exact;
+  for (const int h : t.ring(vertex))
+    if (t.edge_sharpness(t.edge(h)) > 0.0f) return;
+  const double fade = std::exp2(-double(t.corner_sharpness(vertex)));
+  for (const std::size_t r : e_rows) stencils[r] = smooth[r] + fade * shift;
+}
+
 // The SV_TessFactor keys of fan triangle k of face f (vertex k, vertex k + 1, centre): Ueq0 is the spoke
 // to vertex k, keyed by the two cage edges there; Veq0 the cage edge k -> k+1; Weq0 the spoke to
 // vertex k + 1. Both triangles beside a spoke name its two edges in the same order.
@@ -290,6 +310,11 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   // combination share one stencil table (the talk's reordering of faces).
   const std::vector<int> rotation =
       stencil_scheme ? analyze_combinations(t).face_rotation : std::vector<int>(std::size_t(t.face_count()), 0);
+  // The exact limit at semi-sharp vertices (semi_sharp_limit.h), once per vertex: every face around it
+  // puts the same bits at its corner.
+  std::vector<std::optional<Stencil>> semi_sharp(static_cast<std::size_t>(stencil_scheme ? t.vertex_count() : 0));
+  for (std::size_t v = 0; v < semi_sharp.size(); ++v)
+    if (t.has_sharpness_at(int(v))) semi_sharp[v] = semi_sharp_limit_position(cage, t, int(v));
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
@@ -374,9 +399,15 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       for (int k = 0; k < n; ++k) {
         const std::array<EdgeFactorKey, 4> fan_edges = fan_edge_keys(cage, f, k);
         std::vector<Stencil> stencils = gregory_fan_stencils(rings[at(k)], rings[at(k + 1)], centre, k);
-        if (creased)
+        if (creased) {
+          const std::vector<Stencil> smooth = stencils;
           stencils = blend_by_corner(stencils, gregory_fan_stencils(cut[at(k)], cut[at(k + 1)], centre, k),
                                      std::array<double, 3>{w[at(k)], w[at(k + 1)], 0.0}, false);
+          // Corner a's rows: P 0, outer edge point 1, spoke 2; corner b's: P 5, spoke 6, outer edge point 7.
+          const int va = cage.face_vertex(f, int(at(k))), vb = cage.face_vertex(f, int(at(k + 1)));
+          exact_corner(stencils, smooth, t, va, semi_sharp[std::size_t(va)], 0, {1, 2});
+          exact_corner(stencils, smooth, t, vb, semi_sharp[std::size_t(vb)], 5, {6, 7});
+        }
         // The ring from corner k on, so the fans of one face (and of faces alike) share a table.
         std::vector<CornerRing> from_k;
         for (int j = 0; j < n; ++j) from_k.push_back(rings[at(k + j)]);
@@ -386,6 +417,12 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     }
     // The neighbours' cross-derivative rows of the patch's semi-sharp crease edges, appended after its
     // own (kCrossRows per edge, zero rows for the others); the mask of the edges that have them.
+    auto exact_corners = [&](std::vector<Stencil>& stencils, const std::vector<Stencil>& smooth, int corners) {
+      for (int k = 0; k < corners; ++k) {
+        const std::size_t r = std::size_t(5 * k);
+        exact_corner(stencils, smooth, t, corner(k), semi_sharp[std::size_t(corner(k))], r, {r + 1, r + 2});
+      }
+    };
     auto add_cross_rows = [&](std::vector<Stencil>& stencils, int corners) {
       std::uint8_t mask = 0;
       std::vector<Stencil> extra;
@@ -415,7 +452,11 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       cut_rings(cut, w);
       if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
       std::vector<Stencil> stencils = gregory_triangle_stencils(corners);
-      if (creased) stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
+      if (creased) {
+        const std::vector<Stencil> smooth = stencils;
+        stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
+        exact_corners(stencils, smooth, 3);
+      }
       const std::uint8_t averaged = creased ? add_cross_rows(stencils, 3) : 0;
       builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
       out.tris.patches.back().averaged_edges = averaged;
@@ -442,7 +483,11 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
       std::vector<Stencil> stencils = gregory_quad_stencils(corners);
-      if (creased) stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
+      if (creased) {
+        const std::vector<Stencil> smooth = stencils;
+        stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
+        exact_corners(stencils, smooth, 4);
+      }
       const std::uint8_t averaged = creased ? add_cross_rows(stencils, 4) : 0;
       builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot, 4);
       out.quads.patches.back().averaged_edges = averaged;
