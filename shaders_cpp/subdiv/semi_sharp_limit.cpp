@@ -22,7 +22,8 @@ VertexRule rule_of(double corner, const std::vector<double>& sharp) {
 }  // namespace
 
 std::optional<Stencil> semi_sharp_limit_position(const Cage& cage, const Topology& t, int v) {
-  if (t.is_boundary_vertex(v)) return std::nullopt;
+  // Chaikin creasing relaxes an edge by its neighbours' sharpness, outside the vertex's own ring.
+  if (t.is_boundary_vertex(v) || cage.tags.crease_method != CreaseMethod::uniform) return std::nullopt;
   const auto half_edges = t.ring(v);  // outgoing, counter-clockwise; face i lies between edges i and i + 1
   const int n = int(half_edges.size());
   if (n < 3) return std::nullopt;

@@ -12,7 +12,8 @@
 // parent's rule point weighs the mean sharpness of what relaxes (OpenSubdiv's fractional weight).
 //
 // Contract: an interior manifold vertex with a finite positive tag (its corner or an incident edge);
-// nullopt otherwise (untagged, infinitely sharp, boundary). Computed once per vertex, from its ring
+// nullopt otherwise (untagged, infinitely sharp, boundary, or Chaikin creasing, whose relaxation reads
+// the neighbouring edges' sharpness). Computed once per vertex, from its ring
 // turned to start at its lowest neighbour, so every face reads the same bits.
 #pragma once
 
