@@ -16,39 +16,15 @@ import subprocess
 import sys
 import tempfile
 
-CHROMIUM = "/usr/bin/chromium"
-CHROMEDRIVER = "/usr/bin/chromedriver"
-
-
-def skip(reason):
-    print(f"SKIPPED: {reason}")
-    sys.exit(77)
-
-
-def fail(message):
-    print(f"FAILED: {message}")
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
-    print(f"ok: {message}")
+from browser_support import check, headless_chromium, require_browser
 
 
 def main():
     binary, source = sys.argv[1], sys.argv[2]
     screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
-    for path, what in ((CHROMIUM, "chromium"), (CHROMEDRIVER, "chromium-driver")):
-        if not os.path.exists(path):
-            skip(f"{path} is absent (Debian package {what}; scripts/setup.sh installs it)")
-    try:
-        from selenium import webdriver
-        from selenium.webdriver.chrome.service import Service
-        from selenium.webdriver.common.action_chains import ActionChains
-        from selenium.webdriver.common.by import By
-    except ImportError:
-        skip("python3-selenium is absent (scripts/setup.sh installs it)")
+    require_browser()
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
 
     work = tempfile.mkdtemp(prefix="tessera-report-test-")
     driver = None
@@ -71,12 +47,7 @@ def main():
         r = subprocess.run([binary, "-q", "check", suite, "-o", report], capture_output=True, text=True)
         check(r.returncode == 1, f"the changed case fails (exit {r.returncode})")
 
-        options = webdriver.ChromeOptions()
-        options.binary_location = CHROMIUM
-        for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                     "--window-size=1280,900", f"--user-data-dir={work}/profile", "--allow-file-access-from-files"):
-            options.add_argument(flag)
-        driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+        driver = headless_chromium(f"{work}/profile", "--allow-file-access-from-files")
         driver.get("file://" + os.path.join(report, "report.html"))
 
         top = driver.find_element(By.CSS_SELECTOR, ".wipe img.top")

@@ -20,40 +20,16 @@ import time
 import urllib.parse
 import urllib.request
 
-CHROMIUM = "/usr/bin/chromium"
-CHROMEDRIVER = "/usr/bin/chromedriver"
-
-
-def skip(reason):
-    print(f"SKIPPED: {reason}")
-    sys.exit(77)
-
-
-def fail(message):
-    print(f"FAILED: {message}")
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
-    print(f"ok: {message}")
+from browser_support import check, fail, headless_chromium, require_browser
 
 
 def main():
     binary, source = sys.argv[1], sys.argv[2]
     screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
-    for path, what in ((CHROMIUM, "chromium"), (CHROMEDRIVER, "chromium-driver")):
-        if not os.path.exists(path):
-            skip(f"{path} is absent (Debian package {what}; scripts/setup.sh installs it)")
-    try:
-        from selenium import webdriver
-        from selenium.webdriver.chrome.service import Service
-        from selenium.webdriver.common.action_chains import ActionChains
-        from selenium.webdriver.common.by import By
-        from selenium.webdriver.support.ui import Select, WebDriverWait
-    except ImportError:
-        skip("python3-selenium is absent (scripts/setup.sh installs it)")
+    require_browser()
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select, WebDriverWait
 
     frog = os.path.join(source, "tests/data/sdk-cages/monsterfrog_mapped_00.obj")
     dds = os.path.join(source, "tests/data/sdk-cages/monsterfrog.dds")
@@ -71,12 +47,7 @@ def main():
             with urllib.request.urlopen(url + path, timeout=60) as r:
                 return r.read()
 
-        options = webdriver.ChromeOptions()
-        options.binary_location = CHROMIUM
-        for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                     "--window-size=1280,900", f"--user-data-dir={work}/profile"):
-            options.add_argument(flag)
-        driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+        driver = headless_chromium(f"{work}/profile")
         driver.set_script_timeout(60)
         driver.get(url)
         wait = WebDriverWait(driver, 90, poll_frequency=0.1)
