@@ -476,7 +476,15 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     const std::vector<int> ring = gather_ring(corners);
     if (scheme == Scheme::acc) {
       std::vector<Stencil> stencils = acc_quad_stencils(corners);
-      if (creased) stencils = blend_by_corner(stencils, acc_quad_stencils(cut), w, true);
+      if (creased) {
+        stencils = blend_by_corner(stencils, acc_quad_stencils(cut), w, true);
+        // A semi-sharp vertex's corner point b(0,0), b(3,0), b(3,3), b(0,3) is its exact limit; ACC's
+        // edge points and tangent patches keep the blend (moving them would need the tangent patches
+        // moved with them).
+        constexpr std::size_t kCornerRow[4] = {0, 3, 15, 12};
+        for (int k = 0; k < 4; ++k)
+          if (const std::optional<Stencil>& p = semi_sharp[std::size_t(corner(k))]) stencils[kCornerRow[k]] = *p;
+      }
       const std::uint8_t averaged = creased ? add_cross_rows(stencils, 4) : 0;
       builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot, 4);
       out.quads.patches.back().averaged_edges = averaged;
