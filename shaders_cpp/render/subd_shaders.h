@@ -29,6 +29,7 @@
 #include "shaders_cpp/lod/subd_factors.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 #include "shaders_cpp/subdiv/subd_patches.h"
 
@@ -120,10 +121,10 @@ struct SubdHS {
     // the patch's own rows (cross_coefficient reads them back).
     if (patch.averaged_edges != 0) {
       if (patch.kind == PatchKind::acc) {  // du and dv of control points 12..19, which ACC leaves free
-        if (i >= 12 && 40 + (i - 12) < t.rows) cp.du = row(40 + (i - 12));
-        if (i >= 12 && 48 + (i - 12) < t.rows) cp.dv = row(48 + (i - 12));
+        if (i >= 12 && kAccStencils + (i - 12) < t.rows) cp.du = row(kAccStencils + (i - 12));
+        if (i >= 12 && kAccStencils + 8 + (i - 12) < t.rows) cp.dv = row(kAccStencils + 8 + (i - 12));
       } else {
-        const int own = patch.kind == PatchKind::gregory ? 20 : 15;
+        const int own = patch.kind == PatchKind::gregory ? kGregoryQuadStencils : kGregoryTriangleStencils;
         if (own + i < t.rows) cp.du = row(own + i);
       }
     }
@@ -249,17 +250,17 @@ struct SurfaceSample {  // (SurfacePoint is the limit surface's own, with deriva
 inline glm::vec3 positive_zero(const glm::vec3& p) { return p + glm::vec3(0.0f); }
 
 struct SubdDS {
-  // A point on a semi-sharp crease edge (SubdPatch::averaged_edges) takes the mean of this patch's unit
-  // normal `n` and the unit normals of the patches across its averaged edges (a patch corner may lie on
-  // two): each from the neighbour's inward cross derivative D (a cubic from corner k, kCrossRows
-  // coefficients in cp[kCrossRows k ..].du) and the edge's direction T k -> k+1, as D x T (the neighbour
-  // runs the edge the other way, its interior on its left). Returns `n` unchanged elsewhere.
   // Coefficient j (kCrossRows per edge) of the neighbours' cross derivatives, where SubdHS put it.
   static glm::vec3 cross_coefficient(const SubdPatch& patch, std::span<const SubdControlPoint> cp, int j) {
     if (patch.kind != PatchKind::acc) return cp[std::size_t(j)].du;
     return j < 8 ? cp[std::size_t(12 + j)].du : cp[std::size_t(4 + j)].dv;
   }
 
+  // A point on a semi-sharp crease edge (SubdPatch::averaged_edges) takes the mean of this patch's unit
+  // normal `n` and the unit normals of the patches across its averaged edges (a patch corner may lie on
+  // two): each from the neighbour's inward cross derivative D (a cubic from corner k, kCrossRows
+  // coefficients, cross_coefficient) and the edge's direction T k -> k+1, as D x T (the neighbour runs the
+  // edge the other way, its interior on its left). Returns `n` unchanged elsewhere.
   glm::vec3 crease_line_normal(const SubdPatch& patch, std::span<const SubdControlPoint> cp, DomainLocation at,
                                const PatchPoint& p, glm::vec3 n) const {
     const int edges = triangles ? 3 : 4;
@@ -391,7 +392,6 @@ struct SubdDS {
       s.normal = *field_normal;
     } else {
       glm::vec3 n = glm::cross(p.du, p.dv);
-      if (patch.averaged_edges != 0) n = crease_line_normal(patch, cp, loc, p, n);
       // Where the two derivatives are parallel (a patch corner at a vertex with one face, whose two
       // edges leave along the one boundary tangent), their cross product is round-off and its sign is
       // anyone's: the normal is taken a step into the patch, where the surface's tangent plane is
@@ -411,6 +411,8 @@ struct SubdDS {
         const PatchPoint q = evaluate(inner);
         n = glm::cross(q.du, q.dv);
       }
+      // Then, on a semi-sharp crease line, the mean with the neighbours' normals.
+      if (patch.averaged_edges != 0) n = crease_line_normal(patch, cp, loc, p, n);
       s.normal = unit_or_zero(n);
     }
     if (flip_normals) s.normal = -s.normal;

@@ -232,14 +232,18 @@ std::vector<Stencil> face_gregory_stencils(const Cage& cage, const Topology& t, 
 // in its Gregory points (P, E+, E-, F+, F- at 5 j), is the cubic 3 (E-_j - P_j), d (F+_j - E+_j),
 // d (F-_{j+1} - E-_{j+1}), 3 (E+_{j+1} - P_{j+1}), d the patch degree across the edge (3 quad, 4 triangle;
 // gregory_stencils' G1 condition on the quad view). Returned from our corner k: reversed.
-std::vector<Stencil> neighbour_cross_rows(const Cage& cage, const Topology& t, int f, int n, int rot, int k) {
+// `gregory_rows` keeps each neighbour's rows (face_gregory_stencils) for its other edges and neighbours.
+std::vector<Stencil> neighbour_cross_rows(const Cage& cage, const Topology& t, int f, int n, int rot, int k,
+                                          std::map<int, std::vector<Stencil>>& gregory_rows) {
   const int h = t.face_offset(f) + (k + rot) % n;
   const int twin = t.twin(h);
   const float s = t.edge_sharpness(t.edge(h));
   if (twin < 0 || !(s >= kCutSharpness) || s >= kSharpnessInfinite) return {};
   const int g = t.face(twin), m = t.face_size(g);
   if ((m != 3 && m != 4) || t.is_hole(g)) return {};
-  const std::vector<Stencil> rows = face_gregory_stencils(cage, t, g);
+  auto it = gregory_rows.find(g);
+  if (it == gregory_rows.end()) it = gregory_rows.emplace(g, face_gregory_stencils(cage, t, g)).first;
+  const std::vector<Stencil>& rows = it->second;
   const int a = twin - t.face_offset(g), b = (a + 1) % m;
   const double d = m == 3 ? 4.0 : 3.0;
   auto row = [&](int corner, int r) -> const Stencil& { return rows[std::size_t(5 * corner + r)]; };
@@ -312,6 +316,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       stencil_scheme ? analyze_combinations(t).face_rotation : std::vector<int>(std::size_t(t.face_count()), 0);
   // The exact limit at semi-sharp vertices (semi_sharp_limit.h), once per vertex: every face around it
   // puts the same bits at its corner.
+  std::map<int, std::vector<Stencil>> neighbour_rows;  // neighbour_cross_rows' faces, built once each
   std::vector<std::optional<Stencil>> semi_sharp(static_cast<std::size_t>(stencil_scheme ? t.vertex_count() : 0));
   for (std::size_t v = 0; v < semi_sharp.size(); ++v)
     if (t.has_sharpness_at(int(v))) semi_sharp[v] = semi_sharp_limit_position(cage, t, int(v));
@@ -415,19 +420,19 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       }
       continue;
     }
-    // The neighbours' cross-derivative rows of the patch's semi-sharp crease edges, appended after its
-    // own (kCrossRows per edge, zero rows for the others); the mask of the edges that have them.
     auto exact_corners = [&](std::vector<Stencil>& stencils, const std::vector<Stencil>& smooth, int corners) {
       for (int k = 0; k < corners; ++k) {
         const std::size_t r = std::size_t(5 * k);
         exact_corner(stencils, smooth, t, corner(k), semi_sharp[std::size_t(corner(k))], r, {r + 1, r + 2});
       }
     };
+    // The neighbours' cross-derivative rows of the patch's semi-sharp crease edges, appended after its
+    // own (kCrossRows per edge, zero rows for the others); the mask of the edges that have them.
     auto add_cross_rows = [&](std::vector<Stencil>& stencils, int corners) {
       std::uint8_t mask = 0;
       std::vector<Stencil> extra;
       for (int k = 0; k < corners; ++k) {
-        std::vector<Stencil> rows = neighbour_cross_rows(cage, t, f, n, rot, k);
+        std::vector<Stencil> rows = neighbour_cross_rows(cage, t, f, n, rot, k, neighbour_rows);
         if (rows.empty())
           rows.assign(kCrossRows, Stencil{});
         else

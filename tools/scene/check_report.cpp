@@ -40,9 +40,7 @@ std::string rounded(const Json& j) {
   if (j.is_null()) return "n/a";
   if (j.is_number_integer() || j.is_number_unsigned()) return j.dump();
   if (!j.is_number()) return text_of(j);
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", j.get<double>());
-  return b;
+  return metric_text(j.get<double>());
 }
 
 // The page's behaviour, kept small and offline: a wipe slider between new (left) and golden (right), a
@@ -185,6 +183,12 @@ void write_check_reports(const Json& summary, const std::string& dir) {
   write_text_atomically((fs::path(dir) / "report.html").string(), html(summary));
   write_text_atomically((fs::path(dir) / "junit.xml").string(), junit(summary));
   write_text_atomically((fs::path(dir) / "summary.json").string(), summary.dump(2) + "\n");
+}
+
+std::string metric_text(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
 }
 
 }  // namespace tessera::cli

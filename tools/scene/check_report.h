@@ -15,6 +15,9 @@ namespace tessera::cli {
 // into `dir` (atomically, each).
 void write_check_reports(const Json& summary, const std::string& dir);
 
+// A metric as the reports and messages give it: four significant digits ("0.001943").
+std::string metric_text(double v);
+
 // Counts of each status in `cases`.
 Json count_statuses(const Json& cases);
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tessellator/fnv1a.h"
+#include "tools/scene/check_report.h"
 #include "tools/scene/common.h"
 #include "tools/scene/scene_render.h"
 #include "tools/verify/weld_check.h"
@@ -203,11 +204,9 @@ Suite read_suite(const std::string& path) {
 }
 
 namespace {
-// A metric in a message: four significant digits, as the report shows it.
-std::string four_digits(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
+// The golden's digest and scene: <golden dir>/<name>.json.
+std::string golden_digest_path(const Suite& suite, const SuiteCase& c) {
+  return (fs::path(suite.golden_dir) / (c.name + ".json")).string();
 }
 
 void flatten_scene(const Json& j, const std::string& prefix, std::vector<std::pair<std::string, Json>>& out) {
@@ -260,7 +259,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
   try {
     const RenderSettings settings = read_scene(c.scene);
     r.scene = scene_json(settings, suite.golden_dir);
-    const std::string digest_path = (fs::path(suite.golden_dir) / (c.name + ".json")).string();
+    const std::string digest_path = golden_digest_path(suite, c);
     Json golden;
     if (fs::exists(digest_path)) golden = read_json_file(digest_path, "golden digest");
     if (golden.is_object() && golden.contains("scene")) r.scene_changes = scene_differences(golden["scene"], r.scene);
@@ -294,7 +293,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
         problems.push_back("image sizes differ");
       else if (v == verify::DiffVerdict::failure)
         problems.push_back("image: " + std::to_string(r.diff->over_fail) + " pixels over " +
-                           float_text(c.thresholds.fail) + ", max error " + four_digits(r.diff->max_error));
+                           float_text(c.thresholds.fail) + ", max error " + metric_text(r.diff->max_error));
     }
     if (geometry) {
       const Json now = r.digest.json();
@@ -346,11 +345,11 @@ void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, con
   });
   Json digest = c.checks.empty() ? Json::object() : r.digest.json();
   digest["scene"] = r.scene;  // what the golden was rendered from: a later failure names the fields that changed
-  write_text_atomically((fs::path(suite.golden_dir) / (c.name + ".json")).string(), digest.dump(2) + "\n");
+  write_text_atomically(golden_digest_path(suite, c), digest.dump(2) + "\n");
 }
 
 void record_golden_scene(const Suite& suite, const SuiteCase& c, const CaseResult& r) {
-  const std::string path = (fs::path(suite.golden_dir) / (c.name + ".json")).string();
+  const std::string path = golden_digest_path(suite, c);
   Json digest = fs::exists(path) ? read_json_file(path, "golden digest") : Json::object();
   if (!digest.is_object()) throw InputError(path + ": expected a JSON object");
   digest["scene"] = r.scene;

@@ -18,21 +18,26 @@ ViewInputs PreparedScene::inputs() const {
                     settings.factor_kind == FactorKind::processed};
 }
 
-std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
+namespace {
+// The model and its displacement, not yet configured (prepare_scene, prepare_bench_scene).
+std::unique_ptr<PreparedScene> load_scene(const RenderSettings& s) {
   auto p = std::make_unique<PreparedScene>();
   p->model = load_model(s.cage, s.scheme, s.asset, s.isolation);
   p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
   p->displacement = displacement_option(s.displacement, p->model);
+  return p;
+}
+}  // namespace
+
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
+  auto p = load_scene(s);
   configure_scene(*p, s);
   return p;
 }
 
 std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s) {
   s.cage = cage_or_shipped_frog(s.cage);
-  auto p = std::make_unique<PreparedScene>();
-  p->model = load_model(s.cage, s.scheme, s.asset, s.isolation);
-  p->settings.asset = s.asset;
-  p->displacement = displacement_option(s.displacement, p->model);
+  auto p = load_scene(s);
   // A benchmark's camera must not move when framing improves, or its times stop being comparable
   // across versions: without --camera-position it is the one the benchmarks were first measured
   // with (80 % of the rest cage's bounding sphere, frame_cage).

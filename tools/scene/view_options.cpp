@@ -90,6 +90,10 @@ ViewSetup view_at(const CameraSettings& c, const SubdModel& model, glm::vec3 eye
 }
 
 namespace {
+// Orbit view i of n: 2 pi i / n, in double from the integers, so view i is the same for any n that
+// names the same angle.
+double orbit_angle(int i, int n) { return 2.0 * 3.14159265358979323846 * double(i) / double(n); }
+
 // `v` turned by `angle` about the unit axis `up` (Rodrigues), in double.
 glm::dvec3 turn_about(glm::dvec3 v, glm::dvec3 up, double angle) {
   const double cos_a = std::cos(angle), sin_a = std::sin(angle);
@@ -106,7 +110,7 @@ ViewSetup orbit_base(const CameraSettings& c, const SubdModel& model, const View
   const std::vector<glm::vec3> points = surface_points(model);
   double distance = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double angle = 2.0 * 3.14159265358979323846 * double(i) / double(n);
+    const double angle = orbit_angle(i, n);
     const glm::vec3 direction(glm::normalize(turn_about(glm::dvec3(start), up, angle)));
     const SubdCamera fit = fit_camera(points, model.positions(), base.width, base.height, base.fov, direction,
                                       base.camera.target, base.camera.up);
@@ -117,9 +121,8 @@ ViewSetup orbit_base(const CameraSettings& c, const SubdModel& model, const View
 
 ViewSetup orbit_view(const CameraSettings& c, const SubdModel& model, const ViewSetup& base, int i, int n) {
   if (i == 0) return base;
-  // In double, the angle from the integers, so view i is the same for any n that names the same angle.
   const glm::dvec3 up(base.camera.up), target(base.camera.target);
-  const double angle = 2.0 * 3.14159265358979323846 * double(i) / double(n);
+  const double angle = orbit_angle(i, n);
   const glm::dvec3 turned = turn_about(glm::dvec3(base.camera.eye) - target, up, angle);
   return view_at(c, model, glm::vec3(target + turned), base.camera.target);
 }
