@@ -121,6 +121,13 @@ TEST_CASE("Misspelt commands, options and names get the closest one and the comm
   one_line(r, "'gregry' is not one of flat, bspline, acc, gregory, exact, pn, adaptive; did you mean gregory?");
   r = test::run_cli("render " + kCube + " --view wirefrme -o x.png");
   one_line(r, "did you mean wireframe?");
+  // A value CLI11 cannot convert names the option and the command's help; --orbit 0 is --orbit's error.
+  r = test::run_cli("render " + kCube + " --two-sided=maybe -o x.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "tessera render: --two-sided: cannot read 'maybe' (see tessera render --help)");
+  r = test::run_cli("render " + kCube + " --orbit 0 -o x_%d.png");
+  CHECK(r.exit_code == 2);
+  one_line(r, "--orbit: 0 is not in 1..100000");
   // Nothing close: no guess.
   r = test::run_cli("render " + kCube + " --scheme loop -o x.png");
   CHECK(r.exit_code == 2);

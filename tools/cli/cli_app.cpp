@@ -100,6 +100,12 @@ int run_app(int argc, char** argv, std::span<const CommandEntry> commands,
   // Options given to the top level apply wherever they are written.
   for (CLI::App* sub : app.get_subcommands({})) sub->fallthrough();
 
+  // The first word that names a command (top-level flags may come first), or empty.
+  const auto named_command = [&](const std::vector<std::string>& args) {
+    for (std::size_t i = 1; i < args.size(); ++i)
+      if (runners.count(args[i])) return args[i];
+    return std::string();
+  };
   try {
     std::vector<std::string> args = arguments(argc, argv);
     // Before CLI11, which reads "" as 0 for a number and calls an unknown command a missing one.
@@ -127,11 +133,18 @@ int run_app(int argc, char** argv, std::span<const CommandEntry> commands,
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ConversionError& e) {
+    // CLI11 says "Could not convert: --two-sided = maybe": name the option and the command's help.
+    const std::string command = named_command(arguments(argc, argv));
+    const std::string text = one_line_message(e.what());
+    const auto bad = unconverted_option(text);
+    const std::string prefix = command.empty() ? "tessera" : "tessera " + command;
+    std::cerr << prefix << ": " << (bad ? "--" + bad->first + ": cannot read '" + bad->second + "'" : text) << " (see "
+              << prefix << " --help)\n";
+    return kExitUsage;
   } catch (const CLI::ExtrasError& e) {
     const std::vector<std::string> args = arguments(argc, argv);
-    std::string command;  // the first word that names a command (top-level flags may come first)
-    for (std::size_t i = 1; i < args.size() && command.empty(); ++i)
-      if (runners.count(args[i])) command = args[i];
+    const std::string command = named_command(args);
     std::cerr << unexpected_arguments(app, args, command, one_line_message(e.what())) << "\n";
     return kExitUsage;
   } catch (const CLI::ParseError& e) {

@@ -46,8 +46,7 @@ std::string frame_path(const std::string& pattern, int i, const std::string& opt
 // Renders a sequence from one load of the asset: --frames N of an animation (frame i at time + i / fps)
 // or --orbit N views around the model (view i turned by 2 pi i / N about the up axis). Every image is
 // written beside its final name first and renamed at the end: all images or none.
-int render_sequence(const RenderOptions& o) {
-  const bool orbit = o.orbit > 0;
+int render_sequence(const RenderOptions& o, bool orbit) {
   const int count = orbit ? o.orbit : o.frames;
   const std::string option = orbit ? "--orbit" : "--frames";
   if (count < 1 || count > 100000) throw UsageError(option + ": " + std::to_string(count) + " is not in 1..100000");
@@ -195,7 +194,8 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   if (o.output.empty()) throw UsageError("-o out.png is required");
   if (cmd.count("--orbit") > 0 && (cmd.count("--frames") > 0 || cmd.count("--fps") > 0))
     throw UsageError("--orbit and --frames: render a turntable or an animation, not both");
-  if (cmd.count("--frames") > 0 || cmd.count("--fps") > 0 || cmd.count("--orbit") > 0) return render_sequence(o);
+  if (cmd.count("--frames") > 0 || cmd.count("--fps") > 0 || cmd.count("--orbit") > 0)
+    return render_sequence(o, cmd.count("--orbit") > 0);
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
   const auto load_start = std::chrono::steady_clock::now();

@@ -196,4 +196,12 @@ std::string did_you_mean(std::string_view word, const std::vector<std::string>& 
   return c.empty() ? std::string() : "; did you mean " + c + "?";
 }
 
+std::optional<std::pair<std::string, std::string>> unconverted_option(const std::string& message) {
+  static const std::regex kConvert(R"(Could not convert: --([a-z-]+) = (.*))");
+  std::smatch m;
+  if (!std::regex_match(message, m, kConvert)) return std::nullopt;
+  const std::string value = m[2].str().size() > 40 ? m[2].str().substr(0, 40) + "..." : m[2].str();
+  return std::pair{m[1].str(), value};
+}
+
 }  // namespace tessera::cli

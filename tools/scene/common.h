@@ -55,6 +55,10 @@ struct InputError : std::runtime_error {
 // readers below use for what their libraries say.
 using tessera::one_line_message;
 
+// CLI11's "Could not convert: --factor = abc" as the option without its dashes and the value
+// ("factor", "abc"; a value over 40 characters cut there), or nullopt for any other text.
+std::optional<std::pair<std::string, std::string>> unconverted_option(const std::string& message);
+
 // The candidate a user most likely meant by `word` (a misspelt command, option or name): the one at the
 // smallest edit distance (Damerau: a swap of two neighbours counts one), if that distance is at most a
 // third of the word's length (at least 1, at most 3) and no other candidate is as close; else empty.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 #include <set>
 
 #include "tools/scene/common.h"
@@ -112,13 +111,9 @@ RenderSettings settings_from_query(const RenderSettings& base, const QueryParams
     app.parse(args);
   } catch (const CLI::ConversionError& e) {
     // CLI11 says "Could not convert: --factor = abc"; a request names the setting, not an option.
-    static const std::regex kConvert(R"(Could not convert: --([a-z-]+) = (.*))");
-    std::smatch m;
     const std::string text = one_line_message(e.what());
-    if (std::regex_match(text, m, kConvert)) {
-      const std::string value = m[2].str().size() > 40 ? m[2].str().substr(0, 40) + "..." : m[2].str();
-      throw RequestError(m[1].str() + ": cannot read '" + value + "' (see GET /api/info for the settings)");
-    }
+    if (const auto bad = unconverted_option(text))
+      throw RequestError(bad->first + ": cannot read '" + bad->second + "' (see GET /api/info for the settings)");
     throw RequestError(text);
   } catch (const CLI::ParseError& e) {
     throw RequestError(one_line_message(e.what()));
