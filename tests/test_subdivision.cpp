@@ -18,7 +18,9 @@
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/cage/topology_combinations.h"
 #include "shaders_cpp/render/subd_model.h"
+#include "shaders_cpp/subdiv/limit_fit.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 #include "test_data.h"
 #include "tools/verify/weld_check.h"
@@ -873,4 +875,40 @@ TEST_CASE("Exact draws only the faces OpenSubdiv gives a surface: boundary faces
   CHECK(r.boundary_edges == std::uint64_t(3 * region_boundary));
   CHECK(r.nonmanifold_edges == 0);
   CHECK(r.degenerate_triangles == 0);
+}
+
+TEST_CASE("limit fit: on regular faces the fitted Gregory points are the B-spline patch's", "[subd][issue34]") {
+  // A least-squares fit to the limit reproduces it where a bicubic can: the torus's faces are all
+  // regular, so the fitted edge and face points must be the masks' (the B-spline patch's Bezier points)
+  // to round-off, as stencils, weight for weight. A fit that sampled the wrong place, mixed up the
+  // rotation or the Gregory layout, or solved the normal equations wrongly fails this.
+  const Cage cage = torus_cage(8, 6, 2.0f, 0.7f);
+  const Topology t(cage);
+  const LimitStencils limit(cage);
+  auto same = [](const Stencil& a, const Stencil& b) {
+    std::map<int, double> d;
+    for (const auto& [v, w] : a.terms) d[v] += w;
+    for (const auto& [v, w] : b.terms) d[v] -= w;
+    double worst = 0.0;
+    for (const auto& [v, w] : d) worst = std::max(worst, std::abs(w));
+    return worst;
+  };
+  for (const int f : {0, 13, 40})
+    for (const int rotation : {0, 1, 3}) {
+      std::array<CornerRing, 4> rings;
+      for (int k = 0; k < 4; ++k) rings[std::size_t(k)] = gather_corner_ring(cage, t, f, (k + rotation) % 4);
+      const std::vector<Stencil> masks = gregory_quad_stencils(rings);
+      std::vector<Stencil> fitted = masks;
+      for (std::size_t k = 0; k < 4; ++k) fitted[5 * k + 3] = fitted[5 * k + 4] = Stencil{};
+      REQUIRE(fit_face_points(limit, f, rotation, fitted));
+      for (std::size_t r = 0; r < 20; ++r) {
+        INFO("face " << f << " rotation " << rotation << " row " << r);
+        CHECK(same(fitted[r], masks[r]) < 1e-9);
+      }
+      // Patch edge 0 is face edge `rotation`: its two Bezier points beside patch corners 0 and 1.
+      const std::optional<EdgePoints> e = fit_edge_points(limit, f, rotation, masks[0], masks[5]);
+      REQUIRE(e);
+      CHECK(same(e->near_a, masks[1]) < 1e-9);
+      CHECK(same(e->near_b, masks[7]) < 1e-9);
+    }
 }

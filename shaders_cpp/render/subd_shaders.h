@@ -264,8 +264,8 @@ struct SubdDS {
   glm::vec3 crease_line_normal(const SubdPatch& patch, std::span<const SubdControlPoint> cp, DomainLocation at,
                                const PatchPoint& p, glm::vec3 n) const {
     const int edges = triangles ? 3 : 4;
-    glm::vec3 sum = unit_or_zero(n);
-    bool any = false;
+    glm::vec3 sum = unit_or_zero(n), limit_sum(0.0f);
+    bool any = false, any_limit = false;
     for (int k = 0; k < edges; ++k) {
       if (!(patch.averaged_edges & (1u << k))) continue;
       float t = 0.0f;
@@ -287,10 +287,16 @@ struct SubdDS {
       const glm::vec3 d =
           (s * s * s) * cross_coefficient(patch, cp, r) + (3.0f * t * s * s) * cross_coefficient(patch, cp, r + 1) +
           (3.0f * t * t * s) * cross_coefficient(patch, cp, r + 2) + (t * t * t) * cross_coefficient(patch, cp, r + 3);
-      sum += unit_or_zero(glm::cross(d, along));
-      any = true;
+      const glm::vec3 across = unit_or_zero(glm::cross(d, along));
+      if (patch.limit_edges & (1u << k)) {
+        limit_sum += across;
+        any_limit = true;
+      } else {
+        sum += across;
+        any = true;
+      }
     }
-    return any ? sum : n;
+    return any_limit ? limit_sum : any ? sum : n;
   }
 
   std::span<const SubdPatch> patches;

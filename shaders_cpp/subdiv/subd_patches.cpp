@@ -1,6 +1,8 @@
 #include "shaders_cpp/subdiv/subd_patches.h"
 
 #include <algorithm>
+#include <functional>
+#include <memory>
 #include <cmath>
 #include <initializer_list>
 #include <map>
@@ -11,6 +13,7 @@
 
 #include "shaders_cpp/cage/corner_ring.h"
 #include "shaders_cpp/subdiv/face_centre_limit.h"
+#include "shaders_cpp/subdiv/limit_fit.h"
 #include "shaders_cpp/subdiv/semi_sharp_limit.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/cage/topology_combinations.h"
@@ -157,7 +160,12 @@ class Builder {
   std::vector<PatchGroup*> groups_;
 };
 
-// Creases in the per-face schemes (acc, gregory, bspline's fallback): each patch is built twice, from
+// Creases in the per-face schemes (acc, gregory, bspline's fallback). gregory and bspline fit a quad
+// with a tagged corner to the exact limit (limit_fit.h): its corner points are the masks' below, its
+// edge points and face points least-squares fits, an edge's points computed once and read by both of its
+// faces (any kind: triangles and fans beside a fitted quad take them too). What follows is the masks' own
+// crease construction: acc's, the triangles' and fans', and the corners of the fitted quads.
+// Each patch is built twice, from
 // the whole corner rings (smooth) and from the rings cut open at every crease (corner_ring.h:
 // Catmull-Clark's crease and corner rules are the boundary rules on each side, so an infinitely sharp
 // crease is exact where a boundary is), and the control points near corner k are blended by the
@@ -202,7 +210,11 @@ std::vector<Stencil> blend_by_corner(const std::vector<Stencil>& smooth, const s
 
 // The Gregory stencils of face g (a triangle or a quad) from its corner 0, blended at its creases as
 // its own patch is: the rows a neighbour reads its cross derivative from.
-std::vector<Stencil> face_gregory_stencils(const Cage& cage, const Topology& t, int g) {
+void exact_corner(std::vector<Stencil>& stencils, const std::vector<Stencil>& smooth, const Topology& t, int vertex,
+                  const std::optional<Stencil>& exact, std::size_t p_row, std::initializer_list<std::size_t> e_rows);
+
+std::vector<Stencil> face_gregory_stencils(const Cage& cage, const Topology& t, int g,
+                                           const std::vector<std::optional<Stencil>>& semi_sharp) {
   const int m = t.face_size(g);
   bool creased = false;
   for (int k = 0; k < m; ++k) creased |= t.has_sharpness_at(cage.face_vertex(g, k));
@@ -216,7 +228,13 @@ std::vector<Stencil> face_gregory_stencils(const Cage& cage, const Topology& t, 
       w[k] = crease_weight(sharpness);
     }
     std::vector<Stencil> s = stencils(c);
-    return creased ? blend_by_corner(s, stencils(cut), w, false) : s;
+    if (!creased) return s;
+    std::vector<Stencil> blended = blend_by_corner(s, stencils(cut), w, false);
+    for (std::size_t k = 0; k < N; ++k) {
+      const int v = cage.face_vertex(g, int(k));
+      exact_corner(blended, s, t, v, semi_sharp[std::size_t(v)], 5 * k, {5 * k + 1, 5 * k + 2});
+    }
+    return blended;
   };
   if (m == 3) {
     std::array<CornerRing, 3> c;
@@ -226,33 +244,67 @@ std::vector<Stencil> face_gregory_stencils(const Cage& cage, const Topology& t, 
   return build(c, [](const std::array<CornerRing, 4>& r) { return gregory_quad_stencils(r); });
 }
 
+// The limit on an edge, and its derivatives there, read the faces at the edge's two vertices only: the
+// vertices of those faces, sorted.
+std::vector<int> edge_neighbourhood(const Cage& cage, const Topology& t, int a, int b) {
+  std::vector<int> near;
+  for (const int v : {a, b})
+    for (const int h : t.ring(v)) {
+      const int fh = t.face(h);
+      for (int c = 0; c < t.face_size(fh); ++c) near.push_back(cage.face_vertex(fh, c));
+    }
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  return near;
+}
+
+// Drops a fitted stencil's terms outside `near` (what Bfr's approximation of an irregular surface puts
+// there, below round-off), so that the rows fit both faces' rings; false when a dropped weight is not
+// negligible.
+bool restrict_to(const std::vector<int>& near, Stencil& s) {
+  double dropped = 0.0;
+  std::erase_if(s.terms, [&](const std::pair<int, double>& term) {
+    if (std::binary_search(near.begin(), near.end(), term.first)) return false;
+    dropped = std::max(dropped, std::abs(term.second));
+    return true;
+  });
+  return dropped < 1e-9;
+}
+
 // The kCrossRows rows of patch edge k of face f (patch corner k is face corner k + rot) when the edge is
 // a semi-sharp crease between f and a triangle or quad; empty otherwise. The neighbour g traverses the
 // edge from its corner j (our corner k + 1) to j + 1 (our corner k); its inward cross derivative there,
 // in its Gregory points (P, E+, E-, F+, F- at 5 j), is the cubic 3 (E-_j - P_j), d (F+_j - E+_j),
 // d (F-_{j+1} - E-_{j+1}), 3 (E+_{j+1} - P_{j+1}), d the patch degree across the edge (3 quad, 4 triangle;
 // gregory_stencils' G1 condition on the quad view). Returned from our corner k: reversed.
-// `gregory_rows` keeps each neighbour's rows (face_gregory_stencils) for its other edges and neighbours.
-std::vector<Stencil> neighbour_cross_rows(const Cage& cage, const Topology& t, int f, int n, int rot, int k,
-                                          std::map<int, std::vector<Stencil>>& gregory_rows) {
+// `gregory_rows` gives a neighbour's rows (face_gregory_stencils), built once per neighbour. Where
+// `limit_cross` has the limit's own derivative into g (a fitted quad), that is returned instead, marked
+// `limit`: the limit is smooth across the line, so the domain shader takes that normal alone.
+struct CrossRows {
+  std::vector<Stencil> rows;  // empty: not an averaged edge
+  bool limit = false;         // the limit's own derivative into the neighbour (SubdPatch::limit_edges)
+};
+CrossRows neighbour_cross_rows(const Topology& t, int f, int n, int rot, int k,
+                               const std::function<const std::vector<Stencil>&(int)>& gregory_rows,
+                               const std::function<std::optional<std::array<Stencil, 4>>(int, int)>& limit_cross) {
   const int h = t.face_offset(f) + (k + rot) % n;
   const int twin = t.twin(h);
   const float s = t.edge_sharpness(t.edge(h));
   if (twin < 0 || !(s >= kCutSharpness) || s >= kSharpnessInfinite) return {};
   const int g = t.face(twin), m = t.face_size(g);
   if ((m != 3 && m != 4) || t.is_hole(g)) return {};
-  auto it = gregory_rows.find(g);
-  if (it == gregory_rows.end()) it = gregory_rows.emplace(g, face_gregory_stencils(cage, t, g)).first;
-  const std::vector<Stencil>& rows = it->second;
   const int a = twin - t.face_offset(g), b = (a + 1) % m;
+  if (const std::optional<std::array<Stencil, 4>> c = limit_cross(g, a))
+    return {{(*c)[3], (*c)[2], (*c)[1], (*c)[0]}, true};
+  const std::vector<Stencil>& rows = gregory_rows(g);
   const double d = m == 3 ? 4.0 : 3.0;
   auto row = [&](int corner, int r) -> const Stencil& { return rows[std::size_t(5 * corner + r)]; };
   auto diff = [](double scale, const Stencil& x, const Stencil& y) {
     Stencil out;
     return out.add(x, scale).add(y, -scale);
   };
-  return {diff(3.0, row(b, 1), row(b, 0)), diff(d, row(b, 4), row(b, 2)), diff(d, row(a, 3), row(a, 1)),
-          diff(3.0, row(a, 2), row(a, 0))};
+  return {{diff(3.0, row(b, 1), row(b, 0)), diff(d, row(b, 4), row(b, 2)), diff(d, row(a, 3), row(a, 1)),
+           diff(3.0, row(a, 2), row(a, 0))}};
 }
 
 // A semi-sharp vertex's corner: row `p_row` becomes the exact limit (semi_sharp_limit.h). Its edge points
@@ -320,6 +372,77 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   std::vector<std::optional<Stencil>> semi_sharp(static_cast<std::size_t>(stencil_scheme ? t.vertex_count() : 0));
   for (std::size_t v = 0; v < semi_sharp.size(); ++v)
     if (t.has_sharpness_at(int(v))) semi_sharp[v] = semi_sharp_limit_position(cage, t, int(v));
+  // Fitted faces (limit_fit.h): gregory's and bspline's quads with a tagged corner, and the edges they
+  // fit, kept per cage edge so that both faces on an edge read the same rows.
+  std::unique_ptr<LimitStencils> limit;
+  std::vector<char> fitted(std::size_t(t.face_count()), 0);
+  std::map<std::int64_t, int> fitted_edge_owner;  // edge key -> the lowest fitted face on it
+  if ((scheme == Scheme::gregory || scheme == Scheme::bspline)) {
+    for (int f = 0; f < t.face_count(); ++f) {
+      if (t.is_hole(f) || t.face_size(f) != 4) continue;
+      for (int k = 0; k < 4; ++k)
+        if (t.has_sharpness_at(cage.face_vertex(f, k))) fitted[std::size_t(f)] = 1;
+      if (!fitted[std::size_t(f)]) continue;
+      for (int k = 0; k < 4; ++k)
+        fitted_edge_owner.try_emplace(cage_edge_key(cage.face_vertex(f, k), cage.face_vertex(f, (k + 1) % 4)), f);
+    }
+    if (!fitted_edge_owner.empty()) limit = std::make_unique<LimitStencils>(cage);
+  }
+  struct FittedEdge {
+    bool ok = false;
+    int a = -1;  // near_a lies beside vertex a
+    EdgePoints points;
+  };
+  std::map<std::int64_t, FittedEdge> fitted_edges;
+  // Replaces the edge points of patch edge k (vertices va -> vb, P rows pa, pb; E rows ea beside va, eb
+  // beside vb) by the fitted ones when the edge is fitted.
+  auto fit_edge = [&](std::vector<Stencil>& rows, int va, int vb, std::size_t pa, std::size_t pb, std::size_t ea,
+                      std::size_t eb) {
+    const std::int64_t key = cage_edge_key(va, vb);
+    const auto owner = fitted_edge_owner.find(key);
+    if (owner == fitted_edge_owner.end()) return;
+    auto it = fitted_edges.find(key);
+    if (it == fitted_edges.end()) {
+      FittedEdge e;
+      const int g = owner->second;
+      for (int j = 0; j < 4; ++j) {
+        const int x = cage.face_vertex(g, j), y = cage.face_vertex(g, (j + 1) % 4);
+        if (cage_edge_key(x, y) != key) continue;
+        const Stencil& px = x == va ? rows[pa] : rows[pb];
+        const Stencil& py = x == va ? rows[pb] : rows[pa];
+        if (std::optional<EdgePoints> fit = fit_edge_points(*limit, g, j, px, py)) {
+          const std::vector<int> near = edge_neighbourhood(cage, t, x, y);
+          if (restrict_to(near, fit->near_a) && restrict_to(near, fit->near_b))
+            e.ok = true, e.a = x, e.points = std::move(*fit);
+        }
+        break;
+      }
+      it = fitted_edges.emplace(key, std::move(e)).first;
+    }
+    if (!it->second.ok) return;
+    const bool forward = it->second.a == va;
+    rows[ea] = forward ? it->second.points.near_a : it->second.points.near_b;
+    rows[eb] = forward ? it->second.points.near_b : it->second.points.near_a;
+  };
+  // A neighbour's Gregory points from its corner 0, as its own patch has them (neighbour_cross_rows).
+  const std::function<const std::vector<Stencil>&(int)> rows_of = [&](int g) -> const std::vector<Stencil>& {
+    auto it = neighbour_rows.find(g);
+    if (it != neighbour_rows.end()) return it->second;
+    std::vector<Stencil> rows = face_gregory_stencils(cage, t, g, semi_sharp);
+    return neighbour_rows.emplace(g, std::move(rows)).first->second;
+  };
+  // The limit's derivative into face g across its edge e, where Bfr evaluates g (a fitted quad).
+  const std::function<std::optional<std::array<Stencil, 4>>(int, int)> limit_cross =
+      [&](int g, int e) -> std::optional<std::array<Stencil, 4>> {
+    if (!limit || !fitted[std::size_t(g)]) return std::nullopt;
+    std::optional<std::array<Stencil, 4>> c = fit_inward_derivative(*limit, g, e);
+    if (!c) return std::nullopt;
+    const std::vector<int> near =
+        edge_neighbourhood(cage, t, cage.face_vertex(g, e), cage.face_vertex(g, (e + 1) % t.face_size(g)));
+    for (Stencil& r : *c)
+      if (!restrict_to(near, r)) return std::nullopt;
+    return c;
+  };
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
@@ -413,6 +536,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
           exact_corner(stencils, smooth, t, va, semi_sharp[std::size_t(va)], 0, {1, 2});
           exact_corner(stencils, smooth, t, vb, semi_sharp[std::size_t(vb)], 5, {6, 7});
         }
+        if (limit) fit_edge(stencils, cage.face_vertex(f, int(at(k))), cage.face_vertex(f, int(at(k + 1))), 0, 5, 1, 7);
         // The ring from corner k on, so the fans of one face (and of faces alike) share a table.
         std::vector<CornerRing> from_k;
         for (int j = 0; j < n; ++j) from_k.push_back(rings[at(k + j)]);
@@ -429,18 +553,20 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     // The neighbours' cross-derivative rows of the patch's semi-sharp crease edges, appended after its
     // own (kCrossRows per edge, zero rows for the others); the mask of the edges that have them.
     auto add_cross_rows = [&](std::vector<Stencil>& stencils, int corners) {
-      std::uint8_t mask = 0;
+      std::uint8_t mask = 0, limit_mask = 0;
       std::vector<Stencil> extra;
       for (int k = 0; k < corners; ++k) {
-        std::vector<Stencil> rows = neighbour_cross_rows(cage, t, f, n, rot, k, neighbour_rows);
-        if (rows.empty())
-          rows.assign(kCrossRows, Stencil{});
-        else
+        CrossRows c = neighbour_cross_rows(t, f, n, rot, k, rows_of, limit_cross);
+        if (c.rows.empty()) {
+          c.rows.assign(kCrossRows, Stencil{});
+        } else {
           mask = std::uint8_t(mask | (1u << k));
-        extra.insert(extra.end(), rows.begin(), rows.end());
+          if (c.limit) limit_mask = std::uint8_t(limit_mask | (1u << k));
+        }
+        extra.insert(extra.end(), c.rows.begin(), c.rows.end());
       }
       if (mask != 0) stencils.insert(stencils.end(), extra.begin(), extra.end());
-      return mask;
+      return std::pair{mask, limit_mask};
     };
     auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
       if (!creased) return;
@@ -462,9 +588,15 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
         exact_corners(stencils, smooth, 3);
       }
-      const std::uint8_t averaged = creased ? add_cross_rows(stencils, 3) : 0;
+      if (limit)
+        for (std::size_t k = 0; k < 3; ++k)
+          fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 3), 5 * k + 1,
+                   5 * ((k + 1) % 3) + 2);
+      const auto [averaged, limit_edges] =
+          creased ? add_cross_rows(stencils, 3) : std::pair<std::uint8_t, std::uint8_t>{};
       builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
       out.tris.patches.back().averaged_edges = averaged;
+      out.tris.patches.back().limit_edges = limit_edges;
       continue;
     }
     std::array<CornerRing, 4> corners;
@@ -490,9 +622,11 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         for (int k = 0; k < 4; ++k)
           if (const std::optional<Stencil>& p = semi_sharp[std::size_t(corner(k))]) stencils[kCornerRow[k]] = *p;
       }
-      const std::uint8_t averaged = creased ? add_cross_rows(stencils, 4) : 0;
+      const auto [averaged, limit_edges] =
+          creased ? add_cross_rows(stencils, 4) : std::pair<std::uint8_t, std::uint8_t>{};
       builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot, 4);
       out.quads.patches.back().averaged_edges = averaged;
+      out.quads.patches.back().limit_edges = limit_edges;
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
       std::vector<Stencil> stencils = gregory_quad_stencils(corners);
@@ -501,9 +635,24 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
         exact_corners(stencils, smooth, 4);
       }
-      const std::uint8_t averaged = creased ? add_cross_rows(stencils, 4) : 0;
+      if (limit) {
+        for (std::size_t k = 0; k < 4; ++k)
+          fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 4), 5 * k + 1,
+                   5 * ((k + 1) % 4) + 2);
+        if (fitted[std::size_t(f)]) {
+          std::array<bool, 4> smooth{};
+          for (int k = 0; k < 4; ++k) {
+            const int h = t.face_offset(f) + (k + rot) % 4;
+            smooth[std::size_t(k)] = t.twin(h) >= 0 && t.edge_sharpness(t.edge(h)) == 0.0f;
+          }
+          fit_face_points(*limit, f, rot, stencils, smooth);
+        }
+      }
+      const auto [averaged, limit_edges] =
+          creased ? add_cross_rows(stencils, 4) : std::pair<std::uint8_t, std::uint8_t>{};
       builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot, 4);
       out.quads.patches.back().averaged_edges = averaged;
+      out.quads.patches.back().limit_edges = limit_edges;
     }
   }
   builder.finish();

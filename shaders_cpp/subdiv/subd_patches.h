@@ -103,6 +103,10 @@ struct SubdPatch {
   // the domain shader gives points on that edge the mean of this patch's normal and the neighbour's,
   // from the neighbour's inward cross derivative: four more table rows per edge (kCrossRows).
   std::uint8_t averaged_edges = 0;
+  // The averaged edges whose rows are the exact limit's derivative into the neighbour (limit_fit.h),
+  // not the neighbour's patch: the limit is smooth across a semi-sharp crease, so that derivative gives
+  // the limit's own normal on the line, which the domain shader takes alone.
+  std::uint8_t limit_edges = 0;
 };
 
 // The rows a patch with averaged edges adds after its own (20 for a quad, 15 for a triangle): per patch

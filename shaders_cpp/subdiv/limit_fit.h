@@ -1,0 +1,78 @@
+// Gregory points fitted to the exact limit surface: what the per-face schemes put on faces whose
+// corners carry crease or corner tags, where the masks of a smooth or cut-open ring only approximate the
+// limit (a semi-sharp crease of sharpness s rounds over a band 2^-s wide; a corner tag pulls the surface
+// over a neighbourhood no corner mask describes).
+//
+// The limit surface of a face is linear in its 1-ring (OpenSubdiv's Bfr gives it as a stencil at any
+// domain point, from topology and tags alone), so a least-squares fit of a patch's points to it is a
+// stencil too: it is computed once per face from the tags, and every pose sums it in the hull shader as
+// it sums the masks' rows.
+// - fit_edge_points: the edge's two Bezier points (E near its first vertex, E near its second) that
+//   bring the cubic from the fixed limit corners P0, P1 closest, in least squares at 16 points, to the
+//   limit curve along the edge. Computed once per cage edge (the caller keeps it) and read by both faces,
+//   so the edge stays the same bits on both sides.
+// - fit_face_points: a 20-point Gregory patch's eight face points (F+, F- of each corner), the boundary
+//   points fixed, closest in least squares to the limit at a 10 x 10 grid of interior domain points and,
+//   along the patch's smooth edges (weighted 0.01), to the limit's cross derivative there, which pulls
+//   the two patches on such an edge toward the limit's tangent plane.
+// - fit_inward_derivative: the limit's derivative across an edge, for the normal on a semi-sharp
+//   crease line, where the limit is smooth but a patch's own derivative is not.
+// Measured (gregory against the exact limit, OpenSubdiv's creased shapes): largest distance
+// catmark_cube_corner4 8.3e-2 -> 1.4e-2 of the diagonal, catmark_cube_creases0 4.9e-2 -> 8.7e-3,
+// catmark_hole_test2 4.0e-2 -> 1.5e-3; the README has the whole table.
+//
+// Contract: quads only (Bfr's quad parameterization is the patch domain's, corner 0 at (0, 0), 1 at
+// (1, 0), 2 at (1, 1), 3 at (0, 1)). A face Bfr cannot evaluate, or whose limit reads a vertex outside
+// `allowed`, gives nullopt; the caller keeps the masks' points. Weights below 1e-12 are dropped.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "shaders_cpp/subdiv/stencil.h"
+
+namespace tessera {
+
+struct Cage;
+
+class LimitStencils {
+ public:
+  explicit LimitStencils(const Cage& cage);
+  ~LimitStencils();
+  LimitStencils(const LimitStencils&) = delete;
+  LimitStencils& operator=(const LimitStencils&) = delete;
+
+  // The limit position at (u, v) of quad face f as a stencil over the cage; nullopt when Bfr has no
+  // surface for f (or f is not a quad).
+  // With `du` and `dv`, also the partial derivatives there.
+  std::optional<std::vector<Stencil>> at(int face, std::span<const std::array<double, 2>> uv,
+                                         std::vector<Stencil>* du = nullptr, std::vector<Stencil>* dv = nullptr) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct EdgePoints {
+  Stencil near_a, near_b;  // the Bezier points beside the edge's vertex a and vertex b
+};
+
+// The fitted edge points of face f's edge from corner e to corner e + 1 (a = corner e's vertex).
+std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, int e, const Stencil& pa,
+                                          const Stencil& pb);
+
+// The limit's derivative into face f across its edge e (corner e -> e + 1), in f's domain units, as a
+// cubic along the edge from corner e: its four Bezier coefficients, fitted in least squares at 16
+// points (a neighbour's cross derivative along a semi-sharp crease, for the crease line's normal).
+std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils& limit, int face, int e);
+
+// Replaces rows 5k + 3, 5k + 4 (F+, F-) of a 20-point Gregory patch of face f, whose patch corner k is
+// face corner k + rotation, by the fit; false (rows unchanged) when the limit is not available.
+// `smooth_edges[k]`: patch edge k is an interior edge without a tag.
+bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
+                     std::array<bool, 4> smooth_edges = {});
+
+}  // namespace tessera
