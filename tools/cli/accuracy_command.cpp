@@ -5,7 +5,10 @@
 // surface's bounding-box diagonal; normal errors are angles between the two unit normals. The ripple
 // (curvature): along every edge of the tessellation, the normal curvature (n1 - n0) . (p1 - p0) / |p1 - p0|^2
 // of the scheme's points and normals against the limit's at the same domain points, the difference
-// times the diagonal (so a sphere's curvature is about 3.5 whatever its size).
+// times the diagonal (so a sphere's curvature is about 3.5 whatever its size). The largest curvature of
+// each surface on its own is reported too: around a vertex of high valence Catmull-Clark's limit itself
+// ripples (a valence-32 pole of a sphere: 54, against gregory's 35), so a large curvature error there is
+// the limit's ripple as much as the scheme's.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -50,7 +53,7 @@ int run_accuracy(const AccuracyOptions& o) {
   const LimitSurface& reference = own_reference ? *own_reference : *model.limit;
   const double diagonal = reference.bounding_box_diagonal();
   Device device(device_options(o.s.threads));
-  double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0, max_k = 0, sum_k = 0;
+  double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0, max_k = 0, sum_k = 0, max_ks = 0, max_kl = 0;
   std::uint64_t samples = 0, edges = 0;
   // One patch's points and unit normals, the scheme's and the limit's, for the curvature along its edges.
   std::vector<glm::dvec3> scheme_p, scheme_n, limit_p, limit_n;
@@ -106,6 +109,8 @@ int run_accuracy(const AccuracyOptions& o) {
             const double kl = curvature(limit_p[a], limit_n[a], limit_p[b], limit_n[b]);
             const double e = std::abs(ks - kl);
             if (!std::isfinite(e)) continue;
+            max_ks = std::max(max_ks, std::abs(ks));
+            max_kl = std::max(max_kl, std::abs(kl));
             max_k = std::max(max_k, e);
             sum_k += e;
             ++edges;
@@ -128,16 +133,19 @@ int run_accuracy(const AccuracyOptions& o) {
                     {"mean_normal_degrees", samples ? sum_angle / double(samples) : 0.0},
                     {"max_curvature_error", max_k * diagonal},
                     {"mean_curvature_error", edges ? sum_k / double(edges) * diagonal : 0.0},
+                    {"max_curvature_scheme", max_ks * diagonal},
+                    {"max_curvature_limit", max_kl * diagonal},
                     {"fallback_faces", model.patches.fallback_faces}};
     std::cout << json_text(j) << "\n";
   } else {
     char line[512];
     std::snprintf(line, sizeof line,
                   "%s: scheme %s vs exact limit, %llu samples: max %.3e, rms %.3e of the diagonal (%.4g); normals max "
-                  "%.3f deg, mean %.4f deg; curvature error max %.3g, mean %.3g (per diagonal)\n",
+                  "%.3f deg, mean %.4f deg; curvature error max %.3g, mean %.3g; largest curvature: scheme %.3g, "
+                  "limit %.3g (per diagonal)\n",
                   o.s.cage.c_str(), to_string(scheme), (unsigned long long)samples, rel_max, rel_rms, diagonal,
                   max_angle, samples ? sum_angle / double(samples) : 0.0, max_k * diagonal,
-                  edges ? sum_k / double(edges) * diagonal : 0.0);
+                  edges ? sum_k / double(edges) * diagonal : 0.0, max_ks * diagonal, max_kl * diagonal);
     std::cout << line;
   }
   return kExitOk;
