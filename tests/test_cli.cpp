@@ -726,16 +726,15 @@ TEST_CASE("creases: a semi-sharp crease line takes the mean of the two sides' no
   CHECK(json_of(sharp.out)["mean_normal_degrees"].get<double>() < 1.0);
 }
 
-TEST_CASE("creases: gregory and bspline fit a creased quad's patch to the exact limit", "[cli][issue34]") {
-  // A quad with a tagged corner takes its edge and face points from a least-squares fit to the exact
-  // limit (limit_fit.h) instead of the blend of the smooth and cut-open rings. Before (max distance,
-  // fraction of the diagonal): cube_corner4 8.3e-2, cube_creases0 4.9e-2, cubes_infsharp 3.9e-2,
-  // hole_test2 4.0e-2, inf_crease0 2.9e-2.
-  const std::pair<const char*, double> bounds[] = {{"catmark_cube_corner4", 2e-2},
-                                                   {"catmark_cube_creases0", 1.5e-2},
-                                                   {"catmark_cubes_infsharp", 2e-2},
-                                                   {"catmark_hole_test2", 5e-3},
-                                                   {"catmark_inf_crease0", 1e-2}};
+TEST_CASE("creases: gregory and bspline fit a creased face's patch to the exact limit", "[cli][issue34]") {
+  // A triangle or quad with a tagged corner takes its edge and face points from a least-squares fit to
+  // the exact limit (limit_fit.h) instead of the blend of the smooth and cut-open rings. Before (max
+  // distance, fraction of the diagonal): cube_corner4 8.3e-2, cube_creases0 4.9e-2, cubes_infsharp
+  // 3.9e-2, hole_test2 4.0e-2, inf_crease0 2.9e-2, pyramid_creases2 (triangles) 1.4e-2, bishop 1.6e-2.
+  const std::pair<const char*, double> bounds[] = {{"catmark_cube_corner4", 2e-2},   {"catmark_cube_creases0", 1.5e-2},
+                                                   {"catmark_cubes_infsharp", 2e-2}, {"catmark_hole_test2", 5e-3},
+                                                   {"catmark_inf_crease0", 1e-2},    {"catmark_pyramid_creases2", 8e-3},
+                                                   {"catmark_bishop", 1e-2}};
   for (const char* scheme : {"gregory", "bspline"})
     for (const auto& [shape, bound] : bounds) {
       const auto r = run_cli("-q accuracy " + data(std::string("osd-shapes/") + shape + ".obj") + " --scheme " +
@@ -749,6 +748,10 @@ TEST_CASE("creases: gregory and bspline fit a creased quad's patch to the exact 
   const auto helmet = run_cli("-q accuracy " + data("osd-shapes/catmark_helmet.obj") + " --json");
   REQUIRE(helmet.exit_code == 0);
   CHECK(json_of(helmet.out)["mean_normal_degrees"].get<double>() < 1.5);
+  // Triangles and quads across semi-sharp creases: the pyramid's mean normal error was 5.6 degrees.
+  const auto pyramid = run_cli("-q accuracy " + data("osd-shapes/catmark_pyramid_creases0.obj") + " --json");
+  REQUIRE(pyramid.exit_code == 0);
+  CHECK(json_of(pyramid.out)["mean_normal_degrees"].get<double>() < 3.0);
   // acc keeps its blend (its tangent patches would move with the points): the same cube as before.
   const auto acc = run_cli("-q accuracy " + data("osd-shapes/catmark_cube_corner4.obj") + " --scheme acc --json");
   REQUIRE(acc.exit_code == 0);

@@ -24,7 +24,7 @@ LimitStencils::LimitStencils(const Cage& cage) : impl_(std::make_unique<Impl>())
   impl_->refiner = osd_detail::build_osd_refiner(cage, &far_faces);
   osd::Bfr::SurfaceFactory::Options options;
   // Bfr's cache of irregular patch trees stays on: a face's surface is built for its face points and
-  // again for each of its edges (without it catmark_car loads in 0.45 s, with it 0.14 s; its peak memory
+  // again for each of its edges (without it catmark_car loads in 0.45 s, with it 0.17 s; its peak memory
   // while loading is 46 MB against 21 MB before creased faces were fitted).
   options.SetApproxLevelSmooth(LimitSurface::kDefaultApproxLevel)
       .SetApproxLevelSharp(LimitSurface::kDefaultApproxLevel);
@@ -37,8 +37,8 @@ LimitStencils::~LimitStencils() = default;
 
 std::optional<std::vector<Stencil>> LimitStencils::at(int face, std::span<const std::array<double, 2>> uv,
                                                       std::vector<Stencil>* du, std::vector<Stencil>* dv) const {
-  if (impl_->by_far[std::size_t(face)] || impl_->refiner->GetLevel(0).GetFaceVertices(face).size() != 4 ||
-      !impl_->factory->FaceHasLimitSurface(face))
+  const int size = face_size(face);
+  if (impl_->by_far[std::size_t(face)] || (size != 3 && size != 4) || !impl_->factory->FaceHasLimitSurface(face))
     return std::nullopt;
   osd::Bfr::Surface<double> surface;
   if (!impl_->factory->InitVertexSurface(face, &surface) || !surface.IsValid()) return std::nullopt;
@@ -59,14 +59,47 @@ std::optional<std::vector<Stencil>> LimitStencils::at(int face, std::span<const 
       if (std::abs(x[std::size_t(i)]) > 1e-12) s.terms.emplace_back(cvs[std::size_t(i)], x[std::size_t(i)]);
     return s;
   };
+  if (size == 4) {
+    for (const auto& p : uv) {
+      surface.EvaluateStencil(p.data(), w.data(), wu.data(), wv.data());
+      out.push_back(stencil(w));
+      if (du) du->push_back(stencil(wu));
+      if (dv) dv->push_back(stencil(wv));
+    }
+    return out;
+  }
+  // A triangle: Bfr tiles its three quad sub-faces in one (u, v) space; the barycentric point lies in the
+  // sub-patch LimitSurface::triangle_location names (as the exact scheme evaluates it), and the map from
+  // the sub-patch's unit square into Bfr's space is affine (its Jacobian from three conversions).
+  const osd::Bfr::Parameterization param = surface.GetParameterization();
+  std::vector<double> ws(static_cast<std::size_t>(n)), wt(static_cast<std::size_t>(n));
   for (const auto& p : uv) {
-    surface.EvaluateStencil(p.data(), w.data(), wu.data(), wv.data());
+    const LimitSurface::TriangleLocation l = LimitSurface::triangle_location(p[0], p[1]);
+    const double st[2] = {l.s, l.t}, o[2] = {0.0, 0.0}, ex[2] = {1.0, 0.0}, ey[2] = {0.0, 1.0};
+    double q[2], q0[2], qx[2], qy[2];
+    param.ConvertNormalizedSubFaceToCoord(l.sub, st, q);
+    param.ConvertNormalizedSubFaceToCoord(l.sub, o, q0);
+    param.ConvertNormalizedSubFaceToCoord(l.sub, ex, qx);
+    param.ConvertNormalizedSubFaceToCoord(l.sub, ey, qy);
+    surface.EvaluateStencil(q, w.data(), wu.data(), wv.data());
     out.push_back(stencil(w));
-    if (du) du->push_back(stencil(wu));
-    if (dv) dv->push_back(stencil(wv));
+    if (!du && !dv) continue;
+    for (std::size_t i = 0; i < ws.size(); ++i) {
+      ws[i] = wu[i] * (qx[0] - q0[0]) + wv[i] * (qx[1] - q0[1]);
+      wt[i] = wu[i] * (qy[0] - q0[0]) + wv[i] * (qy[1] - q0[1]);
+    }
+    std::vector<double> a(ws.size()), b(ws.size());
+    for (std::size_t i = 0; i < ws.size(); ++i) {
+      a[i] = ws[i] * l.ds_du + wt[i] * l.dt_du;
+      b[i] = ws[i] * l.ds_dv + wt[i] * l.dt_dv;
+    }
+    if (du) du->push_back(stencil(a));
+    if (dv) dv->push_back(stencil(b));
   }
   return out;
 }
+
+int LimitStencils::face_size(int face) const { return impl_->refiner->GetLevel(0).GetFaceVertices(face).size(); }
 
 namespace {
 
@@ -77,6 +110,13 @@ namespace {
 constexpr double kCrossWeight = 0.01;
 
 constexpr std::array<std::array<double, 2>, 4> kCorner = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+// The tri domain's corners in (u, v): corner 0 at w = 1, corner 1 at u = 1, corner 2 at v = 1.
+constexpr std::array<std::array<double, 2>, 3> kTriCorner = {{{0, 0}, {1, 0}, {0, 1}}};
+
+// Corner k of a face of `n` (3 or 4) sides in its domain.
+const std::array<double, 2>& corner_uv(int n, int k) {
+  return n == 3 ? kTriCorner[std::size_t(k % 3)] : kCorner[std::size_t(k % 4)];
+}
 
 std::array<double, 4> bernstein(double t) {
   const double s = 1.0 - t;
@@ -147,6 +187,43 @@ class DenseSpace {
   std::vector<int> ids_, merged_;
 };
 
+// The weight of each of a triangular Gregory patch's 15 points at (u, v, w) (patch_eval.h's
+// gregory_triangle: the quartic Bezier triangle whose boundary is the degree-raised cubic edges and
+// whose three interior points blend each corner's face-point pair).
+std::array<double, 15> gregory_triangle_weights(double u, double v, double w) {
+  std::array<double, 15> out{};
+  auto pw = [](double x, int e) {
+    double r = 1.0;
+    for (int i = 0; i < e; ++i) r *= x;
+    return r;
+  };
+  constexpr double kFact[5] = {1, 1, 2, 6, 24};
+  // Bernstein weight of control point (j, k): u^j v^k w^(4-j-k).
+  auto b = [&](int j, int k) {
+    const int l = 4 - j - k;
+    return kFact[4] / (kFact[j] * kFact[k] * kFact[l]) * pw(u, j) * pw(v, k) * pw(w, l);
+  };
+  auto P = [](int k) { return std::size_t(5 * k); };
+  auto Ep = [](int k) { return std::size_t(5 * k + 1); };
+  auto Em = [](int k) { return std::size_t(5 * k + 2); };
+  auto Fp = [](int k) { return std::size_t(5 * k + 3); };
+  auto Fm = [](int k) { return std::size_t(5 * k + 4); };
+  out[P(0)] += b(0, 0), out[P(1)] += b(4, 0), out[P(2)] += b(0, 4);
+  // raise1(a0, a1) = (a0 + 3 a1) / 4, raise2(a1, a2) = (a1 + a2) / 2, per edge.
+  auto raise1 = [&](double basis, std::size_t a0, std::size_t a1) { out[a0] += 0.25 * basis, out[a1] += 0.75 * basis; };
+  auto raise2 = [&](double basis, std::size_t a1, std::size_t a2) { out[a1] += 0.5 * basis, out[a2] += 0.5 * basis; };
+  raise1(b(1, 0), P(0), Ep(0)), raise2(b(2, 0), Ep(0), Em(1)), raise1(b(3, 0), P(1), Em(1));
+  raise1(b(3, 1), P(1), Ep(1)), raise2(b(2, 2), Ep(1), Em(2)), raise1(b(1, 3), P(2), Em(2));
+  raise1(b(0, 3), P(2), Ep(2)), raise2(b(0, 2), Ep(2), Em(0)), raise1(b(0, 1), P(0), Em(0));
+  auto blend = [&](double basis, std::size_t plus, double wp, std::size_t minus, double wm) {
+    out[plus] += basis * wp / (wp + wm), out[minus] += basis * wm / (wp + wm);
+  };
+  blend(b(1, 1), Fp(0), u, Fm(0), v);
+  blend(b(2, 1), Fp(1), v, Fm(1), w);
+  blend(b(1, 2), Fp(2), w, Fm(2), u);
+  return out;
+}
+
 // Solves the symmetric positive definite system m x = rhs for dense right-hand sides (Gauss-Jordan on
 // the matrix, the same combination of the rows), returned as stencils.
 template <std::size_t N>
@@ -182,8 +259,9 @@ std::array<Stencil, N> solve(std::array<std::array<double, N>, N> m, const std::
 std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, int e, const Stencil& pa,
                                           const Stencil& pb) {
   constexpr int kSamples = 16;
-  const auto& c0 = kCorner[std::size_t(e % 4)];
-  const auto& c1 = kCorner[std::size_t((e + 1) % 4)];
+  const int n = limit.face_size(face);
+  const auto& c0 = corner_uv(n, e);
+  const auto& c1 = corner_uv(n, e + 1);
   std::vector<std::array<double, 2>> uv;
   std::vector<double> ts;
   for (int i = 0; i < kSamples; ++i) {
@@ -214,8 +292,9 @@ std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, 
 
 std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils& limit, int face, int e) {
   constexpr int kSamples = 16;
-  const auto& c0 = kCorner[std::size_t(e % 4)];
-  const auto& c1 = kCorner[std::size_t((e + 1) % 4)];
+  const int n = limit.face_size(face);
+  const auto& c0 = corner_uv(n, e);
+  const auto& c1 = corner_uv(n, e + 1);
   const double dx = c1[0] - c0[0], dy = c1[1] - c0[1];
   std::vector<std::array<double, 2>> uv;
   for (int i = 0; i < kSamples; ++i) {
@@ -329,6 +408,50 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
   }
   const std::array<Stencil, 8> x = solve(m, rhs, space);
   for (std::size_t a = 0; a < 8; ++a) rows[kFree[a]] = x[a];
+  return true;
+}
+
+bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows) {
+  // Interior points (i + 1/3, j + 1/3) / G of the tri domain, i + j < G: 78 of them.
+  constexpr int kGrid = 12;
+  std::vector<std::array<double, 3>> patch_uvw;
+  std::vector<std::array<double, 2>> uv;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i + j < kGrid; ++i) {
+      const double u = (i + 1.0 / 3.0) / kGrid, v = (j + 1.0 / 3.0) / kGrid, w = 1.0 - u - v;
+      patch_uvw.push_back({u, v, w});
+      // Patch corner k (weights w, u, v for corners 0, 1, 2) is face corner k + rotation.
+      const double patch[3] = {w, u, v};
+      double f[3] = {0, 0, 0};
+      for (int k = 0; k < 3; ++k) f[(k + rotation) % 3] = patch[k];
+      uv.push_back({f[1], f[2]});
+    }
+  const std::optional<std::vector<Stencil>> l = limit.at(face, uv);
+  if (!l) return false;
+  constexpr std::array<std::size_t, 6> kFree = {3, 4, 8, 9, 13, 14};
+  auto is_free = [&](std::size_t r) { return std::find(kFree.begin(), kFree.end(), r) != kFree.end(); };
+  DenseSpace space;
+  space.include(*l);
+  for (std::size_t r = 0; r < 15; ++r)
+    if (!is_free(r)) space.include(rows[r]);
+  std::array<std::array<double, 6>, 6> m{};
+  std::array<std::vector<double>, 6> rhs;
+  for (auto& r : rhs) r = space.zero();
+  std::vector<double> target;
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    const std::array<double, 15> w = gregory_triangle_weights(patch_uvw[i][0], patch_uvw[i][1], patch_uvw[i][2]);
+    target = space.zero();
+    space.add(target, (*l)[i], 1.0);
+    for (std::size_t r = 0; r < 15; ++r)
+      if (!is_free(r) && w[r] != 0.0) space.add(target, rows[r], -w[r]);
+    for (std::size_t a = 0; a < 6; ++a) {
+      const double wa = w[kFree[a]];
+      for (std::size_t k = 0; k < target.size(); ++k) rhs[a][k] += wa * target[k];
+      for (std::size_t b = 0; b < 6; ++b) m[a][b] += wa * w[kFree[b]];
+    }
+  }
+  const std::array<Stencil, 6> x = solve(m, rhs, space);
+  for (std::size_t a = 0; a < 6; ++a) rows[kFree[a]] = x[a];
   return true;
 }
 

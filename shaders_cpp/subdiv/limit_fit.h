@@ -19,11 +19,15 @@
 //   crease line, where the limit is smooth but a patch's own derivative is not.
 // Measured (gregory against the exact limit, OpenSubdiv's creased shapes): largest distance
 // catmark_cube_corner4 8.3e-2 -> 1.4e-2 of the diagonal, catmark_cube_creases0 4.9e-2 -> 8.7e-3,
-// catmark_hole_test2 4.0e-2 -> 1.5e-3; the README has the whole table.
+// catmark_hole_test2 4.0e-2 -> 1.5e-3, catmark_pyramid_creases2 (triangles) 1.4e-2 -> 4.4e-3; the README
+// has the whole table.
 //
-// Contract: quads only (Bfr's quad parameterization is the patch domain's, corner 0 at (0, 0), 1 at
-// (1, 0), 2 at (1, 1), 3 at (0, 1)). A face Bfr cannot evaluate, or whose limit reads a vertex outside
-// `allowed`, gives nullopt; the caller keeps the masks' points. Weights below 1e-12 are dropped.
+// Contract: triangles and quads, in the patch domains (a quad's is Bfr's own parameterization, corner 0
+// at (0, 0), 1 at (1, 0), 2 at (1, 1), 3 at (0, 1); a triangle is mapped into Bfr's three quad sub-faces
+// as the exact scheme maps it, LimitSurface::triangle_location). A face Bfr cannot evaluate gives nullopt
+// (false) and the caller keeps the masks' points. Limit weights below 1e-12 are dropped; keeping the
+// rows inside both faces' rings is the caller's (subd_patches.cpp drops what lies beyond an edge's two
+// vertex neighbourhoods, below 1e-9).
 #pragma once
 
 #include <array>
@@ -45,11 +49,14 @@ class LimitStencils {
   LimitStencils(const LimitStencils&) = delete;
   LimitStencils& operator=(const LimitStencils&) = delete;
 
-  // The limit position at (u, v) of quad face f as a stencil over the cage; nullopt when Bfr has no
-  // surface for f (or f is not a quad).
+  // The limit position at (u, v) of face f (a triangle or a quad) as a stencil over the cage; nullopt
+  // when Bfr has no surface for f or f has another size.
+  // Quads: (u, v) in Bfr's (and the quad domain's) parameterization; triangles: barycentric (u, v) of the
+  // tri domain (corner 0 at w = 1, 1 at u = 1, 2 at v = 1), as the exact scheme evaluates them.
   // With `du` and `dv`, also the partial derivatives there.
   std::optional<std::vector<Stencil>> at(int face, std::span<const std::array<double, 2>> uv,
                                          std::vector<Stencil>* du = nullptr, std::vector<Stencil>* dv = nullptr) const;
+  int face_size(int face) const;
 
  private:
   struct Impl;
@@ -74,5 +81,9 @@ std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils&
 // `smooth_edges[k]`: patch edge k is an interior edge without a tag.
 bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
                      std::array<bool, 4> smooth_edges = {});
+
+// The same for a 15-point triangular Gregory patch (rows 5k + 3, 5k + 4, k = 0..2; patch corner k is face
+// corner k + rotation), fitted at 78 interior points of the tri domain.
+bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows);
 
 }  // namespace tessera

@@ -275,35 +275,6 @@ struct LimitSurface::Impl {
   // its bilinear map is x = s/2 - st/6, y = t/2 - st/6 (corners (0,0), (1/2,0), (1/3,1/3), (0,1/2)).
   // Inverting: x - y = (s-t)/2 and s^2 - (3+2d)s + 6x = 0 with d = x - y (the root in [0,1], in the
   // cancellation-free form).
-  struct TriMap {
-    int k;
-    double s, t;
-    double ds_du, ds_dv, dt_du, dt_dv;
-  };
-  static TriMap tri_map(double u, double v) {
-    const double b[3] = {(1.0 - u) - v, u, v};
-    int k = 0;
-    if (b[1] > b[k]) k = 1;
-    if (b[2] > b[k]) k = 2;
-    const double x = b[(k + 1) % 3], y = b[(k + 2) % 3], d = x - y;
-    const double q = 3.0 + 2.0 * d;
-    const double s = std::clamp(12.0 * x / (q + std::sqrt(std::max(0.0, q * q - 24.0 * x))), 0.0, 1.0);
-    const double t = std::clamp(s - 2.0 * d, 0.0, 1.0);
-    // J = d(x,y)/d(s,t); K = J^-1 = d(s,t)/d(x,y); M = d(x,y)/d(u,v) depends on k.
-    const double j00 = 0.5 - t / 6.0, j01 = -s / 6.0, j10 = -t / 6.0, j11 = 0.5 - s / 6.0;
-    const double det = j00 * j11 - j01 * j10;  // >= 1/12 on the unit square
-    const double k00 = j11 / det, k01 = -j01 / det, k10 = -j10 / det, k11 = j00 / det;
-    static constexpr double M[3][2][2] = {{{1, 0}, {0, 1}}, {{0, 1}, {-1, -1}}, {{-1, -1}, {1, 0}}};
-    const auto& m = M[k];
-    return {k,
-            s,
-            t,
-            k00 * m[0][0] + k01 * m[1][0],
-            k00 * m[0][1] + k01 * m[1][1],
-            k10 * m[0][0] + k11 * m[1][0],
-            k10 * m[0][1] + k11 * m[1][1]};
-  }
-
   SurfacePoint to_point(int f, int k, double s, double t, const Raw& r) const { return to_point(f, k, s, t, r, r); }
   // `out` gives the position and the reported derivatives; the normal comes from sub-patch k's own
   // derivatives in `sub`, so it depends on (k, s, t) only.
@@ -472,8 +443,8 @@ SurfacePoint LimitSurface::evaluate_triangle(int face, float u, float v, float w
   check_coord(w, "w");
   const Impl& m = *impl_;
   const double du = u, dv = v;
-  const Impl::TriMap tm = Impl::tri_map(du, dv);
-  const Raw r = m.raw(face, tm.k, tm.s, tm.t);
+  const TriangleLocation tm = triangle_location(du, dv);
+  const Raw r = m.raw(face, tm.sub, tm.s, tm.t);
   const glm::dvec3 pu = r.ds * tm.ds_du + r.dt * tm.dt_du, pv = r.ds * tm.ds_dv + r.dt * tm.dt_dv;
   SharedPoint sh;
   bool is_shared = true;
@@ -493,8 +464,32 @@ SurfacePoint LimitSurface::evaluate_triangle(int face, float u, float v, float w
     is_shared = false;
   if (is_shared) return {sh.position, glm::vec3(pu), glm::vec3(pv), sh.normal};
   glm::dvec3 n = m.normal_of(pu, pv);
-  if (n == glm::dvec3(0.0)) n = m.normal_at(face, tm.k, tm.s, tm.t, r);
+  if (n == glm::dvec3(0.0)) n = m.normal_at(face, tm.sub, tm.s, tm.t, r);
   return {glm::vec3(r.p), glm::vec3(pu), glm::vec3(pv), glm::vec3(n)};
+}
+
+LimitSurface::TriangleLocation LimitSurface::triangle_location(double u, double v) {
+  const double b[3] = {(1.0 - u) - v, u, v};
+  int k = 0;
+  if (b[1] > b[k]) k = 1;
+  if (b[2] > b[k]) k = 2;
+  const double x = b[(k + 1) % 3], y = b[(k + 2) % 3], d = x - y;
+  const double q = 3.0 + 2.0 * d;
+  const double s = std::clamp(12.0 * x / (q + std::sqrt(std::max(0.0, q * q - 24.0 * x))), 0.0, 1.0);
+  const double t = std::clamp(s - 2.0 * d, 0.0, 1.0);
+  // J = d(x,y)/d(s,t); K = J^-1 = d(s,t)/d(x,y); M = d(x,y)/d(u,v) depends on k.
+  const double j00 = 0.5 - t / 6.0, j01 = -s / 6.0, j10 = -t / 6.0, j11 = 0.5 - s / 6.0;
+  const double det = j00 * j11 - j01 * j10;  // >= 1/12 on the unit square
+  const double k00 = j11 / det, k01 = -j01 / det, k10 = -j10 / det, k11 = j00 / det;
+  static constexpr double M[3][2][2] = {{{1, 0}, {0, 1}}, {{0, 1}, {-1, -1}}, {{-1, -1}, {1, 0}}};
+  const auto& m = M[k];
+  return {k,
+          s,
+          t,
+          k00 * m[0][0] + k01 * m[1][0],
+          k00 * m[0][1] + k01 * m[1][1],
+          k10 * m[0][0] + k11 * m[1][0],
+          k10 * m[0][1] + k11 * m[1][1]};
 }
 
 LimitSurface::SubPatchLocation LimitSurface::fan_location(int n, int k, double u, double v) {
@@ -546,8 +541,8 @@ LimitSurface::PatchFacts LimitSurface::patch_at_face_frame(int face, int sub, fl
   const double du = std::clamp(double(u), 0.0, 1.0), dv = std::clamp(double(v), 0.0, 1.0);
   if (n == 4) return impl_->far->patch_at(face, 0, du, dv);
   if (n == 3) {
-    const Impl::TriMap tm = Impl::tri_map(du, dv);
-    return impl_->far->patch_at(face, tm.k, tm.s, tm.t);
+    const TriangleLocation tm = triangle_location(du, dv);
+    return impl_->far->patch_at(face, tm.sub, tm.s, tm.t);
   }
   const SubPatchLocation l = fan_location(n, std::clamp(sub, 0, n - 1), du, dv);
   return impl_->far->patch_at(face, l.sub, std::clamp(l.s, 0.0, 1.0), std::clamp(l.t, 0.0, 1.0));

@@ -154,6 +154,14 @@ class LimitSurface {
     double s, t;
   };
   static SubPatchLocation fan_location(int n, int k, double u, double v);
+  // Where barycentric point (u, v) of a triangle face lies: the quad sub-patch of its largest coordinate,
+  // by the inverse of that sub-patch's bilinear map, with d(s, t)/d(u, v) (evaluate_triangle's map).
+  struct TriangleLocation {
+    int sub;
+    double s, t;
+    double ds_du, ds_dv, dt_du, dt_dv;
+  };
+  static TriangleLocation triangle_location(double u, double v);
 
   // Plain per-face evaluation, without ownership: what Bfr gives for this face alone. Not watertight
   // bitwise (it exists to measure exactly that); same checks as evaluate().

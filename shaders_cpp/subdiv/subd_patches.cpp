@@ -379,12 +379,13 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   std::map<std::int64_t, int> fitted_edge_owner;  // edge key -> the lowest fitted face on it
   if ((scheme == Scheme::gregory || scheme == Scheme::bspline)) {
     for (int f = 0; f < t.face_count(); ++f) {
-      if (t.is_hole(f) || t.face_size(f) != 4) continue;
-      for (int k = 0; k < 4; ++k)
+      const int m = t.face_size(f);
+      if (t.is_hole(f) || (m != 3 && m != 4)) continue;
+      for (int k = 0; k < m; ++k)
         if (t.has_sharpness_at(cage.face_vertex(f, k))) fitted[std::size_t(f)] = 1;
       if (!fitted[std::size_t(f)]) continue;
-      for (int k = 0; k < 4; ++k)
-        fitted_edge_owner.try_emplace(cage_edge_key(cage.face_vertex(f, k), cage.face_vertex(f, (k + 1) % 4)), f);
+      for (int k = 0; k < m; ++k)
+        fitted_edge_owner.try_emplace(cage_edge_key(cage.face_vertex(f, k), cage.face_vertex(f, (k + 1) % m)), f);
     }
     if (!fitted_edge_owner.empty()) limit = std::make_unique<LimitStencils>(cage);
   }
@@ -404,9 +405,9 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     auto it = fitted_edges.find(key);
     if (it == fitted_edges.end()) {
       FittedEdge e;
-      const int g = owner->second;
-      for (int j = 0; j < 4; ++j) {
-        const int x = cage.face_vertex(g, j), y = cage.face_vertex(g, (j + 1) % 4);
+      const int g = owner->second, m = t.face_size(g);
+      for (int j = 0; j < m; ++j) {
+        const int x = cage.face_vertex(g, j), y = cage.face_vertex(g, (j + 1) % m);
         if (cage_edge_key(x, y) != key) continue;
         const Stencil& px = x == va ? rows[pa] : rows[pb];
         const Stencil& py = x == va ? rows[pb] : rows[pa];
@@ -592,6 +593,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         for (std::size_t k = 0; k < 3; ++k)
           fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 3), 5 * k + 1,
                    5 * ((k + 1) % 3) + 2);
+      if (limit && fitted[std::size_t(f)]) fit_triangle_face_points(*limit, f, rot, stencils);
       const auto [averaged, limit_edges] =
           creased ? add_cross_rows(stencils, 3) : std::pair<std::uint8_t, std::uint8_t>{};
       builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
