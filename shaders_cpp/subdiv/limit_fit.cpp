@@ -406,8 +406,20 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
       for (std::size_t b = 0; b < 8; ++b) m[a][b] += wa * q.w[kFree[b]];
     }
   }
-  const std::array<Stencil, 8> x = solve(m, rhs, space);
-  for (std::size_t a = 0; a < 8; ++a) rows[kFree[a]] = x[a];
+  // One point per corner (F+ = F-: the pairs' columns summed): the patch is then a polynomial, a bicubic
+  // Bezier net, which back-patch culling can prove facing away (a Gregory pair that differs cannot be;
+  // catmark_bishop: 112 patches proven against 248 before the fit, 246 with it), and its fit is as close
+  // (largest distance within 1.4x on OpenSubdiv's creased shapes, mean normal error lower on most).
+  std::array<std::array<double, 4>, 4> m4{};
+  std::array<std::vector<double>, 4> rhs4;
+  for (std::size_t k = 0; k < 4; ++k) {
+    rhs4[k] = space.zero();
+    for (std::size_t c = 0; c < rhs4[k].size(); ++c) rhs4[k][c] = rhs[2 * k][c] + rhs[2 * k + 1][c];
+    for (std::size_t c = 0; c < 4; ++c)
+      m4[k][c] = m[2 * k][2 * c] + m[2 * k][2 * c + 1] + m[2 * k + 1][2 * c] + m[2 * k + 1][2 * c + 1];
+  }
+  const std::array<Stencil, 4> y = solve(m4, rhs4, space);
+  for (std::size_t k = 0; k < 4; ++k) rows[kFree[2 * k]] = rows[kFree[2 * k + 1]] = y[k];
   return true;
 }
 

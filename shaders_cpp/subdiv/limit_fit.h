@@ -11,14 +11,15 @@
 //   bring the cubic from the fixed limit corners P0, P1 closest, in least squares at 16 points, to the
 //   limit curve along the edge. Computed once per cage edge (the caller keeps it) and read by both faces,
 //   so the edge stays the same bits on both sides.
-// - fit_face_points: a 20-point Gregory patch's eight face points (F+, F- of each corner), the boundary
-//   points fixed, closest in least squares to the limit at a 10 x 10 grid of interior domain points and,
+// - fit_face_points: a 20-point Gregory patch's face points, one per corner (F+ = F-, so the patch is a
+//   bicubic Bezier patch that back-patch culling can prove facing away), the boundary points fixed,
+//   closest in least squares to the limit at a 10 x 10 grid of interior domain points and,
 //   along the patch's smooth edges (weighted 0.01), to the limit's cross derivative there, which pulls
 //   the two patches on such an edge toward the limit's tangent plane.
 // - fit_inward_derivative: the limit's derivative across an edge, for the normal on a semi-sharp
 //   crease line, where the limit is smooth but a patch's own derivative is not.
 // Measured (gregory against the exact limit, OpenSubdiv's creased shapes): largest distance
-// catmark_cube_corner4 8.3e-2 -> 1.4e-2 of the diagonal, catmark_cube_creases0 4.9e-2 -> 8.7e-3,
+// catmark_cube_corner4 8.3e-2 -> 1.4e-2 of the diagonal, catmark_cube_creases0 4.9e-2 -> 1.2e-2,
 // catmark_hole_test2 4.0e-2 -> 1.5e-3, catmark_pyramid_creases2 (triangles) 1.4e-2 -> 4.4e-3; the README
 // has the whole table.
 //
@@ -76,9 +77,9 @@ std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, 
 // points (a neighbour's cross derivative along a semi-sharp crease, for the crease line's normal).
 std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils& limit, int face, int e);
 
-// Replaces rows 5k + 3, 5k + 4 (F+, F-) of a 20-point Gregory patch of face f, whose patch corner k is
-// face corner k + rotation, by the fit; false (rows unchanged) when the limit is not available.
-// `smooth_edges[k]`: patch edge k is an interior edge without a tag.
+// Replaces rows 5k + 3, 5k + 4 (F+, F-, both by one point) of a 20-point Gregory patch of face f, whose patch corner k
+// is face corner k + rotation, by the fit; false (rows unchanged) when the limit is not available. `smooth_edges[k]`:
+// patch edge k is an interior edge without a tag.
 bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
                      std::array<bool, 4> smooth_edges = {});
 
