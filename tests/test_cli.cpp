@@ -789,6 +789,20 @@ TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit,
         CHECK(r.exit_code == 0);
       }
     }
+  // An open grid with Chaikin creases: the per-face schemes leave exactly the border open, as exact does
+  // (the blended corners of Chaikin crease vertices differed between faces: 108 open edges against 62).
+  auto open_edges = [](const std::string& err) {
+    const auto at = err.find("not watertight (");
+    return at == std::string::npos ? -1 : std::stoi(err.substr(at + 16));
+  };
+  const std::string grid = data("osd-shapes/catmark_chaikin2.obj") +
+                           " --factor 5 --vary-factors 0.7 --partitioning fractional_odd --check-watertight";
+  const int border = open_edges(run_cli("-q tessellate " + grid + " --scheme exact").err);
+  CHECK(border > 0);
+  for (const char* scheme : {"gregory", "bspline"}) {
+    INFO(scheme);
+    CHECK(open_edges(run_cli("-q tessellate " + grid + " --scheme " + scheme).err) == border);
+  }
   // Displaced (the frog's map over the cage's UVs): the owner frames and UVs keep creased edges closed.
   const std::string map =
       " --displacement " + data("sdk-cages/monsterfrog.dds") + " --displacement-channel A --displacement-scale 0.2";

@@ -256,6 +256,13 @@ std::array<Stencil, N> solve(std::array<std::array<double, N>, N> m, const std::
 
 }  // namespace
 
+std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int k) {
+  const std::array<std::array<double, 2>, 1> uv = {corner_uv(limit.face_size(face), k)};
+  std::optional<std::vector<Stencil>> l = limit.at(face, uv);
+  if (!l) return std::nullopt;
+  return std::move((*l)[0]);
+}
+
 std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, int e, const Stencil& pa,
                                           const Stencil& pb) {
   constexpr int kSamples = 16;

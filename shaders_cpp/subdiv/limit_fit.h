@@ -64,6 +64,10 @@ class LimitStencils {
   std::unique_ptr<Impl> impl_;
 };
 
+// The limit at corner k of face f (a cage vertex's limit position), as a stencil: the corner point of a
+// tagged vertex, which the masks give exactly only for uniform creasing (semi_sharp_limit.h).
+std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int k);
+
 struct EdgePoints {
   Stencil near_a, near_b;  // the Bezier points beside the edge's vertex a and vertex b
 };

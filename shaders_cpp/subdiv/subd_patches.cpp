@@ -389,6 +389,24 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     }
     if (!fitted_edge_owner.empty()) limit = std::make_unique<LimitStencils>(cage);
   }
+  // A tagged vertex's corner point, where a fitted face has it: the exact limit there from Bfr (the
+  // masks' corner is exact for uniform creasing, semi_sharp_limit.h, but not for Chaikin's rule), from the
+  // lowest-index fitted face at the vertex, read by every face at it.
+  std::map<int, std::optional<Stencil>> fitted_corners;
+  auto fit_corner = [&](std::vector<Stencil>& rows, int v, std::size_t p_row) {
+    if (!limit || !t.has_sharpness_at(v)) return;
+    auto it = fitted_corners.find(v);
+    if (it == fitted_corners.end()) {
+      std::optional<Stencil> p;
+      int g = -1;
+      for (const int h : t.ring(v))
+        if (fitted[std::size_t(t.face(h))] && (g < 0 || t.face(h) < g)) g = t.face(h);
+      if (g >= 0) p = limit_at_corner(*limit, g, t.corner_of(g, v));
+      if (p && !restrict_to(edge_neighbourhood(cage, t, v, v), *p)) p.reset();
+      it = fitted_corners.emplace(v, std::move(p)).first;
+    }
+    if (it->second) rows[p_row] = *it->second;
+  };
   struct FittedEdge {
     bool ok = false;
     int a = -1;  // near_a lies beside vertex a
@@ -537,7 +555,11 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
           exact_corner(stencils, smooth, t, va, semi_sharp[std::size_t(va)], 0, {1, 2});
           exact_corner(stencils, smooth, t, vb, semi_sharp[std::size_t(vb)], 5, {6, 7});
         }
-        if (limit) fit_edge(stencils, cage.face_vertex(f, int(at(k))), cage.face_vertex(f, int(at(k + 1))), 0, 5, 1, 7);
+        if (limit) {
+          fit_corner(stencils, cage.face_vertex(f, int(at(k))), 0);
+          fit_corner(stencils, cage.face_vertex(f, int(at(k + 1))), 5);
+          fit_edge(stencils, cage.face_vertex(f, int(at(k))), cage.face_vertex(f, int(at(k + 1))), 0, 5, 1, 7);
+        }
         // The ring from corner k on, so the fans of one face (and of faces alike) share a table.
         std::vector<CornerRing> from_k;
         for (int j = 0; j < n; ++j) from_k.push_back(rings[at(k + j)]);
@@ -590,6 +612,8 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         exact_corners(stencils, smooth, 3);
       }
       if (limit)
+        for (std::size_t k = 0; k < 3; ++k) fit_corner(stencils, corner(int(k)), 5 * k);
+      if (limit)
         for (std::size_t k = 0; k < 3; ++k)
           fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 3), 5 * k + 1,
                    5 * ((k + 1) % 3) + 2);
@@ -638,6 +662,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         exact_corners(stencils, smooth, 4);
       }
       if (limit) {
+        for (std::size_t k = 0; k < 4; ++k) fit_corner(stencils, corner(int(k)), 5 * k);
         for (std::size_t k = 0; k < 4; ++k)
           fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 4), 5 * k + 1,
                    5 * ((k + 1) % 4) + 2);
