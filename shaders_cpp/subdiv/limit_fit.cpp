@@ -327,6 +327,54 @@ std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils&
   return solve(m, rhs, space);
 }
 
+// One equation of a fit: sum over a patch's points r of w[r] * point r = scale * term + scale2 * term2
+// (the limit, or its derivative as two partials), weighted by `weight`.
+template <std::size_t Points>
+struct Equation {
+  std::array<double, Points> w{};
+  const Stencil* term = nullptr;
+  double scale = 1.0;
+  const Stencil* term2 = nullptr;
+  double scale2 = 0.0;
+  double weight = 1.0;
+};
+
+// The normal equations of the weighted least-squares fit of the `free` points of `rows` (the others
+// fixed) to the equations, right-hand sides as dense rows of `space`, which holds every stencil read.
+template <std::size_t Points, std::size_t Free>
+struct NormalEquations {
+  DenseSpace space;
+  std::array<std::array<double, Free>, Free> m{};
+  std::array<std::vector<double>, Free> rhs;
+
+  NormalEquations(const std::vector<Equation<Points>>& equations, const std::array<std::size_t, Free>& free,
+                  const std::vector<Stencil>& rows) {
+    auto is_free = [&](std::size_t r) { return std::find(free.begin(), free.end(), r) != free.end(); };
+    for (const Equation<Points>& q : equations) {
+      space.include(*q.term);
+      if (q.term2) space.include(*q.term2);
+    }
+    for (std::size_t r = 0; r < Points; ++r)
+      if (!is_free(r)) space.include(rows[r]);
+    for (auto& r : rhs) r = space.zero();
+    std::vector<double> target;
+    for (const Equation<Points>& q : equations) {
+      // The target less the fixed points' share, weighted by each free point's coefficient.
+      target = space.zero();
+      space.add(target, *q.term, q.scale);
+      if (q.term2) space.add(target, *q.term2, q.scale2);
+      for (std::size_t r = 0; r < Points; ++r)
+        if (!is_free(r) && q.w[r] != 0.0) space.add(target, rows[r], -q.w[r]);
+      for (std::size_t a = 0; a < Free; ++a) {
+        const double wa = q.weight * q.w[free[a]];
+        if (wa == 0.0) continue;
+        for (std::size_t k = 0; k < target.size(); ++k) rhs[a][k] += wa * target[k];
+        for (std::size_t b = 0; b < Free; ++b) m[a][b] += wa * q.w[free[b]];
+      }
+    }
+  }
+};
+
 bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
                      std::array<bool, 4> smooth_edges) {
   // Patch (u, v) -> the face's frame: patch corner k is face corner k + rotation (a bilinear map).
@@ -337,16 +385,7 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
       for (int c = 0; c < 2; ++c) f[std::size_t(c)] += wk[k] * kCorner[std::size_t((k + rotation) % 4)][std::size_t(c)];
     return f;
   };
-  // One equation: sum over the rows r of w[r] * row r = target (a limit stencil in `term`, weighted).
-  struct Equation {
-    std::array<double, 20> w;
-    const Stencil* term;
-    double scale;  // of `term`
-    const Stencil* term2 = nullptr;
-    double scale2 = 0.0;
-    double weight = 1.0;
-  };
-  std::vector<Equation> equations;
+  std::vector<Equation<20>> equations;
   constexpr int kGrid = 10;
   std::vector<std::array<double, 2>> uv, patch_uv;
   for (int j = 0; j < kGrid; ++j)
@@ -358,7 +397,7 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
   const std::optional<std::vector<Stencil>> l = limit.at(face, uv);
   if (!l) return false;
   for (std::size_t i = 0; i < uv.size(); ++i)
-    equations.push_back({gregory_weights(patch_uv[i][0], patch_uv[i][1]), &(*l)[i], 1.0});
+    equations.push_back({gregory_weights(patch_uv[i][0], patch_uv[i][1]), &(*l)[i]});
   // Smooth edges: the cross derivative along the edge, 3 (inner row - boundary row), is the limit's.
   const double lambda = kCrossWeight;
   constexpr int kSamples = 16;
@@ -377,7 +416,7 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
     if (!limit.at(face, euv, &du[std::size_t(k)], &dv[std::size_t(k)])) return false;
     for (int i = 0; i < kSamples; ++i) {
       const std::array<double, 4> b = bernstein((i + 0.5) / kSamples);
-      Equation q{{}, &du[std::size_t(k)][std::size_t(i)], -dy, &dv[std::size_t(k)][std::size_t(i)], dx, lambda};
+      Equation<20> q{{}, &du[std::size_t(k)][std::size_t(i)], -dy, &dv[std::size_t(k)][std::size_t(i)], dx, lambda};
       const std::size_t boundary[4] = {std::size_t(5 * k), std::size_t(5 * k + 1), std::size_t(5 * k1 + 2),
                                        std::size_t(5 * k1)};
       const std::size_t inner[4] = {std::size_t(5 * k + 2), std::size_t(5 * k + 3), std::size_t(5 * k1 + 4),
@@ -387,32 +426,8 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
     }
   }
   constexpr std::array<std::size_t, 8> kFree = {3, 4, 8, 9, 13, 14, 18, 19};
-  auto is_free = [&](std::size_t r) { return std::find(kFree.begin(), kFree.end(), r) != kFree.end(); };
-  DenseSpace space;
-  for (const Equation& q : equations) {
-    space.include(*q.term);
-    if (q.term2) space.include(*q.term2);
-  }
-  for (std::size_t r = 0; r < 20; ++r)
-    if (!is_free(r)) space.include(rows[r]);
-  std::array<std::array<double, 8>, 8> m{};
-  std::array<std::vector<double>, 8> rhs;
-  for (auto& r : rhs) r = space.zero();
-  std::vector<double> target;
-  for (const Equation& q : equations) {
-    // The limit less the fixed points' share, weighted by each face point's coefficient.
-    target = space.zero();
-    space.add(target, *q.term, q.scale);
-    if (q.term2) space.add(target, *q.term2, q.scale2);
-    for (std::size_t r = 0; r < 20; ++r)
-      if (!is_free(r) && q.w[r] != 0.0) space.add(target, rows[r], -q.w[r]);
-    for (std::size_t a = 0; a < 8; ++a) {
-      const double wa = q.weight * q.w[kFree[a]];
-      if (wa == 0.0) continue;
-      for (std::size_t k = 0; k < target.size(); ++k) rhs[a][k] += wa * target[k];
-      for (std::size_t b = 0; b < 8; ++b) m[a][b] += wa * q.w[kFree[b]];
-    }
-  }
+  const NormalEquations<20, 8> ne(equations, kFree, rows);
+  const auto& [space, m, rhs] = ne;
   // One point per corner (F+ = F-: the pairs' columns summed): the patch is then a polynomial, a bicubic
   // Bezier net, which back-patch culling can prove facing away (a Gregory pair that differs cannot be;
   // catmark_bishop: 112 patches proven against 248 before the fit, 246 with it), and its fit is as close
@@ -448,28 +463,11 @@ bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation
   const std::optional<std::vector<Stencil>> l = limit.at(face, uv);
   if (!l) return false;
   constexpr std::array<std::size_t, 6> kFree = {3, 4, 8, 9, 13, 14};
-  auto is_free = [&](std::size_t r) { return std::find(kFree.begin(), kFree.end(), r) != kFree.end(); };
-  DenseSpace space;
-  space.include(*l);
-  for (std::size_t r = 0; r < 15; ++r)
-    if (!is_free(r)) space.include(rows[r]);
-  std::array<std::array<double, 6>, 6> m{};
-  std::array<std::vector<double>, 6> rhs;
-  for (auto& r : rhs) r = space.zero();
-  std::vector<double> target;
-  for (std::size_t i = 0; i < uv.size(); ++i) {
-    const std::array<double, 15> w = gregory_triangle_weights(patch_uvw[i][0], patch_uvw[i][1], patch_uvw[i][2]);
-    target = space.zero();
-    space.add(target, (*l)[i], 1.0);
-    for (std::size_t r = 0; r < 15; ++r)
-      if (!is_free(r) && w[r] != 0.0) space.add(target, rows[r], -w[r]);
-    for (std::size_t a = 0; a < 6; ++a) {
-      const double wa = w[kFree[a]];
-      for (std::size_t k = 0; k < target.size(); ++k) rhs[a][k] += wa * target[k];
-      for (std::size_t b = 0; b < 6; ++b) m[a][b] += wa * w[kFree[b]];
-    }
-  }
-  const std::array<Stencil, 6> x = solve(m, rhs, space);
+  std::vector<Equation<15>> equations;
+  for (std::size_t i = 0; i < uv.size(); ++i)
+    equations.push_back({gregory_triangle_weights(patch_uvw[i][0], patch_uvw[i][1], patch_uvw[i][2]), &(*l)[i]});
+  const NormalEquations<15, 6> ne(equations, kFree, rows);
+  const std::array<Stencil, 6> x = solve(ne.m, ne.rhs, ne.space);
   for (std::size_t a = 0; a < 6; ++a) rows[kFree[a]] = x[a];
   return true;
 }
