@@ -600,12 +600,15 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
   CHECK(std::count(fast.err.begin(), fast.err.end(), '\n') == 1);
   CHECK(json_of(fast.out)["warnings"].dump().find(said) != std::string::npos);
   CHECK(json_of(slurp(stats))["warnings"].dump().find(said) != std::string::npos);
-  // The per-face schemes draw creases of sharpness 1 and more; the one of 0.1 they draw smooth.
+  // acc draws creases of sharpness 1 and more; the one of 0.1 it draws smooth. gregory and bspline fit
+  // the faces at tagged vertices to the limit, which has that crease too: nothing to say.
   for (const char* scheme : {"acc", "gregory", "bspline"}) {
     const auto tess = run_cli("tessellate " + cage + " --scheme " + scheme + " --factor 2 --json --check-watertight");
-    CHECK(json_of(tess.out)["warnings"].dump().find(std::string("--scheme ") + scheme +
-                                                    " draws the cage's 1 creased edge of sharpness below 1 smooth") !=
-          std::string::npos);
+    const bool said_smooth = json_of(tess.out)["warnings"].dump().find(
+                                 std::string("--scheme ") + scheme +
+                                 " draws the cage's 1 creased edge of sharpness below 1 smooth") != std::string::npos;
+    INFO(scheme);
+    CHECK(said_smooth == (std::string(scheme) == "acc"));
   }
   const auto infsharp =
       run_cli("-q render " + data("osd-shapes/catmark_inf_crease0.obj") + " --resolution 32x32 --json -o " + png);

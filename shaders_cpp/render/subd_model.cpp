@@ -63,17 +63,21 @@ struct TagCount {
   float most = 0.0f;
   int total() const { return creased + corners; }
 };
-template <class Pick>
-TagCount count_tags(const Topology& t, Pick&& pick) {
+// `drawn_edge` / `drawn_vertex`: elements whose tags the scheme draws whatever their sharpness.
+template <class Pick, class Edge = bool (*)(int), class Vertex = bool (*)(int)>
+TagCount count_tags(
+    const Topology& t, Pick&& pick, Edge&& drawn_edge = [](int) { return false; },
+    Vertex&& drawn_vertex = [](int) { return false; }) {
   TagCount c;
   for (int e = 0; e < t.edge_count(); ++e)
-    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && pick(s)) {
+    if (const float s = t.edge_sharpness(e); !t.is_boundary_edge(e) && pick(s) && !drawn_edge(e)) {
       ++c.creased;
       if (s < kSharpnessInfinite) ++c.semi_sharp;
       c.most = std::max(c.most, s);
     }
   for (int v = 0; v < t.vertex_count(); ++v)
-    if (const float s = t.corner_sharpness(v); pick(s) && !t.is_isolated(v)) ++c.corners, c.most = std::max(c.most, s);
+    if (const float s = t.corner_sharpness(v); pick(s) && !t.is_isolated(v) && !drawn_vertex(v))
+      ++c.corners, c.most = std::max(c.most, s);
   return c;
 }
 
@@ -89,8 +93,10 @@ std::string tag_phrase(const TagCount& c, bool semi_sharp) {
 }
 
 // One line when `scheme` draws a surface without some of the creases and corners the cage tags, so no
-// approximation goes unsaid: pn and flat draw them all smooth; acc, gregory and bspline those of
-// sharpness below kCutSharpness (subd_patches.cpp cuts and blends the others); adaptive draws semi-sharp
+// approximation goes unsaid: pn and flat draw them all smooth; acc those of sharpness below
+// kCutSharpness (subd_patches.cpp cuts and blends the others); gregory and bspline those below it on
+// n-gons only (their triangles and quads with a tagged corner are fitted to the limit, limit_fit.h,
+// which has every tag); adaptive draws semi-sharp
 // sharpness above its isolation level as that level (Far clamps it to the levels left); exact honours
 // every one.
 std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t, Scheme scheme, int isolation) {
@@ -107,7 +113,21 @@ std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t
   }
   const bool per_face = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
   const float below = per_face ? kCutSharpness : INFINITY;
-  const TagCount c = count_tags(t, [&](float s) { return s > 0.0f && s < below; });
+  // A triangle or quad at the element is fitted under gregory and bspline.
+  const bool fits = scheme == Scheme::gregory || scheme == Scheme::bspline;
+  auto fitted_face = [&](int f) { return f >= 0 && !t.is_hole(f) && (t.face_size(f) == 3 || t.face_size(f) == 4); };
+  auto fitted_edge = [&](int e) {
+    const std::array<int, 2> h = t.edge_half_edges(e);
+    return fits && (fitted_face(t.face(h[0])) || (h[1] >= 0 && fitted_face(t.face(h[1]))));
+  };
+  auto fitted_vertex = [&](int v) {
+    if (!fits) return false;
+    for (const int h : t.ring(v))
+      if (fitted_face(t.face(h))) return true;
+    return false;
+  };
+  const TagCount c = count_tags(
+      t, [&](float s) { return s > 0.0f && s < below; }, fitted_edge, fitted_vertex);
   if (c.total() == 0) return std::nullopt;
   std::string what = tag_phrase(c, !per_face);
   if (per_face) what += " of sharpness below " + float_text(kCutSharpness);
