@@ -445,7 +445,8 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
   return true;
 }
 
-bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows) {
+bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
+                              std::array<bool, 3> smooth_edges) {
   // Interior points (i + 1/3, j + 1/3) / G of the tri domain, i + j < G: 78 of them.
   constexpr int kGrid = 12;
   std::vector<std::array<double, 3>> patch_uvw;
@@ -466,6 +467,46 @@ bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation
   std::vector<Equation<15>> equations;
   for (std::size_t i = 0; i < uv.size(); ++i)
     equations.push_back({gregory_triangle_weights(patch_uvw[i][0], patch_uvw[i][1], patch_uvw[i][2]), &(*l)[i]});
+  // Smooth edges: the derivative across the edge, just inside it, is the limit's (as for quads). Edge k
+  // runs from corner k to k + 1; across it is toward corner k + 2 from corner k, in barycentric weights
+  // (w, u, v) of corners (0, 1, 2). The patch's weights are differentiated numerically (they are
+  // polynomial and rational in double; the step is far below the points' spacing).
+  constexpr int kSamples = 16;
+  constexpr double kInside = 1e-3, kStep = 1e-7;
+  std::array<std::vector<Stencil>, 3> du, dv;
+  for (int k = 0; k < 3; ++k) {
+    if (!smooth_edges[std::size_t(k)]) continue;
+    double dir[3] = {0, 0, 0};  // per patch corner
+    dir[(k + 2) % 3] = 1.0, dir[k] = -1.0;
+    std::vector<std::array<double, 3>> at;
+    std::vector<std::array<double, 2>> euv;
+    for (int i = 0; i < kSamples; ++i) {
+      const double t = (i + 0.5) / kSamples;
+      double b[3] = {0, 0, 0};
+      b[k] = 1.0 - t, b[(k + 1) % 3] = t;
+      for (int c = 0; c < 3; ++c) b[c] += kInside * dir[c];
+      at.push_back({b[0], b[1], b[2]});
+      double f[3] = {0, 0, 0};
+      for (int c = 0; c < 3; ++c) f[(c + rotation) % 3] = b[c];
+      euv.push_back({f[1], f[2]});
+    }
+    if (!limit.at(face, euv, &du[std::size_t(k)], &dv[std::size_t(k)])) return false;
+    // The direction in the face's (u, v): the weights of face corners 1 and 2.
+    double fdir[3] = {0, 0, 0};
+    for (int c = 0; c < 3; ++c) fdir[(c + rotation) % 3] = dir[c];
+    for (int i = 0; i < kSamples; ++i) {
+      const auto& b = at[std::size_t(i)];
+      // gregory_triangle_weights takes (u, v, w) = weights of corners (1, 2, 0).
+      const std::array<double, 15> plus =
+          gregory_triangle_weights(b[1] + kStep * dir[1], b[2] + kStep * dir[2], b[0] + kStep * dir[0]);
+      const std::array<double, 15> minus =
+          gregory_triangle_weights(b[1] - kStep * dir[1], b[2] - kStep * dir[2], b[0] - kStep * dir[0]);
+      Equation<15> q{
+          {}, &du[std::size_t(k)][std::size_t(i)], fdir[1], &dv[std::size_t(k)][std::size_t(i)], fdir[2], kCrossWeight};
+      for (std::size_t r = 0; r < 15; ++r) q.w[r] = (plus[r] - minus[r]) / (2.0 * kStep);
+      equations.push_back(q);
+    }
+  }
   const NormalEquations<15, 6> ne(equations, kFree, rows);
   const std::array<Stencil, 6> x = solve(ne.m, ne.rhs, ne.space);
   for (std::size_t a = 0; a < 6; ++a) rows[kFree[a]] = x[a];

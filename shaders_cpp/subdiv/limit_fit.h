@@ -89,6 +89,7 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
 
 // The same for a 15-point triangular Gregory patch (rows 5k + 3, 5k + 4, k = 0..2; patch corner k is face
 // corner k + rotation), fitted at 78 interior points of the tri domain.
-bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows);
+bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
+                              std::array<bool, 3> smooth_edges = {});
 
 }  // namespace tessera

@@ -628,7 +628,14 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         for (std::size_t k = 0; k < 3; ++k)
           fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 3), 5 * k + 1,
                    5 * ((k + 1) % 3) + 2);
-      if (limit && fit_points[std::size_t(f)]) fit_triangle_face_points(*limit, f, rot, stencils);
+      if (limit && fit_points[std::size_t(f)]) {
+        std::array<bool, 3> smooth{};
+        for (int k = 0; k < 3; ++k) {
+          const int h = t.face_offset(f) + (k + rot) % 3;
+          smooth[std::size_t(k)] = t.twin(h) >= 0 && t.edge_sharpness(t.edge(h)) == 0.0f;
+        }
+        fit_triangle_face_points(*limit, f, rot, stencils, smooth);
+      }
       const auto [averaged, limit_edges] =
           creased ? add_cross_rows(stencils, 3) : std::pair<std::uint8_t, std::uint8_t>{};
       builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
