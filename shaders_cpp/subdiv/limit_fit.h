@@ -87,8 +87,9 @@ std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils&
 bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
                      std::array<bool, 4> smooth_edges = {});
 
-// The same for a 15-point triangular Gregory patch (rows 5k + 3, 5k + 4, k = 0..2; patch corner k is face
-// corner k + rotation), fitted at 78 interior points of the tri domain.
+// The same for a 15-point triangular Gregory patch (rows 5k + 3, 5k + 4, k = 0..2, six points; patch corner
+// k is face corner k + rotation), fitted at 78 interior points of the tri domain and, along its smooth
+// edges (weighted 0.01), to the limit's derivative across the edge just inside it.
 bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation, std::vector<Stencil>& rows,
                               std::array<bool, 3> smooth_edges = {});
 
