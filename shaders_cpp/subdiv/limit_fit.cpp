@@ -24,8 +24,8 @@ LimitStencils::LimitStencils(const Cage& cage) : impl_(std::make_unique<Impl>())
   impl_->refiner = osd_detail::build_osd_refiner(cage, &far_faces);
   osd::Bfr::SurfaceFactory::Options options;
   // Bfr's cache of irregular patch trees stays on: a face's surface is built for its face points and
-  // again for each of its edges (without it catmark_car loads in 0.45 s, with it 0.17 s; its peak memory
-  // while loading is 46 MB against 21 MB before creased faces were fitted).
+  // again for each of its edges and corners (without the cache catmark_car's quads loaded in 0.45 s, with
+  // it 0.17 s; its peak memory while loading is 47 MB against 21 MB before creased faces were fitted).
   options.SetApproxLevelSmooth(LimitSurface::kDefaultApproxLevel)
       .SetApproxLevelSharp(LimitSurface::kDefaultApproxLevel);
   impl_->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*impl_->refiner, options);
@@ -394,29 +394,40 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
       patch_uv.push_back({u, v});
       uv.push_back(face_uv(u, v));
     }
-  const std::optional<std::vector<Stencil>> l = limit.at(face, uv);
-  if (!l) return false;
-  for (std::size_t i = 0; i < uv.size(); ++i)
-    equations.push_back({gregory_weights(patch_uv[i][0], patch_uv[i][1]), &(*l)[i]});
-  // Smooth edges: the cross derivative along the edge, 3 (inner row - boundary row), is the limit's.
-  const double lambda = kCrossWeight;
+  const std::size_t interior = uv.size();
+  // Smooth edges: the cross derivative along the edge, 3 (inner row - boundary row), is the limit's. Their
+  // samples join the interior's in one evaluation (one Bfr surface per face).
   constexpr int kSamples = 16;
-  std::array<std::vector<Stencil>, 4> du, dv;
-  for (int k = 0; k < 4 && lambda > 0.0; ++k) {
+  struct EdgeSamples {
+    int k;
+    double dx, dy;
+    std::size_t first;
+  };
+  std::vector<EdgeSamples> edges;
+  for (int k = 0; k < 4; ++k) {
     if (!smooth_edges[std::size_t(k)]) continue;
-    const int e = (k + rotation) % 4, k1 = (k + 1) % 4;
+    const int e = (k + rotation) % 4;
     const auto& c0 = kCorner[std::size_t(e)];
     const auto& c1 = kCorner[std::size_t((e + 1) % 4)];
     const double dx = c1[0] - c0[0], dy = c1[1] - c0[1];
-    std::vector<std::array<double, 2>> euv;
+    edges.push_back({k, dx, dy, uv.size()});
     for (int i = 0; i < kSamples; ++i) {
       const double t = (i + 0.5) / kSamples;
-      euv.push_back({c0[0] + t * dx, c0[1] + t * dy});
+      uv.push_back({c0[0] + t * dx, c0[1] + t * dy});
     }
-    if (!limit.at(face, euv, &du[std::size_t(k)], &dv[std::size_t(k)])) return false;
+  }
+  std::vector<Stencil> du, dv;
+  const std::optional<std::vector<Stencil>> l =
+      limit.at(face, uv, edges.empty() ? nullptr : &du, edges.empty() ? nullptr : &dv);
+  if (!l) return false;
+  for (std::size_t i = 0; i < interior; ++i)
+    equations.push_back({gregory_weights(patch_uv[i][0], patch_uv[i][1]), &(*l)[i]});
+  for (const EdgeSamples& es : edges) {
+    const int k = es.k, k1 = (k + 1) % 4;
     for (int i = 0; i < kSamples; ++i) {
       const std::array<double, 4> b = bernstein((i + 0.5) / kSamples);
-      Equation<20> q{{}, &du[std::size_t(k)][std::size_t(i)], -dy, &dv[std::size_t(k)][std::size_t(i)], dx, lambda};
+      const std::size_t at = es.first + std::size_t(i);
+      Equation<20> q{{}, &du[at], -es.dy, &dv[at], es.dx, kCrossWeight};
       const std::size_t boundary[4] = {std::size_t(5 * k), std::size_t(5 * k + 1), std::size_t(5 * k1 + 2),
                                        std::size_t(5 * k1)};
       const std::size_t inner[4] = {std::size_t(5 * k + 2), std::size_t(5 * k + 3), std::size_t(5 * k1 + 4),
