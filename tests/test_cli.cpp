@@ -571,6 +571,15 @@ namespace {
 
 nlohmann::json json_of(const std::string& text) { return nlohmann::json::parse(text); }
 
+// `tessera accuracy --json` of OpenSubdiv shape `shape` with `args` (the default scheme without); the
+// run must succeed.
+nlohmann::json shape_accuracy(const std::string& shape, const std::string& args = "") {
+  const auto r = run_cli("-q accuracy " + data("osd-shapes/" + shape + ".obj") + " --json" + args);
+  INFO(shape << args << ": " << r.err);
+  REQUIRE(r.exit_code == 0);
+  return json_of(r.out);
+}
+
 }  // namespace
 
 TEST_CASE("creases: a tag on no edge is left out with a warning naming its line", "[cli][issue34]") {
@@ -711,22 +720,16 @@ TEST_CASE("creases: a semi-sharp crease line takes the mean of the two sides' no
   // width 2^-s away: each side's own normal there was up to 45 degrees off (mean 18.3 degrees on the cube
   // of sharpness-5 creases). Points on the line now take the mean of both patches' normals.
   for (const char* scheme : {"acc", "gregory", "bspline"}) {
-    const auto r = run_cli("-q accuracy " + data("osd-shapes/catmark_cube_creases1.obj") + " --scheme " + scheme +
-                           " --json");
-    REQUIRE(r.exit_code == 0);
+    const auto j = shape_accuracy("catmark_cube_creases1", std::string(" --scheme ") + scheme);
     INFO(scheme);
-    CHECK(json_of(r.out)["mean_normal_degrees"].get<double>() < 3.0);
-    CHECK(json_of(r.out)["max_relative"].get<double>() < 1e-2);
+    CHECK(j["mean_normal_degrees"].get<double>() < 3.0);
+    CHECK(j["max_relative"].get<double>() < 1e-2);
   }
   // A cage mixing triangles and quads across semi-sharp creases (sharpness 3): the mean normal error
   // was 13.6 degrees.
-  const auto pyramid = run_cli("-q accuracy " + data("osd-shapes/catmark_pyramid_creases0.obj") + " --json");
-  REQUIRE(pyramid.exit_code == 0);
-  CHECK(json_of(pyramid.out)["mean_normal_degrees"].get<double>() < 6.0);
+  CHECK(shape_accuracy("catmark_pyramid_creases0")["mean_normal_degrees"].get<double>() < 6.0);
   // Infinitely sharp creases keep one normal per side (the exact limit has two there): unchanged.
-  const auto sharp = run_cli("-q accuracy " + data("osd-shapes/catmark_cube_creases2.obj") + " --json");
-  REQUIRE(sharp.exit_code == 0);
-  CHECK(json_of(sharp.out)["mean_normal_degrees"].get<double>() < 1.0);
+  CHECK(shape_accuracy("catmark_cube_creases2")["mean_normal_degrees"].get<double>() < 1.0);
 }
 
 TEST_CASE("creases: gregory and bspline fit a creased face's patch to the exact limit", "[cli][issue34]") {
@@ -740,25 +743,16 @@ TEST_CASE("creases: gregory and bspline fit a creased face's patch to the exact 
                                                    {"catmark_bishop", 1e-2}};
   for (const char* scheme : {"gregory", "bspline"})
     for (const auto& [shape, bound] : bounds) {
-      const auto r = run_cli("-q accuracy " + data(std::string("osd-shapes/") + shape + ".obj") + " --scheme " +
-                             scheme + " --json");
-      REQUIRE(r.exit_code == 0);
       INFO(shape << " " << scheme);
-      CHECK(json_of(r.out)["max_relative"].get<double>() < bound);
+      CHECK(shape_accuracy(shape, std::string(" --scheme ") + scheme)["max_relative"].get<double>() < bound);
     }
   // On a semi-sharp crease line both sides take the limit's own normal, from its derivative into the
   // neighbour: the helmet's mean normal error was 4.5 degrees.
-  const auto helmet = run_cli("-q accuracy " + data("osd-shapes/catmark_helmet.obj") + " --json");
-  REQUIRE(helmet.exit_code == 0);
-  CHECK(json_of(helmet.out)["mean_normal_degrees"].get<double>() < 1.5);
+  CHECK(shape_accuracy("catmark_helmet")["mean_normal_degrees"].get<double>() < 1.5);
   // Triangles and quads across semi-sharp creases: the pyramid's mean normal error was 5.6 degrees.
-  const auto pyramid = run_cli("-q accuracy " + data("osd-shapes/catmark_pyramid_creases0.obj") + " --json");
-  REQUIRE(pyramid.exit_code == 0);
-  CHECK(json_of(pyramid.out)["mean_normal_degrees"].get<double>() < 3.0);
+  CHECK(shape_accuracy("catmark_pyramid_creases0")["mean_normal_degrees"].get<double>() < 3.0);
   // acc keeps its blend (its tangent patches would move with the points): the same cube as before.
-  const auto acc = run_cli("-q accuracy " + data("osd-shapes/catmark_cube_corner4.obj") + " --scheme acc --json");
-  REQUIRE(acc.exit_code == 0);
-  CHECK(json_of(acc.out)["max_relative"].get<double>() > 5e-2);
+  CHECK(shape_accuracy("catmark_cube_corner4", " --scheme acc")["max_relative"].get<double>() > 5e-2);
 }
 
 TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {
@@ -822,9 +816,7 @@ TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit,
   const std::pair<const char*, double> bounds[] = {
       {"catmark_cube_creases2", 1e-2}, {"catmark_inf_crease0", 3e-2}, {"catmark_torus_creases0", 2e-3}};
   for (const auto& [shape, bound] : bounds) {
-    const auto r = run_cli("-q accuracy " + data(std::string("osd-shapes/") + shape + ".obj") + " --json");
-    REQUIRE(r.exit_code == 0);
     INFO(shape);
-    CHECK(json_of(r.out)["max_relative"].get<double>() < bound);
+    CHECK(shape_accuracy(shape)["max_relative"].get<double>() < bound);
   }
 }

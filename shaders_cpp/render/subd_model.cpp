@@ -113,15 +113,13 @@ std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t
   }
   const bool per_face = scheme == Scheme::acc || scheme == Scheme::gregory || scheme == Scheme::bspline;
   const float below = per_face ? kCutSharpness : INFINITY;
-  // A triangle or quad at the element is fitted under gregory and bspline.
-  const bool fits = scheme == Scheme::gregory || scheme == Scheme::bspline;
-  auto fitted_face = [&](int f) { return f >= 0 && !t.is_hole(f) && (t.face_size(f) == 3 || t.face_size(f) == 4); };
+  // Tags at a face build_patches fits to the limit are drawn.
+  auto fitted_face = [&](int f) { return fits_limit(cage, t, scheme, f); };
   auto fitted_edge = [&](int e) {
     const std::array<int, 2> h = t.edge_half_edges(e);
-    return fits && (fitted_face(t.face(h[0])) || (h[1] >= 0 && fitted_face(t.face(h[1]))));
+    return fitted_face(t.face(h[0])) || (h[1] >= 0 && fitted_face(t.face(h[1])));
   };
   auto fitted_vertex = [&](int v) {
-    if (!fits) return false;
     for (const int h : t.ring(v))
       if (fitted_face(t.face(h))) return true;
     return false;

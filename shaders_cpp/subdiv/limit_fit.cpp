@@ -118,6 +118,22 @@ const std::array<double, 2>& corner_uv(int n, int k) {
   return n == 3 ? kTriCorner[std::size_t(k % 3)] : kCorner[std::size_t(k % 4)];
 }
 
+// Every fit along an edge samples it at the midpoints of 16 equal steps, t = edge_t(i).
+constexpr int kEdgeSamples = 16;
+double edge_t(int i) { return (i + 0.5) / kEdgeSamples; }
+
+// Edge e (corner e -> e + 1) of a face of `n` sides: its samples appended to `uv`, and its direction.
+struct EdgeDirection {
+  double dx, dy;
+};
+EdgeDirection append_edge_samples(int n, int e, std::vector<std::array<double, 2>>& uv) {
+  const auto& c0 = corner_uv(n, e);
+  const auto& c1 = corner_uv(n, e + 1);
+  const double dx = c1[0] - c0[0], dy = c1[1] - c0[1];
+  for (int i = 0; i < kEdgeSamples; ++i) uv.push_back({c0[0] + edge_t(i) * dx, c0[1] + edge_t(i) * dy});
+  return {dx, dy};
+}
+
 std::array<double, 4> bernstein(double t) {
   const double s = 1.0 - t;
   return {s * s * s, 3.0 * t * s * s, 3.0 * s * t * t, t * t * t};
@@ -265,25 +281,16 @@ std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int
 
 std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, int e, const Stencil& pa,
                                           const Stencil& pb) {
-  constexpr int kSamples = 16;
-  const int n = limit.face_size(face);
-  const auto& c0 = corner_uv(n, e);
-  const auto& c1 = corner_uv(n, e + 1);
   std::vector<std::array<double, 2>> uv;
-  std::vector<double> ts;
-  for (int i = 0; i < kSamples; ++i) {
-    const double t = (i + 0.5) / kSamples;
-    ts.push_back(t);
-    uv.push_back({c0[0] + t * (c1[0] - c0[0]), c0[1] + t * (c1[1] - c0[1])});
-  }
+  append_edge_samples(limit.face_size(face), e, uv);
   const std::optional<std::vector<Stencil>> l = limit.at(face, uv);
   if (!l) return std::nullopt;
   DenseSpace space;
   space.include(*l), space.include(pa), space.include(pb);
   std::array<std::array<double, 2>, 2> m{};
   std::array<std::vector<double>, 2> rhs{space.zero(), space.zero()};
-  for (int i = 0; i < kSamples; ++i) {
-    const std::array<double, 4> b = bernstein(ts[std::size_t(i)]);
+  for (int i = 0; i < kEdgeSamples; ++i) {
+    const std::array<double, 4> b = bernstein(edge_t(i));
     // The limit less the fixed corners' share, weighted by each unknown's basis function.
     for (std::size_t a = 0; a < 2; ++a) {
       space.add(rhs[a], (*l)[std::size_t(i)], b[a + 1]);
@@ -298,26 +305,18 @@ std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, 
 }
 
 std::optional<std::array<Stencil, 4>> fit_inward_derivative(const LimitStencils& limit, int face, int e) {
-  constexpr int kSamples = 16;
-  const int n = limit.face_size(face);
-  const auto& c0 = corner_uv(n, e);
-  const auto& c1 = corner_uv(n, e + 1);
-  const double dx = c1[0] - c0[0], dy = c1[1] - c0[1];
   std::vector<std::array<double, 2>> uv;
-  for (int i = 0; i < kSamples; ++i) {
-    const double t = (i + 0.5) / kSamples;
-    uv.push_back({c0[0] + t * dx, c0[1] + t * dy});
-  }
+  const EdgeDirection d = append_edge_samples(limit.face_size(face), e, uv);
   std::vector<Stencil> du, dv;
   if (!limit.at(face, uv, &du, &dv)) return std::nullopt;
   // Inward: the edge's direction turned a quarter counter-clockwise.
-  const double ix = -dy, iy = dx;
+  const double ix = -d.dy, iy = d.dx;
   DenseSpace space;
   space.include(du), space.include(dv);
   std::array<std::array<double, 4>, 4> m{};
   std::array<std::vector<double>, 4> rhs{space.zero(), space.zero(), space.zero(), space.zero()};
-  for (int i = 0; i < kSamples; ++i) {
-    const std::array<double, 4> b = bernstein((i + 0.5) / kSamples);
+  for (int i = 0; i < kEdgeSamples; ++i) {
+    const std::array<double, 4> b = bernstein(edge_t(i));
     for (std::size_t a = 0; a < 4; ++a) {
       space.add(rhs[a], du[std::size_t(i)], ix * b[a]);
       space.add(rhs[a], dv[std::size_t(i)], iy * b[a]);
@@ -397,24 +396,16 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
   const std::size_t interior = uv.size();
   // Smooth edges: the cross derivative along the edge, 3 (inner row - boundary row), is the limit's. Their
   // samples join the interior's in one evaluation (one Bfr surface per face).
-  constexpr int kSamples = 16;
   struct EdgeSamples {
     int k;
-    double dx, dy;
+    EdgeDirection d;
     std::size_t first;
   };
   std::vector<EdgeSamples> edges;
   for (int k = 0; k < 4; ++k) {
     if (!smooth_edges[std::size_t(k)]) continue;
-    const int e = (k + rotation) % 4;
-    const auto& c0 = kCorner[std::size_t(e)];
-    const auto& c1 = kCorner[std::size_t((e + 1) % 4)];
-    const double dx = c1[0] - c0[0], dy = c1[1] - c0[1];
-    edges.push_back({k, dx, dy, uv.size()});
-    for (int i = 0; i < kSamples; ++i) {
-      const double t = (i + 0.5) / kSamples;
-      uv.push_back({c0[0] + t * dx, c0[1] + t * dy});
-    }
+    const std::size_t first = uv.size();
+    edges.push_back({k, append_edge_samples(4, (k + rotation) % 4, uv), first});
   }
   std::vector<Stencil> du, dv;
   const std::optional<std::vector<Stencil>> l =
@@ -424,10 +415,10 @@ bool fit_face_points(const LimitStencils& limit, int face, int rotation, std::ve
     equations.push_back({gregory_weights(patch_uv[i][0], patch_uv[i][1]), &(*l)[i]});
   for (const EdgeSamples& es : edges) {
     const int k = es.k, k1 = (k + 1) % 4;
-    for (int i = 0; i < kSamples; ++i) {
-      const std::array<double, 4> b = bernstein((i + 0.5) / kSamples);
+    for (int i = 0; i < kEdgeSamples; ++i) {
+      const std::array<double, 4> b = bernstein(edge_t(i));
       const std::size_t at = es.first + std::size_t(i);
-      Equation<20> q{{}, &du[at], -es.dy, &dv[at], es.dx, kCrossWeight};
+      Equation<20> q{{}, &du[at], -es.d.dy, &dv[at], es.d.dx, kCrossWeight};
       const std::size_t boundary[4] = {std::size_t(5 * k), std::size_t(5 * k + 1), std::size_t(5 * k1 + 2),
                                        std::size_t(5 * k1)};
       const std::size_t inner[4] = {std::size_t(5 * k + 2), std::size_t(5 * k + 3), std::size_t(5 * k1 + 4),
@@ -482,7 +473,6 @@ bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation
   // runs from corner k to k + 1; across it is toward corner k + 2 from corner k, in barycentric weights
   // (w, u, v) of corners (0, 1, 2). The patch's weights are differentiated numerically (they are
   // polynomial and rational in double; the step is far below the points' spacing).
-  constexpr int kSamples = 16;
   constexpr double kInside = 1e-3, kStep = 1e-7;
   std::array<std::vector<Stencil>, 3> du, dv;
   for (int k = 0; k < 3; ++k) {
@@ -491,8 +481,8 @@ bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation
     dir[(k + 2) % 3] = 1.0, dir[k] = -1.0;
     std::vector<std::array<double, 3>> at;
     std::vector<std::array<double, 2>> euv;
-    for (int i = 0; i < kSamples; ++i) {
-      const double t = (i + 0.5) / kSamples;
+    for (int i = 0; i < kEdgeSamples; ++i) {
+      const double t = edge_t(i);
       double b[3] = {0, 0, 0};
       b[k] = 1.0 - t, b[(k + 1) % 3] = t;
       for (int c = 0; c < 3; ++c) b[c] += kInside * dir[c];
@@ -505,7 +495,7 @@ bool fit_triangle_face_points(const LimitStencils& limit, int face, int rotation
     // The direction in the face's (u, v): the weights of face corners 1 and 2.
     double fdir[3] = {0, 0, 0};
     for (int c = 0; c < 3; ++c) fdir[(c + rotation) % 3] = dir[c];
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kEdgeSamples; ++i) {
       const auto& b = at[std::size_t(i)];
       // gregory_triangle_weights takes (u, v, w) = weights of corners (1, 2, 0).
       const std::array<double, 15> plus =

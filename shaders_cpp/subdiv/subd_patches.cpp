@@ -355,6 +355,14 @@ std::vector<int> gather_ring(std::span<const CornerRing> rings) {
 
 }  // namespace
 
+bool fits_limit(const Cage& cage, const Topology& t, Scheme scheme, int face) {
+  const int m = t.face_size(face);
+  if ((scheme != Scheme::gregory && scheme != Scheme::bspline) || t.is_hole(face) || (m != 3 && m != 4)) return false;
+  for (int k = 0; k < m; ++k)
+    if (t.has_sharpness_at(cage.face_vertex(face, k))) return true;
+  return false;
+}
+
 SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   SubdPatches out;
   out.scheme = scheme;
@@ -377,18 +385,14 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   std::unique_ptr<LimitStencils> limit;
   std::vector<char> fitted(std::size_t(t.face_count()), 0);
   std::map<std::int64_t, int> fitted_edge_owner;  // edge key -> the lowest fitted face on it
-  if ((scheme == Scheme::gregory || scheme == Scheme::bspline)) {
-    for (int f = 0; f < t.face_count(); ++f) {
-      const int m = t.face_size(f);
-      if (t.is_hole(f) || (m != 3 && m != 4)) continue;
-      for (int k = 0; k < m; ++k)
-        if (t.has_sharpness_at(cage.face_vertex(f, k))) fitted[std::size_t(f)] = 1;
-      if (!fitted[std::size_t(f)]) continue;
-      for (int k = 0; k < m; ++k)
-        fitted_edge_owner.try_emplace(cage_edge_key(cage.face_vertex(f, k), cage.face_vertex(f, (k + 1) % m)), f);
-    }
-    if (!fitted_edge_owner.empty()) limit = std::make_unique<LimitStencils>(cage);
+  for (int f = 0; f < t.face_count(); ++f) {
+    if (!fits_limit(cage, t, scheme, f)) continue;
+    fitted[std::size_t(f)] = 1;
+    const int m = t.face_size(f);
+    for (int k = 0; k < m; ++k)
+      fitted_edge_owner.try_emplace(cage_edge_key(cage.face_vertex(f, k), cage.face_vertex(f, (k + 1) % m)), f);
   }
+  if (!fitted_edge_owner.empty()) limit = std::make_unique<LimitStencils>(cage);
   // Faces whose face points are fitted: the fitted faces and every triangle or quad beside one, whose
   // fitted edge would otherwise meet face points the masks built for their own edge points (the smooth
   // faces of catmark_cube_corner2 were 5.8 degrees off on their edges, against the smooth cube's 3.0).
@@ -482,6 +486,24 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     const int rot = rotation[std::size_t(f)];
     // Patch corner k is face corner k + rot.
     auto corner = [&](int k) { return cage.face_vertex(f, (((k + rot) % n) + n) % n); };
+    // The fitted corner and edge points of a triangle's or quad's rows (limit_fit.h), and which of its
+    // patch edges are smooth (interior, untagged): those fit the limit's cross derivative too.
+    auto fit_boundary = [&](std::vector<Stencil>& stencils) {
+      if (!limit) return;
+      const std::size_t m = std::size_t(n);
+      for (std::size_t k = 0; k < m; ++k) fit_corner(stencils, corner(int(k)), 5 * k);
+      for (std::size_t k = 0; k < m; ++k)
+        fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % m), 5 * k + 1,
+                 5 * ((k + 1) % m) + 2);
+    };
+    auto smooth_edges = [&]<std::size_t N>() {
+      std::array<bool, N> smooth{};
+      for (std::size_t k = 0; k < N; ++k) {
+        const int h = t.face_offset(f) + int((k + std::size_t(rot)) % N);
+        smooth[k] = t.twin(h) >= 0 && t.edge_sharpness(t.edge(h)) == 0.0f;
+      }
+      return smooth;
+    };
     // The face's corners from patch corner `first` on: the IA patch of a patch made of the face alone.
     auto corners_from = [&](int first) {
       std::vector<int> ring;
@@ -602,6 +624,15 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       if (mask != 0) stencils.insert(stencils.end(), extra.begin(), extra.end());
       return std::pair{mask, limit_mask};
     };
+    // Adds a triangle's or quad's patch with its crease edges' cross rows (none on a smooth face).
+    auto add_creased = [&](PatchGroup& group, PatchKind kind, const std::vector<int>& ring,
+                           std::vector<Stencil>& stencils) {
+      const auto [averaged, limit_edges] =
+          creased ? add_cross_rows(stencils, n) : std::pair<std::uint8_t, std::uint8_t>{};
+      builder.add(group, f, 0, kind, ring, stencils, edges, rot, n);
+      group.patches.back().averaged_edges = averaged;
+      group.patches.back().limit_edges = limit_edges;
+    };
     auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
       if (!creased) return;
       for (std::size_t k = 0; k < N; ++k) {
@@ -622,25 +653,10 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);
         exact_corners(stencils, smooth, 3);
       }
-      if (limit)
-        for (std::size_t k = 0; k < 3; ++k) fit_corner(stencils, corner(int(k)), 5 * k);
-      if (limit)
-        for (std::size_t k = 0; k < 3; ++k)
-          fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 3), 5 * k + 1,
-                   5 * ((k + 1) % 3) + 2);
-      if (limit && fit_points[std::size_t(f)]) {
-        std::array<bool, 3> smooth{};
-        for (int k = 0; k < 3; ++k) {
-          const int h = t.face_offset(f) + (k + rot) % 3;
-          smooth[std::size_t(k)] = t.twin(h) >= 0 && t.edge_sharpness(t.edge(h)) == 0.0f;
-        }
-        fit_triangle_face_points(*limit, f, rot, stencils, smooth);
-      }
-      const auto [averaged, limit_edges] =
-          creased ? add_cross_rows(stencils, 3) : std::pair<std::uint8_t, std::uint8_t>{};
-      builder.add(out.tris, f, 0, PatchKind::gregory_triangle, gather_ring(corners), stencils, edges, rot, 3);
-      out.tris.patches.back().averaged_edges = averaged;
-      out.tris.patches.back().limit_edges = limit_edges;
+      fit_boundary(stencils);
+      if (limit && fit_points[std::size_t(f)])
+        fit_triangle_face_points(*limit, f, rot, stencils, smooth_edges.operator()<3>());
+      add_creased(out.tris, PatchKind::gregory_triangle, gather_ring(corners), stencils);
       continue;
     }
     std::array<CornerRing, 4> corners;
@@ -666,11 +682,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         for (int k = 0; k < 4; ++k)
           if (const std::optional<Stencil>& p = semi_sharp[std::size_t(corner(k))]) stencils[kCornerRow[k]] = *p;
       }
-      const auto [averaged, limit_edges] =
-          creased ? add_cross_rows(stencils, 4) : std::pair<std::uint8_t, std::uint8_t>{};
-      builder.add(out.quads, f, 0, PatchKind::acc, ring, stencils, edges, rot, 4);
-      out.quads.patches.back().averaged_edges = averaged;
-      out.quads.patches.back().limit_edges = limit_edges;
+      add_creased(out.quads, PatchKind::acc, ring, stencils);
     } else {
       if (scheme == Scheme::bspline && !is_regular_face(t, corners)) ++out.fallback_faces;
       std::vector<Stencil> stencils = gregory_quad_stencils(corners);
@@ -679,25 +691,9 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         stencils = blend_by_corner(stencils, gregory_quad_stencils(cut), w, false);
         exact_corners(stencils, smooth, 4);
       }
-      if (limit) {
-        for (std::size_t k = 0; k < 4; ++k) fit_corner(stencils, corner(int(k)), 5 * k);
-        for (std::size_t k = 0; k < 4; ++k)
-          fit_edge(stencils, corner(int(k)), corner(int(k) + 1), 5 * k, 5 * ((k + 1) % 4), 5 * k + 1,
-                   5 * ((k + 1) % 4) + 2);
-        if (fit_points[std::size_t(f)]) {
-          std::array<bool, 4> smooth{};
-          for (int k = 0; k < 4; ++k) {
-            const int h = t.face_offset(f) + (k + rot) % 4;
-            smooth[std::size_t(k)] = t.twin(h) >= 0 && t.edge_sharpness(t.edge(h)) == 0.0f;
-          }
-          fit_face_points(*limit, f, rot, stencils, smooth);
-        }
-      }
-      const auto [averaged, limit_edges] =
-          creased ? add_cross_rows(stencils, 4) : std::pair<std::uint8_t, std::uint8_t>{};
-      builder.add(out.quads, f, 0, PatchKind::gregory, ring, stencils, edges, rot, 4);
-      out.quads.patches.back().averaged_edges = averaged;
-      out.quads.patches.back().limit_edges = limit_edges;
+      fit_boundary(stencils);
+      if (limit && fit_points[std::size_t(f)]) fit_face_points(*limit, f, rot, stencils, smooth_edges.operator()<4>());
+      add_creased(out.quads, PatchKind::gregory, ring, stencils);
     }
   }
   builder.finish();
