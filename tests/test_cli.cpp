@@ -714,6 +714,31 @@ TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by ev
   CHECK(run_cli("make-cage sphere --pole-valence 2 -o " + cage).exit_code == 2);
 }
 
+TEST_CASE("make-cage sphere --polar: polar patches smooth a triangle fan's pole and stay nearer the limit",
+          "[cli][issue34]") {
+  // Measured with the Gregory triangles (before polar patches), factor 29: valence 6 largest curvature
+  // 10.1 per diagonal, mean curvature error 0.227, rms distance 1.22e-3; valence 8 8.57, 0.236,
+  // 1.90e-3. Polar: 6.8, 0.142, 1.01e-3 and 6.7, 0.176, 1.64e-3 (the limit's own: 7.4 and 8.1).
+  const fs::path dir = test::cli_temp_dir();
+  for (const auto& [n, curvature, error, rms] : {std::tuple{6, 8.0, 0.19, 1.15e-3}, std::tuple{8, 7.5, 0.2, 1.8e-3}}) {
+    const std::string cage = (dir / ("polar" + std::to_string(n) + ".obj")).string();
+    REQUIRE(run_cli("make-cage sphere --polar --pole-valence " + std::to_string(n) + " -o " + cage).exit_code == 0);
+    const auto a = run_cli("analyze " + cage + " --json");
+    REQUIRE(a.exit_code == 0);
+    CHECK(json_of(a.out)["max_valence"] == n);
+    const auto r = run_cli("-q accuracy " + cage + " --factor 29 --json");
+    REQUIRE(r.exit_code == 0);
+    const auto j = json_of(r.out);
+    INFO(n << ": " << r.out);
+    CHECK(j["max_curvature_scheme"].get<double>() < curvature);
+    CHECK(j["mean_curvature_error"].get<double>() < error);
+    CHECK(j["rms_relative"].get<double>() < rms);
+    const auto w = run_cli("-q tessellate " + cage + " --lod screen --check-watertight");
+    INFO(w.err);
+    CHECK(w.exit_code == 0);
+  }
+}
+
 TEST_CASE("creases: a semi-sharp crease line takes the mean of the two sides' normals in acc, gregory, bspline",
           "[cli][issue34]") {
   // The exact limit of a crease of finite sharpness is smooth on the line itself and creased a band of

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -911,4 +912,100 @@ TEST_CASE("limit fit: on regular faces the fitted Gregory points are the B-splin
       CHECK(same(e->near_a, masks[1]) < 1e-9);
       CHECK(same(e->near_b, masks[7]) < 1e-9);
     }
+}
+
+TEST_CASE("polar triangles: a bicubic with a collapsed row, its edges the Gregory triangle's bits", "[subd][issue34]") {
+  // Random points in the 15 slots: on the three edges the polar patch is the Gregory triangle's cubic,
+  // bit for bit (what its neighbours compute); inside it is the bicubic b(s, t), s = v / (u + v),
+  // t = u + v, and its derivatives the chain rule's (checked against central differences).
+  std::array<glm::vec3, 15> g;
+  std::uint32_t seed = 12345u;
+  auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return float(seed >> 8) / float(1u << 24) - 0.5f;
+  };
+  for (glm::vec3& p : g) p = {next(), next(), next()};
+  for (int i = 0; i <= 16; ++i) {
+    const float t = float(i) / 16.0f;
+    for (const auto& [u, v] : {std::pair{t, 0.0f}, std::pair{1.0f - t, t}, std::pair{0.0f, t}}) {
+      const float w = (1.0f - u) - v;
+      CHECK(polar_triangle(g, u, v, w).position == gregory_triangle(g, u, v, w).position);
+    }
+  }
+  // The pole: every s gives the pole's point.
+  CHECK(polar_triangle(g, 0.0f, 0.0f, 1.0f).position == g[0]);
+  const std::array<glm::vec3, 16> b = {g[0], g[0], g[0], g[0],  g[1], g[3], g[4],  g[2],
+                                       g[7], g[8], g[9], g[11], g[5], g[6], g[12], g[10]};
+  for (int i = 1; i < 8; ++i)
+    for (int j = 1; i + j < 8; ++j) {
+      const float u = float(i) / 8.0f, v = float(j) / 8.0f, w = (1.0f - u) - v;
+      const PatchPoint p = polar_triangle(g, u, v, w);
+      CHECK(glm::length(p.position - bezier_patch(b, v / (u + v), u + v).position) < 1e-6f);
+      constexpr float h = 1.0f / 1024.0f;
+      const glm::vec3 du =
+          (polar_triangle(g, u + h, v, w - h).position - polar_triangle(g, u - h, v, w + h).position) / (2.0f * h);
+      const glm::vec3 dv =
+          (polar_triangle(g, u, v + h, w - h).position - polar_triangle(g, u, v - h, w + h).position) / (2.0f * h);
+      CHECK(glm::length(p.du - du) < 2e-3f * (1.0f + glm::length(du)));
+      CHECK(glm::length(p.dv - dv) < 2e-3f * (1.0f + glm::length(dv)));
+    }
+}
+
+TEST_CASE("polar configurations: gregory and bspline draw their triangles as polar patches, watertight to the bit",
+          "[subd][issue34]") {
+  // A latitude-longitude sphere: valence 5 stays Gregory triangles (kPolarMinValence), 8 and 32 (a
+  // 1-ring of over 32 points: precomputed) become polar; an all-quad pole has no triangles.
+  auto polar_count = [](const SubdModel& m) {
+    int polar = 0;
+    for (const SubdPatch& p : m.patches.tris.patches) polar += p.kind == PatchKind::polar_triangle;
+    return polar;
+  };
+  CHECK(polar_count(make_subd_model(sphere_cage(5, 6, 1.0f, true), Scheme::gregory)) == 0);
+  CHECK(polar_count(make_subd_model(sphere_cage(8, 6, 1.0f), Scheme::gregory)) == 0);
+  CHECK(polar_count(load_subd_model(data("osd-shapes/catmark_pole8.obj"), Scheme::gregory)) == 8);
+  // A tag at the pole or on a spoke keeps the Gregory triangles (the creased construction).
+  Cage tagged = sphere_cage(8, 6, 1.0f, true);
+  tagged.tags.creases.push_back({tagged.vertex_count() - 2, 0, 2.0f});  // a spoke of the south pole
+  CHECK(polar_count(make_subd_model(tagged, Scheme::gregory)) == 8);    // the north pole's
+  for (const int n : {8, 32})
+    for (Scheme s : {Scheme::gregory, Scheme::bspline}) {
+      const SubdModel m = make_subd_model(sphere_cage(n, 6, 1.0f, true), s);
+      INFO(n << " " << to_string(s));
+      CHECK(polar_count(m) == 2 * n);
+      CHECK(m.patches.precomputed.empty() == (n < 32));
+      for (const VaryingFactors c : kVaryingFactors) {
+        INFO(ts::to_string(c.partitioning));
+        check_watertight(weld(m, c.factor, c.vary, c.partitioning));
+      }
+    }
+  // Posed by a morph target: the polar rows follow the pose, as every stencil does.
+  SubdModel m = make_subd_model(sphere_cage(12, 6, 1.0f, true), Scheme::gregory);
+  m.rig =
+      morph_rig(m.cage, [](const glm::vec3& p) { return glm::vec3(0.3f * p.y * p.y, 0.1f * p.x, 0.2f * p.z * p.x); });
+  RigPose pose;
+  pose.instance_matrices = {glm::mat4(1.0f)};
+  pose.joint_matrices.resize(1);
+  pose.target_weights = {0.8f};
+  set_pose(m, pose);
+  for (const VaryingFactors c : kVaryingFactors) check_watertight(weld(m, c.factor, c.vary, c.partitioning));
+  // One tangent plane at the pole: every sector's normal a step from it (the domain shader's normal at
+  // the pole itself) within a degree of the sphere's axis.
+  const SubdModel sphere = make_subd_model(sphere_cage(16, 6, 1.0f, true), Scheme::gregory);
+  Device device(DeviceOptions{});
+  SubdFactors f;
+  f.factor = 4;
+  int poles = 0;
+  stream_subd(device, sphere, f, ts::Partitioning::integer,
+              [&](const PatchOutput<SurfaceSample>& out, const PatchGroup& g) {
+                if (g.patches[out.patch_id].kind != PatchKind::polar_triangle) return;
+                for (std::size_t i = 0; i < out.points.size(); ++i) {
+                  const SurfaceSample& s = out.points[i];
+                  if (out.domain[i].u != 0.0f || out.domain[i].v != 0.0f) continue;
+                  INFO(s.position.x << " " << s.position.y << " " << s.position.z);
+                  CHECK(std::abs(s.normal.y) > std::cos(std::numbers::pi_v<float> / 180.0f));
+                  CHECK(s.normal.y * s.position.y > 0.0f);  // outward
+                  ++poles;
+                }
+              });
+  CHECK(poles == 2 * 16);
 }

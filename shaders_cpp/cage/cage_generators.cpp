@@ -49,14 +49,16 @@ Cage torus_cage(int around, int across, float major, float minor) {
   return c;
 }
 
-Cage sphere_cage(int pole_valence, int across, float radius) {
+Cage sphere_cage(int pole_valence, int across, float radius, bool triangle_poles) {
   if (pole_valence < 3 || pole_valence > 2048 || across < 2 || across > 4096)
     throw std::invalid_argument("sphere cage: pole valence " + std::to_string(pole_valence) + " and " +
                                 std::to_string(across) + " bands are outside 3..2048 and 2..4096");
   if (!(radius > 0.0f && std::isfinite(radius))) throw std::invalid_argument("sphere cage: radius must be > 0");
   Cage c;
-  c.name = "sphere, poles of valence " + std::to_string(pole_valence);
-  const int around = 2 * pole_valence, rings = across - 1;  // ring vertices per latitude, latitudes
+  c.name =
+      "sphere, " + std::string(triangle_poles ? "polar " : "") + "poles of valence " + std::to_string(pole_valence);
+  const int around = triangle_poles ? pole_valence : 2 * pole_valence,
+            rings = across - 1;  // ring vertices per latitude, latitudes
   const double pi = std::numbers::pi;
   // Vertices: the rings from south to north, then the south and north poles.
   for (int j = 1; j <= rings; ++j) {
@@ -74,8 +76,9 @@ Cage sphere_cage(int pole_valence, int across, float radius) {
   for (int j = 1; j <= rings; ++j)
     for (int i = 0; i <= around; ++i) c.uvs.push_back({float(i) / float(around), float(j) / float(across)});
   const int pole_uvs = int(c.uvs.size());
-  for (int k = 0; k < pole_valence; ++k) c.uvs.push_back({(2.0f * float(k) + 1.0f) / float(around), 0.0f});
-  for (int k = 0; k < pole_valence; ++k) c.uvs.push_back({(2.0f * float(k) + 1.0f) / float(around), 1.0f});
+  const float span = triangle_poles ? 1.0f : 2.0f;  // longitude steps per pole face
+  for (int k = 0; k < pole_valence; ++k) c.uvs.push_back({(span * float(k) + 0.5f * span) / float(around), 0.0f});
+  for (int k = 0; k < pole_valence; ++k) c.uvs.push_back({(span * float(k) + 0.5f * span) / float(around), 1.0f});
   auto vertex = [&](int i, int j) { return (j - 1) * around + i % around; };
   auto uv = [&](int i, int j) { return (j - 1) * (around + 1) + i; };
   auto face = [&](std::initializer_list<std::pair<int, int>> corners) {  // (vertex, uv)
@@ -94,7 +97,13 @@ Cage sphere_cage(int pole_valence, int across, float radius) {
             {vertex(i + 1, j), uv(i + 1, j)},
             {vertex(i + 1, j + 1), uv(i + 1, j + 1)},
             {vertex(i, j + 1), uv(i, j + 1)}});
-  for (int k = 0; k < pole_valence; ++k) {
+  for (int k = 0; k < pole_valence && triangle_poles; ++k) {
+    face({{south, pole_uvs + k}, {vertex(k + 1, 1), uv(k + 1, 1)}, {vertex(k, 1), uv(k, 1)}});
+    face({{north, pole_uvs + pole_valence + k},
+          {vertex(k, rings), uv(k, rings)},
+          {vertex(k + 1, rings), uv(k + 1, rings)}});
+  }
+  for (int k = 0; k < pole_valence && !triangle_poles; ++k) {
     const int i = 2 * k;
     face({{south, pole_uvs + k},
           {vertex(i + 2, 1), uv(i + 2, 1)},

@@ -20,6 +20,8 @@ Cage torus_cage(int around, int across, float major, float minor);
 // pole_valence quads (pole, ring vertices 2k, 2k+1, 2k+2) close the surface, all-quad. The cage for
 // measuring the ripples a scheme leaves around a high-valence vertex. UVs: u around, v from the south
 // pole (0) to the north (1), the poles' corners at the middle of their quad's u span.
-Cage sphere_cage(int pole_valence, int across, float radius);
+// `triangle_poles`: a latitude-longitude sphere instead, pole_valence vertices per latitude and a fan of
+// pole_valence triangles at each pole (a polar configuration, polar_patch.h).
+Cage sphere_cage(int pole_valence, int across, float radius, bool triangle_poles = false);
 
 }  // namespace tessera

@@ -17,6 +17,7 @@ const char* to_string(PatchType t) {
     case PatchType::boundary: return "boundary";
     case PatchType::triangle: return "triangle";
     case PatchType::ngon_fan: return "n-gon fan";
+    case PatchType::polar: return "polar triangle";
   }
   return "?";
 }
@@ -38,6 +39,7 @@ namespace detail {
 
 PatchType patch_type(const SubdPatch& p, const Topology& t, const TopologyCombinations& combos, bool tri) {
   if (t.face_size(p.face) > 4) return PatchType::ngon_fan;
+  if (p.kind == PatchKind::polar_triangle) return PatchType::polar;
   if (tri) return PatchType::triangle;
   const int c =
       std::size_t(p.face) < combos.face_combination.size() ? combos.face_combination[std::size_t(p.face)] : -1;

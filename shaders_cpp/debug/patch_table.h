@@ -25,8 +25,8 @@
 namespace tessera {
 
 // What kind of surface a patch is, as the patch-type view colours it.
-enum class PatchType : std::uint8_t { regular, regular_boundary, irregular, boundary, triangle, ngon_fan };
-inline constexpr int kPatchTypeCount = 6;
+enum class PatchType : std::uint8_t { regular, regular_boundary, irregular, boundary, triangle, ngon_fan, polar };
+inline constexpr int kPatchTypeCount = 7;
 const char* to_string(PatchType t);
 
 struct PatchInfo {

@@ -221,6 +221,7 @@ struct SubdHS {
       case PatchKind::acc: return 16;
       case PatchKind::gregory: return 20;
       case PatchKind::gregory_triangle: return 15;
+      case PatchKind::polar_triangle: return 15;  // the bicubic's 13 points and two copies of the pole
       case PatchKind::pn_triangle: return 10;
       case PatchKind::pn_quad: return 16;
       case PatchKind::exact: return 0;
@@ -366,6 +367,12 @@ struct SubdDS {
           std::array<glm::vec3, 15> g;
           for (int i = 0; i < 15; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
           p = gregory_triangle(g, at.u, at.v, at.w);
+          break;
+        }
+        case PatchKind::polar_triangle: {
+          std::array<glm::vec3, 15> g;
+          for (int i = 0; i < 15; ++i) g[std::size_t(i)] = cp[std::size_t(i)].p;
+          p = polar_triangle(g, at.u, at.v, at.w);
           break;
         }
         case PatchKind::pn_triangle: {

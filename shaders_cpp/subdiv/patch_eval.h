@@ -1,5 +1,6 @@
 // Evaluation of the patches the schemes build: bicubic Bezier (with Loop & Schaefer's tangent
-// patches), 20-point Gregory, 15-point triangular Gregory (quartic), Bezier triangles (PN triangles),
+// patches), 20-point Gregory, 15-point triangular Gregory (quartic), polar triangles (a bicubic with a
+// collapsed row), Bezier triangles (PN triangles),
 // bilinear and linear; position and the two partial derivatives, and PN's quadratic normal fields.
 //
 // Watertight by construction: a point on a patch edge (u or v exactly 0 or 1) is evaluated from that
@@ -270,6 +271,43 @@ inline PatchPoint gregory_triangle(std::span<const glm::vec3, 15> g, float u, fl
   at(2, 1) = blend(Fp(1), v, Fm(1), w);
   at(1, 2) = blend(Fp(2), w, Fm(2), u);
   PatchPoint p = bezier_triangle<4>(b, u, v, w);
+  switch (tri_edge(u, v, w)) {
+    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
+    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;
+    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0)); break;
+    case TriEdge::none: break;
+  }
+  return p;
+}
+
+// The polar triangle (polar_patch.h): a bicubic Bezier patch b(s, t), s around the pole (corner 0) from
+// corner 1 to corner 2 and t from the pole out to the edge w = 0, whose row t = 0 is the pole itself, on
+// the tri domain through s = v / (u + v), t = u + v. Its 13 distinct points sit in the Gregory
+// triangle's 15 slots, so that its three boundary cubics are the Gregory triangle's edges (the same edge
+// rule, the same bits as a neighbour's):
+//   row t = 0:    P0 (four times)         row t = 1/3:  E0+, F0+, F0-, E0-
+//   row t = 2/3:  E1-, F1+, F1-, E2+       row t = 1:    P1, E1+, E2-, P2
+// (F2+ and F2- are unused). d/du and d/dv by the chain rule; at the pole itself, where the map is
+// singular, both are the radial derivative toward corner 1 (parallel: the domain shader takes the
+// normal a step inside, as at any corner whose derivatives do not span the tangent plane).
+inline PatchPoint polar_triangle(std::span<const glm::vec3, 15> g, float u, float v, float w) {
+  const auto [P, Ep, Em, Fp, Fm] = detail::gregory_points(g);
+  const std::array<glm::vec3, 16> b = {P(0),  P(0),  P(0),  P(0),  Ep(0), Fp(0), Fm(0), Em(0),
+                                       Em(1), Fp(1), Fm(1), Ep(2), P(1),  Ep(1), Em(2), P(2)};
+  PatchPoint p;
+  const float t = u + v;
+  if (t == 0.0f) {
+    p.position = P(0);
+    p.du = p.dv = 3.0f * (Ep(0) - P(0));
+    return p;
+  }
+  const float s = v / t;
+  const PatchPoint q = bezier_patch(b, s, t);
+  // ds/du = -v / t^2, ds/dv = u / t^2, dt/du = dt/dv = 1.
+  const float inv = 1.0f / (t * t);
+  p.position = q.position;
+  p.du = q.dv - (v * inv) * q.du;
+  p.dv = q.dv + (u * inv) * q.du;
   switch (tri_edge(u, v, w)) {
     case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
     case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;

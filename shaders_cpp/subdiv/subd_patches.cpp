@@ -14,6 +14,7 @@
 #include "shaders_cpp/cage/corner_ring.h"
 #include "shaders_cpp/subdiv/face_centre_limit.h"
 #include "shaders_cpp/subdiv/limit_fit.h"
+#include "shaders_cpp/subdiv/polar_patch.h"
 #include "shaders_cpp/subdiv/semi_sharp_limit.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/cage/topology_combinations.h"
@@ -40,6 +41,7 @@ const char* to_string(PatchKind k) {
     case PatchKind::acc: return "acc";
     case PatchKind::gregory: return "gregory";
     case PatchKind::gregory_triangle: return "gregory_triangle";
+    case PatchKind::polar_triangle: return "polar_triangle";
     case PatchKind::pn_triangle: return "pn_triangle";
     case PatchKind::pn_quad: return "pn_quad";
     case PatchKind::exact: return "exact";
@@ -378,6 +380,9 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   // puts the same bits at its corner.
   std::map<int, std::vector<Stencil>> neighbour_rows;  // neighbour_cross_rows' faces, built once each
   std::vector<std::optional<Stencil>> semi_sharp(static_cast<std::size_t>(stencil_scheme ? t.vertex_count() : 0));
+  // The triangles of polar configurations (polar_patch.h), gregory's and bspline's: per face, its pole.
+  const std::vector<int> pole =
+      scheme == Scheme::gregory || scheme == Scheme::bspline ? polar_poles(t) : std::vector<int>{};
   for (std::size_t v = 0; v < semi_sharp.size(); ++v)
     if (t.has_sharpness_at(int(v))) semi_sharp[v] = semi_sharp_limit_position(cage, t, int(v));
   // Fitted faces (limit_fit.h): gregory's and bspline's quads with a tagged corner, and the edges they
@@ -483,7 +488,9 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       continue;
     }
     const int n = t.face_size(f);
-    const int rot = rotation[std::size_t(f)];
+    const int polar = pole.empty() ? -1 : pole[std::size_t(f)];
+    // A polar triangle starts at its pole, the corner its patch collapses to.
+    const int rot = polar >= 0 ? t.corner_of(f, polar) : rotation[std::size_t(f)];
     // Patch corner k is face corner k + rot.
     auto corner = [&](int k) { return cage.face_vertex(f, (((k + rot) % n) + n) % n); };
     // The fitted corner and edge points of a triangle's or quad's rows (limit_fit.h), and which of its
@@ -648,6 +655,13 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
       cut_rings(cut, w);
       if (scheme == Scheme::bspline) ++out.fallback_faces;  // never a regular face
       std::vector<Stencil> stencils = gregory_triangle_stencils(corners);
+      if (polar >= 0) {
+        fit_boundary(stencils);  // a fitted quad across the ring edge gives that edge's points
+        const int across = t.twin(t.face_offset(f) + (1 + rot) % 3);  // the ring edge, from the quad
+        polar_triangle_rows(stencils, t.valence(polar), rows_of(t.face(across)), t.corner(across));
+        add_creased(out.tris, PatchKind::polar_triangle, gather_ring(corners), stencils);
+        continue;
+      }
       if (creased) {
         const std::vector<Stencil> smooth = stencils;
         stencils = blend_by_corner(stencils, gregory_triangle_stencils(cut), w, false);

@@ -57,6 +57,7 @@ enum class PatchKind : std::uint8_t {
   acc,               // 16 Bezier points + tangent patches (control points carry du/dv)
   gregory,           // 20 Gregory points (also bspline's regular faces, where it is the B-spline patch)
   gregory_triangle,  // 15 triangular Gregory points (quartic, cubic boundaries) on the tri domain
+  polar_triangle,    // a triangle at a pole (polar_patch.h): a bicubic with a collapsed row, in the 15 slots
   pn_triangle,       // PN triangle: 10 cubic Bezier points, 6 normal coefficients, from the corners
   pn_quad,           // PN quad: 16 bicubic Bezier points, 9 normal coefficients, from the corners
   exact,             // the limit surface (limit_surface.h; exact or adaptive), evaluated per domain point

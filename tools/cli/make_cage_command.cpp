@@ -1,6 +1,6 @@
 // `tessera make-cage torus --grid AxB -o cage.obj` or `make-cage sphere --pole-valence N -o cage.obj`:
 // writes a synthetic control cage (cage_generators.h) as OBJ with UVs, for measurements no bundled asset
-// allows (the memory table's large cage; the ripples around a pole of any valence).
+// allows (the memory table's large cage; the ripples around a pole of any valence, quad or polar).
 #include <iostream>
 #include <memory>
 #include <stdexcept>
@@ -17,6 +17,7 @@ struct MakeCageOptions {
   std::string shape = "torus", grid = "128x64", output;
   float major = 1.0f, minor = 0.35f, radius = 1.0f;
   int pole_valence = 8, bands = 8;
+  bool polar = false;
 };
 
 int run_make_cage(const MakeCageOptions& o) {
@@ -26,7 +27,7 @@ int run_make_cage(const MakeCageOptions& o) {
   Cage cage;
   try {
     if (o.shape == "sphere") {
-      cage = sphere_cage(o.pole_valence, o.bands, o.radius);
+      cage = sphere_cage(o.pole_valence, o.bands, o.radius, o.polar);
     } else {
       const auto [around, across] = parse_size(o.grid, "--grid", 3, 4096);
       cage = torus_cage(around, across, o.major, o.minor);
@@ -55,6 +56,9 @@ Runner add_make_cage_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--bands", o->bands, "sphere: bands of latitude from pole to pole (2..4096)")->capture_default_str();
   cmd->add_option("--radius", o->radius, "sphere: its radius")->capture_default_str();
+  cmd->add_flag("--polar", o->polar,
+                "sphere: latitude-longitude, --pole-valence vertices per latitude and a fan of triangles at each "
+                "pole (a polar configuration) instead of all quads");
   cmd->add_option("-o,--output", o->output, "the OBJ file to write");
   return [o] { return run_make_cage(*o); };
 }
