@@ -162,11 +162,11 @@ class Builder {
   std::vector<PatchGroup*> groups_;
 };
 
-// Creases in the per-face schemes (acc, gregory, bspline's fallback). gregory and bspline fit a quad
-// with a tagged corner to the exact limit (limit_fit.h): its corner points are the masks' below, its
-// edge points and face points least-squares fits, an edge's points computed once and read by both of its
-// faces (any kind: triangles and fans beside a fitted quad take them too). What follows is the masks' own
-// crease construction: acc's, the triangles' and fans', and the corners of the fitted quads.
+// Creases in the per-face schemes (acc, gregory, bspline's fallback). gregory, bspline and acc fit a
+// triangle or quad with a tagged corner to the exact limit (limit_fit.h): its corner points are the
+// limit's, its edge points and face points least-squares fits, an edge's points computed once and read
+// by both of its faces (any kind: triangles, fans and acc quads beside a fitted face take them too).
+// What follows is the masks' own crease construction: the fans', and where Bfr gives no surface.
 // Each patch is built twice, from
 // the whole corner rings (smooth) and from the rings cut open at every crease (corner_ring.h:
 // Catmull-Clark's crease and corner rules are the boundary rules on each side, so an infinitely sharp
@@ -359,7 +359,9 @@ std::vector<int> gather_ring(std::span<const CornerRing> rings) {
 
 bool fits_limit(const Cage& cage, const Topology& t, Scheme scheme, int face) {
   const int m = t.face_size(face);
-  if ((scheme != Scheme::gregory && scheme != Scheme::bspline) || t.is_hole(face) || (m != 3 && m != 4)) return false;
+  if ((scheme != Scheme::gregory && scheme != Scheme::bspline && scheme != Scheme::acc) || t.is_hole(face) ||
+      (m != 3 && m != 4))
+    return false;
   for (int k = 0; k < m; ++k)
     if (t.has_sharpness_at(cage.face_vertex(face, k))) return true;
   return false;
@@ -685,7 +687,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
     std::array<double, 4> w{};
     cut_rings(cut, w);
     const std::vector<int> ring = gather_ring(corners);
-    if (scheme == Scheme::acc) {
+    if (scheme == Scheme::acc && !fitted[std::size_t(f)]) {
       std::vector<Stencil> stencils = acc_quad_stencils(corners);
       if (creased) {
         stencils = blend_by_corner(stencils, acc_quad_stencils(cut), w, true);
@@ -695,6 +697,24 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
         constexpr std::size_t kCornerRow[4] = {0, 3, 15, 12};
         for (int k = 0; k < 4; ++k)
           if (const std::optional<Stencil>& p = semi_sharp[std::size_t(corner(k))]) stencils[kCornerRow[k]] = *p;
+      }
+      if (limit) {
+        // An edge shared with a fitted face takes its fitted points (watertight), and the tangent patch's
+        // three points along that edge become the new boundary's derivative (acc's own boundary rows are
+        // that derivative: the corners' limit tangents are 3 (E - P)).
+        constexpr std::size_t kAlong[4][4] = {{0, 1, 2, 3}, {3, 7, 11, 15}, {15, 14, 13, 12}, {12, 8, 4, 0}};
+        // Tangent rows along each edge from its first corner, and their sign (d/du or d/dv runs backward
+        // on edges 2 and 3).
+        constexpr std::size_t kTangent[4][3] = {{16, 17, 18}, {31, 35, 39}, {27, 26, 25}, {36, 32, 28}};
+        constexpr double kSign[4] = {1.0, 1.0, -1.0, -1.0};
+        for (int k = 0; k < 4; ++k) {
+          const auto& a = kAlong[k];
+          const std::array<Stencil, 4> before = {stencils[a[0]], stencils[a[1]], stencils[a[2]], stencils[a[3]]};
+          fit_edge(stencils, corner(k), corner(k + 1), a[0], a[3], a[1], a[2]);
+          if (stencils[a[1]].terms == before[1].terms && stencils[a[2]].terms == before[2].terms) continue;
+          for (std::size_t i = 0; i < 3; ++i)
+            stencils[kTangent[k][i]] = (3.0 * kSign[k]) * (stencils[a[i + 1]] - stencils[a[i]]);
+        }
       }
       add_creased(out.quads, PatchKind::acc, ring, stencils);
     } else {

@@ -142,8 +142,9 @@ struct SubdPatches {
 
 SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme);
 
-// Whether build_patches fits face f to the exact limit (limit_fit.h): under gregory and bspline, a
-// triangle or quad, not a hole, with a tagged corner (unless OpenSubdiv has no surface for it, when it
+// Whether build_patches fits face f to the exact limit (limit_fit.h): under gregory, bspline and acc
+// (which draws it as that Gregory patch, its face points coinciding), a triangle or quad, not a hole,
+// with a tagged corner (unless OpenSubdiv has no surface for it, when it
 // keeps the masks' construction).
 bool fits_limit(const Cage& cage, const Topology& topology, Scheme scheme, int face);
 
