@@ -99,6 +99,7 @@ TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
                     cli::UvSeams::raw};
   s.asset.time = 0.25;
   s.asset.animation = "walk";
+  s.source = {"Blender 3.4.1", "/home/a/bar.blend", "Bar", 12.0};  // the exporting tool's record
   const fs::path file = write(dir / "scenes/s.json", cli::scene_json(s, (dir / "scenes").string()).dump(2));
   cli::RenderSettings r = cli::read_scene(file.string());
   CHECK(fs::path(r.cage).lexically_normal() == fs::path(s.cage).lexically_normal());
@@ -140,6 +141,8 @@ TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema
       scene[key] = "bend";
     else if (key == "scene_index")
       scene[key] = 0;
+    else if (key == "source")
+      scene[key] = {{"application", "Blender 3.4.1"}, {"file", "a.blend"}, {"object", "Cube"}, {"frame", 12}};
     else if (key != "tessera_scene" && key != "asset")
       FAIL("no sample value for schema property " << key);
     const fs::path file = write(dir / ("p-" + key + ".json"), scene.dump());
@@ -188,6 +191,8 @@ TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, 
       // A number past double's range (the scene fuzzer's find: nlohmann throws out_of_range, not parse_error).
       {R"({"tessera_scene": 1, "asset": "a.obj", "factor": 1e999})", "not a JSON scene (number overflow"},
       {R"({"tessera_scene": 1, "asset": "a.obj", "displacement": {"scale": 2}})", "\"displacement.map\": missing"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "source": {"frame": "12"}})", "\"source.frame\": expected a number"},
+      {R"({"tessera_scene": 1, "asset": "a.obj", "source": {"scene": 1}})", "\"source.scene\": not a scene field"},
       {R"({"tessera_scene": 2, "asset": "a.obj"})", "\"tessera_scene\": must be 1"},
       {R"({"tessera_scene": 1})", "\"asset\": missing"},
       {R"([1, 2])", "expected an object"},

@@ -93,6 +93,15 @@ struct AssetSettings {
   friend bool operator==(const AssetSettings&, const AssetSettings&) = default;
 };
 
+// Where a scene's cage came from, when a tool exported it (the Blender add-on: the .blend, the object
+// and the frame it was posed at). Recorded and written back; it changes no pixel.
+struct SourceSettings {
+  std::string application, file, object;
+  std::optional<double> frame;
+  bool empty() const { return application.empty() && file.empty() && object.empty() && !frame; }
+  friend bool operator==(const SourceSettings&, const SourceSettings&) = default;
+};
+
 // What a scene describes: everything `tessera render` takes but its outputs.
 struct RenderSettings {
   std::string cage;
@@ -110,6 +119,7 @@ struct RenderSettings {
   int threads = 0;
   int msaa = 1;            // samples per pixel: 1, 2, 4, 8 or 16 (D3D11's standard patterns)
   bool two_sided = false;  // CullMode NONE, the inner side shaded with its normal turned to the viewer
+  SourceSettings source;
   friend bool operator==(const RenderSettings&, const RenderSettings&) = default;
 };
 

@@ -136,7 +136,7 @@ RenderSettings read_scene(const std::string& path) {
          {"tessera_scene",    "asset", "scheme",    "isolation",    "partitioning", "factor",     "vary_factors",
           "factors_per_edge", "lod",   "cull",      "displacement", "camera",       "resolution", "view",
           "factor_kind",      "time",  "animation", "mesh",         "scene_index",  "threads",    "msaa",
-          "two_sided"});
+          "two_sided",        "source"});
   if (!root.contains("tessera_scene") || root["tessera_scene"] != 1)
     r.fail("tessera_scene", "must be 1 (this format's version)");
   if (!root.contains("asset")) r.fail("asset", "missing: the cage to render");
@@ -235,6 +235,18 @@ RenderSettings read_scene(const std::string& path) {
     if (!root["two_sided"].is_boolean()) r.fail("two_sided", "expected true or false, got " + root["two_sided"].dump());
     s.two_sided = root["two_sided"].get<bool>();
   }
+  if (root.contains("source")) {
+    const Json& src = root["source"];
+    if (!src.is_object()) r.fail("source", "expected an object (application, file, object, frame), got " + src.dump());
+    r.only(src, "source", {"application", "file", "object", "frame"});
+    if (src.contains("application")) s.source.application = r.text(src["application"], "source.application");
+    if (src.contains("file")) s.source.file = r.text(src["file"], "source.file");
+    if (src.contains("object")) s.source.object = r.text(src["object"], "source.object");
+    if (src.contains("frame")) {
+      if (!src["frame"].is_number()) r.fail("source.frame", "expected a number, got " + src["frame"].dump());
+      s.source.frame = src["frame"].get<double>();
+    }
+  }
   return s;
 }
 
@@ -281,6 +293,14 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   j["threads"] = s.threads;
   if (s.msaa != 1) j["msaa"] = s.msaa;
   if (s.two_sided) j["two_sided"] = true;
+  if (!s.source.empty()) {
+    Json src = Json::object();
+    if (!s.source.application.empty()) src["application"] = s.source.application;
+    if (!s.source.file.empty()) src["file"] = s.source.file;
+    if (!s.source.object.empty()) src["object"] = s.source.object;
+    if (s.source.frame) src["frame"] = *s.source.frame;
+    j["source"] = src;
+  }
   return j;
 }
 
