@@ -22,6 +22,8 @@ packages=(
   libembree-dev libmeshoptimizer-dev
   # clang and its libFuzzer runtime: the `fuzz` preset (scripts/fuzz.sh).
   clang
+  # The Blender add-on (python/blender/) and its headless test.
+  blender
 )
 missing=()
 for p in "${packages[@]}"; do
