@@ -1,7 +1,7 @@
 """Tessera inside Blender: render, tessellate and check the active object's subdivision surface.
 
 Install: Edit > Preferences > Add-ons > Install..., the zip of this folder (README: "Blender add-on");
-the panel is in Properties > Object > Tessera. Scripts: bpy.ops.tessera.render(filepath=...),
+the panel is in Properties > Object > Tessera and the 3D Viewport's sidebar (N). Scripts: bpy.ops.tessera.render(filepath=...),
 bpy.ops.tessera.tessellate(), bpy.ops.tessera.compare(filepath=...).
 """
 
@@ -10,7 +10,7 @@ bl_info = {
     "author": "Tessera",
     "version": (1, 0, 0),
     "blender": (3, 4, 0),
-    "location": "Properties > Object > Tessera",
+    "location": "Properties > Object > Tessera; 3D Viewport > Sidebar > Tessera",
     "description": "Render, tessellate and compare the active object's subdivision surface with Tessera",
     "category": "Render",
 }

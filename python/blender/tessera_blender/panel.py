@@ -1,4 +1,5 @@
-"""The add-on's settings (per scene), preferences and its panel in Properties > Object."""
+"""The add-on's settings (per scene), preferences and its panel (Properties > Object, and the 3D
+Viewport's sidebar)."""
 
 import bpy
 from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
@@ -44,12 +45,8 @@ class TesseraPreferences(bpy.types.AddonPreferences):
         self.layout.prop(self, "tessera_path")
 
 
-class TESSERA_PT_panel(bpy.types.Panel):
+class _TesseraPanel:
     bl_label = "Tessera"
-    bl_idname = "TESSERA_PT_panel"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "object"
 
     @classmethod
     def poll(cls, context):
@@ -76,4 +73,22 @@ class TESSERA_PT_panel(bpy.types.Panel):
                 box.label(text=line)
 
 
-classes = (TesseraSettings, TesseraPreferences, TESSERA_PT_panel)
+class TESSERA_PT_object(_TesseraPanel, bpy.types.Panel):
+    """In Properties > Object."""
+
+    bl_idname = "TESSERA_PT_object"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+
+
+class TESSERA_PT_view3d(_TesseraPanel, bpy.types.Panel):
+    """In the 3D Viewport's sidebar (N), tab Tessera."""
+
+    bl_idname = "TESSERA_PT_view3d"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Tessera"
+
+
+classes = (TesseraSettings, TesseraPreferences, TESSERA_PT_object, TESSERA_PT_view3d)
