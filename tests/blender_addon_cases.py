@@ -179,6 +179,25 @@ for frame in (1, 10):
         cages.append(f.read())
 check(cages[0] != cages[1], "bar: the cage is posed per frame (before the modifier)")
 
+# A mirrored object (negative scale): its faces are reversed so that they face out in world space, and
+# Blender's subdivision still agrees; a modifier after the Subdivision Surface is said to be left out.
+bpy.ops.mesh.primitive_cube_add(location=(0, -12, 0))
+mirrored = bpy.context.active_object
+mirrored.name = "Mirrored"
+mirrored.scale = (-1.0, 1.0, 1.0)
+mirrored.data.edges[0].crease = 0.6
+mirrored.modifiers.new("Subdivision", "SUBSURF")
+mirrored.modifiers.new("Displace", "DISPLACE")
+compare(mirrored, "mirrored")
+check("Displace" in settings.last_report and "left out" in settings.last_report,
+      "mirrored: the modifier after the Subdivision Surface is said to be left out")
+with open(json.loads(settings.last_result)["cage"]) as f:
+    first = next(l for l in f if l.startswith("f "))
+poly = mirrored.data.polygons[0].vertices
+check([int(t.split("/")[0]) - 1 for t in first.split()[1:]] == list(reversed(poly)), "mirrored: the faces are reversed")
+mirrored.modifiers["Subdivision"].subdivision_type = "SIMPLE"
+check("Simple" in cancelled(bpy.ops.tessera.compare), "a Simple modifier: compare refuses, naming it")
+
 # Bad cases are reports, not tracebacks.
 bpy.ops.mesh.primitive_uv_sphere_add(location=(0, -6, 0))
 plain = bpy.context.active_object

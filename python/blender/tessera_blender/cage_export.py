@@ -71,7 +71,8 @@ class Cage:
         self.boundary = None  # OpenSubdiv code or None
         self.fvar = None
         self.blender_vertex = []  # cage vertex -> the Blender vertex index it came from
-        self.subdivided = False  # whether a Subdivision Surface modifier asked for the surface
+        self.subdivided = False  # whether a Catmull-Clark Subdivision Surface modifier asked for the surface
+        self.mirrored = False  # faces reversed for a negative object scale
         self.uv_map = ""
 
     def obj_text(self, header):
@@ -100,9 +101,14 @@ def _mesh_cage(ob, me, mod):
     index = {v: i for i, v in enumerate(used)}
     cage.blender_vertex = used
     cage.positions = [to_y_up(world @ me.vertices[v].co) for v in used]
-    cage.faces = [[index[v] for v in p.vertices] for p in me.polygons]
-    cage.subdivided = mod is not None
-    if mod is None:
+    # A mirrored object (negative scale) turns its faces inside out in world space: reversed, they face
+    # out again, as Blender draws them.
+    mirrored = world.to_3x3().determinant() < 0.0
+    order = (lambda seq: list(reversed(seq))) if mirrored else list
+    cage.faces = [order([index[v] for v in p.vertices]) for p in me.polygons]
+    cage.mirrored = mirrored
+    cage.subdivided = mod is not None and mod.subdivision_type == "CATMULL_CLARK"
+    if not cage.subdivided:
         return cage
     cage.boundary = BOUNDARY_CODE.get(mod.boundary_smooth)
     uv_layer = me.uv_layers.active
@@ -124,7 +130,7 @@ def _mesh_cage(ob, me, mod):
                     known.append((u, w, len(cage.uvs)))
                     row.append(len(cage.uvs))
                     cage.uvs.append((u, w))
-            cage.face_uvs.append(row)
+            cage.face_uvs.append(order(row))
     if mod.use_creases:
         for e in me.edges:
             a, b = e.vertices
@@ -143,6 +149,15 @@ def _mesh_cage(ob, me, mod):
                         sharp[index[v]] = INFINITE
         cage.corners = sorted(sharp.items())
     return cage
+
+
+def modifiers_after(ob):
+    """The names of the modifiers after the Subdivision Surface modifier that are on: Tessera's surface
+    leaves them out."""
+    at, mod = subsurf_modifier(ob)
+    if mod is None:
+        return []
+    return [m.name for m in ob.modifiers[at + 1:] if m.show_viewport or m.show_render]
 
 
 def evaluated_cage(context, ob):

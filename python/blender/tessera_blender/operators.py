@@ -53,9 +53,17 @@ class _Export:
         s = _settings(context)
         self.cage = cage_export.evaluated_cage(context, ob)
         self.warnings = []
-        if not self.cage.subdivided:
+        at, mod = cage_export.subsurf_modifier(ob)
+        if mod is None:
             self.warnings.append("%s has no Subdivision Surface modifier: rendering its mesh as it is (--scheme flat)"
                                  % ob.name)
+        elif not self.cage.subdivided:
+            self.warnings.append("%s's Subdivision Surface modifier is Simple: its surface is the cage itself "
+                                 "(--scheme flat)" % ob.name)
+        after = cage_export.modifiers_after(ob)
+        if after:
+            self.warnings.append("the modifiers after %s's Subdivision Surface are left out: %s" %
+                                 (ob.name, ", ".join(after)))
         self.obj_path = os.path.join(directory, stem + ".obj")
         self.scene_path = os.path.join(directory, stem + ".tessera.json")
         source = {"application": _application(), "object": ob.name, "frame": context.scene.frame_current}
@@ -195,7 +203,11 @@ class TESSERA_OT_compare(_TesseraOperator, bpy.types.Operator):
         at, mod = cage_export.subsurf_modifier(ob)
         if mod is None:
             raise ValueError("%s has no Subdivision Surface modifier: nothing to compare" % ob.name)
+        if mod.subdivision_type != "CATMULL_CLARK":
+            raise ValueError("%s's Subdivision Surface modifier is Simple: Tessera's exact surface is "
+                             "Catmull-Clark's; nothing to compare" % ob.name)
         export = _Export(context, ob, directory, stem)
+        self.warn_all(context, export.warnings)
         ply = os.path.join(directory, stem + ".exact.ply")
         warnings, _ = run(tessera, ["tessellate", export.obj_path, "--scheme", "exact", "--factor", "64", "-o", ply])
         self.warn_all(context, warnings)
