@@ -128,6 +128,13 @@ struct SubdHS {
         if (own + i < t.rows) cp.du = row(own + i);
       }
     }
+    // A fitted face's corners: the limit's derivatives (two rows per corner, after the rest), in dv.
+    if (patch.limit_corners != 0) {
+      const int corners = triangles ? 3 : 4;
+      const int own = patch.kind == PatchKind::gregory ? kGregoryQuadStencils : kGregoryTriangleStencils;
+      const int first = own + (patch.averaged_edges != 0 ? kCrossRows * corners : 0);
+      if (i < 2 * corners && first + i < t.rows) cp.dv = row(first + i);
+    }
     return cp;
   }
 
@@ -255,6 +262,14 @@ struct SubdDS {
   static glm::vec3 cross_coefficient(const SubdPatch& patch, std::span<const SubdControlPoint> cp, int j) {
     if (patch.kind != PatchKind::acc) return cp[std::size_t(j)].du;
     return j < 8 ? cp[std::size_t(12 + j)].du : cp[std::size_t(4 + j)].dv;
+  }
+
+  // The patch corner a domain location is, or -1: a quad's (0,0), (1,0), (1,1), (0,1); a triangle's
+  // w = 1, u = 1, v = 1.
+  int patch_corner(DomainLocation at) const {
+    if (triangles) return at.u == 0.0f && at.v == 0.0f ? 0 : at.u == 1.0f ? 1 : at.v == 1.0f ? 2 : -1;
+    if ((at.u != 0.0f && at.u != 1.0f) || (at.v != 0.0f && at.v != 1.0f)) return -1;
+    return at.v == 0.0f ? (at.u == 0.0f ? 0 : 1) : (at.u == 1.0f ? 2 : 3);
   }
 
   // A point on a semi-sharp crease edge (SubdPatch::averaged_edges) takes the mean of this patch's unit
@@ -424,8 +439,16 @@ struct SubdDS {
         const PatchPoint q = evaluate(inner);
         n = glm::cross(q.du, q.dv);
       }
-      // Then, on a semi-sharp crease line, the mean with the neighbours' normals.
-      if (patch.averaged_edges != 0) n = crease_line_normal(patch, cp, loc, p, n);
+      // At a fitted face's corner, the limit's own normal (SubdPatch::limit_corners); then, on a semi-sharp
+      // crease line, the mean with the neighbours' normals.
+      const int k = patch.limit_corners != 0 ? patch_corner(loc) : -1;
+      const glm::vec3 corner_n = k >= 0 && (patch.limit_corners & (1u << k))
+                                     ? glm::cross(cp[std::size_t(2 * k)].dv, cp[std::size_t(2 * k + 1)].dv)
+                                     : glm::vec3(0.0f);
+      if (glm::dot(corner_n, corner_n) > 0.0f)
+        n = corner_n;
+      else if (patch.averaged_edges != 0)
+        n = crease_line_normal(patch, cp, loc, p, n);
       s.normal = unit_or_zero(n);
     }
     if (flip_normals) s.normal = -s.normal;

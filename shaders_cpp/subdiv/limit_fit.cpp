@@ -279,6 +279,13 @@ std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int
   return std::move((*l)[0]);
 }
 
+std::optional<std::array<Stencil, 2>> limit_corner_derivatives(const LimitStencils& limit, int face, int k) {
+  const std::array<std::array<double, 2>, 1> uv = {corner_uv(limit.face_size(face), k)};
+  std::vector<Stencil> du, dv;
+  if (!limit.at(face, uv, &du, &dv)) return std::nullopt;
+  return std::array<Stencil, 2>{std::move(du[0]), std::move(dv[0])};
+}
+
 std::optional<EdgePoints> fit_edge_points(const LimitStencils& limit, int face, int e, const Stencil& pa,
                                           const Stencil& pb) {
   std::vector<std::array<double, 2>> uv;

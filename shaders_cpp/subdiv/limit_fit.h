@@ -68,6 +68,12 @@ class LimitStencils {
 // tagged vertex, which the masks give exactly only for uniform creasing (semi_sharp_limit.h).
 std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int k);
 
+// The limit's two partial derivatives at corner k of face f, in f's own domain frame (a quad's (u, v),
+// a triangle's barycentric (u, v)): their cross product is the limit's one-sided normal there, which a
+// fitted patch's corner does not reproduce where the limit bends within a fraction of the face (a cusp,
+// a corner tag's pull).
+std::optional<std::array<Stencil, 2>> limit_corner_derivatives(const LimitStencils& limit, int face, int k);
+
 struct EdgePoints {
   Stencil near_a, near_b;  // the Bezier points beside the edge's vertex a and vertex b
 };

@@ -638,9 +638,22 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
                            std::vector<Stencil>& stencils) {
       const auto [averaged, limit_edges] =
           creased ? add_cross_rows(stencils, n) : std::pair<std::uint8_t, std::uint8_t>{};
+      // A fitted face's corners: the limit's derivatives there (SubdPatch::limit_corners), so that the
+      // corner's normal is the limit's (catmark_cube_corner4's corners were 19 degrees off on average).
+      std::uint8_t corners = 0;
+      if (limit && fitted[std::size_t(f)]) {
+        std::vector<Stencil> rows;
+        for (int k = 0; k < n; ++k) {
+          std::optional<std::array<Stencil, 2>> d = limit_corner_derivatives(*limit, f, (k + rot) % n);
+          if (d) corners = std::uint8_t(corners | (1u << k));
+          rows.push_back(d ? (*d)[0] : Stencil{}), rows.push_back(d ? (*d)[1] : Stencil{});
+        }
+        if (corners != 0) stencils.insert(stencils.end(), rows.begin(), rows.end());
+      }
       builder.add(group, f, 0, kind, ring, stencils, edges, rot, n);
       group.patches.back().averaged_edges = averaged;
       group.patches.back().limit_edges = limit_edges;
+      group.patches.back().limit_corners = corners;
     };
     auto cut_rings = [&]<std::size_t N>(std::array<CornerRing, N>& cut, std::array<double, N>& w) {
       if (!creased) return;

@@ -108,6 +108,10 @@ struct SubdPatch {
   // not the neighbour's patch: the limit is smooth across a semi-sharp crease, so that derivative gives
   // the limit's own normal on the line, which the domain shader takes alone.
   std::uint8_t limit_edges = 0;
+  // A fitted face (limit_fit.h): bit k set when patch corner k carries the limit's two derivatives there,
+  // in the face's frame (two rows per corner, after the patch's own rows and any kCrossRows rows), whose
+  // cross product is the normal the domain shader gives that corner.
+  std::uint8_t limit_corners = 0;
 };
 
 // The rows a patch with averaged edges adds after its own (20 for a quad, 15 for a triangle): per patch
