@@ -246,6 +246,20 @@ inline PatchPoint bezier_triangle(std::span<const glm::vec3, (D + 1) * (D + 2) /
   return p;
 }
 
+namespace detail {
+// On an edge of the tri domain, `position` becomes that edge's cubic over the 15 Gregory slots (corner
+// k's P, E+, E- at 5k, 5k + 1, 5k + 2): what the Gregory and polar triangles and their neighbours share.
+inline void gregory_triangle_edge(std::span<const glm::vec3, 15> g, float u, float v, float w, glm::vec3& position) {
+  const auto [P, Ep, Em, Fp, Fm] = gregory_points(g);
+  switch (tri_edge(u, v, w)) {
+    case TriEdge::v0: position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
+    case TriEdge::w0: position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;
+    case TriEdge::u0: position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0)); break;
+    case TriEdge::none: break;
+  }
+}
+}  // namespace detail
+
 // The triangular Gregory patch (Loop, Schaefer, Ni, Castano 2009, after Kovacs): 15 points, five per
 // corner k at 5k as the quad's, P, E+ (on edge k -> k+1), E- (on edge k -> k-1), F+ (pairs with E+),
 // F-. It is a quartic Bezier triangle whose boundaries are the cubics (P_k, E_k+, E_{k+1}-, P_{k+1})
@@ -271,12 +285,7 @@ inline PatchPoint gregory_triangle(std::span<const glm::vec3, 15> g, float u, fl
   at(2, 1) = blend(Fp(1), v, Fm(1), w);
   at(1, 2) = blend(Fp(2), w, Fm(2), u);
   PatchPoint p = bezier_triangle<4>(b, u, v, w);
-  switch (tri_edge(u, v, w)) {
-    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
-    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;
-    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0)); break;
-    case TriEdge::none: break;
-  }
+  detail::gregory_triangle_edge(g, u, v, w, p.position);
   return p;
 }
 
@@ -308,12 +317,7 @@ inline PatchPoint polar_triangle(std::span<const glm::vec3, 15> g, float u, floa
   p.position = q.position;
   p.du = q.dv - (v * inv) * q.du;
   p.dv = q.dv + (u * inv) * q.du;
-  switch (tri_edge(u, v, w)) {
-    case TriEdge::v0: p.position = cubic_sum(cubic_bernstein(u), P(0), Ep(0), Em(1), P(1)); break;
-    case TriEdge::w0: p.position = cubic_sum(cubic_bernstein(v), P(1), Ep(1), Em(2), P(2)); break;
-    case TriEdge::u0: p.position = cubic_sum(cubic_bernstein(w), P(2), Ep(2), Em(0), P(0)); break;
-    case TriEdge::none: break;
-  }
+  detail::gregory_triangle_edge(g, u, v, w, p.position);
   return p;
 }
 

@@ -12,21 +12,15 @@ class TesseraError(Exception):
 def find_tessera(preference):
     """The tessera executable, or TesseraError saying where it looked and how to set it."""
     looked = []
-    if preference:
-        path = os.path.abspath(os.path.expanduser(preference))
+    for where, value, unset in (("the add-on preference", preference, "empty"),
+                                ("$TESSERA", os.environ.get("TESSERA", ""), "unset")):
+        if not value:
+            looked.append("%s (%s)" % (where, unset))
+            continue
+        path = os.path.abspath(os.path.expanduser(value))
         if os.path.isfile(path) and os.access(path, os.X_OK):
             return path
-        looked.append("the add-on preference (%s: not an executable file)" % path)
-    else:
-        looked.append("the add-on preference (empty)")
-    env = os.environ.get("TESSERA", "")
-    if env:
-        path = os.path.abspath(os.path.expanduser(env))
-        if os.path.isfile(path) and os.access(path, os.X_OK):
-            return path
-        looked.append("$TESSERA (%s: not an executable file)" % path)
-    else:
-        looked.append("$TESSERA (unset)")
+        looked.append("%s (%s: not an executable file)" % (where, path))
     found = shutil.which("tessera")
     if found:
         return found
