@@ -81,6 +81,11 @@ struct SubdHS {
   // is larger than an IA patch, read in place of the sum over `in`.
   std::span<const glm::vec3> precomputed{};
 
+  // A Gregory patch's own rows in its table, before the crease and corner rows the rest of it holds.
+  static int own_rows(const SubdPatch& patch) {
+    return patch.kind == PatchKind::gregory ? kGregoryQuadStencils : kGregoryTriangleStencils;
+  }
+
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
     const SubdPatch& patch = patches[patch_id];
     SubdControlPoint cp;
@@ -124,15 +129,13 @@ struct SubdHS {
         if (i >= 12 && kAccStencils + (i - 12) < t.rows) cp.du = row(kAccStencils + (i - 12));
         if (i >= 12 && kAccStencils + 8 + (i - 12) < t.rows) cp.dv = row(kAccStencils + 8 + (i - 12));
       } else {
-        const int own = patch.kind == PatchKind::gregory ? kGregoryQuadStencils : kGregoryTriangleStencils;
-        if (own + i < t.rows) cp.du = row(own + i);
+        if (own_rows(patch) + i < t.rows) cp.du = row(own_rows(patch) + i);
       }
     }
     // A fitted face's corners: the limit's derivatives (two rows per corner, after the rest), in dv.
     if (patch.limit_corners != 0) {
       const int corners = triangles ? 3 : 4;
-      const int own = patch.kind == PatchKind::gregory ? kGregoryQuadStencils : kGregoryTriangleStencils;
-      const int first = own + (patch.averaged_edges != 0 ? kCrossRows * corners : 0);
+      const int first = own_rows(patch) + (patch.averaged_edges != 0 ? kCrossRows * corners : 0);
       if (i < 2 * corners && first + i < t.rows) cp.dv = row(first + i);
     }
     return cp;
