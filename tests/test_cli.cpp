@@ -784,13 +784,45 @@ TEST_CASE("creases: gregory, bspline and acc fit a creased face's patch to the e
   for (const char* shape :
        {"catmark_cube_creases0", "catmark_cubes_semisharp", "catmark_cube_corner0", "catmark_pyramid_creases1"}) {
     INFO(shape);
-    CHECK(shape_accuracy(shape, " --factor 7")["mean_normal_degrees"].get<double>() <
-          (shape == std::string("catmark_pyramid_creases1") ? 3.6 : 3.0));
+    CHECK(shape_accuracy(shape, " --factor 7")["mean_normal_degrees"].get<double>() < 3.0);
   }
   // acc draws a fitted face as that bicubic (a Gregory patch whose face points coincide), and its
   // other faces take the fitted edges they share, their tangent patches' rows along them the new
   // boundary's derivative: its helmet's mean normal error was 4.5 degrees too.
   CHECK(shape_accuracy("catmark_helmet", " --scheme acc")["mean_normal_degrees"].get<double>() < 1.5);
+}
+
+TEST_CASE("creases: gregory, bspline and acc are within 2e-2 and 3 degrees on every creased shape", "[cli][issue34]") {
+  // Issue 34's goal for the per-face schemes: on creased cages, the range they reach on smooth ones (the
+  // cube: 9.2e-3 of the diagonal, mean normal error 2.2 degrees). Every OpenSubdiv shape here with a crease
+  // or corner tag; the worst before the fitted faces' smooth edges took the limit's normal and only
+  // edges with a tag or the boundary at an end were fitted: catmark_cube_corner4 3.7 degrees (gregory)
+  // and 4.1 (acc), catmark_pyramid_creases1 3.5.
+  int shapes = 0;
+  for (const auto& entry : fs::directory_iterator(data("osd-shapes"))) {
+    const std::string name = entry.path().stem().string();
+    if (entry.path().extension() != ".obj" || !name.starts_with("catmark_")) continue;
+    std::ifstream in(entry.path());
+    bool tagged = false;
+    for (std::string line; std::getline(in, line);)
+      tagged |= line.starts_with("t crease") || line.starts_with("t corner");
+    if (!tagged) continue;
+    ++shapes;
+    for (const char* scheme : {"gregory", "bspline", "acc"}) {
+      const auto r = run_cli("-q accuracy " + entry.path().string() + " --json --scheme " + scheme);
+      INFO(name << " " << scheme << ": " << r.err);
+      if (r.exit_code != 0) {
+        // acc takes quads only; catmark_edgenone's every face is a hole (no surface to measure).
+        CHECK((r.err.find("handles quads only") != std::string::npos ||
+               r.err.find("needs quads") != std::string::npos || r.err.find("no surface") != std::string::npos));
+        continue;
+      }
+      const auto j = json_of(r.out);
+      CHECK(j["max_relative"].get<double>() <= 2e-2);
+      CHECK(j["mean_normal_degrees"].get<double>() <= 3.0);
+    }
+  }
+  CHECK(shapes >= 36);
 }
 
 TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {

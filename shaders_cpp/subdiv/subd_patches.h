@@ -102,11 +102,12 @@ struct SubdPatch {
   // least kCutSharpness) with a triangle or quad across it. The exact limit there is smooth on the crease
   // line itself (one normal, about the mean of the two sides') and creased a band of width 2^-s away, so
   // the domain shader gives points on that edge the mean of this patch's normal and the neighbour's,
-  // from the neighbour's inward cross derivative: four more table rows per edge (kCrossRows).
+  // from the neighbour's inward cross derivative: four more table rows per edge (kCrossRows). Also set
+  // on a smooth edge between two fitted faces with a tag at one end (always a limit edge, below).
   std::uint8_t averaged_edges = 0;
   // The averaged edges whose rows are the exact limit's derivative into the neighbour (limit_fit.h),
-  // not the neighbour's patch: the limit is smooth across a semi-sharp crease, so that derivative gives
-  // the limit's own normal on the line, which the domain shader takes alone.
+  // not the neighbour's patch: the limit is smooth across a semi-sharp crease or a smooth edge, so that
+  // derivative gives the limit's own normal on the line, which the domain shader takes alone.
   std::uint8_t limit_edges = 0;
   // A fitted face (limit_fit.h): bit k set when patch corner k carries the limit's two derivatives there,
   // in the face's frame (two rows per corner, after the patch's own rows and any kCrossRows rows), whose
