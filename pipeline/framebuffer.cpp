@@ -10,14 +10,18 @@
 
 #include "pipeline/sample_pattern.h"
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 namespace tessera {
 
 Framebuffer::Framebuffer(int w, int h, ColorFormat f, int samples)
     : width_(w),
       height_(h),
       format_(f),
-      color_(std::size_t(w) * std::size_t(h) * std::size_t(samples) * (f == ColorFormat::rgba8_unorm ? 4u : 16u)),
-      depth_(std::size_t(w) * std::size_t(h) * std::size_t(samples), 1.0f),
+      color_(elements(w, h, samples) * (f == ColorFormat::rgba8_unorm ? 4u : 16u)),
+      depth_(elements(w, h, samples), 1.0f),
       samples_(samples) {}
 
 std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorFormat format, std::string* error,
@@ -48,9 +52,6 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
   y0 = std::clamp(y0, 0, height_);
   y1 = std::clamp(y1, y0, height_);
   if (y0 == y1) return;
-  for (int s = 0; s < samples_; ++s)
-    std::fill(depth_.begin() + std::ptrdiff_t(index(0, y0) + plane_offset(s)),
-              depth_.begin() + std::ptrdiff_t(index(0, y1) + plane_offset(s)), d);
   const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
   std::uint8_t px[16];
   if (format_ == ColorFormat::rgba8_unorm) {
@@ -60,13 +61,29 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
     const float f[4] = {c.r, c.g, c.b, c.a};
     std::memcpy(px, f, 16);
   }
-  // The first row pixel by pixel, the others copied from it.
-  const std::size_t row_bytes = std::size_t(width_) * pixel_bytes;
-  std::uint8_t* first = &color_[index(0, y0) * pixel_bytes];
-  for (std::size_t i = 0; i < row_bytes; i += pixel_bytes) std::memcpy(first + i, px, pixel_bytes);
-  for (int y = y0 + 1; y < y1; ++y) std::memcpy(&color_[index(0, y) * pixel_bytes], first, row_bytes);
-  for (int s = 1; s < samples_; ++s)
-    for (int y = y0; y < y1; ++y) std::memcpy(&color_[(index(0, y) + plane_offset(s)) * pixel_bytes], first, row_bytes);
+  // Elements [begin, end) of both buffers: the first pixel by pixel, the rest copied from it.
+  auto fill = [&](std::size_t begin, std::size_t end) {
+    if (begin == end) return;
+    std::fill(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end), d);
+    std::uint8_t* first = &color_[begin * pixel_bytes];
+    const std::size_t run = std::min<std::size_t>(end - begin, 256);
+    for (std::size_t i = 0; i < run; ++i) std::memcpy(first + i * pixel_bytes, px, pixel_bytes);
+    for (std::size_t i = begin + run; i < end; i += run)
+      std::memcpy(&color_[i * pixel_bytes], first, std::min(run, end - i) * pixel_bytes);
+  };
+  if (samples_ == 1) {
+    fill(index(0, y0), index(0, y1 - 1) + std::size_t(width_));
+    return;
+  }
+  // Multisampled: whole quad rows as one run; a quad row split by y0 or y1 (odd) pixel by pixel.
+  auto partial_row = [&](int y) {
+    for (int x = 0; x < width_; ++x)
+      for (int s = 0; s < samples_; ++s) fill(index(x, y) + plane_offset(s), index(x, y) + plane_offset(s) + 1);
+  };
+  int first_row = y0, last_row = y1;  // [first_row, last_row): whole quad rows
+  if (first_row & 1) partial_row(first_row++);
+  if ((last_row & 1) && last_row < height_) partial_row(--last_row);
+  if (first_row < last_row) fill(quad_index(0, first_row >> 1), quad_index(0, (last_row + 1) >> 1));
 }
 
 void Framebuffer::set_other_samples(int x, int y, float d) {
@@ -84,47 +101,82 @@ Framebuffer Framebuffer::resolve() const {
 }
 
 void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
-  // Row by row, plane by plane: each inner loop runs over contiguous values of one plane (vectorized),
-  // the same sums and minima in the same sample order as one pixel at a time.
-  const std::size_t row = std::size_t(width_);
-  std::vector<std::uint16_t> sums(format_ == ColorFormat::rgba8_unorm ? row * 4 : 0);  // 16 x 255 fits
-  std::vector<float> fsums(format_ == ColorFormat::rgba8_unorm ? 0 : row * 4);
-  for (int y = y0; y < y1; ++y) {
-    const std::size_t begin = index(0, y);
-    float* nearest = &out.depth_[begin];
-    std::copy_n(&depth_[begin], row, nearest);
-    for (int s = 1; s < samples_; ++s) {
-      const float* d = &depth_[begin + plane_offset(s)];
-      for (std::size_t i = 0; i < row; ++i) nearest[i] = std::min(nearest[i], d[i]);
-    }
-    if (format_ == ColorFormat::rgba8_unorm) {
-      const unsigned half = unsigned(samples_) / 2;
-      std::fill(sums.begin(), sums.end(), std::uint16_t(half));
-      for (int s = 0; s < samples_; ++s) {
-        const std::uint8_t* c = &color_[(begin + plane_offset(s)) * 4];
-        for (std::size_t i = 0; i < row * 4; ++i) sums[i] = std::uint16_t(sums[i] + c[i]);
-      }
-      // samples_ is a power of two: the division is a shift.
-      const int shift = std::countr_zero(unsigned(samples_));
-      std::uint8_t* o = &out.color_[begin * 4];
-      for (std::size_t i = 0; i < row * 4; ++i) o[i] = std::uint8_t(sums[i] >> shift);
-    } else {
-      std::fill(fsums.begin(), fsums.end(), 0.0f);
-      for (int s = 0; s < samples_; ++s) {
-        const std::uint8_t* c = &color_[(begin + plane_offset(s)) * 16];
-        for (std::size_t i = 0; i < row * 4; ++i) {
-          float v = 0.0f;
-          std::memcpy(&v, c + i * 4, 4);
-          fsums[i] += v;
-        }
-      }
-      std::uint8_t* o = &out.color_[begin * 16];
-      for (std::size_t i = 0; i < row * 4; ++i) {
-        const float mean = fsums[i] / float(samples_);
-        std::memcpy(o + i * 4, &mean, 4);
-      }
-    }
+  if (y0 >= y1) return;
+  // Quad by quad: its samples are adjacent, sample s of its four pixels at 4 s, summed (and the
+  // nearest depth taken) in sample order, the same sums and minima as one pixel at a time.
+  const bool bytes = format_ == ColorFormat::rgba8_unorm;
+  if (samples_ == 1) {  // the same layout: a copy
+    const std::size_t begin = index(0, y0), end = index(0, y1 - 1) + std::size_t(width_);
+    std::copy(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end),
+              out.depth_.begin() + std::ptrdiff_t(begin));
+    const std::size_t pixel_bytes = bytes ? 4 : 16;
+    std::copy(color_.begin() + std::ptrdiff_t(begin * pixel_bytes), color_.begin() + std::ptrdiff_t(end * pixel_bytes),
+              out.color_.begin() + std::ptrdiff_t(begin * pixel_bytes));
+    return;
   }
+  const int shift = std::countr_zero(unsigned(samples_));  // samples_ is a power of two
+  for (int qy = y0 >> 1; 2 * qy < y1; ++qy)
+    for (int qx = 0; 2 * qx < width_; ++qx) {
+      const std::size_t q = quad_index(qx, qy);
+#if defined(__AVX2__)
+      // A whole quad of an RGBA8 target in lanes: the sixteen bytes of each sample widened to 16 bits
+      // and summed, the depths' minimum as std::min takes it ((d < n) ? d : n is minps(d, n)).
+      if (bytes && 2 * qx + 1 < width_ && 2 * qy >= y0 && 2 * qy + 1 < y1) {
+        __m256i sum = _mm256_set1_epi16(std::int16_t(samples_ / 2));
+        __m128 near = _mm_loadu_ps(&depth_[q]);
+        for (int s = 0; s < samples_; ++s) {
+          const std::size_t e = q + plane_offset(s);
+          sum = _mm256_add_epi16(
+              sum, _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&color_[e * 4]))));
+          if (s > 0) near = _mm_min_ps(_mm_loadu_ps(&depth_[e]), near);
+        }
+        const __m256i mean = _mm256_srli_epi16(sum, shift);
+        const __m128i rgba = _mm_packus_epi16(_mm256_castsi256_si128(mean), _mm256_extracti128_si256(mean, 1));
+        const std::size_t top = out.index(2 * qx, 2 * qy), bottom = top + std::size_t(width_);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&out.color_[top * 4]), rgba);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&out.color_[bottom * 4]), _mm_srli_si128(rgba, 8));
+        _mm_storel_pi(reinterpret_cast<__m64*>(&out.depth_[top]), near);
+        _mm_storeh_pi(reinterpret_cast<__m64*>(&out.depth_[bottom]), near);
+        continue;
+      }
+#endif
+      float nearest[4];
+      std::copy_n(&depth_[q], 4, nearest);
+      for (int s = 1; s < samples_; ++s)
+        for (std::size_t k = 0; k < 4; ++k) nearest[k] = std::min(nearest[k], depth_[q + plane_offset(s) + k]);
+      alignas(16) std::uint8_t rgba8[16];  // [pixel][channel]
+      alignas(16) float mean[16];
+      if (bytes) {
+        std::uint16_t sums[16];  // 16 x 255 fits
+        std::fill_n(sums, 16, std::uint16_t(unsigned(samples_) / 2));
+        for (int s = 0; s < samples_; ++s) {
+          const std::uint8_t* c = &color_[(q + plane_offset(s)) * 4];
+          for (std::size_t i = 0; i < 16; ++i) sums[i] = std::uint16_t(sums[i] + c[i]);
+        }
+        for (std::size_t i = 0; i < 16; ++i) rgba8[i] = std::uint8_t(sums[i] >> shift);
+      } else {
+        float sums[16] = {};
+        for (int s = 0; s < samples_; ++s) {
+          const std::uint8_t* c = &color_[(q + plane_offset(s)) * 16];
+          for (std::size_t i = 0; i < 16; ++i) {
+            float v = 0.0f;
+            std::memcpy(&v, c + i * 4, 4);
+            sums[i] += v;
+          }
+        }
+        for (std::size_t i = 0; i < 16; ++i) mean[i] = sums[i] / float(samples_);
+      }
+      for (int k = 0; k < 4; ++k) {
+        const int x = 2 * qx + (k & 1), y = 2 * qy + (k >> 1);
+        if (x >= width_ || y < y0 || y >= y1) continue;
+        const std::size_t o = out.index(x, y);
+        out.depth_[o] = nearest[k];
+        if (bytes)
+          std::memcpy(&out.color_[o * 4], &rgba8[4 * k], 4);
+        else
+          std::memcpy(&out.color_[o * 16], &mean[4 * k], 16);
+      }
+    }
 }
 
 glm::vec4 Framebuffer::color(int x, int y) const {

@@ -1,9 +1,13 @@
 // Render targets: one colour buffer (RGBA8 UNORM or RGBA32F) and one D32F depth buffer, row-major with
 // row 0 at the top (D3D's y-down window coordinates), with 1, 2, 4, 8 or 16 samples per pixel.
 //
-// A multisampled target keeps each sample as a plane of its own (sample s of every pixel is the image
-// at plane s), so the rasterizer's quad forms address a sample's 2x2 pixels as they address a pixel
-// quad of a single-sampled target. resolve() averages the samples into a single-sampled target.
+// A single-sampled target is row-major. A multisampled one is stored by 2x2 pixel quads, row-major over
+// quads, each quad's samples together: sample s of its four pixels at 4 s + 2 (y & 1) + (x & 1) (a 4x
+// quad's depths are one 64-byte line). The rasterizer's quad forms address a sample's 2x2 pixels as they
+// address a pixel quad of a single-sampled target (sample_site), and a quad's per-sample depth tests
+// and writes touch the lines its first sample brought in: in separate full-image planes they were four
+// or eight streams 8 MB apart (a 1080p target), and cache misses on them were the largest cost of a 4x
+// frame. resolve() averages the samples into a single-sampled target.
 //
 // Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target). A
 // target is memory only: image files are written by shaders_cpp/image_io/image_file.h.
@@ -82,9 +86,8 @@ class Framebuffer {
   // The pixel's colour: sample 0's, or the mean of its samples on a multisampled target.
   glm::vec4 color(int x, int y) const;
 
-  // Sample s's plane: the pixel index i of sample 0 becomes i + plane_offset(s).
-  std::size_t plane_offset(int s) const { return std::size_t(s) * plane_pixels(); }
-  std::size_t plane_pixels() const { return std::size_t(width_) * std::size_t(height_); }
+  // Sample s: the index i of a pixel's sample 0 becomes i + plane_offset(s).
+  std::size_t plane_offset(int s) const { return std::size_t(s) * 4u; }
   float sample_depth(int x, int y, int s) const { return depth_[index(x, y) + plane_offset(s)]; }
   void set_sample_depth(int x, int y, int s, float d) { depth_[index(x, y) + plane_offset(s)] = d; }
 
@@ -106,7 +109,7 @@ class Framebuffer {
 
  public:
   // The 2x2 quad whose top-left pixel is (x, y) lies wholly inside the target: the quad forms below
-  // then read and write its two row pairs directly.
+  // then read and write its two row pairs directly. On a multisampled target x and y are even.
   bool quad_inside(int x, int y) const { return x + 1 < width_ && y + 1 < height_; }
   // Such a quad, addressed once (its depth test and its colour and depth writes share the address):
   // the indices of its top-left pixel and of the pixel below that.
@@ -115,7 +118,7 @@ class Framebuffer {
   };
   QuadSite quad_site(int x, int y) const {
     const std::size_t i = index(x, y);
-    return {i, i + std::size_t(width_)};
+    return {i, i + (samples_ == 1 ? std::size_t(width_) : 2u)};
   }
   // The same quad in sample s's plane.
   QuadSite sample_site(QuadSite q, int s) const { return {q.top + plane_offset(s), q.bottom + plane_offset(s)}; }
@@ -124,6 +127,11 @@ class Framebuffer {
   void set_depth_quad(QuadSite q, simd::F4 d) { d.store_pairs(&depth_[q.top], &depth_[q.bottom]); }
   simd::F4 depth_quad(int x, int y) const { return depth_quad(quad_site(x, y)); }
   void set_depth_quad(int x, int y, simd::F4 d) { set_depth_quad(quad_site(x, y), d); }
+
+  // A multisampled quad's samples, 4 * samples() of each from its site's top (sample s of its pixel k
+  // at 4 s + k): depths, and colours of an RGBA8 target (4 bytes each).
+  float* quad_samples_depth(QuadSite q) { return &depth_[q.top]; }
+  std::uint8_t* quad_samples_rgba8(QuadSite q) { return &color_[q.top * 4]; }
 
   // The output merger for one 2x2 quad: pixel k (as in depth_quad) gets colour c[.][k] where bit k of
   // `mask` is set. The format is checked once per quad and the 16 conversions to RGBA8 are one packed
@@ -197,7 +205,21 @@ class Framebuffer {
 
  private:
   Framebuffer(int w, int h, ColorFormat f, int samples);
-  std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
+  // The element of pixel (x, y), sample 0 (the layouts above).
+  std::size_t index(int x, int y) const {
+    if (samples_ == 1) return std::size_t(y) * std::size_t(width_) + std::size_t(x);
+    return quad_index(x >> 1, y >> 1) + std::size_t(2 * (y & 1) + (x & 1));
+  }
+  // A multisampled target's first element of quad (qx, qy) (pixels 2 qx.., 2 qy..).
+  std::size_t quad_index(int qx, int qy) const {
+    return (std::size_t(qy) * std::size_t(quads_per_row()) + std::size_t(qx)) * std::size_t(4 * samples_);
+  }
+  int quads_per_row() const { return (width_ + 1) / 2; }
+  // Elements of storage: a multisampled target's quads pad an odd width or height.
+  static std::size_t elements(int w, int h, int samples) {
+    return samples == 1 ? std::size_t(w) * std::size_t(h)
+                        : std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2) * std::size_t(4 * samples);
+  }
 
   // Pixel k of the quad at `q` gets colour c[.][k] where bit k of `mask` is set, pixel by pixel.
   void write_pixels(QuadSite q, unsigned mask, const std::array<std::array<float, 4>, 4>& c) {

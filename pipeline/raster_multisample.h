@@ -18,6 +18,119 @@ struct SampleCoverage {
   unsigned any = 0;  // the union over samples
 };
 
+#if defined(__AVX2__)
+// A multisampled quad's samples in lanes of eight, as the target stores them (framebuffer.h: sample s of
+// pixel k at 4 s + k, two samples per vector): each lane's pixel offset in the quad and its sample's
+// offset from the pixel centre, in pixels (the same floats as shade_multisample_quad's per-sample
+// arithmetic).
+// The same offsets in whole numbers for the edge functions: the pixel's (0 or 1) and the sample's in
+// 1/16 pixel times 16 (subpixel units, as rasterize_multisample_edges32's offsets).
+struct SampleLanes {
+  alignas(32) float kx[8], ky[8];
+  alignas(32) float ox[64], oy[64];
+  alignas(32) std::int32_t ikx[8], iky[8];
+  alignas(32) std::int32_t iox[64], ioy[64];
+};
+constexpr SampleLanes make_sample_lanes(std::span<const SampleOffset> pattern) {
+  SampleLanes l{};
+  for (int i = 0; i < 8; ++i) {
+    l.kx[i] = float(i & 1), l.ky[i] = float((i >> 1) & 1);
+    l.ikx[i] = i & 1, l.iky[i] = (i >> 1) & 1;
+  }
+  for (std::size_t s = 0; s < pattern.size(); ++s)
+    for (std::size_t k = 0; k < 4; ++k) {
+      l.ox[4 * s + k] = float(pattern[s].x) * (1.0f / 16.0f);
+      l.oy[4 * s + k] = float(pattern[s].y) * (1.0f / 16.0f);
+      l.iox[4 * s + k] = 16 * pattern[s].x;
+      l.ioy[4 * s + k] = 16 * pattern[s].y;
+    }
+  return l;
+}
+inline constexpr SampleLanes kSampleLanes2 = make_sample_lanes(kSamples2), kSampleLanes4 = make_sample_lanes(kSamples4),
+                             kSampleLanes8 = make_sample_lanes(kSamples8),
+                             kSampleLanes16 = make_sample_lanes(kSamples16);
+inline const SampleLanes& sample_lanes(int samples) {
+  return samples == 2 ? kSampleLanes2 : samples == 4 ? kSampleLanes4 : samples == 8 ? kSampleLanes8 : kSampleLanes16;
+}
+
+// depth_pass_mask on eight lanes: bit i for lane i.
+template <CompareFunc kDepthFunc>
+[[gnu::always_inline]] inline unsigned depth_pass_mask8(__m256 z, __m256 stored) {
+  switch (kDepthFunc) {
+    case CompareFunc::never: return 0;
+    case CompareFunc::less: return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, stored, _CMP_LT_OS)));
+    case CompareFunc::equal: return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, stored, _CMP_EQ_OQ)));
+    case CompareFunc::less_equal: return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, stored, _CMP_LE_OS)));
+    case CompareFunc::greater: return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(stored, z, _CMP_LT_OS)));
+    case CompareFunc::not_equal: return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, stored, _CMP_NEQ_UQ)));
+    case CompareFunc::greater_equal: return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(stored, z, _CMP_LE_OS)));
+    case CompareFunc::always: return 0xFFu;
+  }
+  return 0;
+}
+
+// All ones in lane i where bit i of `bits` (0..255) is set.
+[[gnu::always_inline]] inline __m256i lane_mask8(unsigned bits) {
+  const __m256i select = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(bits)), select), select);
+}
+
+// shade_multisample_quad for a quad inside an RGBA8 target: two samples (eight depths, eight colours)
+// per vector, tested and written with one compare and one blend each, instead of sample by sample (the
+// same values: each lane's depth is the same expression, and the colours are the same conversion).
+// `covered[h]`: bit i for lane i of vector h (sample 2 h + i / 4, pixel i % 4).
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+[[gnu::always_inline]] inline std::uint64_t shade_multisample_quad8(const ScreenPrimitive<N>& p, int qx, int qy,
+                                                                    const unsigned* covered, int samples, const Ps& ps,
+                                                                    const RasterContext& rc, Framebuffer& fb) {
+  using simd::F4;
+  const SampleLanes& lanes = sample_lanes(samples);
+  const Framebuffer::QuadSite site = fb.quad_site(qx, qy);
+  float* depth = fb.quad_samples_depth(site);
+  std::uint8_t* color = fb.quad_samples_rgba8(site);
+  const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
+  const __m256 px = _mm256_add_ps(_mm256_set1_ps(fx), _mm256_load_ps(lanes.kx)),
+               py = _mm256_add_ps(_mm256_set1_ps(fy), _mm256_load_ps(lanes.ky));
+  const __m256 z0 = _mm256_set1_ps(p.z[0]), z1 = _mm256_set1_ps(p.z[1]), z2 = _mm256_set1_ps(p.z[2]);
+  const __m256 min_depth = _mm256_set1_ps(rc.min_depth), max_depth = _mm256_set1_ps(rc.max_depth);
+  const int vectors = samples / 2;
+  __m256 z[8], stored[8];
+  unsigned passed[8], any = 0;
+  for (int h = 0; h < vectors; ++h) {
+    passed[h] = covered[h];
+    if (!passed[h]) continue;
+    const __m256 x = _mm256_add_ps(px, _mm256_load_ps(lanes.ox + 8 * h)),
+                 y = _mm256_add_ps(py, _mm256_load_ps(lanes.oy + 8 * h));
+    const __m256 zs = _mm256_add_ps(_mm256_add_ps(z0, _mm256_mul_ps(z1, x)), _mm256_mul_ps(z2, y));
+    z[h] = _mm256_min_ps(max_depth, _mm256_max_ps(min_depth, zs));  // simd::min(simd::max(zs, lo), hi)
+    if (rc.depth.test) {
+      stored[h] = _mm256_loadu_ps(depth + 8 * h);
+      passed[h] &= depth_pass_mask8<kDepthFunc>(z[h], stored[h]);
+    }
+    any |= (passed[h] | (passed[h] >> 4)) & 0xFu;
+  }
+  if (!any) return 0;
+  const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
+           dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
+  QuadInput<N> q;
+  const F4 zc = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
+  simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
+  QuadColor shaded;
+  shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, shaded);
+  const __m128i rgba = Framebuffer::quad_to_rgba8(shaded.c);
+  const __m256i both = _mm256_set_m128i(rgba, rgba);  // the quad's four pixels for two samples
+  const bool write_depth = rc.depth.test && rc.depth.write;
+  for (int h = 0; h < vectors; ++h) {
+    if (!passed[h]) continue;
+    const __m256i m = lane_mask8(passed[h]);
+    __m256i* at = reinterpret_cast<__m256i*>(color + 32 * h);
+    _mm256_storeu_si256(at, _mm256_blendv_epi8(_mm256_loadu_si256(at), both, m));
+    if (write_depth) _mm256_storeu_ps(depth + 8 * h, _mm256_blendv_ps(stored[h], z[h], _mm256_castsi256_ps(m)));
+  }
+  return kQuadLanes[any];
+}
+#endif
+
 // Depth test, one pixel shader call and the writes of one quad whose covered samples are `c`.
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 [[gnu::always_inline]] inline std::uint64_t shade_multisample_quad(const ScreenPrimitive<N>& p, int qx, int qy,
@@ -27,6 +140,13 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   using simd::F4;
   const int samples = int(pattern.size());
   const bool inside = fb.quad_inside(qx, qy);
+#if defined(__AVX2__)
+  if (inside && samples > 1 && fb.format() == ColorFormat::rgba8_unorm) {
+    unsigned covered[8];
+    for (int h = 0; h < samples / 2; ++h) covered[h] = c.covered[2 * h] | (c.covered[2 * h + 1] << 4);
+    return shade_multisample_quad8<N, Ps, kDepthFunc>(p, qx, qy, covered, samples, ps, rc, fb);
+  }
+#endif
   const Framebuffer::QuadSite site = fb.quad_site(qx, qy);
   const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
   const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
@@ -94,6 +214,57 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 }
 
 #if defined(__AVX2__)
+// A triangle with edges32 whose box spans at most kSmallBoxQuads quads, on an RGBA8 target: each quad's
+// samples tested at once in the lanes the target stores them in (two samples, eight points, per
+// vector), the edge values at the quad plus each lane's pixel and sample offset: the same integers as
+// the 8x8 blocks below, without their per-sample grids and the bits' regrouping per quad (the torus's
+// micro-triangles, about 2 pixels, spent half their 4x raster time there).
+inline constexpr int kSmallBoxQuads = 4;
+template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+std::uint64_t rasterize_multisample_small(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin, int y_end,
+                                          int samples, const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
+  const SampleLanes& lanes = sample_lanes(samples);
+  const int vectors = samples / 2;
+  // Per edge and vector: each lane's change from the quad's top-left pixel centre.
+  __m256i lane_step[3][8];
+  const __m256i kx = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.ikx)),
+                ky = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.iky));
+  for (int i = 0; i < 3; ++i) {
+    const __m256i pixel = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(p.edges.step_x(i)), kx),
+                                           _mm256_mullo_epi32(_mm256_set1_epi32(p.edges.step_y(i)), ky));
+    const __m256i ex = _mm256_set1_epi32(-std::int32_t(p.edges.dy[std::size_t(i)])),
+                  ey = _mm256_set1_epi32(std::int32_t(p.edges.dx[std::size_t(i)]));
+    for (int h = 0; h < vectors; ++h) {
+      const __m256i ox = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.iox + 8 * h)),
+                    oy = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.ioy + 8 * h));
+      lane_step[i][h] =
+          _mm256_add_epi32(pixel, _mm256_add_epi32(_mm256_mullo_epi32(ex, ox), _mm256_mullo_epi32(ey, oy)));
+    }
+  }
+  std::uint64_t invocations = 0;
+  for (int qy = y_begin & ~1; qy <= y_end; qy += 2)
+    for (int qx = x_begin & ~1; qx <= x_end; qx += 2) {
+      unsigned box = 0xFu;  // the quad's pixels inside the box
+      if (qx < x_begin) box &= 0xAu;
+      if (qx + 1 > x_end) box &= 0x5u;
+      if (qy < y_begin) box &= 0xCu;
+      if (qy + 1 > y_end) box &= 0x3u;
+      const unsigned box8 = box | (box << 4);
+      __m256i at[3];
+      for (int i = 0; i < 3; ++i) at[i] = _mm256_set1_epi32(p.edges.value_at(i, qx - p.min_x, qy - p.min_y));
+      unsigned covered[8], any = 0;
+      for (int h = 0; h < vectors; ++h) {
+        const __m256i any_negative = _mm256_or_si256(
+            _mm256_or_si256(_mm256_add_epi32(at[0], lane_step[0][h]), _mm256_add_epi32(at[1], lane_step[1][h])),
+            _mm256_add_epi32(at[2], lane_step[2][h]));
+        covered[h] = ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(any_negative))) & box8;
+        any |= covered[h];
+      }
+      if (any) invocations += shade_multisample_quad8<N, Ps, kDepthFunc>(p, qx, qy, covered, samples, ps, rc, fb);
+    }
+  return invocations;
+}
+
 // A triangle with edges32 (setup kept its 32-bit edge functions; the box is small enough that every
 // sample of it fits, kEdges32MaxExtent) in blocks of 8x8 pixels from quad-aligned corners: each sample's
 // coverage of a block is grid_coverage with the edges moved by the sample's offset, an exact integer
@@ -153,6 +324,10 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   const std::span<const SampleOffset> pattern = standard_sample_pattern(fb.samples());
 #if defined(__AVX2__)
   // Only AVX2 builds' setup keeps a multisampled triangle's edges32 (triangle_list_setup.h).
+  if (p.edges32 && fb.format() == ColorFormat::rgba8_unorm && x_end + 1 < fb.width() && y_end + 1 < fb.height() &&
+      ((x_end >> 1) - (x_begin >> 1) + 1) * ((y_end >> 1) - (y_begin >> 1) + 1) <= kSmallBoxQuads)
+    return rasterize_multisample_small<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, int(pattern.size()), ps,
+                                                          rc, fb);
   if (p.edges32)
     return rasterize_multisample_edges32<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, pattern, ps, rc, fb);
 #endif

@@ -229,3 +229,36 @@ TEST_CASE("msaa: per-sample coverage of random small and large triangles is the 
 }
 
 }  // namespace tessera
+
+namespace tessera {
+
+TEST_CASE("msaa: an odd-sized target clears, stores and resolves every sample (its quads pad the last row and column)",
+          "[raster][msaa]") {
+  // A multisampled target is stored by 2x2 quads (framebuffer.h): row ranges that split a quad, and a
+  // last row and column with no partner, must still reach every sample.
+  for (int samples : {2, 4, 8, 16})
+    for (ColorFormat format : {ColorFormat::rgba8_unorm, ColorFormat::rgba32_float}) {
+      INFO(samples << " samples, format " << int(format));
+      std::string error;
+      auto fb = Framebuffer::create(7, 5, format, &error, samples);
+      REQUIRE(fb);
+      fb->clear_rows(0, 3, glm::vec4(1, 0, 0, 1), 0.25f);  // row 3 splits the second quad row
+      fb->clear_rows(3, 5, glm::vec4(0, 0, 1, 1), 0.75f);
+      for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x)
+          for (int s = 0; s < samples; ++s) CHECK(fb->sample_depth(x, y, s) == (y < 3 ? 0.25f : 0.75f));
+      // Distinct depths per sample: the resolve keeps each pixel's nearest.
+      for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x)
+          for (int s = 0; s < samples; ++s) fb->set_sample_depth(x, y, s, float(100 + 10 * x + y - s) / 256.0f);
+      const Framebuffer resolved = fb->resolve();
+      REQUIRE(resolved.samples() == 1);
+      for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x) {
+          CHECK(resolved.depth(x, y) == float(100 + 10 * x + y - (samples - 1)) / 256.0f);
+          CHECK(resolved.color(x, y) == (y < 3 ? glm::vec4(1, 0, 0, 1) : glm::vec4(0, 0, 1, 1)));
+        }
+    }
+}
+
+}  // namespace tessera
