@@ -97,12 +97,14 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   __m256 z[8], stored[8];
   unsigned passed[8], any = 0;
   for (int h = 0; h < vectors; ++h) {
+    // No branch on the coverage: the micro-triangles' patterns are unpredictable, and a vector
+    // without a covered lane costs less to test than a mispredicted skip.
     passed[h] = covered[h];
-    if (!passed[h]) continue;
     const __m256 x = _mm256_add_ps(px, _mm256_load_ps(lanes.ox + 8 * h)),
                  y = _mm256_add_ps(py, _mm256_load_ps(lanes.oy + 8 * h));
     const __m256 zs = _mm256_add_ps(_mm256_add_ps(z0, _mm256_mul_ps(z1, x)), _mm256_mul_ps(z2, y));
     z[h] = _mm256_min_ps(max_depth, _mm256_max_ps(min_depth, zs));  // simd::min(simd::max(zs, lo), hi)
+    stored[h] = z[h];
     if (rc.depth.test) {
       stored[h] = _mm256_loadu_ps(depth + 8 * h);
       passed[h] &= depth_pass_mask8<kDepthFunc>(z[h], stored[h]);
@@ -121,8 +123,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   const __m256i both = _mm256_set_m128i(rgba, rgba);  // the quad's four pixels for two samples
   const bool write_depth = rc.depth.test && rc.depth.write;
   for (int h = 0; h < vectors; ++h) {
-    if (!passed[h]) continue;
-    const __m256i m = lane_mask8(passed[h]);
+    const __m256i m = lane_mask8(passed[h]);  // unmasked lanes store back what they hold
     __m256i* at = reinterpret_cast<__m256i*>(color + 32 * h);
     _mm256_storeu_si256(at, _mm256_blendv_epi8(_mm256_loadu_si256(at), both, m));
     if (write_depth) _mm256_storeu_ps(depth + 8 * h, _mm256_blendv_ps(stored[h], z[h], _mm256_castsi256_ps(m)));
