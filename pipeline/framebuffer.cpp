@@ -78,7 +78,7 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
   // Multisampled: whole quad rows as one run; a quad row split by y0 or y1 (odd) pixel by pixel.
   auto partial_row = [&](int y) {
     for (int x = 0; x < width_; ++x)
-      for (int s = 0; s < samples_; ++s) fill(index(x, y) + plane_offset(s), index(x, y) + plane_offset(s) + 1);
+      for (int s = 0; s < samples_; ++s) fill(index(x, y) + sample_offset(s), index(x, y) + sample_offset(s) + 1);
   };
   int first_row = y0, last_row = y1;  // [first_row, last_row): whole quad rows
   if (first_row & 1) partial_row(first_row++);
@@ -87,11 +87,11 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
 }
 
 void Framebuffer::set_other_samples(int x, int y, float d) {
-  for (int s = 1; s < samples_; ++s) depth_[index(x, y) + plane_offset(s)] = d;
+  for (int s = 1; s < samples_; ++s) depth_[index(x, y) + sample_offset(s)] = d;
 }
 
 void Framebuffer::set_other_samples(int x, int y, glm::vec4 c) {
-  for (int s = 1; s < samples_; ++s) set_sample_color(index(x, y) + plane_offset(s), c);
+  for (int s = 1; s < samples_; ++s) set_sample_color(index(x, y) + sample_offset(s), c);
 }
 
 Framebuffer Framebuffer::resolve() const {
@@ -125,7 +125,7 @@ void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
         __m256i sum = _mm256_set1_epi16(std::int16_t(samples_ / 2));
         __m128 near = _mm_loadu_ps(&depth_[q]);
         for (int s = 0; s < samples_; ++s) {
-          const std::size_t e = q + plane_offset(s);
+          const std::size_t e = q + sample_offset(s);
           sum = _mm256_add_epi16(
               sum, _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&color_[e * 4]))));
           if (s > 0) near = _mm_min_ps(_mm_loadu_ps(&depth_[e]), near);
@@ -143,21 +143,21 @@ void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
       float nearest[4];
       std::copy_n(&depth_[q], 4, nearest);
       for (int s = 1; s < samples_; ++s)
-        for (std::size_t k = 0; k < 4; ++k) nearest[k] = std::min(nearest[k], depth_[q + plane_offset(s) + k]);
+        for (std::size_t k = 0; k < 4; ++k) nearest[k] = std::min(nearest[k], depth_[q + sample_offset(s) + k]);
       alignas(16) std::uint8_t rgba8[16];  // [pixel][channel]
       alignas(16) float mean[16];
       if (bytes) {
         std::uint16_t sums[16];  // 16 x 255 fits
         std::fill_n(sums, 16, std::uint16_t(unsigned(samples_) / 2));
         for (int s = 0; s < samples_; ++s) {
-          const std::uint8_t* c = &color_[(q + plane_offset(s)) * 4];
+          const std::uint8_t* c = &color_[(q + sample_offset(s)) * 4];
           for (std::size_t i = 0; i < 16; ++i) sums[i] = std::uint16_t(sums[i] + c[i]);
         }
         for (std::size_t i = 0; i < 16; ++i) rgba8[i] = std::uint8_t(sums[i] >> shift);
       } else {
         float sums[16] = {};
         for (int s = 0; s < samples_; ++s) {
-          const std::uint8_t* c = &color_[(q + plane_offset(s)) * 16];
+          const std::uint8_t* c = &color_[(q + sample_offset(s)) * 16];
           for (std::size_t i = 0; i < 16; ++i) {
             float v = 0.0f;
             std::memcpy(&v, c + i * 4, 4);
@@ -183,7 +183,7 @@ glm::vec4 Framebuffer::color(int x, int y) const {
   if (samples_ > 1) {
     glm::vec4 sum(0.0f);
     for (int s = 0; s < samples_; ++s) {
-      const std::size_t i = index(x, y) + plane_offset(s);
+      const std::size_t i = index(x, y) + sample_offset(s);
       if (format_ == ColorFormat::rgba8_unorm) {
         const std::uint8_t* p = &color_[i * 4];
         sum += glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;

@@ -86,10 +86,10 @@ class Framebuffer {
   // The pixel's colour: sample 0's, or the mean of its samples on a multisampled target.
   glm::vec4 color(int x, int y) const;
 
-  // Sample s: the index i of a pixel's sample 0 becomes i + plane_offset(s).
-  std::size_t plane_offset(int s) const { return std::size_t(s) * 4u; }
-  float sample_depth(int x, int y, int s) const { return depth_[index(x, y) + plane_offset(s)]; }
-  void set_sample_depth(int x, int y, int s, float d) { depth_[index(x, y) + plane_offset(s)] = d; }
+  // Sample s: the index i of a pixel's sample 0 becomes i + sample_offset(s).
+  std::size_t sample_offset(int s) const { return std::size_t(s) * 4u; }
+  float sample_depth(int x, int y, int s) const { return depth_[index(x, y) + sample_offset(s)]; }
+  void set_sample_depth(int x, int y, int s, float d) { depth_[index(x, y) + sample_offset(s)] = d; }
 
  private:
   [[gnu::noinline]] void set_other_samples(int x, int y, float d);
@@ -120,8 +120,8 @@ class Framebuffer {
     const std::size_t i = index(x, y);
     return {i, i + (samples_ == 1 ? std::size_t(width_) : 2u)};
   }
-  // The same quad in sample s's plane.
-  QuadSite sample_site(QuadSite q, int s) const { return {q.top + plane_offset(s), q.bottom + plane_offset(s)}; }
+  // The same quad's sample s.
+  QuadSite sample_site(QuadSite q, int s) const { return {q.top + sample_offset(s), q.bottom + sample_offset(s)}; }
   // Depth of the quad's pixels in lanes k = 0 (x, y), 1 (x + 1, y), 2 (x, y + 1), 3 (x + 1, y + 1).
   simd::F4 depth_quad(QuadSite q) const { return simd::F4::load_pairs(&depth_[q.top], &depth_[q.bottom]); }
   void set_depth_quad(QuadSite q, simd::F4 d) { d.store_pairs(&depth_[q.top], &depth_[q.bottom]); }
@@ -148,7 +148,7 @@ class Framebuffer {
   }
 #if defined(__SSE2__)
   // write_quad on an RGBA8 target of a quad inside it, its colours already packed by quad_to_rgba8 (a
-  // multisampled quad writes one shaded colour to several sample planes, converted once).
+  // multisampled quad writes one shaded colour to several samples, converted once).
   [[gnu::always_inline]] void write_quad_rgba8(QuadSite q, unsigned mask, __m128i px) {
     std::uint8_t* r0 = &color_[q.top * 4];
     std::uint8_t* r1 = &color_[q.bottom * 4];
@@ -163,7 +163,7 @@ class Framebuffer {
     _mm_storel_epi64(reinterpret_cast<__m128i*>(r1), _mm_srli_si128(out, 8));
   }
 #endif
-  // A quad at `q` (of any plane) that is inside the target or not.
+  // A quad at `q` (of any sample) that is inside the target or not.
   [[gnu::always_inline]] void write_quad(QuadSite q, bool inside, unsigned mask,
                                          const std::array<std::array<float, 4>, 4>& c) {
     if (inside)
@@ -185,7 +185,7 @@ class Framebuffer {
   // std::max/std::min's NaN behaviour (maxps returns its second operand for NaN), scale and add 0.5,
   // then (after a transpose to pixel order, which moves bits only) truncation, as the scalar cast does.
   // The results are in 0..255, so the saturating packs to 16 and 8 bits keep them unchanged. Public: a
-  // multisampled quad converts its colour once for all its sample planes (write_quad_rgba8).
+  // multisampled quad converts its colour once for all its samples (write_quad_rgba8).
   [[gnu::always_inline]] static __m128i quad_to_rgba8(const std::array<std::array<float, 4>, 4>& c) {
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), scale = _mm_set1_ps(255.0f),
                  half = _mm_set1_ps(0.5f);

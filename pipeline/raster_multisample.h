@@ -152,7 +152,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   const float fx = float(qx) + 0.5f - p.origin_x, fy = float(qy) + 0.5f - p.origin_y;
   const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
            dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
-  // Depth at each sample, tested against that sample's plane.
+  // Depth at each sample, tested against that sample's stored depth.
   F4 z[16], stored[16];
   unsigned passed[16], any = 0;
   for (int s = 0; s < samples; ++s) {
@@ -187,7 +187,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   QuadColor color;
   shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, color);
 #if defined(__SSE2__)
-  // One conversion of the shaded colours for every sample plane it goes to.
+  // One conversion of the shaded colours for every sample it goes to.
   const bool packed = inside && fb.format() == ColorFormat::rgba8_unorm;
   const __m128i px = packed ? Framebuffer::quad_to_rgba8(color.c) : _mm_setzero_si128();
 #endif
