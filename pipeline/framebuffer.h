@@ -4,10 +4,10 @@
 // A single-sampled target is row-major. A multisampled one is stored by 2x2 pixel quads, row-major over
 // quads, each quad's samples together: sample s of its four pixels at 4 s + 2 (y & 1) + (x & 1) (a 4x
 // quad's depths are one 64-byte line). The rasterizer's quad forms address a sample's 2x2 pixels as they
-// address a pixel quad of a single-sampled target (sample_site), and a quad's per-sample depth tests
-// and writes touch the lines its first sample brought in: in separate full-image planes they were four
-// or eight streams 8 MB apart (a 1080p target), and cache misses on them were the largest cost of a 4x
-// frame. resolve() averages the samples into a single-sampled target.
+// address a pixel quad of a single-sampled target (sample_site), a quad's per-sample depth tests and
+// writes touch one or two lines (in separate full-image planes they were four or eight streams 8 MB
+// apart on a 1080p target), and its samples load as vectors (raster_multisample.h). resolve() averages
+// the samples into a single-sampled target.
 //
 // Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target). A
 // target is memory only: image files are written by shaders_cpp/image_io/image_file.h.

@@ -18,6 +18,32 @@ struct SampleCoverage {
   unsigned any = 0;  // the union over samples
 };
 
+// The pixels of the quad at (qx, qy) (bit k as in SampleCoverage) inside the box [x_begin, x_end] x
+// [y_begin, y_end].
+inline unsigned quad_in_box(int qx, int qy, int x_begin, int x_end, int y_begin, int y_end) {
+  unsigned box = 0xFu;
+  if (qx < x_begin) box &= 0xAu;
+  if (qx + 1 > x_end) box &= 0x5u;
+  if (qy < y_begin) box &= 0xCu;
+  if (qy + 1 > y_end) box &= 0x3u;
+  return box;
+}
+
+// The pixel shader on the pixels `lanes` of a multisampled quad, at their centres (dxk, dyk: their
+// offsets from the primitive's origin), seeing the centre's depth clamped to the viewport's range.
+template <std::size_t N, class Ps>
+[[gnu::always_inline]] inline QuadColor shade_quad_centres(const ScreenPrimitive<N>& p, int qx, int qy, simd::F4 dxk,
+                                                           simd::F4 dyk, unsigned lanes, const Ps& ps,
+                                                           const RasterContext& rc) {
+  using simd::F4;
+  QuadInput<N> q;
+  const F4 zc = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
+  simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
+  QuadColor color;
+  shade_quad_pixels<N>(p, qx, qy, dxk, dyk, lanes, ps, q, color);
+  return color;
+}
+
 #if defined(__AVX2__)
 // A multisampled quad's samples in lanes of eight, as the target stores them (framebuffer.h: sample s of
 // pixel k at 4 s + k, two samples per vector): each lane's pixel offset in the quad and its sample's
@@ -114,11 +140,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   if (!any) return 0;
   const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
            dyk = F4::splat(fy) + F4::lanes(0.0f, 0.0f, 1.0f, 1.0f);
-  QuadInput<N> q;
-  const F4 zc = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
-  simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
-  QuadColor shaded;
-  shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, shaded);
+  const QuadColor shaded = shade_quad_centres<N>(p, qx, qy, dxk, dyk, any, ps, rc);
   const __m128i rgba = Framebuffer::quad_to_rgba8(shaded.c);
   const __m256i both = _mm256_set_m128i(rgba, rgba);  // the quad's four pixels for two samples
   const bool write_depth = rc.depth.test && rc.depth.write;
@@ -181,11 +203,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
     any |= passed[s];
   }
   if (!any) return 0;
-  QuadInput<N> q;
-  const F4 zc = (F4::splat(p.z[0]) + F4::splat(p.z[1]) * dxk) + F4::splat(p.z[2]) * dyk;
-  simd::min(simd::max(zc, F4::splat(rc.min_depth)), F4::splat(rc.max_depth)).store(q.z);
-  QuadColor color;
-  shade_quad_pixels<N>(p, qx, qy, dxk, dyk, any, ps, q, color);
+  const QuadColor color = shade_quad_centres<N>(p, qx, qy, dxk, dyk, any, ps, rc);
 #if defined(__SSE2__)
   // One conversion of the shaded colours for every sample it goes to.
   const bool packed = inside && fb.format() == ColorFormat::rgba8_unorm;
@@ -218,8 +236,8 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 // A triangle with edges32 whose box spans at most kSmallBoxQuads quads, on an RGBA8 target: each quad's
 // samples tested at once in the lanes the target stores them in (two samples, eight points, per
 // vector), the edge values at the quad plus each lane's pixel and sample offset: the same integers as
-// the 8x8 blocks below, without their per-sample grids and the bits' regrouping per quad (the torus's
-// micro-triangles, about 2 pixels, spent half their 4x raster time there).
+// the 8x8 blocks below, without their per-sample grids and the bits' regrouping per quad (about 5 % of
+// the torus's 4x raster time, its micro-triangles about 2 pixels).
 inline constexpr int kSmallBoxQuads = 4;
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 std::uint64_t rasterize_multisample_small(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin, int y_end,
@@ -245,11 +263,7 @@ std::uint64_t rasterize_multisample_small(const ScreenPrimitive<N>& p, int x_beg
   std::uint64_t invocations = 0;
   for (int qy = y_begin & ~1; qy <= y_end; qy += 2)
     for (int qx = x_begin & ~1; qx <= x_end; qx += 2) {
-      unsigned box = 0xFu;  // the quad's pixels inside the box
-      if (qx < x_begin) box &= 0xAu;
-      if (qx + 1 > x_end) box &= 0x5u;
-      if (qy < y_begin) box &= 0xCu;
-      if (qy + 1 > y_end) box &= 0x3u;
+      const unsigned box = quad_in_box(qx, qy, x_begin, x_end, y_begin, y_end);
       const unsigned box8 = box | (box << 4);
       __m256i at[3];
       for (int i = 0; i < 3; ++i) at[i] = _mm256_set1_epi32(p.edges.value_at(i, qx - p.min_x, qy - p.min_y));
@@ -345,13 +359,8 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
     }
   std::uint64_t invocations = 0;
   for (int qy = qy0; qy <= y_end; qy += 2) {
-    unsigned row_mask = 0xF;
-    if (qy < y_begin) row_mask &= 0xC;
-    if (qy + 1 > y_end) row_mask &= 0x3;
     for (int qx = qx0; qx <= x_end; qx += 2) {
-      unsigned mask = row_mask;
-      if (qx < x_begin) mask &= 0xA;
-      if (qx + 1 > x_end) mask &= 0x5;
+      const unsigned mask = quad_in_box(qx, qy, x_begin, x_end, y_begin, y_end);
       const std::int64_t dqx = qx - qx0, dqy = qy - qy0;
       SampleCoverage c;
       for (int s = 0; s < samples; ++s) {
