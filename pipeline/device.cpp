@@ -10,8 +10,12 @@ Device::Device(DeviceOptions options) : options_(options) {
   options_.tile_size = std::clamp(options_.tile_size & ~1, 8, 1024);
   options_.chunk_primitives = std::max<std::size_t>(options_.chunk_primitives, 64);
   options_.window_patches = std::max(options_.window_patches, 1);
-  // Enough chunks per round that every thread has one to produce beside those still rasterizing.
-  if (options_.chunks_in_flight <= 0) options_.chunks_in_flight = std::max(4, 2 * threads_);
+  // Enough chunks per round, and rounds at once, that every thread has chunks to produce while earlier
+  // rounds rasterize and a round's slowest chunks finish (measured on 16 threads, torus factor 64:
+  // 2 x threads in 2 rounds 66.5 ms, 4 x threads in 3 rounds 55.6-60.9 ms; docs/performance.md).
+  if (options_.chunks_in_flight <= 0) options_.chunks_in_flight = std::max(4, 4 * threads_);
+  if (options_.rounds_in_flight <= 0) options_.rounds_in_flight = 3;
+  options_.rounds_in_flight = std::max(options_.rounds_in_flight, 2);
   // oneTBB caps its workers at the hardware concurrency and says so on stderr when an arena asks for
   // more. A device asked for more threads than cores (to test determinism, or on an oversubscribed
   // machine) raises the cap while it lives. Active controls combine by their minimum, so two such

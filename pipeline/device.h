@@ -7,9 +7,10 @@
 //   chunks' primitives in draw order; every computation on a primitive is a pure function of it.
 // - Bounded memory: the front end (front_end.h) handles at most `window_patches` patches at a time
 //   (VS and HS outputs), and cuts their output into chunks of about `chunk_primitives` primitives, in
-//   rounds of `chunks_in_flight`; at most two rounds exist at once (one rasterized while the next is
-//   produced). Peak memory therefore does not grow with the tessellation factor (one patch is at most
-//   8192 triangles); it grows linearly with the thread count (2 x chunks_in_flight chunk buffers).
+//   rounds of `chunks_in_flight`; at most `rounds_in_flight` rounds exist at once (produced while
+//   earlier ones are rasterized). Peak memory therefore does not grow with the tessellation factor (one
+//   patch is at most 8192 triangles); it grows linearly with the thread count (rounds_in_flight x
+//   chunks_in_flight chunk buffers).
 // - A Device runs one draw at a time (draws on one device from several threads take turns): its chunk
 //   slots are reused from draw to draw, so their storage is allocated and touched once, not per frame.
 // - Bad data is reported, not crashed on: validate() errors are returned as one-line messages;
@@ -55,13 +56,17 @@ struct DeviceOptions {
   int tile_size = 64;                   // screen tile edge in pixels (even, 8..1024)
   std::size_t chunk_primitives = 4096;  // a chunk is cut before its primitive count would pass this
   int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
-  // Chunks per round: a round is produced in parallel, then rasterized while the next is produced, so
-  // two rounds exist at once. 0: twice the thread count, at least 4.
+  // Chunks per round: a round's chunks are produced in parallel, and rasterized together once all are
+  // done. 0: four times the thread count, at least 4.
   int chunks_in_flight = 0;
+  // Rounds that may exist at once (produced while earlier ones are rasterized; at least 2). Chunk
+  // storage is rounds_in_flight x chunks_in_flight chunk buffers. 0: the default, 3.
+  int rounds_in_flight = 0;
 };
 
-// Called on the drawing thread after each round of chunks of a patch draw: the draw's patches done
-// (through the last chunk rasterized) and its total. For progress displays; it sees no pixels and
+// Called after each round of chunks of a patch draw is rasterized, one call at a time and in order (on
+// a worker thread or the drawing thread): the draw's patches done (through the last chunk rasterized)
+// and its total. For progress displays; it sees no pixels and
 // cannot change any result.
 using DrawProgress = std::function<void(std::size_t patches_done, std::size_t patches_total)>;
 
@@ -117,58 +122,58 @@ namespace detail {
 template <std::size_t N, class Ps>
 class Backend {
  public:
-  // `slot_count` chunks per round; the slots hold two rounds, one rasterized while the next is produced.
+  // `slot_count` chunks per round; the slots hold `rounds` rounds in flight (at least 2): produced in
+  // parallel while earlier ones are rasterized.
   Backend(const SetupContext& setup, const DepthState& depth, const Ps& ps, Framebuffer& fb,
-          std::vector<ChunkBuffer<N>>& slots, int slot_count)
+          std::vector<ChunkBuffer<N>>& slots, int slot_count, int rounds)
       : setup_(setup),
         rc_{depth, setup.min_depth, setup.max_depth},
         ps_(ps),
         fb_(fb),
         slots_(slots),
-        per_round_(std::size_t(std::max(slot_count, 1))) {
-    slots_.resize(2 * per_round_);
+        per_round_(std::size_t(std::max(slot_count, 1))),
+        sets_(std::size_t(std::max(rounds, 2))) {
+    slots_.resize(sets_ * per_round_);
   }
 
   const SetupContext& setup() const { return setup_; }
 
-  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), a round of `slot_count` in parallel,
-  // and rasterizes each round while the next one is produced (geometry and raster overlap; each tile
-  // still takes the rounds, and the chunks within a round, in draw order). after_round(chunks done)
-  // follows each round's rasterization.
+  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), in rounds of `slot_count` chunks, each
+  // round's chunks in parallel and several rounds at once, and rasterizes the rounds in order as each is
+  // produced (pipelined_rounds: geometry and raster overlap, and no thread waits for a round's slowest
+  // chunk while a later round has work; each tile still takes the rounds, and the chunks within a
+  // round, in draw order). after_round(chunks done) follows each round's rasterization, in order.
   template <class Produce, class AfterRound>
   void run(std::size_t count, Produce&& produce, DrawReport& report, AfterRound&& after_round) {
-    if (count == 0) return;
-    const auto produce_round = [&](std::size_t first, std::size_t set) {
-      const std::size_t n = std::min(per_round_, count - first);
-      detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const auto& r) {
-        for (std::size_t s = r.begin(); s != r.end(); ++s) {
-          ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
-          slot.reset(setup_.tiles.count());
-          produce(first + s, slot);
-          slot.finish_bins();
-        }
-      });
-    };
-    produce_round(0, 0);
-    std::size_t set = 0;
-    for (std::size_t first = 0; first < count; first += per_round_, set ^= 1) {
-      const std::size_t n = std::min(per_round_, count - first), next = first + n;
-      if (next < count)
-        tbb::parallel_invoke([&] { flush(set, n, report); }, [&] { produce_round(next, set ^ 1); });
-      else
-        flush(set, n, report);
-      for (std::size_t s = 0; s < n; ++s) {
-        const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
-        report.statistics += slot.statistics;
-        report.times += slot.times;
-        report.patches_back_culled += slot.patches_back_culled;
-      }
-      report.memory.chunks += n;
-      std::size_t bytes = 0;
-      for (const auto& s : slots_) bytes += s.capacity_bytes();
-      chunk_bytes_peak_ = std::max(chunk_bytes_peak_, bytes);
-      after_round(first + n);
-    }
+    const std::size_t rounds = (count + per_round_ - 1) / per_round_;
+    const auto chunks_of = [&](std::size_t r) { return std::min(per_round_, count - r * per_round_); };
+    detail::pipelined_rounds(
+        rounds, sets_,
+        [&](std::size_t r) {
+          ChunkBuffer<N>* set = slots_.data() + (r % sets_) * per_round_;
+          detail::parallel_for(tbb::blocked_range<std::size_t>(0, chunks_of(r), 1), [&](const auto& range) {
+            for (std::size_t s = range.begin(); s != range.end(); ++s) {
+              set[s].reset(setup_.tiles.count());
+              produce(r * per_round_ + s, set[s]);
+              set[s].finish_bins();
+            }
+          });
+        },
+        [&](std::size_t r) {
+          const std::size_t set = r % sets_, n = chunks_of(r);
+          flush(set, n, report);
+          for (std::size_t s = 0; s < n; ++s) {
+            const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
+            report.statistics += slot.statistics;
+            report.times += slot.times;
+            report.patches_back_culled += slot.patches_back_culled;
+          }
+          report.memory.chunks += n;
+          std::size_t bytes = 0;
+          for (const auto& s : slots_) bytes += s.capacity_bytes();
+          chunk_bytes_peak_ = std::max(chunk_bytes_peak_, bytes);
+          after_round(r * per_round_ + n);
+        });
   }
   template <class Produce>
   void run(std::size_t count, Produce&& produce, DrawReport& report) {
@@ -215,6 +220,7 @@ class Backend {
   Framebuffer& fb_;
   std::vector<ChunkBuffer<N>>& slots_;
   std::size_t per_round_;
+  std::size_t sets_;
   std::size_t chunk_bytes_peak_ = 0;
 };
 
@@ -298,7 +304,8 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
-    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
+    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight,
+                                   options_.rounds_in_flight);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
     const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
@@ -309,13 +316,13 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
     // through setup into the chunk.
     const auto patch_to_chunk = [&](const typename FrontEnd::Work& w, detail::PatchScratch<N>& local,
                                     ChunkBuffer<N>& chunk) {
-      const auto start = detail::Clock::now();
       const ts::Pattern& pattern = w.pattern;
       if constexpr (detail::HasOrientationBound<PatchConstants>) {
         // Back-patch culling (patch_orientation.h): the pattern's shape is computed only for a bound
         // that can hold, on a draw whose rasterizer culls one orientation.
         const OrientationBound& bound = w.constants.orientation;
         if (culls_an_orientation && bound.may_hold()) {
+          const auto start = detail::Clock::now();
           const ts::PatternShape& shape = local.patterns.shape(pattern);
           const bool away = bound.holds(shape) && rasterizer_culls(setup, pattern_screen_sign(bound, shape));
           chunk.times.tessellator += detail::seconds_since(start);
@@ -325,6 +332,9 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
           }
         }
       }
+      // The orientation test above is the tessellator's time, not the DS's (so that the stages' times
+      // add up to at most the threads' time).
+      const auto start = detail::Clock::now();
       auto& outs = local.domain_outputs;
       outs.resize(pattern.points.size());
       if constexpr (BatchDomainShader<Ds, PatchConstants, ControlPoint, N>) {
@@ -405,7 +415,8 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
-    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight);
+    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight,
+                                   options_.rounds_in_flight);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
     std::vector<SetupVertex<N>> setup_vertices;

@@ -391,8 +391,9 @@ TEST_CASE("gregory draws a cage of pentagons from the CLI: watertight, close to 
 
 TEST_CASE("tessera bench scaling times a scene over thread counts and checks the image is the same", "[cli]") {
   for (const char* scene : {"torus", "frog"}) {
+    // --ceiling also renders 2 and 3 independent one-thread frames at once, and checks their images too.
     const auto r = run_cli(std::string("bench scaling --scene ") + scene +
-                           " --factor 4 --resolution 160x90 --frames 1 --max-threads 3 --json");
+                           " --factor 4 --resolution 160x90 --frames 1 --max-threads 3 --ceiling --json");
     INFO(scene << ": " << r.err);
     REQUIRE(r.exit_code == 0);
     const auto j = nlohmann::json::parse(r.out);
@@ -410,11 +411,17 @@ TEST_CASE("tessera bench scaling times a scene over thread counts and checks the
       CHECK(row["min_s"].get<double>() <= row["median_s"].get<double>());
       CHECK(row["efficiency"].get<double>() ==
             Approx(row["speedup"].get<double>() / row["threads"].get<double>()).epsilon(1e-12));
+      // Stage time can neither be missing nor exceed what the threads had (timer resolution aside).
+      CHECK(row["busy"].get<double>() > 0);
+      CHECK(row["busy"].get<double>() <= 1.05);
+      CHECK(row["independent_speedup"].get<double>() > 0);
     }
+    CHECK(rows[0]["independent_speedup"].get<double>() == 1.0);
   }
   const auto text = run_cli("bench scaling --factor 2 --resolution 64x36 --frames 1 --max-threads 2");
   REQUIRE(text.exit_code == 0);
-  CHECK(text.out.find("threads  time (ms)  speed-up  efficiency") != std::string::npos);
+  CHECK(text.out.find("threads  time (ms)  speed-up  efficiency  busy") != std::string::npos);
+  CHECK(text.out.find("independent") == std::string::npos);  // only with --ceiling
   for (const char* bad : {"--scene cube", "--factor 0", "--factor 65", "--frames 0", "--max-threads -1"}) {
     const auto b = run_cli(std::string("bench scaling ") + bad);
     INFO(bad << ": " << b.err);

@@ -4,8 +4,17 @@
 // machine. The CPU's name (from /proc/cpuinfo, where there is one) heads the table; it changes no
 // result. The image is the same bytes for every thread count (device.h); this command checks it and
 // fails if not.
+//
+// Where the time goes: `busy` is the draw's summed stage time (VS, HS, tessellator, DS, setup, raster,
+// as each thread measured it) over threads x the draw's wall time; the rest is threads waiting. The
+// stage times themselves grow with the thread count when the cores share something (caches, memory
+// bandwidth, a lower all-core clock): --ceiling measures that limit apart from Tessera's pipeline, by
+// running N independent one-thread devices at once (N frames rendered side by side, nothing shared
+// but the scene) and reporting N x the one-thread frame over their median frame, the speed-up N
+// threads could reach if the pipeline never waited.
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -30,6 +39,7 @@ struct ScalingOptions {
   std::string resolution = "1920x1080";
   int frames = 5;
   int max_threads = 0;  // 0: the hardware's
+  bool ceiling = false;
   bool json = false;
 };
 
@@ -86,32 +96,84 @@ int run_bench_scaling(const ScalingOptions& o) {
   struct Row {
     int threads;
     double median_s, min_s;
+    double busy;             // summed stage time / (threads x draw wall time), the median frame's
+    double independent = 0;  // --ceiling: the speed-up of `threads` independent one-thread devices
   };
-  std::vector<Row> rows;
-  std::vector<std::uint8_t> first_image;
-  for (const int threads : thread_counts(most)) {
+  struct Run {
+    std::vector<double> times;  // sorted
+    double busy = 0;
+    std::vector<std::uint8_t> image;
+  };
+  // --frames frames (after one warm-up) on a new device of `threads` threads and its own target.
+  const auto run = [&](int threads) {
     Device device(device_options(threads));
     std::string error;
     auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
     if (!fb) throw UsageError("--resolution: " + error);
-    std::vector<double> times;
+    std::vector<std::pair<double, double>> frames;  // seconds, busy
     for (int k = 0; k <= o.frames; ++k) {
       const auto start = std::chrono::steady_clock::now();
       device.clear(*fb, kBackgroundColor, 1.0f);
       const DrawResult r = frame(device, *fb);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (!r.ok()) throw InputError(r.error);
-      if (k > 0) times.push_back(s);
+      const StageTimes& t = r.report.times;
+      const double stages = t.ia_vs + t.hs + t.tessellator + t.ds + t.setup + t.raster;
+      if (k > 0) frames.push_back({s, t.wall > 0 ? stages / (threads * t.wall) : 0.0});
     }
-    std::sort(times.begin(), times.end());
-    rows.push_back({threads, times[times.size() / 2], times.front()});
-    const std::vector<std::uint8_t>& image = fb->color_bytes();
+    std::sort(frames.begin(), frames.end());
+    Run out;
+    for (const auto& f : frames) out.times.push_back(f.first);
+    out.busy = frames[frames.size() / 2].second;
+    out.image = fb->color_bytes();
+    return out;
+  };
+  const auto check_image = [&](const std::vector<std::uint8_t>& image, const std::vector<std::uint8_t>& first,
+                               const std::string& what) {
+    if (image != first)
+      throw InputError("bench scaling: the image " + what +
+                       " differs from the 1-thread image (a determinism bug; please report it)");
+  };
+  std::vector<Row> rows;
+  std::vector<std::uint8_t> first_image;
+  for (const int threads : thread_counts(most)) {
+    Run r = run(threads);
+    rows.push_back({threads, r.times[r.times.size() / 2], r.times.front(), r.busy});
     if (first_image.empty())
-      first_image = image;
-    else if (image != first_image)
-      throw InputError("bench scaling: the image with " + std::to_string(threads) +
-                       " threads differs from the 1-thread image (a determinism bug; please report it)");
+      first_image = std::move(r.image);
+    else
+      check_image(r.image, first_image, "with " + std::to_string(threads) + " threads");
     log_info("threads " + std::to_string(threads) + ": median " + std::to_string(rows.back().median_s) + " s");
+  }
+  if (o.ceiling) {
+    rows.front().independent = 1.0;
+    for (Row& row : rows) {
+      if (row.threads == 1) continue;
+      // Each independent device's median frame; a failure on one thread is rethrown here.
+      std::vector<Run> runs(std::size_t(row.threads));
+      std::vector<std::exception_ptr> errors(runs.size());
+      std::vector<std::thread> workers;
+      for (std::size_t i = 0; i < runs.size(); ++i)
+        workers.emplace_back([&, i] {
+          try {
+            runs[i] = run(1);
+          } catch (...) {
+            errors[i] = std::current_exception();
+          }
+        });
+      for (auto& t : workers) t.join();
+      for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+      std::vector<double> medians;
+      for (const Run& r : runs) {
+        check_image(r.image, first_image, "of " + std::to_string(row.threads) + " independent devices");
+        medians.push_back(r.times[r.times.size() / 2]);
+      }
+      std::sort(medians.begin(), medians.end());
+      row.independent = row.threads * rows.front().median_s / medians[medians.size() / 2];
+      log_info(std::to_string(row.threads) + " independent one-thread devices: speed-up " +
+               std::to_string(row.independent));
+    }
   }
 
   const double one = rows.front().median_s;
@@ -123,7 +185,10 @@ int run_bench_scaling(const ScalingOptions& o) {
                       {"median_s", r.median_s},
                       {"min_s", r.min_s},
                       {"speedup", one / r.median_s},
-                      {"efficiency", one / r.median_s / r.threads}});
+                      {"efficiency", one / r.median_s / r.threads},
+                      {"busy", r.busy}});
+    if (o.ceiling)
+      for (std::size_t i = 0; i < rows.size(); ++i) list[i]["independent_speedup"] = rows[i].independent;
     const Json j = {{"scene", o.scene},
                     {"factor", json_float(o.factor)},
                     {"resolution", std::to_string(w) + "x" + std::to_string(h)},
@@ -137,13 +202,21 @@ int run_bench_scaling(const ScalingOptions& o) {
     std::ostringstream out;
     out << "bench scaling: " << o.scene << " factor " << o.factor << ", " << w << "x" << h << ", median of " << o.frames
         << " frames; " << cpu << ", " << hardware << " hardware threads\n";
-    out << "threads  time (ms)  speed-up  efficiency\n";
-    char line[128];
+    out << "threads  time (ms)  speed-up  efficiency  busy" << (o.ceiling ? "  independent" : "") << "\n";
+    char line[160];
     for (const Row& r : rows) {
-      std::snprintf(line, sizeof line, "%7d  %9.2f  %7.2fx  %9.0f%%\n", r.threads, r.median_s * 1e3, one / r.median_s,
-                    100.0 * one / r.median_s / r.threads);
+      std::snprintf(line, sizeof line, "%7d  %9.2f  %7.2fx  %9.0f%%  %3.0f%%", r.threads, r.median_s * 1e3,
+                    one / r.median_s, 100.0 * one / r.median_s / r.threads, 100.0 * r.busy);
       out << line;
+      if (o.ceiling) {
+        std::snprintf(line, sizeof line, "  %10.2fx", r.independent);
+        out << line;
+      }
+      out << "\n";
     }
+    out << "busy: summed stage time over threads x wall time"
+        << (o.ceiling ? "; independent: N one-thread devices at once, N x one thread's frame over their median" : "")
+        << "\n";
     out << "the same image bytes for every thread count\n";
     std::cout << out.str();
   }
@@ -162,6 +235,9 @@ Runner add_bench_scaling_command(CLI::App& bench) {
   cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per thread count (after one warm-up)")->capture_default_str();
   cmd->add_option("--max-threads", o->max_threads, "the largest thread count (0: all cores)")->capture_default_str();
+  cmd->add_flag("--ceiling", o->ceiling,
+                "also render N independent one-thread frames at once per count: the speed-up the cores "
+                "reach with nothing waiting (the machine's limit, apart from the pipeline)");
   cmd->add_flag("--json", o->json, "print results as JSON");
   return [o, cmd]() -> int { return cmd->parsed() ? run_bench_scaling(*o) : -1; };
 }
