@@ -147,6 +147,9 @@ class Backend {
   void run(std::size_t count, Produce&& produce, DrawReport& report, AfterRound&& after_round) {
     const std::size_t rounds = (count + per_round_ - 1) / per_round_;
     const auto chunks_of = [&](std::size_t r) { return std::min(per_round_, count - r * per_round_); };
+    std::vector<char> produced(rounds, 0);  // guarded by `produced_mutex`
+    std::mutex produced_mutex;
+    std::size_t flushed = 0;  // rounds rasterized (the consuming stage's alone)
     detail::pipelined_rounds(
         rounds, sets_,
         [&](std::size_t r) {
@@ -158,10 +161,23 @@ class Backend {
               set[s].finish_bins();
             }
           });
+          const std::lock_guard<std::mutex> lock(produced_mutex);
+          produced[r] = 1;
         },
         [&](std::size_t r) {
+          if (flushed == r) {
+            // Round r, and the rounds after it already produced (their storage is still held: at most
+            // sets_ rounds are in flight), rasterized in one pass: each tile runs through them all,
+            // instead of every tile waiting for the round's busiest tile before the next round.
+            std::size_t last = r;
+            {
+              const std::lock_guard<std::mutex> lock(produced_mutex);
+              while (last + 1 < rounds && last + 1 < r + sets_ && produced[last + 1]) ++last;
+            }
+            flush(r, last, chunks_of, report);
+            flushed = last + 1;
+          }
           const std::size_t set = r % sets_, n = chunks_of(r);
-          flush(set, n, report);
           for (std::size_t s = 0; s < n; ++s) {
             const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
             report.statistics += slot.statistics;
@@ -170,7 +186,7 @@ class Backend {
           }
           report.memory.chunks += n;
           std::size_t bytes = 0;
-          for (const auto& s : slots_) bytes += s.capacity_bytes();
+          for (const auto& slot : slots_) bytes += slot.capacity_bytes();
           chunk_bytes_peak_ = std::max(chunk_bytes_peak_, bytes);
           after_round(r * per_round_ + n);
         });
@@ -183,26 +199,33 @@ class Backend {
   std::size_t chunk_bytes_peak() const { return chunk_bytes_peak_; }
 
  private:
-  // Rasterizes the first `used` chunks of slot set `set`. It alone writes the report's PS invocations
-  // and raster time, so it may run beside the production of the other set.
-  void flush(std::size_t set, std::size_t used, DrawReport& report) {
-    const ChunkBuffer<N>* round = slots_.data() + set * per_round_;
+  // Rasterizes rounds [first, last] (chunks_of(r) chunks each), every tile taking them in order. It
+  // alone writes the report's PS invocations and raster time, so it may run beside production.
+  template <class ChunksOf>
+  void flush(std::size_t first, std::size_t last, const ChunksOf& chunks_of, DrawReport& report) {
     const TileGrid& g = setup_.tiles;
+    const auto for_each_chunk = [&](const auto& visit) {
+      for (std::size_t r = first; r <= last; ++r) {
+        const ChunkBuffer<N>* round = slots_.data() + (r % sets_) * per_round_;
+        for (std::size_t s = 0, n = chunks_of(r); s < n; ++s)
+          if (!visit(round[s])) return;
+      }
+    };
     tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
-    detail::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& r) {
+    detail::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& range) {
       auto& mine = local.local();
-      for (int t = r.begin(); t != r.end(); ++t) {
+      for (int t = range.begin(); t != range.end(); ++t) {
         bool any = false;
-        for (std::size_t s = 0; s < used && !any; ++s) any = !round[s].bin(t).empty();
+        for_each_chunk([&](const ChunkBuffer<N>& chunk) { return !(any = !chunk.bin(t).empty()); });
         if (!any) continue;
         const auto start = Clock::now();
         const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
         const int tx1 = std::min(tx0 + g.tile_size, fb_.width()), ty1 = std::min(ty0 + g.tile_size, fb_.height());
         const auto for_each_primitive = [&](const auto& visit) {
-          for (std::size_t s = 0; s < used; ++s) {
-            const auto& chunk = round[s];
+          for_each_chunk([&](const ChunkBuffer<N>& chunk) {
             for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
-          }
+            return true;
+          });
         };
         mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
         mine.second += seconds_since(start);
