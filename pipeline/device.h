@@ -201,31 +201,46 @@ class Backend {
  private:
   // Rasterizes rounds [first, last] (chunks_of(r) chunks each), every tile taking them in order. It
   // alone writes the report's PS invocations and raster time, so it may run beside production.
+  // The tiles' chunk lists are gathered first from each chunk's touched tiles, so that the work is
+  // proportional to the (chunk, tile) pairs that hold primitives, not to chunks x tiles (at 64
+  // threads a round is 256 chunks, and the screen 510 tiles).
   template <class ChunksOf>
   void flush(std::size_t first, std::size_t last, const ChunksOf& chunks_of, DrawReport& report) {
     const TileGrid& g = setup_.tiles;
-    const auto for_each_chunk = [&](const auto& visit) {
-      for (std::size_t r = first; r <= last; ++r) {
-        const ChunkBuffer<N>* round = slots_.data() + (r % sets_) * per_round_;
-        for (std::size_t s = 0, n = chunks_of(r); s < n; ++s)
-          if (!visit(round[s])) return;
-      }
-    };
+    std::vector<const ChunkBuffer<N>*>& chunks = flush_chunks_;
+    chunks.clear();
+    for (std::size_t r = first; r <= last; ++r)
+      for (std::size_t s = 0, n = chunks_of(r); s < n; ++s) chunks.push_back(&slots_[(r % sets_) * per_round_ + s]);
+    // tile_chunks_[tile_first_[t], tile_first_[t + 1]): the chunks holding primitives of tile t, in
+    // draw order (a counting sort, stable in chunk order).
+    tile_first_.assign(std::size_t(g.count()) + 1, 0);
+    for (const ChunkBuffer<N>* c : chunks)
+      for (std::uint32_t t : c->touched) ++tile_first_[t + 1];
+    busy_tiles_.clear();
+    for (std::size_t t = 0; t < std::size_t(g.count()); ++t) {
+      if (tile_first_[t + 1] != 0) busy_tiles_.push_back(int(t));
+      tile_first_[t + 1] += tile_first_[t];
+    }
+    tile_chunks_.resize(tile_first_.back());
+    {
+      std::vector<std::uint32_t>& cursor = tile_cursor_;
+      cursor.assign(tile_first_.begin(), tile_first_.end() - 1);
+      for (std::uint32_t k = 0; k < chunks.size(); ++k)
+        for (std::uint32_t t : chunks[k]->touched) tile_chunks_[cursor[t]++] = k;
+    }
     tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
-    detail::parallel_for(tbb::blocked_range<int>(0, g.count(), 1), [&](const auto& range) {
+    detail::parallel_for(tbb::blocked_range<std::size_t>(0, busy_tiles_.size(), 1), [&](const auto& range) {
       auto& mine = local.local();
-      for (int t = range.begin(); t != range.end(); ++t) {
-        bool any = false;
-        for_each_chunk([&](const ChunkBuffer<N>& chunk) { return !(any = !chunk.bin(t).empty()); });
-        if (!any) continue;
+      for (std::size_t b = range.begin(); b != range.end(); ++b) {
+        const int t = busy_tiles_[b];
         const auto start = Clock::now();
         const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
         const int tx1 = std::min(tx0 + g.tile_size, fb_.width()), ty1 = std::min(ty0 + g.tile_size, fb_.height());
         const auto for_each_primitive = [&](const auto& visit) {
-          for_each_chunk([&](const ChunkBuffer<N>& chunk) {
+          for (std::uint32_t k = tile_first_[std::size_t(t)]; k != tile_first_[std::size_t(t) + 1]; ++k) {
+            const ChunkBuffer<N>& chunk = *chunks[tile_chunks_[k]];
             for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
-            return true;
-          });
+          }
         };
         mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
         mine.second += seconds_since(start);
@@ -245,6 +260,10 @@ class Backend {
   std::size_t per_round_;
   std::size_t sets_;
   std::size_t chunk_bytes_peak_ = 0;
+  // flush()'s lists, kept between flushes (the consuming stage runs one flush at a time).
+  std::vector<const ChunkBuffer<N>*> flush_chunks_;
+  std::vector<std::uint32_t> tile_first_, tile_cursor_, tile_chunks_;
+  std::vector<int> busy_tiles_;
 };
 
 template <std::size_t N>

@@ -51,6 +51,7 @@ struct alignas(128) ChunkBuffer {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> entries;  // (tile, primitive) in draw order
   std::vector<std::uint32_t> tile_start;                         // per tile: first entry in `binned`, plus an end
   std::vector<std::uint32_t> binned;                             // primitive indices grouped by tile
+  std::vector<std::uint32_t> touched;                            // the tiles with a primitive, ascending (finish_bins)
   PipelineStatistics statistics;
   StageTimes times;
   std::uint64_t patches_back_culled = 0;  // patches skipped by the back-patch test (patch_orientation.h)
@@ -59,6 +60,7 @@ struct alignas(128) ChunkBuffer {
     primitive_count = 0;
     entries.clear();
     binned.clear();
+    touched.clear();
     tile_start.assign(std::size_t(tile_count) + 1, 0);
     statistics = {};
     times = {};
@@ -74,6 +76,9 @@ struct alignas(128) ChunkBuffer {
     for (const auto& e : entries) binned[tile_start[e.first]++] = e.second;
     for (std::size_t t = tiles; t > 0; --t) tile_start[t] = tile_start[t - 1];
     tile_start[0] = 0;
+    touched.clear();
+    for (std::size_t t = 0; t < tiles; ++t)
+      if (tile_start[t + 1] != tile_start[t]) touched.push_back(std::uint32_t(t));
   }
   // The next primitive's slot, holding whatever an earlier chunk left there.
   [[gnu::always_inline]] ScreenPrimitive<N>& append_primitive() {
@@ -85,7 +90,7 @@ struct alignas(128) ChunkBuffer {
   }
   std::size_t capacity_bytes() const {
     return primitives.capacity() * sizeof(ScreenPrimitive<N>) + entries.capacity() * sizeof(entries[0]) +
-           (tile_start.capacity() + binned.capacity()) * sizeof(std::uint32_t);
+           (tile_start.capacity() + binned.capacity() + touched.capacity()) * sizeof(std::uint32_t);
   }
 };
 
