@@ -6,8 +6,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <set>
+#include <thread>
 
+#include "pipeline/parallel.h"
 #include "pipeline/triangle_list_setup.h"
 #include "pipeline_support.h"
 #include "shaders_cpp/render/torus_scene.h"
@@ -170,6 +173,52 @@ TEST_CASE("pipeline: wireframe fill draws edges only", "[pipeline][lines]") {
   CHECK(lit > w);                                                  // the lines are there
   CHECK(lit < w * h / 2);                                          // and the interiors are not
   CHECK(s.counts[std::size_t((h / 2 + 3) * w + w / 4 + 3)] == 0);  // inside a cell of the 4x4 grid
+}
+
+TEST_CASE("pipeline: pipelined rounds consume in order, after their production, and reuse storage only when free",
+          "[pipeline][parallel]") {
+  for (const std::size_t in_flight : {std::size_t(2), std::size_t(3), std::size_t(5)}) {
+    tbb::task_arena arena(4);
+    const std::size_t rounds = 40;
+    std::mutex m;
+    std::vector<int> state(rounds, 0);  // 0 waiting, 1 producing, 2 produced, 3 consumed
+    std::vector<std::size_t> consumed;
+    std::vector<int> owner(in_flight, -1);  // the round holding each storage slot
+    bool ok = true;
+    arena.execute([&] {
+      tessera::detail::pipelined_rounds(
+          rounds, in_flight,
+          [&](std::size_t r) {
+            {
+              const std::lock_guard<std::mutex> lock(m);
+              // The slot's last round must have been consumed before this one may write it.
+              const int last = owner[r % in_flight];
+              if (last >= 0 && state[std::size_t(last)] != 3) ok = false;
+              owner[r % in_flight] = int(r);
+              state[r] = 1;
+            }
+            // Uneven work, forked further: later rounds often finish first.
+            tbb::parallel_for(0, int((r * 7) % 5 + 1), [](int) { std::this_thread::yield(); });
+            const std::lock_guard<std::mutex> lock(m);
+            state[r] = 2;
+          },
+          [&](std::size_t r) {
+            const std::lock_guard<std::mutex> lock(m);
+            if (state[r] != 2 || owner[r % in_flight] != int(r)) ok = false;
+            state[r] = 3;
+            consumed.push_back(r);
+          });
+    });
+    INFO("rounds in flight " << in_flight);
+    CHECK(ok);
+    REQUIRE(consumed.size() == rounds);
+    for (std::size_t r = 0; r < rounds; ++r) CHECK(consumed[r] == r);
+  }
+  // No rounds: nothing is called.
+  bool called = false;
+  tessera::detail::pipelined_rounds(
+      0, 3, [&](std::size_t) { called = true; }, [&](std::size_t) { called = true; });
+  CHECK(!called);
 }
 
 TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads and any chunking or pipelining",
