@@ -66,8 +66,7 @@ struct DeviceOptions {
 
 // Called after each round of chunks of a patch draw is rasterized, one call at a time and in order (on
 // a worker thread or the drawing thread): the draw's patches done (through the last chunk rasterized)
-// and its total. For progress displays; it sees no pixels and
-// cannot change any result.
+// and its total. For progress displays; it sees no pixels and cannot change any result.
 using DrawProgress = std::function<void(std::size_t patches_done, std::size_t patches_total)>;
 
 // A patch list (D3D11_PRIMITIVE_TOPOLOGY_n_CONTROL_POINT_PATCHLIST, n = control_points) through the

@@ -4,8 +4,9 @@
 // A log gets a last line when the work is done, counting every pass (a render of quads and triangles
 // draws two).
 //
-// Not thread-safe: updates come from one thread (the Device calls its progress hook on the drawing
-// thread, between rounds of chunks). Progress only reads counters; it cannot change a result.
+// Not thread-safe: updates come one at a time (the Device calls its progress hook after each round of
+// chunks, in order, from whichever thread rasterized it; the draw's pipeline orders those calls).
+// Progress only reads counters; it cannot change a result.
 #pragma once
 
 #include <chrono>
