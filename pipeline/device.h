@@ -148,7 +148,9 @@ class Backend {
     const auto chunks_of = [&](std::size_t r) { return std::min(per_round_, count - r * per_round_); };
     std::vector<char> produced(rounds, 0);  // guarded by `produced_mutex`
     std::mutex produced_mutex;
-    std::size_t flushed = 0;  // rounds rasterized (the consuming stage's alone)
+    std::size_t flushed = 0;                       // rounds rasterized (the consuming stage's alone)
+    std::vector<std::size_t> set_bytes(sets_, 0);  // chunk storage per set (the consuming stage's)
+    for (std::size_t i = 0; i < slots_.size(); ++i) set_bytes[i / per_round_] += slots_[i].capacity_bytes();
     detail::pipelined_rounds(
         rounds, sets_,
         [&](std::size_t r) {
@@ -184,9 +186,14 @@ class Backend {
             report.patches_back_culled += slot.patches_back_culled;
           }
           report.memory.chunks += n;
+          // Only this round's set may be read here (later rounds are being produced into theirs); the
+          // others' storage is counted as last seen (before the draw, or at their last round).
           std::size_t bytes = 0;
-          for (const auto& slot : slots_) bytes += slot.capacity_bytes();
-          chunk_bytes_peak_ = std::max(chunk_bytes_peak_, bytes);
+          for (std::size_t s = 0; s < per_round_; ++s) bytes += slots_[set * per_round_ + s].capacity_bytes();
+          set_bytes[set] = bytes;
+          std::size_t total = 0;
+          for (const std::size_t b : set_bytes) total += b;
+          chunk_bytes_peak_ = std::max(chunk_bytes_peak_, total);
           after_round(r * per_round_ + n);
         });
   }
