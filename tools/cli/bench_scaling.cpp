@@ -180,15 +180,16 @@ int run_bench_scaling(const ScalingOptions& o) {
   const std::string cpu = cpu_name();
   if (o.json) {
     Json list = Json::array();
-    for (const Row& r : rows)
-      list.push_back({{"threads", r.threads},
-                      {"median_s", r.median_s},
-                      {"min_s", r.min_s},
-                      {"speedup", one / r.median_s},
-                      {"efficiency", one / r.median_s / r.threads},
-                      {"busy", r.busy}});
-    if (o.ceiling)
-      for (std::size_t i = 0; i < rows.size(); ++i) list[i]["independent_speedup"] = rows[i].independent;
+    for (const Row& r : rows) {
+      Json row = {{"threads", r.threads},
+                  {"median_s", r.median_s},
+                  {"min_s", r.min_s},
+                  {"speedup", one / r.median_s},
+                  {"efficiency", one / r.median_s / r.threads},
+                  {"busy", r.busy}};
+      if (o.ceiling) row["independent_speedup"] = r.independent;
+      list.push_back(std::move(row));
+    }
     const Json j = {{"scene", o.scene},
                     {"factor", json_float(o.factor)},
                     {"resolution", std::to_string(w) + "x" + std::to_string(h)},

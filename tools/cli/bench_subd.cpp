@@ -12,6 +12,7 @@
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
+#include "tools/cli/bench_rounds.h"
 #include "tools/scene/model_options.h"
 #include "tools/scene/scene_render.h"
 #include "tools/scene/view_options.h"
@@ -23,16 +24,14 @@ struct BenchSubdOptions {
   RenderSettings s;  // s.cage empty: the monster frog shipped beside the binary (shared_data_file)
   std::string output;
   int frames = 5;
-  int chunks_in_flight = 0, rounds_in_flight = 0;  // 0: the device's defaults
+  BenchRounds pipelining;
   bool json = false, compare_cull = false;
 };
 
 int run_bench_subd(const BenchSubdOptions& o) {
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
-  if (o.chunks_in_flight < 0 || o.chunks_in_flight > 4096)
-    throw UsageError("--chunks-in-flight: " + std::to_string(o.chunks_in_flight) + " is not in 0..4096");
-  if (o.rounds_in_flight != 0 && (o.rounds_in_flight < 2 || o.rounds_in_flight > 64))
-    throw UsageError("--rounds-in-flight: " + std::to_string(o.rounds_in_flight) + " is not 0 or in 2..64");
+  DeviceOptions dopt = device_options(o.s.threads);
+  o.pipelining.apply(dopt);
   const std::string cage = cage_or_shipped_frog(o.s.cage);
   check_output_paths({{"-o", o.output}}, {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
   // The scene library's one route from settings to a model, its view and factors.
@@ -47,9 +46,6 @@ int run_bench_subd(const BenchSubdOptions& o) {
   Displacement* d = scene->displacement ? &*scene->displacement : nullptr;
   const SubdFactors& base_factors = scene->base_factors;
   const SubdFactors& factors = scene->factors;
-  DeviceOptions dopt = device_options(o.s.threads);
-  dopt.chunks_in_flight = o.chunks_in_flight;
-  dopt.rounds_in_flight = o.rounds_in_flight;
   Device device(dopt);
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.s.msaa);
@@ -173,12 +169,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
   cmd->add_option("--msaa", o->s.msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
       ->capture_default_str();
-  cmd->add_option("--chunks-in-flight", o->chunks_in_flight,
-                  "chunks produced per round, 0 = the device's default (4 x threads, at least 4)")
-      ->capture_default_str();
-  cmd->add_option("--rounds-in-flight", o->rounds_in_flight,
-                  "rounds of chunks produced or rasterized at once, 0 = the device's default (3)")
-      ->capture_default_str();
+  o->pipelining.add_options(*cmd);
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");
   cmd->add_flag("--compare-cull", o->compare_cull,

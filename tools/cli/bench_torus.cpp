@@ -18,6 +18,7 @@
 #include "pipeline/sample_pattern.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/torus_scene.h"
+#include "tools/cli/bench_rounds.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -41,8 +42,7 @@ struct TorusOptions {
   std::string llvmpipe;
   int tile_size = DeviceOptions{}.tile_size;
   std::size_t chunk_primitives = DeviceOptions{}.chunk_primitives;
-  int chunks_in_flight = 0;
-  int rounds_in_flight = 0;
+  BenchRounds pipelining;
   int window_patches = DeviceOptions{}.window_patches;
   bool json = false;
 };
@@ -105,10 +105,6 @@ int run_bench_torus(const TorusOptions& o) {
     throw UsageError("--tile-size: " + std::to_string(o.tile_size) + " is not an even size in 8..1024");
   if (o.chunk_primitives < 64 || o.chunk_primitives > (std::size_t(1) << 24))
     throw UsageError("--chunk-primitives: " + std::to_string(o.chunk_primitives) + " is not in 64..16777216");
-  if (o.chunks_in_flight < 0 || o.chunks_in_flight > 4096)
-    throw UsageError("--chunks-in-flight: " + std::to_string(o.chunks_in_flight) + " is not in 0..4096");
-  if (o.rounds_in_flight != 0 && (o.rounds_in_flight < 2 || o.rounds_in_flight > 64))
-    throw UsageError("--rounds-in-flight: " + std::to_string(o.rounds_in_flight) + " is not 0 or in 2..64");
   if (o.window_patches < 1 || o.window_patches > (1 << 20))
     throw UsageError("--window-patches: " + std::to_string(o.window_patches) + " is not in 1..1048576");
   const auto [w, h] = parse_resolution(o.resolution);
@@ -121,8 +117,7 @@ int run_bench_torus(const TorusOptions& o) {
   DeviceOptions dopt = device_options(o.threads);
   dopt.tile_size = o.tile_size;
   dopt.chunk_primitives = o.chunk_primitives;
-  dopt.chunks_in_flight = o.chunks_in_flight;
-  dopt.rounds_in_flight = o.rounds_in_flight;
+  o.pipelining.apply(dopt);
   dopt.window_patches = o.window_patches;
   Device device(dopt);
   std::string error;
@@ -275,12 +270,7 @@ Runner add_bench_torus_command(CLI::App& bench) {
   cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");
   cmd->add_option("--tile-size", o->tile_size, "screen tile size in pixels")->capture_default_str();
   cmd->add_option("--chunk-primitives", o->chunk_primitives, "primitives per geometry chunk")->capture_default_str();
-  cmd->add_option("--chunks-in-flight", o->chunks_in_flight,
-                  "chunks produced per round, 0 = the device's default (4 x threads, at least 4)")
-      ->capture_default_str();
-  cmd->add_option("--rounds-in-flight", o->rounds_in_flight,
-                  "rounds of chunks produced or rasterized at once, 0 = the device's default (3)")
-      ->capture_default_str();
+  o->pipelining.add_options(*cmd);
   cmd->add_option("--window-patches", o->window_patches, "patches through the vertex and hull shaders at once")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print results as JSON");
