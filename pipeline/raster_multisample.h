@@ -44,31 +44,33 @@ template <std::size_t N, class Ps>
   return color;
 }
 
+// The largest box, in quads, rasterize_multisample_small takes.
+inline constexpr int kSmallBoxQuads = 4;
+
 #if defined(__AVX2__)
 // A multisampled quad's samples in lanes of eight, as the target stores them (framebuffer.h: sample s of
 // pixel k at 4 s + k, two samples per vector): each lane's pixel offset in the quad and its sample's
 // offset from the pixel centre, in pixels (the same floats as shade_multisample_quad's per-sample
 // arithmetic).
-// The same offsets in whole numbers for the edge functions: the pixel's (0 or 1) and the sample's in
-// 1/16 pixel times 16 (subpixel units, as rasterize_multisample_edges32's offsets).
+// The same offsets in subpixels for the edge functions, the pixel's (0 or kSubpixelOne) plus the
+// sample's (1/16 pixel times 16, as rasterize_multisample_edges32's offsets), as 16-bit pairs (x, y):
+// one _mm256_madd_epi16 with an edge's (-dy, dx) gives each lane's change of that edge from the quad's
+// top-left pixel centre (at most 384 times a 16-bit step: exact in 32 bits).
 struct SampleLanes {
   alignas(32) float kx[8], ky[8];
   alignas(32) float ox[64], oy[64];
-  alignas(32) std::int32_t ikx[8], iky[8];
-  alignas(32) std::int32_t iox[64], ioy[64];
+  alignas(32) std::int16_t xy[128];  // lane j: xy[2 j] = x, xy[2 j + 1] = y
 };
 constexpr SampleLanes make_sample_lanes(std::span<const SampleOffset> pattern) {
   SampleLanes l{};
-  for (int i = 0; i < 8; ++i) {
-    l.kx[i] = float(i & 1), l.ky[i] = float((i >> 1) & 1);
-    l.ikx[i] = i & 1, l.iky[i] = (i >> 1) & 1;
-  }
+  for (int i = 0; i < 8; ++i) l.kx[i] = float(i & 1), l.ky[i] = float((i >> 1) & 1);
   for (std::size_t s = 0; s < pattern.size(); ++s)
     for (std::size_t k = 0; k < 4; ++k) {
-      l.ox[4 * s + k] = float(pattern[s].x) * (1.0f / 16.0f);
-      l.oy[4 * s + k] = float(pattern[s].y) * (1.0f / 16.0f);
-      l.iox[4 * s + k] = 16 * pattern[s].x;
-      l.ioy[4 * s + k] = 16 * pattern[s].y;
+      const std::size_t j = 4 * s + k;
+      l.ox[j] = float(pattern[s].x) * (1.0f / 16.0f);
+      l.oy[j] = float(pattern[s].y) * (1.0f / 16.0f);
+      l.xy[2 * j] = std::int16_t(int(k & 1) * kSubpixelOne + 16 * pattern[s].x);
+      l.xy[2 * j + 1] = std::int16_t(int(k >> 1) * kSubpixelOne + 16 * pattern[s].y);
     }
   return l;
 }
@@ -125,17 +127,16 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   for (int h = 0; h < vectors; ++h) {
     // No branch on the coverage: the micro-triangles' patterns are unpredictable, and a vector
     // without a covered lane costs less to test than a mispredicted skip.
-    passed[h] = covered[h];
+    // One store to passed[h]: a copy of covered[] first becomes a call to memcpy, which spills
+    // every vector register around it.
     const __m256 x = _mm256_add_ps(px, _mm256_load_ps(lanes.ox + 8 * h)),
                  y = _mm256_add_ps(py, _mm256_load_ps(lanes.oy + 8 * h));
     const __m256 zs = _mm256_add_ps(_mm256_add_ps(z0, _mm256_mul_ps(z1, x)), _mm256_mul_ps(z2, y));
     z[h] = _mm256_min_ps(max_depth, _mm256_max_ps(min_depth, zs));  // simd::min(simd::max(zs, lo), hi)
-    stored[h] = z[h];
-    if (rc.depth.test) {
-      stored[h] = _mm256_loadu_ps(depth + 8 * h);
-      passed[h] &= depth_pass_mask8<kDepthFunc>(z[h], stored[h]);
-    }
-    any |= (passed[h] | (passed[h] >> 4)) & 0xFu;
+    stored[h] = rc.depth.test ? _mm256_loadu_ps(depth + 8 * h) : z[h];
+    const unsigned pass = rc.depth.test ? covered[h] & depth_pass_mask8<kDepthFunc>(z[h], stored[h]) : covered[h];
+    passed[h] = pass;
+    any |= (pass | (pass >> 4)) & 0xFu;
   }
   if (!any) return 0;
   const F4 dxk = F4::splat(fx) + F4::lanes(0.0f, 1.0f, 0.0f, 1.0f),
@@ -238,27 +239,21 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 // vector), the edge values at the quad plus each lane's pixel and sample offset: the same integers as
 // the 8x8 blocks below, without their per-sample grids and the bits' regrouping per quad (about 5 % of
 // the torus's 4x raster time, its micro-triangles about 2 pixels).
-inline constexpr int kSmallBoxQuads = 4;
 template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 std::uint64_t rasterize_multisample_small(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin, int y_end,
                                           int samples, const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
   const SampleLanes& lanes = sample_lanes(samples);
   const int vectors = samples / 2;
-  // Per edge and vector: each lane's change from the quad's top-left pixel centre.
+  // Per edge and vector: each lane's change from the quad's top-left pixel centre, -dy x + dx y.
   __m256i lane_step[3][8];
-  const __m256i kx = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.ikx)),
-                ky = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.iky));
   for (int i = 0; i < 3; ++i) {
-    const __m256i pixel = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(p.edges.step_x(i)), kx),
-                                           _mm256_mullo_epi32(_mm256_set1_epi32(p.edges.step_y(i)), ky));
-    const __m256i ex = _mm256_set1_epi32(-std::int32_t(p.edges.dy[std::size_t(i)])),
-                  ey = _mm256_set1_epi32(std::int32_t(p.edges.dx[std::size_t(i)]));
-    for (int h = 0; h < vectors; ++h) {
-      const __m256i ox = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.iox + 8 * h)),
-                    oy = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.ioy + 8 * h));
+    // -dy fits: setup keeps edges32 only for steps within kEdges32MaxExtent.
+    const std::uint32_t pair =
+        std::uint16_t(-p.edges.dy[std::size_t(i)]) | (std::uint32_t(std::uint16_t(p.edges.dx[std::size_t(i)])) << 16);
+    const __m256i steps = _mm256_set1_epi32(std::int32_t(pair));
+    for (int h = 0; h < vectors; ++h)
       lane_step[i][h] =
-          _mm256_add_epi32(pixel, _mm256_add_epi32(_mm256_mullo_epi32(ex, ox), _mm256_mullo_epi32(ey, oy)));
-    }
+          _mm256_madd_epi16(steps, _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes.xy + 16 * h)));
   }
   std::uint64_t invocations = 0;
   for (int qy = y_begin & ~1; qy <= y_end; qy += 2)
