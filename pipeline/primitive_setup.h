@@ -14,6 +14,7 @@
 #include <type_traits>
 
 #include "pipeline/clipper.h"
+#include "pipeline/sample_pattern.h"
 #include "pipeline/screen_primitive.h"
 #include "pipeline/setup_context.h"
 #include "pipeline/setup_edges.h"
@@ -52,7 +53,7 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
 }
 
 // setup_snapped_triangle on a multisampled target: the box of the pixels whose samples the triangle's
-// box may reach (samples lie within half a pixel of their pixel's centre), the edges (or the vertices of
+// box may reach (sample_reach: at most half a pixel from their pixel's centre), the edges (or the vertices of
 // a large triangle) kept for the rasterizer's per-sample edge tests, no pixel-centre rejection. Out of
 // line: single-sampled draws never take it.
 template <std::size_t N>
@@ -66,8 +67,9 @@ template <std::size_t N>
   if ((c.cull == CullMode::back && !front) || (c.cull == CullMode::front && front)) return;
   const std::int32_t lx = std::min(std::min(a.x, b.x), d.x), hx = std::max(std::max(a.x, b.x), d.x);
   const std::int32_t ly = std::min(std::min(a.y, b.y), d.y), hy = std::max(std::max(a.y, b.y), d.y);
-  const std::int32_t h = kSubpixelOne / 2;
-  const PixelBox<> box = clipped_pixel_box(c, lx - h, hx + h, ly - h, hy + h);
+  const SampleReach r = sample_reach(c.samples);  // in 1/16 pixel: 16 subpixels
+  const PixelBox<> box =
+      clipped_pixel_box(c, lx - 16 * r.max_x, hx - 16 * r.min_x, ly - 16 * r.max_y, hy - 16 * r.min_y);
   if (box.empty()) return;
   const SetupVertex<N>* const v[3] = {&a, area > 0 ? &b : &d, area > 0 ? &d : &b};
   const std::int32_t vx[3] = {v[0]->x, v[1]->x, v[2]->x}, vy[3] = {v[0]->y, v[1]->y, v[2]->y};

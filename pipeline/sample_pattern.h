@@ -37,4 +37,20 @@ constexpr std::span<const SampleOffset> standard_sample_pattern(int samples) {
   }
 }
 
+// How far a pattern's samples lie from their pixel's centre, in 1/16 pixel: the smallest and largest
+// offset on each axis. A sample inside [lo, hi] on an axis belongs to a pixel whose centre lies in
+// [lo - max, hi - min]: the pixels whose samples a triangle's box may reach.
+struct SampleReach {
+  int min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+};
+constexpr SampleReach sample_reach(int samples) {
+  SampleReach r;
+  for (const SampleOffset o : standard_sample_pattern(samples)) {
+    r.min_x = o.x < r.min_x ? o.x : r.min_x, r.max_x = o.x > r.max_x ? o.x : r.max_x;
+    r.min_y = o.y < r.min_y ? o.y : r.min_y, r.max_y = o.y > r.max_y ? o.y : r.max_y;
+  }
+  return r;
+}
+static_assert(sample_reach(4).min_x == -6 && sample_reach(4).max_y == 6 && sample_reach(16).min_x == -8);
+
 }  // namespace tessera

@@ -95,11 +95,13 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   // Gathers address vertices by byte offsets in signed 32-bit lanes.
   const bool lanes = c.fill == FillMode::solid && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
   // A multisampled target's triangles (setup_multisample_triangle's records, with their edges kept in
-  // 32 bits): the box of the pixels whose samples the vertex box may reach (samples lie within half a
-  // pixel of their pixel's centre), no coverage test here (raster_multisample.h tests each sample).
+  // 32 bits): the box of the pixels whose samples the vertex box may reach (sample_reach, at most half
+  // a pixel from their pixel's centre), no coverage test here (raster_multisample.h tests each sample).
   // Every sample point then lies within a pixel of the vertex box, inside kEdges32MaxExtent's margin.
   const bool multisampled = c.samples > 1;
-  const __m256i sample_reach = _mm256_set1_epi32(multisampled ? kSubpixelOne / 2 : 0);
+  const SampleReach reach = sample_reach(c.samples);  // all 0 for one sample
+  const __m256i reach_min_x = _mm256_set1_epi32(16 * reach.min_x), reach_max_x = _mm256_set1_epi32(16 * reach.max_x);
+  const __m256i reach_min_y = _mm256_set1_epi32(16 * reach.min_y), reach_max_y = _mm256_set1_epi32(16 * reach.max_y);
   const char* const base = reinterpret_cast<const char*>(vertices);
   const auto gather = [&](std::size_t field, __m256i offsets) {
     return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + field), offsets, 1);
@@ -170,8 +172,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     if (c.cull == CullMode::front) keep = _mm256_andnot_si256(front, keep);
     using simd::I8;
     const detail::PixelBox<I8> box =
-        detail::clipped_pixel_box(c, I8(_mm256_sub_epi32(lx, sample_reach)), I8(_mm256_add_epi32(hx, sample_reach)),
-                                  I8(_mm256_sub_epi32(ly, sample_reach)), I8(_mm256_add_epi32(hy, sample_reach)));
+        detail::clipped_pixel_box(c, I8(_mm256_sub_epi32(lx, reach_max_x)), I8(_mm256_sub_epi32(hx, reach_min_x)),
+                                  I8(_mm256_sub_epi32(ly, reach_max_y)), I8(_mm256_sub_epi32(hy, reach_min_y)));
     const __m256i min_x = box.min_x.v, max_x = box.max_x.v, min_y = box.min_y.v, max_y = box.max_y.v;
     keep = _mm256_and_si256(keep, _mm256_and_si256(cmple(min_x, max_x), cmple(min_y, max_y)));
     if (_mm256_testz_si256(keep, keep)) continue;

@@ -186,6 +186,8 @@ TEST_CASE("msaa: per-sample coverage of random small and large triangles is the 
   // in lanes (raster_multisample.h); here every sample of every pixel is held against the 64-bit edge
   // functions of the snapped vertices, with D3D11's top-left rule, for triangles of 0.2 to 40 pixels
   // (vertices on the 1/256 grid, so snapping is exact), both windings, some past the target's edges.
+  // Every fourth triangle has its vertices on sample points: samples then lie on its edges and on its
+  // box's sides, where setup's box of reachable pixels (sample_reach) is tightest.
   const int size = 64;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> pos(-4.0, size + 4.0), spread(0.0, 1.0);
@@ -198,8 +200,13 @@ TEST_CASE("msaa: per-sample coverage of random small and large triangles is the 
       const double reach = t % 3 == 0 ? 40.0 : t % 3 == 1 ? 3.0 : 0.6;  // large, a few pixels, sub-pixel
       const double cx = pos(rng), cy = pos(rng);
       double x[3], y[3];
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3; ++k) {
         x[k] = grid(cx + reach * (spread(rng) - 0.5)), y[k] = grid(cy + reach * (spread(rng) - 0.5));
+        if (t % 4 == 3) {  // the nearest pixel's sample (s chosen at random), exact on the 1/256 grid
+          const SampleOffset o = pattern[std::size_t(rng() % pattern.size())];
+          x[k] = std::floor(x[k]) + 0.5 + o.x / 16.0, y[k] = std::floor(y[k]) + 0.5 + o.y / 16.0;
+        }
+      }
       Framebuffer fb = make_target(size, samples);
       draw_into(fb, {window_vertex(x[0], y[0], size), window_vertex(x[1], y[1], size), window_vertex(x[2], y[2], size)},
                 {0, 1, 2}, 2);
