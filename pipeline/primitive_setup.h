@@ -53,9 +53,9 @@ void setup_line_window(const SetupContext& c, ChunkBuffer<N>& chunk, const Setup
 }
 
 // setup_snapped_triangle on a multisampled target: the box of the pixels whose samples the triangle's
-// box may reach (sample_reach: at most half a pixel from their pixel's centre), the edges (or the vertices of
-// a large triangle) kept for the rasterizer's per-sample edge tests, no pixel-centre rejection. Out of
-// line: single-sampled draws never take it.
+// box may reach (sample_reach: at most half a pixel from their pixel's centre), the edges (or the
+// vertices of a large triangle) kept for the rasterizer's per-sample edge tests, no pixel-centre
+// rejection. Out of line: single-sampled draws never take it.
 template <std::size_t N>
 [[gnu::noinline]] void setup_multisample_triangle(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>& a,
                                                   const SetupVertex<N>& b, const SetupVertex<N>& d,

@@ -127,8 +127,8 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   for (int h = 0; h < vectors; ++h) {
     // No branch on the coverage: the micro-triangles' patterns are unpredictable, and a vector
     // without a covered lane costs less to test than a mispredicted skip.
-    // One store to passed[h]: a copy of covered[] first becomes a call to memcpy, which spills
-    // every vector register around it.
+    // passed[h] is stored once: stored as a copy of covered[h] and then masked, the copies became one
+    // call to memcpy, with every vector register spilled around it.
     const __m256 x = _mm256_add_ps(px, _mm256_load_ps(lanes.ox + 8 * h)),
                  y = _mm256_add_ps(py, _mm256_load_ps(lanes.oy + 8 * h));
     const __m256 zs = _mm256_add_ps(_mm256_add_ps(z0, _mm256_mul_ps(z1, x)), _mm256_mul_ps(z2, y));
@@ -247,7 +247,7 @@ std::uint64_t rasterize_multisample_small(const ScreenPrimitive<N>& p, int x_beg
   // Per edge and vector: each lane's change from the quad's top-left pixel centre, -dy x + dx y.
   __m256i lane_step[3][8];
   for (int i = 0; i < 3; ++i) {
-    // -dy fits: setup keeps edges32 only for steps within kEdges32MaxExtent.
+    // -dy fits in 16 bits: setup keeps edges32 only for extents within kEdges32MaxExtent.
     const std::uint32_t pair =
         std::uint16_t(-p.edges.dy[std::size_t(i)]) | (std::uint32_t(std::uint16_t(p.edges.dx[std::size_t(i)])) << 16);
     const __m256i steps = _mm256_set1_epi32(std::int32_t(pair));
