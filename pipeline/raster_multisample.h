@@ -238,12 +238,14 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 // samples tested at once in the lanes the target stores them in (two samples, eight points, per
 // vector), the edge values at the quad plus each lane's pixel and sample offset: the same integers as
 // the 8x8 blocks below, without their per-sample grids and the bits' regrouping per quad (about 5 % of
-// the torus's 4x raster time, its micro-triangles about 2 pixels).
-template <std::size_t N, class Ps, CompareFunc kDepthFunc>
+// the torus's 4x raster time, its micro-triangles about 2 pixels). The sample count is a template
+// argument: the per-vector loops here and in the inlined quad shader unroll, and their masks and depths
+// stay in registers.
+template <std::size_t N, class Ps, CompareFunc kDepthFunc, int kSamples>
 std::uint64_t rasterize_multisample_small(const ScreenPrimitive<N>& p, int x_begin, int x_end, int y_begin, int y_end,
-                                          int samples, const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
+                                          const Ps& ps, const RasterContext& rc, Framebuffer& fb) {
+  constexpr int samples = kSamples, vectors = kSamples / 2;
   const SampleLanes& lanes = sample_lanes(samples);
-  const int vectors = samples / 2;
   // Per edge and vector: each lane's change from the quad's top-left pixel centre, -dy x + dx y.
   __m256i lane_step[3][8];
   for (int i = 0; i < 3; ++i) {
@@ -335,9 +337,14 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
 #if defined(__AVX2__)
   // Only AVX2 builds' setup keeps a multisampled triangle's edges32 (triangle_list_setup.h).
   if (p.edges32 && fb.format() == ColorFormat::rgba8_unorm && x_end + 1 < fb.width() && y_end + 1 < fb.height() &&
-      ((x_end >> 1) - (x_begin >> 1) + 1) * ((y_end >> 1) - (y_begin >> 1) + 1) <= kSmallBoxQuads)
-    return rasterize_multisample_small<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, int(pattern.size()), ps,
-                                                          rc, fb);
+      ((x_end >> 1) - (x_begin >> 1) + 1) * ((y_end >> 1) - (y_begin >> 1) + 1) <= kSmallBoxQuads) {
+    switch (pattern.size()) {
+      case 2: return rasterize_multisample_small<N, Ps, kDepthFunc, 2>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
+      case 4: return rasterize_multisample_small<N, Ps, kDepthFunc, 4>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
+      case 8: return rasterize_multisample_small<N, Ps, kDepthFunc, 8>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
+      default: return rasterize_multisample_small<N, Ps, kDepthFunc, 16>(p, x_begin, x_end, y_begin, y_end, ps, rc, fb);
+    }
+  }
   if (p.edges32)
     return rasterize_multisample_edges32<N, Ps, kDepthFunc>(p, x_begin, x_end, y_begin, y_end, pattern, ps, rc, fb);
 #endif
