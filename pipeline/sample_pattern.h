@@ -38,8 +38,8 @@ constexpr std::span<const SampleOffset> standard_sample_pattern(int samples) {
 }
 
 // How far a pattern's samples lie from their pixel's centre, in 1/16 pixel: the smallest and largest
-// offset on each axis (0 included). A sample inside [lo, hi] on an axis belongs to a pixel whose centre lies in
-// [lo - max, hi - min]: the pixels whose samples a triangle's box may reach.
+// offset on each axis (0 included). A sample inside [lo, hi] on an axis belongs to a pixel whose centre
+// lies in [lo - max, hi - min]: the pixels whose samples a triangle's box may reach.
 struct SampleReach {
   int min_x = 0, max_x = 0, min_y = 0, max_y = 0;
 };
