@@ -248,6 +248,7 @@ class Backend {
             for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
           }
         };
+        fb_.prepare_tile(t);  // a pending clear lands in this core's cache just before the tile's primitives
         mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
         mine.second += seconds_since(start);
       }
@@ -299,11 +300,15 @@ class Device {
   // The arena the device's work runs in (stream_output.h runs there too).
   tbb::task_arena& arena() const { return *arena_; }
 
-  // Clears the colour and depth buffers on the device's threads (bands of rows); the same bytes as
-  // Framebuffer::clear.
+  // Clears the colour and depth buffers as Framebuffer::clear does. A multisampled target is cleared
+  // tile by tile when needed (Framebuffer::clear_by_tiles, in this device's tiles): the draws write each
+  // tile's clear as they enter it, resolve() writes the tiles they did not enter from the clear values,
+  // and finish_clear writes what is left. A single-sampled one is cleared at once, in bands of rows.
   void clear(Framebuffer& fb, glm::vec4 color, float depth);
+  // Writes fb's pending clear, if any, on the device's threads (tile by tile).
+  void finish_clear(Framebuffer& fb);
   // Framebuffer::resolve into `out` (single-sampled, of fb's size and format) on the device's threads
-  // (bands of rows); the same bytes.
+  // (bands of rows); the same bytes. A clear pending on `out` is dropped: every pixel is written.
   void resolve(const Framebuffer& fb, Framebuffer& out);
 
   template <class Vertex, class Vs, class Hs, class Ds, class Ps>
@@ -349,6 +354,8 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
   const TessellatorState tstate = d.tessellator;
 
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
+  // A clear pending in another grid's tiles is written first: this draw prepares its own tiles.
+  if (fb.pending_clear_tile_size() != 0 && fb.pending_clear_tile_size() != options_.tile_size) finish_clear(fb);
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
@@ -460,6 +467,8 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
   const std::size_t triangle_count = d.indices.size() / 3;
 
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
+  // A clear pending in another grid's tiles is written first: this draw prepares its own tiles.
+  if (fb.pending_clear_tile_size() != 0 && fb.pending_clear_tile_size() != options_.tile_size) finish_clear(fb);
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());

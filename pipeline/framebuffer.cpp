@@ -48,42 +48,84 @@ std::optional<Framebuffer> Framebuffer::create(int width, int height, ColorForma
   return Framebuffer(width, height, format, samples);
 }
 
+Framebuffer::StoredClear Framebuffer::stored_clear(glm::vec4 c, float d) const {
+  StoredClear v;
+  v.depth = d;
+  if (format_ == ColorFormat::rgba8_unorm) {
+    const std::uint8_t b[4] = {float_to_unorm8(c.r), float_to_unorm8(c.g), float_to_unorm8(c.b), float_to_unorm8(c.a)};
+    std::memcpy(v.color, b, 4);
+  } else {
+    const float f[4] = {c.r, c.g, c.b, c.a};
+    std::memcpy(v.color, f, 16);
+  }
+  return v;
+}
+
+void Framebuffer::fill(std::size_t begin, std::size_t end, const StoredClear& v) {
+  if (begin == end) return;
+  const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
+  std::fill(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end), v.depth);
+  // The first pixels one by one, the rest copied from them.
+  std::uint8_t* first = &color_[begin * pixel_bytes];
+  const std::size_t run = std::min<std::size_t>(end - begin, 256);
+  for (std::size_t i = 0; i < run; ++i) std::memcpy(first + i * pixel_bytes, v.color, pixel_bytes);
+  for (std::size_t i = begin + run; i < end; i += run)
+    std::memcpy(&color_[i * pixel_bytes], first, std::min(run, end - i) * pixel_bytes);
+}
+
+void Framebuffer::fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v) {
+  if (samples_ == 1) {
+    for (int y = y0; y < y1; ++y) fill(index(x0, y), index(x0, y) + std::size_t(x1 - x0), v);
+    return;
+  }
+  // Quad rows: a row's quads [x0 / 2, (x1 + 1) / 2) are adjacent, all their samples together.
+  for (int qy = y0 >> 1; 2 * qy < y1; ++qy) fill(quad_index(x0 >> 1, qy), quad_index((x1 + 1) >> 1, qy), v);
+}
+
 void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
+  expect_no_pending_clear("clear_rows");
   y0 = std::clamp(y0, 0, height_);
   y1 = std::clamp(y1, y0, height_);
   if (y0 == y1) return;
-  const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
-  std::uint8_t px[16];
-  if (format_ == ColorFormat::rgba8_unorm) {
-    const std::uint8_t b[4] = {float_to_unorm8(c.r), float_to_unorm8(c.g), float_to_unorm8(c.b), float_to_unorm8(c.a)};
-    std::memcpy(px, b, 4);
-  } else {
-    const float f[4] = {c.r, c.g, c.b, c.a};
-    std::memcpy(px, f, 16);
-  }
-  // Elements [begin, end) of both buffers: the first pixel by pixel, the rest copied from it.
-  auto fill = [&](std::size_t begin, std::size_t end) {
-    if (begin == end) return;
-    std::fill(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end), d);
-    std::uint8_t* first = &color_[begin * pixel_bytes];
-    const std::size_t run = std::min<std::size_t>(end - begin, 256);
-    for (std::size_t i = 0; i < run; ++i) std::memcpy(first + i * pixel_bytes, px, pixel_bytes);
-    for (std::size_t i = begin + run; i < end; i += run)
-      std::memcpy(&color_[i * pixel_bytes], first, std::min(run, end - i) * pixel_bytes);
-  };
+  const StoredClear v = stored_clear(c, d);
   if (samples_ == 1) {
-    fill(index(0, y0), index(0, y1 - 1) + std::size_t(width_));
+    fill_rect(0, y0, width_, y1, v);
     return;
   }
   // Multisampled: whole quad rows as one run; a quad row split by y0 or y1 (odd) pixel by pixel.
   auto partial_row = [&](int y) {
     for (int x = 0; x < width_; ++x)
-      for (int s = 0; s < samples_; ++s) fill(index(x, y) + sample_offset(s), index(x, y) + sample_offset(s) + 1);
+      for (int s = 0; s < samples_; ++s) fill(index(x, y) + sample_offset(s), index(x, y) + sample_offset(s) + 1, v);
   };
   int first_row = y0, last_row = y1;  // [first_row, last_row): whole quad rows
   if (first_row & 1) partial_row(first_row++);
   if ((last_row & 1) && last_row < height_) partial_row(--last_row);
-  if (first_row < last_row) fill(quad_index(0, first_row >> 1), quad_index(0, (last_row + 1) >> 1));
+  if (first_row < last_row) fill(quad_index(0, first_row >> 1), quad_index(0, (last_row + 1) >> 1), v);
+}
+
+void Framebuffer::clear_by_tiles(glm::vec4 color, float depth, int tile_size) {
+  if (tile_size < 8 || tile_size > 1024 || (tile_size & 1))
+    throw std::logic_error("Framebuffer::clear_by_tiles: tile size " + std::to_string(tile_size) +
+                           " is not even and in 8..1024");
+  PendingClear p;
+  p.value = stored_clear(color, depth);
+  p.tile_size = tile_size;
+  p.columns = (width_ + tile_size - 1) / tile_size;
+  p.marked.assign(std::size_t(p.columns) * std::size_t((height_ + tile_size - 1) / tile_size), 1);
+  pending_ = std::move(p);
+}
+
+void Framebuffer::prepare_tile(int t) {
+  if (!pending_ || !pending_->marked[std::size_t(t)]) return;
+  const int size = pending_->tile_size, x0 = (t % pending_->columns) * size, y0 = (t / pending_->columns) * size;
+  fill_rect(x0, y0, std::min(x0 + size, width_), std::min(y0 + size, height_), pending_->value);
+  pending_->marked[std::size_t(t)] = 0;
+}
+
+void Framebuffer::finish_clear() {
+  if (!pending_) return;
+  for (std::size_t t = 0; t < pending_->marked.size(); ++t) prepare_tile(int(t));
+  pending_.reset();
 }
 
 void Framebuffer::set_other_samples(int x, int y, float d) {
@@ -102,21 +144,71 @@ Framebuffer Framebuffer::resolve() const {
 
 void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
   if (y0 >= y1) return;
+  if (!pending_) {
+    resolve_block(out, 0, width_, y0, y1);
+    return;
+  }
+  // Under a pending clear, band by band of tile rows (tiles are an even number of pixels from 0, so
+  // no quad row straddles two): a marked tile's pixels are the resolve of its clear values, written
+  // without reading its samples; the other tiles resolve as without a clear.
+  const int size = pending_->tile_size;
+  const StoredClear resolved = resolved_clear(pending_->value);
+  for (int band = y0; band < y1;) {
+    const int row = band / size, band_end = std::min(y1, (row + 1) * size);
+    for (int column = 0; column < pending_->columns; ++column) {
+      const int x0 = column * size, x1 = std::min(x0 + size, width_);
+      if (pending_->marked[std::size_t(row * pending_->columns + column)])
+        out.fill_rect(x0, band, x1, band_end, resolved);
+      else
+        resolve_block(out, x0, x1, band, band_end);
+    }
+    band = band_end;
+  }
+}
+
+Framebuffer::StoredClear Framebuffer::resolved_clear(const StoredClear& v) const {
+  // resolve_block's arithmetic on a pixel whose samples all hold v: the nearest depth is v's, the
+  // colour the same sums in sample order.
+  StoredClear r = v;
+  if (samples_ == 1) return r;
+  if (format_ == ColorFormat::rgba8_unorm) {
+    const int shift = std::countr_zero(unsigned(samples_));
+    for (std::size_t i = 0; i < 4; ++i) {
+      std::uint16_t sum = std::uint16_t(unsigned(samples_) / 2);
+      for (int s = 0; s < samples_; ++s) sum = std::uint16_t(sum + v.color[i]);
+      r.color[i] = std::uint8_t(sum >> shift);
+    }
+  } else {
+    for (std::size_t i = 0; i < 4; ++i) {
+      float c = 0.0f, sum = 0.0f;
+      std::memcpy(&c, v.color + 4 * i, 4);
+      for (int s = 0; s < samples_; ++s) sum += c;
+      const float mean = sum / float(samples_);
+      std::memcpy(r.color + 4 * i, &mean, 4);
+    }
+  }
+  return r;
+}
+
+void Framebuffer::resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1) const {
   // Quad by quad: its samples are adjacent, sample s of its four pixels at 4 s, summed (and the
   // nearest depth taken) in sample order, the same sums and minima as one pixel at a time.
   const bool bytes = format_ == ColorFormat::rgba8_unorm;
-  if (samples_ == 1) {  // the same layout: a copy
-    const std::size_t begin = index(0, y0), end = index(0, y1 - 1) + std::size_t(width_);
-    std::copy(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end),
-              out.depth_.begin() + std::ptrdiff_t(begin));
+  if (samples_ == 1) {  // the same layout: a copy, row by row
     const std::size_t pixel_bytes = bytes ? 4 : 16;
-    std::copy(color_.begin() + std::ptrdiff_t(begin * pixel_bytes), color_.begin() + std::ptrdiff_t(end * pixel_bytes),
-              out.color_.begin() + std::ptrdiff_t(begin * pixel_bytes));
+    for (int y = y0; y < y1; ++y) {
+      const std::size_t begin = index(x0, y), end = begin + std::size_t(x1 - x0);
+      std::copy(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end),
+                out.depth_.begin() + std::ptrdiff_t(begin));
+      std::copy(color_.begin() + std::ptrdiff_t(begin * pixel_bytes),
+                color_.begin() + std::ptrdiff_t(end * pixel_bytes),
+                out.color_.begin() + std::ptrdiff_t(begin * pixel_bytes));
+    }
     return;
   }
   const int shift = std::countr_zero(unsigned(samples_));  // samples_ is a power of two
   for (int qy = y0 >> 1; 2 * qy < y1; ++qy)
-    for (int qx = 0; 2 * qx < width_; ++qx) {
+    for (int qx = x0 >> 1; 2 * qx < x1; ++qx) {
       const std::size_t q = quad_index(qx, qy);
 #if defined(__AVX2__)
       // A whole quad of an RGBA8 target in lanes: the sixteen bytes of each sample widened to 16 bits

@@ -9,8 +9,15 @@
 // apart on a 1080p target), and its samples load as vectors (raster_multisample.h). resolve() averages
 // the samples into a single-sampled target.
 //
+// A clear may be pending (clear_by_tiles): the target is cut into the rasterizer's tiles, and a marked
+// tile holds the clear's colour and depth whatever its bytes are, until it is written (prepare_tile,
+// finish_clear) or resolved.
+//
 // Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target). A
-// target is memory only: image files are written by shaders_cpp/image_io/image_file.h.
+// target is memory only: image files are written by shaders_cpp/image_io/image_file.h. Whole-buffer
+// readers (color_bytes, depth_values) refuse a target with a clear pending, by std::logic_error (a
+// caller's mistake); the per-pixel forms expect no pending clear on their pixel (inside a tile the
+// rasterizer prepared, or after finish_clear).
 #pragma once
 
 #include <algorithm>
@@ -18,6 +25,7 @@
 #include <cstdint>
 #include <cstring>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,10 +70,33 @@ class Framebuffer {
   // row ranges may be resolved by different threads (Device::resolve does).
   void resolve_rows(Framebuffer& out, int y0, int y1) const;
 
-  void clear(glm::vec4 color, float depth) { clear_rows(0, height_, color, depth); }
-  // Clears rows [y0, y1) only: disjoint row ranges may be cleared by different threads
-  // (Device::clear does).
+  // Ends any pending clear (its tiles are overwritten too).
+  void clear(glm::vec4 color, float depth) {
+    pending_.reset();
+    clear_rows(0, height_, color, depth);
+  }
+  // Clears rows [y0, y1) only: disjoint row ranges may be cleared by different threads. No clear may
+  // be pending (its tiles would later overwrite these rows).
   void clear_rows(int y0, int y1, glm::vec4 color, float depth);
+
+  // A clear written tile by tile, when each is needed (Device::clear): every tile of a grid of
+  // `tile_size` pixels (tile i covers x in [(i % columns) t, + t), y in [(i / columns) t, + t), as the
+  // rasterizer's TileGrid; t even, 8..1024) is marked, and nothing is written yet. The rasterizer
+  // writes a tile's clear just before it enters the tile (prepare_tile), so the tile is in that core's
+  // cache for its first primitives rather than in memory (a 1080p 4x target is 66 MB, larger than the
+  // last-level cache); resolve() writes a tile that no draw entered from the clear values without
+  // reading it. Every pixel a reader sees has the bytes clear() writes. Replaces a pending clear.
+  void clear_by_tiles(glm::vec4 color, float depth, int tile_size);
+  // The pending clear's tile size, or 0 when no clear is pending.
+  int pending_clear_tile_size() const { return pending_ ? pending_->tile_size : 0; }
+  // Writes tile t's pending clear if it is still marked, and unmarks it. Different threads may prepare
+  // different tiles at once.
+  void prepare_tile(int t);
+  // Writes the tiles still marked and ends the pending clear (Device::finish_clear does the writes on
+  // its threads first).
+  void finish_clear();
+  // Ends a pending clear without writing it, for a caller about to write every pixel (a resolve).
+  void cancel_clear() { pending_.reset(); }
 
   // Output merger writes (the caller owns the pixel; different threads write different pixels). These
   // per-pixel forms read sample 0 and write every sample of the pixel (lines, points and overlays are
@@ -198,9 +229,16 @@ class Framebuffer {
   }
 #endif
 
-  // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16.
-  const std::vector<std::uint8_t>& color_bytes() const { return color_; }
-  const std::vector<float>& depth_values() const { return depth_; }
+  // Raw storage, for hashing and image output: RGBA8 is 4 bytes per pixel, RGBA32F 16. No clear may be
+  // pending.
+  const std::vector<std::uint8_t>& color_bytes() const {
+    expect_no_pending_clear("color_bytes");
+    return color_;
+  }
+  const std::vector<float>& depth_values() const {
+    expect_no_pending_clear("depth_values");
+    return depth_;
+  }
   std::size_t bytes() const { return color_.size() + depth_.size() * sizeof(float); }
 
  private:
@@ -244,11 +282,38 @@ class Framebuffer {
     }
   }
 
+  // A clear's values as the target stores them: the colour's bytes (4 or 16) and the depth.
+  struct StoredClear {
+    std::uint8_t color[16] = {};
+    float depth = 1.0f;
+  };
+  StoredClear stored_clear(glm::vec4 c, float d) const;
+  // Elements [begin, end) of both buffers set to `v`.
+  void fill(std::size_t begin, std::size_t end, const StoredClear& v);
+  // Pixels [x0, x1) x [y0, y1) set to `v`; on a multisampled target x0 and y0 are even (whole quads:
+  // a quad padding an odd width or height is filled with its pixels).
+  void fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v);
+  // What resolve_block makes of a pixel whose samples all hold `v`.
+  StoredClear resolved_clear(const StoredClear& v) const;
+  // resolve_rows of pixels [x0, x1) x [y0, y1), ignoring any pending clear; x0 even on a multisampled
+  // target.
+  void resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1) const;
+  void expect_no_pending_clear(const char* reader) const {
+    if (pending_) throw std::logic_error(std::string("Framebuffer::") + reader + " with a clear pending");
+  }
+
+  struct PendingClear {
+    StoredClear value;
+    int tile_size = 64, columns = 0;
+    std::vector<std::uint8_t> marked;  // by tile
+  };
+
   int width_ = 0, height_ = 0;
   ColorFormat format_ = ColorFormat::rgba8_unorm;
   std::vector<std::uint8_t> color_;
   std::vector<float> depth_;
   int samples_ = 1;
+  std::optional<PendingClear> pending_;
 };
 
 }  // namespace tessera

@@ -92,6 +92,7 @@ bool clip_rect(ScreenPoint& a, ScreenPoint& b, glm::vec2 lo, glm::vec2 hi) {
 
 void draw_lines(Framebuffer& fb, const glm::mat4& view_projection, std::span<const OverlayLine> lines,
                 const OverlayStyle& style) {
+  fb.finish_clear();  // pixel-rate writes and reads: no tile may still hold a pending clear
   for (const OverlayLine& l : lines) {
     glm::vec4 a = view_projection * glm::vec4(l.a, 1.0f), b = view_projection * glm::vec4(l.b, 1.0f);
     if (!clip_near(a, b)) continue;
@@ -107,6 +108,7 @@ void draw_lines(Framebuffer& fb, const glm::mat4& view_projection, std::span<con
 
 void draw_points(Framebuffer& fb, const glm::mat4& view_projection, std::span<const glm::vec3> points,
                  const OverlayStyle& style) {
+  fb.finish_clear();  // pixel-rate writes and reads: no tile may still hold a pending clear
   for (const glm::vec3& p : points) {
     const glm::vec4 c = view_projection * glm::vec4(p, 1.0f);
     if (c.z < 0.0f || c.w <= 0.0f) continue;

@@ -291,7 +291,7 @@ DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTab
 
 ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* given, Framebuffer& fb) {
   ViewOutput out;
-  fb.clear(kBackgroundColor, 1.0f);
+  device.clear(fb, kBackgroundColor, 1.0f);  // by tiles: each written as a draw enters it (framebuffer.h)
   if (kind == ViewKind::displacement && !in.displacement)
     throw UsageError("--view displacement needs --displacement MAP");
   if (kind == ViewKind::shaded || kind == ViewKind::cage || kind == ViewKind::cracks) {
