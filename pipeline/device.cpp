@@ -55,7 +55,8 @@ void Device::finish_clear(Framebuffer& fb) {
 }
 
 void Device::resolve(const Framebuffer& fb, Framebuffer& out) {
-  out.cancel_clear();  // every pixel of `out` is written below
+  // Every pixel of `out` is written below: a clear pending there is void.
+  out.cancel_clear();
   constexpr int kRows = 16;  // rows per task (a row of a 1920-wide 8x target is 60 KB of colour)
   detail::arena_execute(*arena_, [&] {
     detail::parallel_for(tbb::blocked_range<int>(0, (fb.height() + kRows - 1) / kRows, 1), [&](const auto& r) {

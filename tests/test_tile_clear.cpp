@@ -21,8 +21,8 @@ struct FlatPS {
 // Random triangles in the target's top-left third, so that most tiles are entered by no draw.
 std::vector<V1> corner_triangles(int width, int height, unsigned seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> x(0.0f, float(width) / 3.0f), y(0.0f, float(height) / 3.0f),
-      z(0.1f, 0.9f), a(0.0f, 1.0f);
+  std::uniform_real_distribution<float> x(0.0f, float(width) / 3.0f), y(0.0f, float(height) / 3.0f), z(0.1f, 0.9f),
+      a(0.0f, 1.0f);
   std::vector<V1> v;
   for (int i = 0; i < 60; ++i) {
     const float px = x(rng), py = y(rng);

@@ -36,10 +36,10 @@ struct ViewOutput {
 // The patch tables of the inputs' draw, measured from the view camera.
 PatchTables view_patch_tables(const ViewInputs& in);
 
-// Draws view `kind` into fb (cleared here by Device::clear: the tiles no draw entered may still hold
-// the pending clear, which a resolve or Device::finish_clear writes); `tables` (view_patch_tables of the same inputs) is needed
-// when view_uses_patch_tables(kind). UsageError for a view the inputs cannot give (the displacement
-// view without a displacement).
+// Draws view `kind` into fb, cleared here by Device::clear (on a multisampled fb the tiles no draw
+// entered may still hold the pending clear, which a resolve or Device::finish_clear writes); `tables`
+// (view_patch_tables of the same inputs) is needed when view_uses_patch_tables(kind). UsageError for a
+// view the inputs cannot give (the displacement view without a displacement).
 ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, const PatchTables* tables, Framebuffer& fb);
 
 // The patch under each pixel of view `kind` as render_view draws it (the same draw and camera; the
