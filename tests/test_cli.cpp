@@ -168,6 +168,19 @@ TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli]
   const auto r = run_cli("bench torus --factor 2 --resolution 32x32 --frames 1 --llvmpipe /nonexistent/tessbench");
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("/nonexistent/tessbench"));
+  // An unsupported sample count is refused in the same words by every command that takes --msaa.
+  const fs::path png = temp_dir() / "msaa3.png";
+  const std::string render =
+      "render " + data("sdk-cages/monsterfrog_mapped_00.obj") + " --resolution 32x32 -o " + png.string();
+  for (const std::string& command :
+       {std::string("bench torus --frames 1"), std::string("bench frog --frames 1"), render}) {
+    INFO(command);
+    const auto m = run_cli(command + " --msaa 3");
+    CHECK(m.exit_code == 2);
+    CHECK(lines(m.err) == 1);
+    CHECK_THAT(m.err, Catch::Contains("--msaa: 3 is not 1, 2, 4, 8 or 16"));
+  }
+  CHECK_FALSE(fs::exists(png));
 }
 
 TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports the median ratio", "[cli][pipeline]") {

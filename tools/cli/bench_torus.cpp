@@ -15,7 +15,6 @@
 #include <sstream>
 
 #include "pipeline/device.h"
-#include "pipeline/sample_pattern.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/torus_scene.h"
 #include "tools/cli/bench_rounds.h"
@@ -121,8 +120,8 @@ int run_bench_torus(const TorusOptions& o) {
   dopt.window_patches = o.window_patches;
   Device device(dopt);
   std::string error;
-  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.msaa);
-  if (!fb) throw UsageError((valid_sample_count(o.msaa) ? "--resolution: " : "--msaa: ") + error);
+  auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, msaa_option(o.msaa));
+  if (!fb) throw UsageError("--resolution: " + error);
   // A multisampled frame ends with its resolve, as a GPU's frame would before display, into a target
   // made once (as a swap chain's).
   auto resolved = o.msaa > 1 ? Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error) : std::nullopt;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "pipeline/sample_pattern.h"
 #include "tools/scene/common.h"
 
 namespace tessera::cli {
@@ -122,6 +123,11 @@ glm::vec3 direction_option(std::string_view text, const std::string& what) {
 }
 
 std::pair<int, int> resolution_option(std::string_view text) { return parse_resolution(std::string(text)); }
+
+int msaa_option(int msaa) {
+  if (!valid_sample_count(msaa)) throw UsageError("--msaa: " + std::to_string(msaa) + " is not 1, 2, 4, 8 or 16");
+  return msaa;
+}
 
 std::string view_names() {
   std::string s;

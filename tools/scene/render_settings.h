@@ -143,6 +143,8 @@ bool has_direction(glm::vec3 v);
 glm::vec3 direction_option(std::string_view text, const std::string& what);
 // "WIDTHxHEIGHT", each side 1..kMaxRenderTargetSize (framebuffer.h).
 std::pair<int, int> resolution_option(std::string_view text);
+// `msaa` itself when it is a supported sample count (1, 2, 4, 8 or 16); else UsageError naming --msaa.
+int msaa_option(int msaa);
 
 // The names each reader takes, in order, for help and errors ("shaded, wireframe, ...").
 std::string view_names();

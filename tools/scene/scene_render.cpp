@@ -1,6 +1,5 @@
 #include "tools/scene/scene_render.h"
 
-#include "pipeline/sample_pattern.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -52,7 +51,7 @@ std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s) {
 }
 
 void configure_scene(PreparedScene& p, const RenderSettings& s) {
-  if (!valid_sample_count(s.msaa)) throw UsageError("--msaa: " + std::to_string(s.msaa) + " is not 1, 2, 4, 8 or 16");
+  msaa_option(s.msaa);
   // The pose first, and only when it changes (the exact scheme rebuilds its limit surface per pose):
   // a model is posed from its rig alone, so the result does not depend on the pose it had.
   // settings.asset always names the model's pose, even when a later step of this call throws.
