@@ -44,10 +44,8 @@ void Device::clear(Framebuffer& fb, glm::vec4 color, float depth) {
 
 void Device::finish_clear(Framebuffer& fb) {
   if (!fb.pending_clear_tile_size()) return;
-  const int size = fb.pending_clear_tile_size();
-  const int tiles = ((fb.width() + size - 1) / size) * ((fb.height() + size - 1) / size);
   detail::arena_execute(*arena_, [&] {
-    detail::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const auto& r) {
+    detail::parallel_for(tbb::blocked_range<int>(0, fb.pending_clear_tiles(), 1), [&](const auto& r) {
       for (int t = r.begin(); t != r.end(); ++t) fb.prepare_tile(t);
     });
   });

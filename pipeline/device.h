@@ -327,6 +327,12 @@ class Device {
     return *static_cast<std::vector<ChunkBuffer<N>>*>(slots.get());
   }
 
+  // A clear pending in another grid's tiles is written whole before a draw, which prepares its own
+  // tiles only.
+  void finish_foreign_clear(Framebuffer& fb) {
+    if (fb.pending_clear_tile_size() != 0 && fb.pending_clear_tile_size() != options_.tile_size) finish_clear(fb);
+  }
+
   DeviceOptions options_;
   DrawProgress progress_;
   int threads_ = 1;
@@ -354,8 +360,7 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
   const TessellatorState tstate = d.tessellator;
 
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
-  // A clear pending in another grid's tiles is written first: this draw prepares its own tiles.
-  if (fb.pending_clear_tile_size() != 0 && fb.pending_clear_tile_size() != options_.tile_size) finish_clear(fb);
+  finish_foreign_clear(fb);
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
@@ -467,8 +472,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
   const std::size_t triangle_count = d.indices.size() / 3;
 
   const std::lock_guard<std::mutex> one_draw(draw_mutex_);
-  // A clear pending in another grid's tiles is written first: this draw prepares its own tiles.
-  if (fb.pending_clear_tile_size() != 0 && fb.pending_clear_tile_size() != options_.tile_size) finish_clear(fb);
+  finish_foreign_clear(fb);
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());

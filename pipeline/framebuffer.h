@@ -87,8 +87,9 @@ class Framebuffer {
   // last-level cache); resolve() writes a tile that no draw entered from the clear values without
   // reading it. Every pixel a reader sees has the bytes clear() writes. Replaces a pending clear.
   void clear_by_tiles(glm::vec4 color, float depth, int tile_size);
-  // The pending clear's tile size, or 0 when no clear is pending.
+  // The pending clear's tile size and tile count, or 0 when no clear is pending.
   int pending_clear_tile_size() const { return pending_ ? pending_->tile_size : 0; }
+  int pending_clear_tiles() const { return pending_ ? int(pending_->marked.size()) : 0; }
   // Writes tile t's pending clear if it is still marked, and unmarks it. Different threads may prepare
   // different tiles at once.
   void prepare_tile(int t);

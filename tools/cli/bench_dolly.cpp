@@ -130,7 +130,6 @@ int run_dolly(const DollyOptions& o) {
     const auto t0 = Clock::now();
     device.clear(*fb, kBackgroundColor, 1.0f);
     const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, view.camera, *fb);
-    device.finish_clear(*fb);  // the tiles no draw entered, so that the frame's image is readable
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     // The same tessellation, streamed: where every vertex is.

@@ -144,12 +144,8 @@ SceneImage render_scene(Device& device, const PreparedScene& scene, bool want_ta
   image.out = render_view(device, scene.settings.view, inputs, image.tables ? &*image.tables : nullptr, *image.fb);
   if (!image.out.result.ok()) throw InputError(scene.settings.cage + ": " + image.out.result.error);
   // The overlays drew at pixel rate into every sample; what follows (legends, files, hashes) reads
-  // the resolved image. The resolve writes the tiles no draw entered from the clear values; a target
-  // read as it is has any clear still pending written first (Device::clear).
-  if (image.fb->samples() > 1)
-    image.fb = image.fb->resolve();
-  else
-    device.finish_clear(*image.fb);
+  // the resolved image (the resolve also writes the tiles no draw entered: Device::clear).
+  if (image.fb->samples() > 1) image.fb = image.fb->resolve();
   return image;
 }
 
