@@ -55,7 +55,10 @@ struct DeviceOptions {
   int threads = 0;                      // worker threads; 0 = all hardware threads
   int tile_size = 64;                   // screen tile edge in pixels (even, 8..1024)
   std::size_t chunk_primitives = 4096;  // a chunk is cut before its primitive count would pass this
-  int window_patches = 1024;            // patches (or triangles / 3 of a mesh) through VS and HS at once
+  // Patches through VS and HS at once (a mesh draw: 4 x as many triangles through the VS). Each window
+  // ends with the draw's pipeline drained (its last round rasterized with nothing to overlap), so a
+  // window holds a whole frog (1292 patches): 16 threads, displaced frog 20.7-22.0 -> 18.1-19.8 ms.
+  int window_patches = 4096;
   // Chunks per round: a round's chunks are produced in parallel, and rasterized together once all are
   // done. 0: four times the thread count, at least 4.
   int chunks_in_flight = 0;
@@ -483,7 +486,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
     std::vector<SetupVertex<N>> setup_vertices;
     std::vector<std::uint32_t> cost;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
-    const std::size_t window = std::size_t(std::max(1, options_.window_patches)) * 16;
+    const std::size_t window = std::size_t(std::max(1, options_.window_patches)) * 4;
     std::size_t window_bytes_peak = 0;
     for (std::size_t first = 0; first < triangle_count; first += window) {
       const std::size_t n = std::min(window, triangle_count - first);
