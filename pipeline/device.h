@@ -63,7 +63,8 @@ struct DeviceOptions {
   // done. 0: four times the thread count, at least 4.
   int chunks_in_flight = 0;
   // Rounds that may exist at once (produced while earlier ones are rasterized; at least 2). Chunk
-  // storage is rounds_in_flight x chunks_in_flight chunk buffers. 0: the default, 3.
+  // storage is rounds_in_flight x chunks_in_flight chunk buffers. 0: the default, 2 on up to two
+  // threads, else 3.
   int rounds_in_flight = 0;
 };
 

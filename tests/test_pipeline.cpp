@@ -529,6 +529,34 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
   CHECK(std::size_t(edges32) < lanes.primitive_count);  // some large triangles went through setup_triangle
 }
 
+TEST_CASE("pipeline: default rounds follow the thread count, and a window holds a 2048-patch draw",
+          "[pipeline][memory]") {
+  // Two rounds of chunks on up to two threads, three from three up; a value given is kept.
+  for (const int threads : {1, 2, 3, 4, 16}) {
+    INFO("threads " << threads);
+    CHECK(Device(DeviceOptions{threads}).options().rounds_in_flight == (threads <= 2 ? 2 : 3));
+    DeviceOptions o{threads};
+    o.rounds_in_flight = 5;
+    CHECK(Device(o).options().rounds_in_flight == 5);
+  }
+  // The torus's 2048 patches in one window: each of its 64 x 32 cage vertices is shaded once (vertex
+  // caching is per window); in windows of 1024 patches the seam's vertices are shaded twice.
+  const int w = 256, h = 144;
+  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  const auto draw = scenes::make_torus_draw(scene, 4.0f, ts::Partitioning::integer, w, h);
+  const auto vs_invocations = [&](DeviceOptions o) {
+    Device device(o);
+    auto fb = make_target(w, h);
+    const DrawResult r = device.draw(draw, fb);
+    REQUIRE(r.ok());
+    return r.report.statistics.VSInvocations;
+  };
+  CHECK(vs_invocations(DeviceOptions{2}) == std::uint64_t(scenes::kTorusColumns * scenes::kTorusRows));
+  DeviceOptions half{2};
+  half.window_patches = 1024;
+  CHECK(vs_invocations(half) > std::uint64_t(scenes::kTorusColumns * scenes::kTorusRows));
+}
+
 TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {
   const int w = 256, h = 144;
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
