@@ -17,8 +17,8 @@ Device::Device(DeviceOptions options) : options_(options) {
   // On two threads a third round gains no overlap, and its chunks (4 MB more at 2 x 4096 primitives)
   // push the records setup writes out of cache before they are rasterized: 2 cores, torus F16
   // 34.9-35.6 -> 31.5-32.7 ms (setup 23-26 -> 17-21 ms of thread time), frog F16 -3 %, torus F64 and
-  // MSAA 4x within 2 %; the lent Xeon on 2 threads: torus F16 -3 to -11 %. From four threads up three
-  // rounds win (docs/performance.md).
+  // MSAA 4x within 2 %; the lent Xeon on 2 threads (medians of 8 rounds): torus F16 -3 %, MSAA 4x -7 %,
+  // 8x unchanged. From four threads up two rounds were as fast or slower (docs/performance.md).
   if (options_.rounds_in_flight <= 0) options_.rounds_in_flight = threads_ <= 2 ? 2 : 3;
   options_.rounds_in_flight = std::max(options_.rounds_in_flight, 2);
   // oneTBB caps its workers at the hardware concurrency and says so on stderr when an arena asks for

@@ -57,7 +57,8 @@ struct DeviceOptions {
   std::size_t chunk_primitives = 4096;  // a chunk is cut before its primitive count would pass this
   // Patches through VS and HS at once (a mesh draw: 4 x as many triangles through the VS). Each window
   // ends with the draw's pipeline drained (its last round rasterized with nothing to overlap), so a
-  // window holds a whole frog (1292 patches): 16 threads, displaced frog 20.7-22.0 -> 18.1-19.8 ms.
+  // window holds a whole frog (1292 patches): 16 threads, displaced frog 19.4 -> 17.9 ms, frog 7.8 ->
+  // 7.6 (1024 patches before; medians of five rounds, docs/performance.md).
   int window_patches = 4096;
   // Chunks per round: a round's chunks are produced in parallel, and rasterized together once all are
   // done. 0: four times the thread count, at least 4.
