@@ -19,9 +19,9 @@ struct BenchRounds {
     cmd.add_option("--chunks-in-flight", chunks_in_flight,
                    "chunks produced per round, 0 = the device's default (4 x threads, at least 4)")
         ->capture_default_str();
-    cmd.add_option(
-           "--rounds-in-flight", rounds_in_flight,
-           "rounds of chunks produced or rasterized at once, 0 = the device's default (2 on up to two threads, else 3)")
+    cmd.add_option("--rounds-in-flight", rounds_in_flight,
+                   "rounds of chunks produced or rasterized at once, 0 = the device's default "
+                   "(2 on up to two threads, else 3)")
         ->capture_default_str();
   }
   // Checks the values (UsageError naming the option) and sets them on `o`.
