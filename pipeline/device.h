@@ -19,6 +19,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -28,6 +29,7 @@
 #include <mutex>
 #include <span>
 #include <string>
+#include <typeindex>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -233,28 +235,75 @@ class Backend {
       tile_first_[t + 1] += tile_first_[t];
     }
     tile_chunks_.resize(tile_first_.back());
+    tile_load_.assign(std::size_t(g.count()), 0);
     {
       std::vector<std::uint32_t>& cursor = tile_cursor_;
       cursor.assign(tile_first_.begin(), tile_first_.end() - 1);
       for (std::uint32_t k = 0; k < chunks.size(); ++k)
-        for (std::uint32_t t : chunks[k]->touched) tile_chunks_[cursor[t]++] = k;
+        for (std::uint32_t t : chunks[k]->touched) {
+          tile_chunks_[cursor[t]++] = k;
+          tile_load_[t] += chunks[k]->bin(int(t)).size();
+        }
     }
+    // Tiles are taken heaviest first (by primitives binned), each by the next free thread: a flush
+    // ends when its last tile does, and production waits for it when every set is held, so a heavy
+    // tile taken last left most threads idle (the screen-LOD frog at 16 threads). A tile holding more
+    // than half a thread's share of the flush is rasterized as four quarters, each by any thread:
+    // each pixel is still written by one thread taking the primitives in draw order, so the image is
+    // the same bytes; the quarters only split one straggler's time.
+    const std::size_t threads = std::size_t(tbb::this_task_arena::max_concurrency());
+    std::size_t total = 0;
+    for (const int t : busy_tiles_) total += tile_load_[std::size_t(t)];
+    const bool can_split = threads > 1 && g.tile_size % 4 == 0;
+    flush_items_.clear();
+    for (const int t : busy_tiles_) {
+      const std::size_t load = tile_load_[std::size_t(t)];
+      if (can_split && load * 2 * threads > total) {
+        fb_.prepare_tile(t);  // before its quarters, which may run at once
+        ++report.memory.tiles_split;
+        for (std::uint8_t q = 1; q <= 4; ++q) flush_items_.push_back({t, q, load / 4});
+      } else {
+        flush_items_.push_back({t, 0, load});
+      }
+    }
+    std::stable_sort(flush_items_.begin(), flush_items_.end(),
+                     [](const FlushItem& a, const FlushItem& b) { return a.load > b.load; });
+    std::atomic<std::size_t> next_item{0};
     tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
-    detail::parallel_for(tbb::blocked_range<std::size_t>(0, busy_tiles_.size(), 1), [&](const auto& range) {
+    const std::size_t takers = std::min(flush_items_.size(), threads);
+    detail::parallel_for(tbb::blocked_range<std::size_t>(0, takers, 1), [&](const auto&) {
       auto& mine = local.local();
-      for (std::size_t b = range.begin(); b != range.end(); ++b) {
-        const int t = busy_tiles_[b];
+      for (std::size_t b; (b = next_item.fetch_add(1, std::memory_order_relaxed)) < flush_items_.size();) {
+        const FlushItem item = flush_items_[b];
+        const int t = item.tile;
         const auto start = Clock::now();
-        const int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
-        const int tx1 = std::min(tx0 + g.tile_size, fb_.width()), ty1 = std::min(ty0 + g.tile_size, fb_.height());
+        int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
+        int tx1 = tx0 + g.tile_size, ty1 = ty0 + g.tile_size;
+        if (item.quarter == 0) {
+          fb_.prepare_tile(t);  // a pending clear lands in this core's cache just before the tile's primitives
+        } else {
+          // Quarters are tile_size / 2 wide, an even number of pixels: no 2x2 quad straddles two.
+          const int half = g.tile_size / 2;
+          const bool right = item.quarter == 2 || item.quarter == 4, bottom = item.quarter >= 3;
+          if (right)
+            tx0 += half;
+          else
+            tx1 -= half;
+          if (bottom)
+            ty0 += half;
+          else
+            ty1 -= half;
+        }
+        tx1 = std::min(tx1, fb_.width());
+        ty1 = std::min(ty1, fb_.height());
         const auto for_each_primitive = [&](const auto& visit) {
           for (std::uint32_t k = tile_first_[std::size_t(t)]; k != tile_first_[std::size_t(t) + 1]; ++k) {
             const ChunkBuffer<N>& chunk = *chunks[tile_chunks_[k]];
             for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
           }
         };
-        fb_.prepare_tile(t);  // a pending clear lands in this core's cache just before the tile's primitives
-        mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
+        if (tx0 < tx1 && ty0 < ty1)
+          mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
         mine.second += seconds_since(start);
       }
     });
@@ -275,6 +324,13 @@ class Backend {
   // flush()'s lists, kept between flushes (the consuming stage runs one flush at a time).
   std::vector<const ChunkBuffer<N>*> flush_chunks_;
   std::vector<std::uint32_t> tile_first_, tile_cursor_, tile_chunks_;
+  std::vector<std::size_t> tile_load_;
+  struct FlushItem {
+    int tile;
+    std::uint8_t quarter;  // 0: the whole tile; 1, 2 (top left, right), 3, 4 (bottom left, right)
+    std::size_t load;      // primitives binned (a quarter: a quarter of its tile's)
+  };
+  std::vector<FlushItem> flush_items_;
   std::vector<int> busy_tiles_;
 };
 
@@ -331,6 +387,24 @@ class Device {
     if (!slots) slots = std::make_shared<std::vector<ChunkBuffer<N>>>();
     return *static_cast<std::vector<ChunkBuffer<N>>*>(slots.get());
   }
+  // Each thread's patch scratch (pattern cache, domain shader buffers) of draws with N attributes, kept
+  // from draw to draw for the same reason: allocated per draw, every thread faulted its buffers in
+  // again and tessellated its patterns again each frame.
+  template <std::size_t N>
+  tbb::enumerable_thread_specific<detail::PatchScratch<N>>& patch_scratch() {
+    std::shared_ptr<void>& scratch = patch_scratch_[N];
+    if (!scratch) scratch = std::make_shared<tbb::enumerable_thread_specific<detail::PatchScratch<N>>>();
+    return *static_cast<tbb::enumerable_thread_specific<detail::PatchScratch<N>>*>(scratch.get());
+  }
+
+  // The front end's window storage (front_end.h, WindowStorage) of draws of type S, kept from draw to
+  // draw for the same reason.
+  template <class S>
+  S& window_storage() {
+    std::shared_ptr<void>& storage = window_storage_[std::type_index(typeid(S))];
+    if (!storage) storage = std::make_shared<S>();
+    return *static_cast<S*>(storage.get());
+  }
 
   // A clear pending in another grid's tiles is written whole before a draw, which prepares its own
   // tiles only.
@@ -343,6 +417,8 @@ class Device {
   int threads_ = 1;
   std::mutex draw_mutex_;                                     // one draw at a time: they share the slots
   std::map<std::size_t, std::shared_ptr<void>> chunk_slots_;  // by attribute count N
+  std::map<std::size_t, std::shared_ptr<void>> patch_scratch_;       // by attribute count N
+  std::map<std::type_index, std::shared_ptr<void>> window_storage_;  // by storage type
   std::unique_ptr<tbb::global_control> worker_limit_;         // only when threads_ exceeds the default limit
   std::unique_ptr<tbb::task_arena> arena_;
 };
@@ -371,10 +447,11 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight,
                                    options_.rounds_in_flight);
-    tbb::enumerable_thread_specific<detail::PatchScratch<N>> scratch;
+    tbb::enumerable_thread_specific<detail::PatchScratch<N>>& scratch = patch_scratch<N>();
+    for (auto& s : scratch) s.patterns.reset_counters();  // the report counts this draw's hits and misses
     const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
-                   options_.chunk_primitives);
+                   options_.chunk_primitives, &window_storage<typename FrontEnd::Storage>());
     std::size_t scratch_bytes_peak = 0;
 
     // A patch through the DS (in its batch form when it has one) and setup_vertex, then its primitives

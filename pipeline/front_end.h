@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <memory>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -187,6 +188,18 @@ struct PatchWork {
   const PatchConstants& constants;
 };
 
+// One window's IA, VS and HS results and its chunks. A Device keeps one per type from draw to draw
+// (Device::window_storage): made per draw, its vectors were allocated and zero-filled on one thread
+// every frame, page faults included, while the other threads waited for the HS.
+template <class VsOut, class ControlPoint, class PatchConstants>
+struct WindowStorage {
+  VertexCache vcache;
+  std::vector<VsOut> vs_out;
+  HullPhase<VsOut, ControlPoint, PatchConstants> hull;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
+  std::size_t bytes() const { return vcache.bytes() + vs_out.capacity() * sizeof(VsOut) + hull.bytes(); }
+};
+
 template <class Vertex, class Vs, class Hs>
 class PatchFrontEnd {
  public:
@@ -195,13 +208,18 @@ class PatchFrontEnd {
   using ControlPoint = hs_control_point_t<Hs, VsOut>;
   using PatchConstants = hs_patch_constants_t<Hs, VsOut>;
   using Work = PatchWork<ControlPoint, PatchConstants>;
+  using Storage = WindowStorage<VsOut, ControlPoint, PatchConstants>;
   static constexpr int kOut = Hs::kOutputControlPoints;
 
-  // The draw's inputs must outlive the front end; validate_patch_draw() has accepted them.
+  // The draw's inputs must outlive the front end; validate_patch_draw() has accepted them. `storage`,
+  // when given, must outlive it too and serve one front end at a time; without it the front end has
+  // its own.
   PatchFrontEnd(std::span<const Vertex> vertices, std::span<const std::uint32_t> indices, int control_points,
                 const Vs& vs, const Hs& hs, const TessellatorState& tessellator, int window_patches,
-                std::size_t chunk_primitives)
-      : vertices_(vertices),
+                std::size_t chunk_primitives, Storage* storage = nullptr)
+      : owned_(storage ? nullptr : std::make_unique<Storage>()),
+        s_(storage ? *storage : *owned_),
+        vertices_(vertices),
         indices_(indices),
         n_in_(std::size_t(control_points)),
         vs_(vs),
@@ -218,44 +236,47 @@ class PatchFrontEnd {
     const std::size_t patch_count = indices_.size() / n_in_;
     for (first_ = 0; first_ < patch_count; first_ += window_) {
       const std::size_t n = std::min(window_, patch_count - first_);
-      assemble_and_shade_vertices(vs_, vertices_, indices_.subspan(first_ * n_in_, n * n_in_), n, vcache_, vs_out_,
+      assemble_and_shade_vertices(vs_, vertices_, indices_.subspan(first_ * n_in_, n * n_in_), n, s_.vcache, s_.vs_out,
                                   report);
-      hull_.run(hs_, vs_out_, vcache_, n, n_in_, first_, tstate_, [&]() -> StageTimes& { return front_times.local(); });
+      s_.hull.run(hs_, s_.vs_out, s_.vcache, n, n_in_, first_, tstate_,
+                  [&]() -> StageTimes& { return front_times.local(); });
       report.statistics.HSInvocations += n;
-      for (std::size_t p = 0; p < n; ++p) report.patches_culled += hull_.processed[p].culled ? 1u : 0u;
-      cut_chunks(hull_.cost, chunk_primitives_, 256, chunks_);
+      for (std::size_t p = 0; p < n; ++p) report.patches_culled += s_.hull.processed[p].culled ? 1u : 0u;
+      cut_chunks(s_.hull.cost, chunk_primitives_, 256, s_.chunks);
       on_window();
       window_bytes_peak_ = std::max(window_bytes_peak_, window_bytes());
     }
     for (const auto& t : front_times) report.times += t;
   }
 
-  std::size_t chunk_count() const { return chunks_.size(); }
+  std::size_t chunk_count() const { return s_.chunks.size(); }
   std::size_t patch_count() const { return indices_.size() / n_in_; }
   // Patches of the draw before the end of the current window's chunk `c` (for progress reports).
-  std::size_t patches_through_chunk(std::size_t c) const { return first_ + chunks_[c].second; }
+  std::size_t patches_through_chunk(std::size_t c) const { return first_ + s_.chunks[c].second; }
 
   // Calls visit(const Work&) for each patch of the current window's chunk `c` that is not culled, in
   // draw order. Patterns come from `cache`; the time of a miss is added to `tessellator_seconds`.
   template <class Visit>
   void for_each_patch(std::size_t c, PatternCache& cache, double& tessellator_seconds, Visit&& visit) const {
-    const auto [begin, end] = chunks_[c];
+    const auto [begin, end] = s_.chunks[c];
     for (std::uint32_t p = begin; p < end; ++p) {
-      if (hull_.processed[p].culled) continue;
+      if (s_.hull.processed[p].culled) continue;
       const auto start = Clock::now();
       bool hit = false;
-      const ts::Pattern& pattern = cache.get(hull_.processed[p], tstate_.output, hit);
+      const ts::Pattern& pattern = cache.get(s_.hull.processed[p], tstate_.output, hit);
       if (!hit) tessellator_seconds += seconds_since(start);
       visit(Work{static_cast<std::uint32_t>(first_ + p), pattern,
-                 std::span<const ControlPoint>(hull_.control_points.data() + p * kOut, kOut), hull_.constants[p]});
+                 std::span<const ControlPoint>(s_.hull.control_points.data() + p * kOut, kOut), s_.hull.constants[p]});
     }
   }
 
   // Bytes of the current window's IA, VS and HS storage, and their peak over the windows so far.
-  std::size_t window_bytes() const { return vcache_.bytes() + vs_out_.capacity() * sizeof(VsOut) + hull_.bytes(); }
+  std::size_t window_bytes() const { return s_.bytes(); }
   std::size_t window_bytes_peak() const { return window_bytes_peak_; }
 
  private:
+  std::unique_ptr<Storage> owned_;
+  Storage& s_;
   std::span<const Vertex> vertices_;
   std::span<const std::uint32_t> indices_;
   std::size_t n_in_;
@@ -266,10 +287,6 @@ class PatchFrontEnd {
   std::size_t chunk_primitives_;
 
   std::size_t first_ = 0;  // the current window's first patch
-  VertexCache vcache_;
-  std::vector<VsOut> vs_out_;
-  HullPhase<VsOut, ControlPoint, PatchConstants> hull_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks_;
   std::size_t window_bytes_peak_ = 0;
 };
 

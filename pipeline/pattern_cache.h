@@ -25,8 +25,10 @@ class PatternCache {
   // asked for: only the back-patch test needs it.
   const ts::PatternShape& shape(const ts::Pattern& pattern);
 
+  // Hits and misses since construction or the last reset_counters(); the entries stay.
   std::uint64_t hits() const { return hits_; }
   std::uint64_t misses() const { return misses_; }
+  void reset_counters() { hits_ = misses_ = 0; }
   std::size_t bytes() const;
 
  private:

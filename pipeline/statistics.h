@@ -55,6 +55,7 @@ struct MemoryStats {
   std::uint64_t framebuffer_bytes = 0;
   std::uint64_t pattern_cache_bytes = 0;
   std::uint64_t chunks = 0;  // geometry chunks flushed to the rasterizer
+  std::uint64_t tiles_split = 0;  // tile flushes rasterized as four quarters, by up to four threads
   std::uint64_t pattern_cache_hits = 0;
   std::uint64_t pattern_cache_misses = 0;
 };

@@ -85,9 +85,13 @@ Json to_json(const StageTimes& t) {
 }
 
 Json to_json(const MemoryStats& m) {
-  return {{"geometry_peak_bytes", m.geometry_peak_bytes}, {"framebuffer_bytes", m.framebuffer_bytes},
-          {"pattern_cache_bytes", m.pattern_cache_bytes}, {"chunks", m.chunks},
-          {"pattern_cache_hits", m.pattern_cache_hits},   {"pattern_cache_misses", m.pattern_cache_misses}};
+  return {{"geometry_peak_bytes", m.geometry_peak_bytes},
+          {"framebuffer_bytes", m.framebuffer_bytes},
+          {"pattern_cache_bytes", m.pattern_cache_bytes},
+          {"chunks", m.chunks},
+          {"tiles_split", m.tiles_split},
+          {"pattern_cache_hits", m.pattern_cache_hits},
+          {"pattern_cache_misses", m.pattern_cache_misses}};
 }
 
 Json to_json(const verify::WeldReport& w) {
