@@ -219,7 +219,8 @@ class Backend {
   // alone writes the report's PS invocations and raster time, so it may run beside production.
   // The tiles' chunk lists are gathered first from each chunk's touched tiles, so that the work is
   // proportional to the (chunk, tile) pairs that hold primitives, not to chunks x tiles (at 64
-  // threads a round is 256 chunks, and the screen 510 tiles).
+  // threads a round is 256 chunks, and the screen 510 tiles). `drains`: nothing can be produced
+  // beside this flush (it holds every set, or ends the window), so heavy tiles are split.
   template <class ChunksOf>
   void flush(std::size_t first, std::size_t last, const ChunksOf& chunks_of, bool drains, DrawReport& report) {
     const TileGrid& g = setup_.tiles;
