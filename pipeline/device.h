@@ -124,7 +124,7 @@ std::string validate_patch_draw(std::size_t index_count, int control_points, con
 namespace detail {
 
 // The back end: chunk slots, and the tile-parallel flush that rasterizes them in draw order. The slots
-// are the device's (Device::chunk_slots): their storage outlives the draw.
+// are the device's (Device::kept): their storage outlives the draw.
 template <std::size_t N, class Ps>
 class Backend {
  public:
@@ -289,16 +289,11 @@ class Backend {
           fb_.prepare_tile(t);  // a pending clear lands in this core's cache just before the tile's primitives
         } else {
           // Quarters are tile_size / 2 wide, an even number of pixels: no 2x2 quad straddles two.
-          const int half = g.tile_size / 2;
-          const bool right = item.quarter == 2 || item.quarter == 4, bottom = item.quarter >= 3;
-          if (right)
-            tx0 += half;
-          else
-            tx1 -= half;
-          if (bottom)
-            ty0 += half;
-          else
-            ty1 -= half;
+          const int half = g.tile_size / 2, q = item.quarter - 1;
+          tx0 += (q % 2) * half;
+          ty0 += (q / 2) * half;
+          tx1 = tx0 + half;
+          ty1 = ty0 + half;
         }
         tx1 = std::min(tx1, fb_.width());
         ty1 = std::min(ty1, fb_.height());
@@ -385,31 +380,17 @@ class Device {
   DrawResult draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb);
 
  private:
-  // The chunk slots of draws with N attributes. A chunk's primitive storage is about half a megabyte;
-  // allocated per draw, it was mapped and faulted in again every frame (7 % of a factor-8 frame).
-  template <std::size_t N>
-  std::vector<ChunkBuffer<N>>& chunk_slots() {
-    std::shared_ptr<void>& slots = chunk_slots_[N];
-    if (!slots) slots = std::make_shared<std::vector<ChunkBuffer<N>>>();
-    return *static_cast<std::vector<ChunkBuffer<N>>*>(slots.get());
-  }
-  // Each thread's patch scratch (pattern cache, domain shader buffers) of draws with N attributes, kept
-  // from draw to draw for the same reason: allocated per draw, every thread faulted its buffers in
-  // again and tessellated its patterns again each frame.
-  template <std::size_t N>
-  tbb::enumerable_thread_specific<detail::PatchScratch<N>>& patch_scratch() {
-    std::shared_ptr<void>& scratch = patch_scratch_[N];
-    if (!scratch) scratch = std::make_shared<tbb::enumerable_thread_specific<detail::PatchScratch<N>>>();
-    return *static_cast<tbb::enumerable_thread_specific<detail::PatchScratch<N>>*>(scratch.get());
-  }
-
-  // The front end's window storage (front_end.h, WindowStorage) of draws of type S, kept from draw to
-  // draw for the same reason.
-  template <class S>
-  S& window_storage() {
-    std::shared_ptr<void>& storage = window_storage_[std::type_index(typeid(S))];
-    if (!storage) storage = std::make_shared<S>();
-    return *static_cast<S*>(storage.get());
+  // Storage the device keeps from draw to draw, one object per type: the chunk slots
+  // (std::vector<ChunkBuffer<N>>), each thread's patch scratch (pattern cache, DS buffers) and the
+  // front end's window storage (front_end.h). Made per draw, a chunk's half megabyte of primitive
+  // storage was mapped and faulted in again every frame (7 % of a factor-8 frame), every thread
+  // faulted its DS buffers in and tessellated its patterns again, and one thread zero-filled the
+  // window's HS outputs while the others waited.
+  template <class T>
+  T& kept() {
+    std::shared_ptr<void>& object = kept_[std::type_index(typeid(T))];
+    if (!object) object = std::make_shared<T>();
+    return *static_cast<T*>(object.get());
   }
 
   // A clear pending in another grid's tiles is written whole before a draw, which prepares its own
@@ -422,9 +403,7 @@ class Device {
   DrawProgress progress_;
   int threads_ = 1;
   std::mutex draw_mutex_;                                     // one draw at a time: they share the slots
-  std::map<std::size_t, std::shared_ptr<void>> chunk_slots_;  // by attribute count N
-  std::map<std::size_t, std::shared_ptr<void>> patch_scratch_;       // by attribute count N
-  std::map<std::type_index, std::shared_ptr<void>> window_storage_;  // by storage type
+  std::map<std::type_index, std::shared_ptr<void>> kept_;     // kept(), by type
   std::unique_ptr<tbb::global_control> worker_limit_;         // only when threads_ exceeds the default limit
   std::unique_ptr<tbb::task_arena> arena_;
 };
@@ -451,13 +430,14 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
-    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight,
-                                   options_.rounds_in_flight);
-    tbb::enumerable_thread_specific<detail::PatchScratch<N>>& scratch = patch_scratch<N>();
+    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, kept<std::vector<ChunkBuffer<N>>>(),
+                                   options_.chunks_in_flight, options_.rounds_in_flight);
+    tbb::enumerable_thread_specific<detail::PatchScratch<N>>& scratch =
+        kept<tbb::enumerable_thread_specific<detail::PatchScratch<N>>>();
     for (auto& s : scratch) s.patterns.reset_counters();  // the report counts this draw's hits and misses
     const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
-                   options_.chunk_primitives, &window_storage<typename FrontEnd::Storage>());
+                   options_.chunk_primitives, &kept<typename FrontEnd::Storage>());
     std::size_t scratch_bytes_peak = 0;
 
     // A patch through the DS (in its batch form when it has one) and setup_vertex, then its primitives
@@ -564,8 +544,8 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
   detail::arena_execute(*arena_, [&] {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
-    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, chunk_slots<N>(), options_.chunks_in_flight,
-                                   options_.rounds_in_flight);
+    detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, kept<std::vector<ChunkBuffer<N>>>(),
+                                   options_.chunks_in_flight, options_.rounds_in_flight);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
     std::vector<SetupVertex<N>> setup_vertices;

@@ -14,8 +14,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -189,7 +189,7 @@ struct PatchWork {
 };
 
 // One window's IA, VS and HS results and its chunks. A Device keeps one per type from draw to draw
-// (Device::window_storage): made per draw, its vectors were allocated and zero-filled on one thread
+// (Device::kept): made per draw, its vectors were allocated and zero-filled on one thread
 // every frame, page faults included, while the other threads waited for the HS.
 template <class VsOut, class ControlPoint, class PatchConstants>
 struct WindowStorage {

@@ -259,8 +259,9 @@ TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads an
     const std::uint64_t hash = image_hash(fb);
     INFO("threads " << c.threads << " tile " << c.tile << " chunk " << c.chunk << " chunks in flight "
                     << c.chunks_in_flight << " rounds in flight " << c.rounds_in_flight << " window " << c.window);
-    // A tile holding more than half a thread's share of a flush is rasterized in quarters (device.h);
-    // on 7 threads some of this small target's 15 tiles are, and the bytes must not change.
+    // In a flush that drains, a tile holding more than half a thread's share is rasterized in
+    // quarters (device.h); on 7 threads some of this small target's 15 tiles are, and the bytes must
+    // not change.
     if (c.threads == 1) CHECK(r.report.memory.tiles_split == 0);
     if (c.threads == 7 && c.tile == 64) CHECK(r.report.memory.tiles_split > 0);
     if (reference == 0) {
