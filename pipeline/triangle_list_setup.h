@@ -71,6 +71,21 @@ struct TriangleRecordLayout {
   static constexpr std::size_t kBlocks = (kFields + 7) / 8;
 };
 
+// The fields setup reads from a SetupVertex V, 4 bytes each: those from x to finite (the bool read with
+// the padding after it), as kBlocks loads of eight; block b starts at field start(b), the last one ending
+// at the span's end (overlapping the one before when the span is not a multiple of eight).
+template <class V>
+struct VertexFieldSpan {
+  static constexpr std::size_t kBegin = offsetof(V, x);
+  static constexpr std::size_t kFields = (offsetof(V, finite) + 4 - kBegin) / 4;
+  static constexpr std::size_t kBlocks = (kFields + 7) / 8;
+  static constexpr std::size_t start(std::size_t b) { return b + 1 < kBlocks ? 8 * b : kFields - 8; }
+  static constexpr std::size_t block_of(std::size_t i) { return i / 8 < kBlocks ? i / 8 : kBlocks - 1; }
+  static_assert(kBegin % 4 == 0 && offsetof(V, finite) % 4 == 0 && sizeof(V) >= offsetof(V, finite) + 4);
+  static_assert(offsetof(V, y) == kBegin + 4 && offsetof(V, plane_values) > kBegin && offsetof(V, view_code) > kBegin &&
+                offsetof(V, clip_code) > kBegin && kFields >= 8);
+};
+
 #endif
 
 }  // namespace detail
@@ -91,9 +106,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
 #if defined(__AVX2__)
   using L = detail::TriangleRecordLayout<N>;
   using V = SetupVertex<N>;
-  static_assert(sizeof(V) >= offsetof(V, finite) + 4 && sizeof(V) % 4 == 0);
-  // Gathers address vertices by byte offsets in signed 32-bit lanes.
-  const bool lanes = c.fill == FillMode::solid && vertex_count <= std::size_t(INT32_MAX) / sizeof(V);
+  const bool lanes = c.fill == FillMode::solid;
   // A multisampled target's triangles (setup_multisample_triangle's records, with their edges kept in
   // 32 bits): the box of the pixels whose samples the vertex box may reach (sample_reach, at most half
   // a pixel from their pixel's centre), no coverage test here (raster_multisample.h tests each sample).
@@ -103,15 +116,12 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   const __m256i reach_min_x = _mm256_set1_epi32(16 * reach.min_x), reach_max_x = _mm256_set1_epi32(16 * reach.max_x);
   const __m256i reach_min_y = _mm256_set1_epi32(16 * reach.min_y), reach_max_y = _mm256_set1_epi32(16 * reach.max_y);
   const char* const base = reinterpret_cast<const char*>(vertices);
-  const auto gather = [&](std::size_t field, __m256i offsets) {
-    return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + field), offsets, 1);
-  };
-  const auto gather_ps = [&](std::size_t field, __m256i offsets) {
-    return _mm256_i32gather_ps(reinterpret_cast<const float*>(base + field), offsets, 1);
-  };
+  // A vertex's fields from x to finite, 4 bytes each (`finite` read with the padding after it), are
+  // loaded eight at a time for the group's 24 vertices and transposed, so that each field is one vector
+  // per vertex slot: 48 loads and six 8x8 transposes instead of 30 gathers, which cost several times as
+  // much per element. The last block of eight ends at the span's end and may overlap the one before.
+  using VF = detail::VertexFieldSpan<V>;
   const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
-  const __m256i lane_times3 = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
-  const __m256i vertex_bytes = _mm256_set1_epi32(int(sizeof(V)));
   const __m256i id_lanes =
       _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(int(id_step)));
   const __m128i tile_shift = _mm_cvtsi32_si128(c.tiles.shift);
@@ -123,21 +133,31 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1));
   };
   for (; lanes && t + 8 <= count; t += 8) {
-    const int* idx = reinterpret_cast<const int*>(indices + 3 * t);
-    const __m256i off0 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx, lane_times3, 4), vertex_bytes);
-    const __m256i off1 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx + 1, lane_times3, 4), vertex_bytes);
-    const __m256i off2 = _mm256_mullo_epi32(_mm256_i32gather_epi32(idx + 2, lane_times3, 4), vertex_bytes);
-    // setup_triangle's tests. `finite` is a bool; the gather reads it with the padding after it.
+    __m256i block[3][VF::kBlocks][8];
+    for (std::size_t v = 0; v < 3; ++v) {
+      const char* at[8];
+      for (std::size_t k = 0; k < 8; ++k) at[k] = base + std::size_t(indices[3 * (t + k) + v]) * sizeof(V) + VF::kBegin;
+      for (std::size_t b = 0; b < VF::kBlocks; ++b) {
+        for (std::size_t k = 0; k < 8; ++k)
+          block[v][b][k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at[k] + 4 * VF::start(b)));
+        detail::transpose8x8(block[v][b]);
+      }
+    }
+    const auto field = [&](std::size_t v, std::size_t offset) {
+      const std::size_t i = (offset - VF::kBegin) / 4, b = VF::block_of(i);
+      return block[v][b][i - VF::start(b)];
+    };
+    // setup_triangle's tests. `finite` is a bool; its field holds the padding after it too.
     const __m256i clip_or =
-        _mm256_or_si256(_mm256_or_si256(gather(offsetof(V, clip_code), off0), gather(offsetof(V, clip_code), off1)),
-                        gather(offsetof(V, clip_code), off2));
+        _mm256_or_si256(_mm256_or_si256(field(0, offsetof(V, clip_code)), field(1, offsetof(V, clip_code))),
+                        field(2, offsetof(V, clip_code)));
     const __m256i finite = _mm256_and_si256(
-        _mm256_and_si256(_mm256_and_si256(gather(offsetof(V, finite), off0), gather(offsetof(V, finite), off1)),
-                         gather(offsetof(V, finite), off2)),
+        _mm256_and_si256(_mm256_and_si256(field(0, offsetof(V, finite)), field(1, offsetof(V, finite))),
+                         field(2, offsetof(V, finite))),
         _mm256_set1_epi32(0xFF));
-    const __m256i x0 = gather(offsetof(V, x), off0), y0 = gather(offsetof(V, y), off0);
-    const __m256i xb = gather(offsetof(V, x), off1), yb = gather(offsetof(V, y), off1);
-    const __m256i xd = gather(offsetof(V, x), off2), yd = gather(offsetof(V, y), off2);
+    const __m256i x0 = field(0, offsetof(V, x)), y0 = field(0, offsetof(V, y));
+    const __m256i xb = field(1, offsetof(V, x)), yb = field(1, offsetof(V, y));
+    const __m256i xd = field(2, offsetof(V, x)), yd = field(2, offsetof(V, y));
     const __m256i lx = _mm256_min_epi32(_mm256_min_epi32(x0, xb), xd),
                   hx = _mm256_max_epi32(_mm256_max_epi32(x0, xb), xd);
     const __m256i ly = _mm256_min_epi32(_mm256_min_epi32(y0, yb), yd),
@@ -156,8 +176,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       continue;
     }
     const __m256i view_and =
-        _mm256_and_si256(_mm256_and_si256(gather(offsetof(V, view_code), off0), gather(offsetof(V, view_code), off1)),
-                         gather(offsetof(V, view_code), off2));
+        _mm256_and_si256(_mm256_and_si256(field(0, offsetof(V, view_code)), field(1, offsetof(V, view_code))),
+                         field(2, offsetof(V, view_code)));
     const __m256i inside = _mm256_cmpeq_epi32(view_and, zero);  // not wholly outside one view-volume plane
     chunk.statistics.CInvocations += 8;
     chunk.statistics.CPrimitives += unsigned(std::popcount(unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(inside)))));
@@ -180,7 +200,6 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     // Stored with positive area: vertices 1 and 2 swap places in lanes with negative area.
     const __m256i x1 = _mm256_blendv_epi8(xd, xb, positive), x2 = _mm256_blendv_epi8(xb, xd, positive);
     const __m256i y1 = _mm256_blendv_epi8(yd, yb, positive), y2 = _mm256_blendv_epi8(yb, yd, positive);
-    const __m256i o1 = _mm256_blendv_epi8(off2, off1, positive), o2 = _mm256_blendv_epi8(off1, off2, positive);
     // Edge i from vertex i to vertex i + 1, at the centre of pixel (min_x, min_y), with its top-left bias.
     const __m256i half = _mm256_set1_epi32(kSubpixelOne / 2);
     const I8 cx(_mm256_add_epi32(_mm256_slli_epi32(min_x, kSubpixelBits), half));
@@ -236,8 +255,11 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       const __m256 inv_area =
           _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sub_ps(_mm256_mul_ps(fx1, fy2), _mm256_mul_ps(fx2, fy1)));
       const auto plane = [&](std::size_t value, std::size_t at0, std::size_t at_x, std::size_t at_y) {
-        const std::size_t field = offsetof(V, plane_values) + 4 * value;
-        const __m256 a0 = gather_ps(field, off0), a1 = gather_ps(field, o1), a2 = gather_ps(field, o2);
+        const std::size_t at = offsetof(V, plane_values) + 4 * value;
+        const __m256i b1 = field(1, at), b2 = field(2, at);
+        const __m256 a0 = _mm256_castsi256_ps(field(0, at)),
+                     a1 = _mm256_castsi256_ps(_mm256_blendv_epi8(b2, b1, positive)),
+                     a2 = _mm256_castsi256_ps(_mm256_blendv_epi8(b1, b2, positive));
         using simd::F8;
         const detail::PlaneSlopes<F8> s =
             detail::plane_slopes(F8{a0}, F8{a1}, F8{a2}, F8{fx1}, F8{fy1}, F8{fx2}, F8{fy2}, F8{inv_area});
