@@ -21,6 +21,7 @@
 #include "shaders_cpp/render/subd_model.h"
 #include "shaders_cpp/subdiv/limit_fit.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/render/patch_eval_lanes.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 #include "test_data.h"
@@ -1008,4 +1009,44 @@ TEST_CASE("polar configurations: gregory and bspline draw their triangles as pol
                 }
               });
   CHECK(poles == 2 * 16);
+}
+
+TEST_CASE("PatchLanes evaluates ACC and Gregory patches with the scalar functions' bits", "[subd][lanes]") {
+  // Control points from a fixed generator, well away from any symmetry; locations: a factor-23 grid
+  // (interior, the four edges, the corners) and a short last group, in an order that mixes them.
+  std::uint32_t state = 12345u;
+  const auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24) * 4.0f - 2.0f;
+  };
+  const auto point = [&] { return glm::vec3(next(), next(), next()); };
+  std::array<glm::vec3, 16> b;
+  std::array<glm::vec3, 12> du, dv;
+  std::array<glm::vec3, 20> g;
+  for (auto& p : b) p = point();
+  for (auto& p : du) p = point();
+  for (auto& p : dv) p = point();
+  for (auto& p : g) p = point();
+  std::vector<float> u, v;
+  for (int j = 0; j <= 23; ++j)
+    for (int i = 0; i <= 23; ++i) u.push_back(float(i) / 23.0f), v.push_back(float((j * 7) % 24) / 23.0f);
+  u.push_back(1.0f), v.push_back(0.0f);  // 577 locations: the last group has one
+  const auto same = [](const glm::vec3& a, const glm::vec3& e) {
+    return std::bit_cast<std::array<std::uint32_t, 3>>(a) == std::bit_cast<std::array<std::uint32_t, 3>>(e);
+  };
+  std::vector<PatchPoint> lanes(u.size());
+  PatchLanes::acc(b, du, dv, u, v, lanes);
+  std::size_t acc_wrong = 0, gregory_wrong = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    PatchPoint e = bezier_patch(b, u[i], v[i]);
+    acc_tangents(du, dv, u[i], v[i], e.du, e.dv);
+    acc_wrong += !(same(lanes[i].position, e.position) && same(lanes[i].du, e.du) && same(lanes[i].dv, e.dv));
+  }
+  PatchLanes::gregory(g, u, v, lanes);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const PatchPoint e = bezier_patch(gregory_to_bezier(g, u[i], v[i]), u[i], v[i]);
+    gregory_wrong += !(same(lanes[i].position, e.position) && same(lanes[i].du, e.du) && same(lanes[i].dv, e.dv));
+  }
+  CHECK(acc_wrong == 0);
+  CHECK(gregory_wrong == 0);
 }

@@ -175,9 +175,19 @@ struct DisplacedDS {
   std::span<const PatchTexcoords> texcoords;
   DisplacementParams params;
 
+  // The batch form, for ProjectingDS: out[i] = (*this)(pc, cp, locations[i], patch_id), the patch
+  // evaluated in lanes where SubdDS::evaluate_lanes can.
+  void samples(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp,
+               std::span<const DomainLocation> locations, std::uint32_t patch_id, std::span<DisplacedPoint> out) const {
+    base.for_evaluated(base.patches[patch_id], cp, locations, [&](std::size_t i, const PatchPoint* evaluated) {
+      out[i] = (*this)(pc, cp, locations[i], patch_id, evaluated);
+    });
+  }
+
+  // `evaluated`, when given, is the base patch's PatchPoint at `loc` (SubdDS::operator()).
   DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
-                            std::uint32_t patch_id) const {
-    const SurfaceSample s = base(SubdPatchConstants{pc.factors, {}}, cp, loc, patch_id);
+                            std::uint32_t patch_id, const PatchPoint* evaluated = nullptr) const {
+    const SurfaceSample s = base(SubdPatchConstants{pc.factors, {}}, cp, loc, patch_id, evaluated);
     const PatchTexcoords& tc = texcoords[patch_id];
     const bool exact = base.patches[patch_id].kind == PatchKind::exact;
     const float u = loc.u, v = loc.v;

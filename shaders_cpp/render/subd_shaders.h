@@ -29,6 +29,7 @@
 #include "shaders_cpp/lod/subd_factors.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
+#include "shaders_cpp/render/patch_eval_lanes.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 #include "shaders_cpp/subdiv/subd_patches.h"
@@ -323,8 +324,58 @@ struct SubdDS {
   bool flip_normals = false;  // left-handed cages (the limit surface flips its own)
   bool triangles = false;     // the tri domain
 
+  // The patch's PatchPoint at each location (u[i], v[i]) of a quad patch of kind acc or gregory,
+  // eight locations at a time (patch_eval_lanes.h: the bits of evaluate() below). False, with nothing
+  // written, for other patches.
+  bool evaluate_lanes(const SubdPatch& patch, std::span<const SubdControlPoint> cp, std::span<const float> u,
+                      std::span<const float> v, std::span<PatchPoint> out) const {
+    if (triangles) return false;
+    if (patch.kind == PatchKind::acc) {
+      std::array<glm::vec3, 16> b;
+      std::array<glm::vec3, 12> du, dv;
+      for (std::size_t i = 0; i < 16; ++i) b[i] = cp[i].p;
+      for (std::size_t i = 0; i < 12; ++i) du[i] = cp[i].du, dv[i] = cp[i].dv;
+      PatchLanes::acc(b, du, dv, u, v, out);
+      return true;
+    }
+    if (patch.kind == PatchKind::gregory) {
+      std::array<glm::vec3, 20> g;
+      for (std::size_t i = 0; i < 20; ++i) g[i] = cp[i].p;
+      PatchLanes::gregory(g, u, v, out);
+      return true;
+    }
+    return false;
+  }
+
+  // The batch form, for ProjectingDS: out[i] = (*this)(pc, cp, locations[i], patch_id), the patch
+  // evaluated in lanes where evaluate_lanes can.
+  void samples(const SubdPatchConstants& pc, std::span<const SubdControlPoint> cp,
+               std::span<const DomainLocation> locations, std::uint32_t patch_id, std::span<SurfaceSample> out) const {
+    for_evaluated(patches[patch_id], cp, locations, [&](std::size_t i, const PatchPoint* evaluated) {
+      out[i] = (*this)(pc, cp, locations[i], patch_id, evaluated);
+    });
+  }
+
+  // Calls visit(i, evaluated) for each location i, `evaluated` its PatchPoint from evaluate_lanes or
+  // null; blocks of kLanesBlock locations at a time.
+  static constexpr std::size_t kLanesBlock = 64;
+  template <class Visit>
+  void for_evaluated(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
+                     std::span<const DomainLocation> locations, const Visit& visit) const {
+    std::array<float, kLanesBlock> u, v;
+    std::array<PatchPoint, kLanesBlock> points;
+    for (std::size_t first = 0; first < locations.size(); first += kLanesBlock) {
+      const std::size_t n = std::min(kLanesBlock, locations.size() - first);
+      for (std::size_t k = 0; k < n; ++k) u[k] = locations[first + k].u, v[k] = locations[first + k].v;
+      const bool lanes = evaluate_lanes(patch, cp, std::span<const float>(u.data(), n),
+                                        std::span<const float>(v.data(), n), std::span<PatchPoint>(points.data(), n));
+      for (std::size_t k = 0; k < n; ++k) visit(first + k, lanes ? &points[k] : nullptr);
+    }
+  }
+
+  // `evaluated`, when given, is evaluate(loc)'s PatchPoint, computed in lanes (evaluate_lanes).
   SurfaceSample operator()(const SubdPatchConstants&, std::span<const SubdControlPoint> cp, DomainLocation loc,
-                           std::uint32_t patch_id) const {
+                           std::uint32_t patch_id, const PatchPoint* evaluated = nullptr) const {
     const SubdPatch& patch = patches[patch_id];
     SurfaceSample s;
     s.face = std::uint32_t(patch.face);
@@ -415,7 +466,7 @@ struct SubdDS {
       }
       return p;
     };
-    const PatchPoint p = evaluate(loc);
+    const PatchPoint p = evaluated ? *evaluated : evaluate(loc);
     s.position = positive_zero(p.position);
     s.du = p.du, s.dv = p.dv;
     // PN patches carry their own normal field; the others' normal is that of the surface.
@@ -477,7 +528,29 @@ struct ProjectingDS {
   float z_bias = 0.0f;
   template <class PC, class CP>
   auto operator()(const PC& pc, std::span<const CP> cps, DomainLocation loc, std::uint32_t patch_id) const {
-    const auto s = inner(pc, cps, loc, patch_id);
+    return project(inner(pc, cps, loc, patch_id));
+  }
+  // The batch form (pipeline/stage_io.h's BatchDomainShader), where Inner has one: Inner::samples(pc,
+  // cps, locations, patch_id, out), a block of points at a time, each projected as above.
+  template <class PC, class CP, std::size_t N>
+  requires requires(const Inner& d, const PC& pc, std::span<const CP> cps, std::span<const DomainLocation> l,
+                    std::uint32_t id) {
+    d.samples(pc, cps, l, id, std::span<decltype(d(pc, cps, DomainLocation{}, id))>());
+  }
+  void operator()(const PC& pc, std::span<const CP> cps, std::span<const DomainLocation> locations,
+                  std::uint32_t patch_id, std::span<ClipVertex<N>> out) const {
+    using Sample = decltype(inner(pc, cps, DomainLocation{}, patch_id));
+    static_assert(std::is_same_v<decltype(project(Sample{})), ClipVertex<N>>);
+    constexpr std::size_t kBlock = 64;
+    std::array<Sample, kBlock> samples;
+    for (std::size_t first = 0; first < locations.size(); first += kBlock) {
+      const std::size_t n = std::min(kBlock, locations.size() - first);
+      inner.samples(pc, cps, locations.subspan(first, n), patch_id, std::span<Sample>(samples.data(), n));
+      for (std::size_t k = 0; k < n; ++k) out[first + k] = project(samples[k]);
+    }
+  }
+  template <class Sample>
+  auto project(const Sample& s) const {
     const auto attributes = AttributesOf{}(s);
     ClipVertex<std::tuple_size_v<decltype(attributes)>> out;
     out.position = clip_position(view_projection, z_bias, s.position);
