@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 #include "pipeline/simd8.h"
@@ -120,6 +121,7 @@ using simd::F8;
 
 // Eight domain points per step: with AVX one instruction per operation, otherwise two SSE ones (simd8.h).
 constexpr std::size_t kLanes = 8;
+using Lanes = std::array<float, kLanes>;
 
 struct V3 {
   F8 x, y, z;
@@ -147,12 +149,45 @@ BasisLanes basis_lanes(F8 t) {
   return r;
 }
 
+// Lane k's ClipVertex<3> (clip[0..3][k], its normal as attributes) to out[k], for k < count.
+void store_vertices(const F8 (&clip)[4], F8 nx, F8 ny, F8 nz, ClipVertex<3>* out, std::size_t count) {
+#if defined(__AVX__)
+  static_assert(sizeof(ClipVertex<3>) == 28 && offsetof(ClipVertex<3>, attributes) == 16);
+  // An 8x8 transpose puts lane k's seven values in one vector; each is stored as 32 bytes, the eighth
+  // float landing on the next vertex's first, which the next store then writes. The last vertex's
+  // store is masked to its 28 bytes.
+  __m256 r[8] = {clip[0].v, clip[1].v, clip[2].v, clip[3].v, nx.v, ny.v, nz.v, _mm256_setzero_ps()};
+  const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]), t1 = _mm256_unpackhi_ps(r[0], r[1]);
+  const __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]), t3 = _mm256_unpackhi_ps(r[2], r[3]);
+  const __m256 t4 = _mm256_unpacklo_ps(r[4], r[5]), t5 = _mm256_unpackhi_ps(r[4], r[5]);
+  const __m256 t6 = _mm256_unpacklo_ps(r[6], r[7]), t7 = _mm256_unpackhi_ps(r[6], r[7]);
+  const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+  const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+  const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
+  const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
+  r[0] = _mm256_permute2f128_ps(u0, u4, 0x20), r[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+  r[1] = _mm256_permute2f128_ps(u1, u5, 0x20), r[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+  r[2] = _mm256_permute2f128_ps(u2, u6, 0x20), r[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+  r[3] = _mm256_permute2f128_ps(u3, u7, 0x20), r[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+  float* base = reinterpret_cast<float*>(out);
+  for (std::size_t k = 0; k + 1 < count; ++k) _mm256_storeu_ps(base + 7 * k, r[k]);
+  _mm256_maskstore_ps(base + 7 * (count - 1), _mm256_setr_epi32(-1, -1, -1, -1, -1, -1, -1, 0), r[count - 1]);
+#else
+  Lanes c[4], x, y, z;
+  for (int row = 0; row < 4; ++row) clip[row].store(c[row]);
+  nx.store(x), ny.store(y), nz.store(z);
+  for (std::size_t k = 0; k < count; ++k) {
+    out[k].position = glm::vec4(c[0][k], c[1][k], c[2][k], c[3][k]);
+    out[k].attributes = {x[k], y[k], z[k]};
+  }
+#endif
+}
+
 }  // namespace
 
 void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const glm::vec3> cp,
                                     std::span<const DomainLocation> locations, std::uint32_t patch_id,
                                     std::span<ClipVertex<3>> out) const {
-  using Lanes = std::array<float, kLanes>;
   const int pi = int(patch_id) / kTorusRows, pj = int(patch_id) % kTorusRows;
   V3 rows[16];
   for (std::size_t k = 0; k < 16; ++k) rows[k] = splat(cp[k]);
@@ -181,13 +216,14 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     const V3 cr{pu.y * pv.z - pv.y * pu.z, pu.z * pv.x - pv.z * pu.x, pu.x * pv.y - pv.x * pu.y};
     const F8 inv_len = F8::splat(1.0f) / simd::sqrt((cr.x * cr.x + cr.y * cr.y) + cr.z * cr.z);
     const V3 n{cr.x * inv_len, cr.y * inv_len, cr.z * inv_len};
-    // The height texels, four lanes per texture call.
+    // The height texels, four lanes per texture call, at ((pi + u) / columns, (pj + v) / rows).
+    Lanes s, t;
+    ((F8::splat(float(pi)) + fu) / F8::splat(float(kTorusColumns))).store(s);
+    ((F8::splat(float(pj)) + fv) / F8::splat(float(kTorusRows))).store(t);
     Lanes h{};
     for (std::size_t half = 0; half < kLanes; half += 4) {
       std::array<glm::vec2, 4> st;
-      for (std::size_t k = 0; k < 4; ++k)
-        st[k] =
-            glm::vec2((float(pi) + u[half + k]) / float(kTorusColumns), (float(pj) + v[half + k]) / float(kTorusRows));
+      for (std::size_t k = 0; k < 4; ++k) st[k] = glm::vec2(s[half + k], t[half + k]);
       std::array<glm::vec4, 4> texels;
       height->sample_level4(sampler, st, 0.0f, texels);
       for (std::size_t k = 0; k < 4; ++k) h[half + k] = texels[k].x;
@@ -197,20 +233,13 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     p = p + V3{(n.x * sc) * dh, (n.y * sc) * dh, (n.z * sc) * dh};
     // view_projection * vec4(p, 1), in glm's order: (m0 x + m1 y) + (m2 z + m3 * 1).
     const glm::mat4& m = view_projection;
-    Lanes clip[4], nx, ny, nz;
+    F8 clip[4];
     for (int row = 0; row < 4; ++row) {
       const F8 m0 = F8::splat(m[0][row]), m1 = F8::splat(m[1][row]), m2 = F8::splat(m[2][row]);
       const F8 m3 = F8::splat(m[3][row]) * F8::splat(1.0f);
-      ((m0 * p.x + m1 * p.y) + (m2 * p.z + m3)).store(clip[row]);
+      clip[row] = (m0 * p.x + m1 * p.y) + (m2 * p.z + m3);
     }
-    n.x.store(nx);
-    n.y.store(ny);
-    n.z.store(nz);
-    for (std::size_t k = 0; k < count; ++k) {
-      ClipVertex<3>& o = out[first + k];
-      o.position = glm::vec4(clip[0][k], clip[1][k], clip[2][k], clip[3][k]);
-      o.attributes = {nx[k], ny[k], nz[k]};
-    }
+    store_vertices(clip, n.x, n.y, n.z, &out[first], count);
   }
 }
 
