@@ -1011,7 +1011,8 @@ TEST_CASE("polar configurations: gregory and bspline draw their triangles as pol
   CHECK(poles == 2 * 16);
 }
 
-TEST_CASE("PatchLanes evaluates ACC and Gregory patches with the scalar functions' bits", "[subd][lanes]") {
+TEST_CASE("PatchLanes evaluates ACC, Gregory and triangular Gregory patches with the scalar functions' bits",
+          "[subd][lanes]") {
   // Control points from a fixed generator, well away from any symmetry; locations: a factor-23 grid
   // (interior, the four edges, the corners) and a short last group, in an order that mixes them.
   std::uint32_t state = 12345u;
@@ -1049,4 +1050,24 @@ TEST_CASE("PatchLanes evaluates ACC and Gregory patches with the scalar function
   }
   CHECK(acc_wrong == 0);
   CHECK(gregory_wrong == 0);
+
+  // The triangular Gregory patch on the tri domain: its three edges (w exactly 0 on the third), the
+  // corners, the interior.
+  std::array<glm::vec3, 15> gt;
+  for (auto& p : gt) p = point();
+  std::vector<float> tu, tv, tw;
+  for (int j = 0; j <= 23; ++j)
+    for (int i = 0; i + j <= 23; ++i) {
+      tu.push_back(float(i) / 23.0f), tv.push_back(float(j) / 23.0f);
+      tw.push_back(i + j == 23 ? 0.0f : 1.0f - tu.back() - tv.back());
+    }
+  std::vector<PatchPoint> tri(tu.size());
+  PatchLanes::gregory_triangle(gt, tu, tv, tw, tri);
+  std::size_t triangle_wrong = 0;
+  for (std::size_t i = 0; i < tu.size(); ++i) {
+    const PatchPoint e = gregory_triangle(gt, tu[i], tv[i], tw[i]);
+    triangle_wrong += !(same(tri[i].position, e.position) && same(tri[i].du, e.du) && same(tri[i].dv, e.dv));
+  }
+  CHECK(tu.size() % 8 != 0);  // a short last group
+  CHECK(triangle_wrong == 0);
 }

@@ -1,12 +1,14 @@
-// patch_eval.h's bicubic patches for eight domain points at once, in simd::F8 lanes: ACC patches
-// (bezier_patch with acc_tangents' derivatives) and 20-point Gregory patches (gregory_to_bezier, then
-// bezier_patch). Each lane computes patch_eval.h's expressions on the same operands in the same order
-// (glm's vec3 operations are per component), so every PatchPoint has the bits the scalar functions give;
-// a test compares the two on every location of a factor-23 pattern.
+// patch_eval.h's Gregory and ACC patches for eight domain points at once, in simd::F8 lanes: ACC
+// patches (bezier_patch with acc_tangents' derivatives), 20-point Gregory patches (gregory_to_bezier,
+// then bezier_patch) and 15-point triangular Gregory patches (gregory_triangle). Each lane computes patch_eval.h's
+// expressions on the same operands in the same order (glm's vec3 operations are per component), so every PatchPoint has
+// the bits the scalar functions give; a test compares the two on a grid of locations that includes the edges and
+// corners.
 //
 // The branches of the scalar forms are taken per lane afterwards: a location on a patch edge gets its
-// position from the edge's four points (bezier_edge_position, the watertight form), and a group with a
-// Gregory corner (where a blend's weights both vanish) is evaluated one location at a time.
+// position from the edge's four points (bezier_edge_position, gregory_triangle_edge: the watertight
+// form), and a group with a Gregory corner (where a blend's weights both vanish) is evaluated one
+// location at a time.
 #pragma once
 
 #include <algorithm>
@@ -65,6 +67,37 @@ inline void bezier_patch(const std::array<Vec3, 16>& b, F8 u, F8 v, bool derivat
   if (!derivatives) return;
   du = cubic_sum(bv, drow[0], drow[1], drow[2], drow[3]);
   dv = cubic_sum(cubic_bernstein_derivative(v), row[0], row[1], row[2], row[3]);
+}
+
+// bezier_triangle<4>: the Bernstein sums in its order, from zero.
+inline void bezier_triangle4(const std::array<Vec3, 15>& b, F8 u, F8 v, F8 w, Vec3& position, Vec3& du, Vec3& dv) {
+  constexpr int D = 4;
+  std::array<F8, D + 1> pu, pv, pw;
+  pu[0] = pv[0] = pw[0] = F8::splat(1.0f);
+  for (std::size_t n = 1; n <= D; ++n) pu[n] = pu[n - 1] * u, pv[n] = pv[n - 1] * v, pw[n] = pw[n - 1] * w;
+  constexpr float kFactorial[] = {1.0f, 1.0f, 2.0f, 6.0f, 24.0f};
+  const auto basis = [&](int n, int j, int k) {
+    const int i = n - j - k;
+    const float c = kFactorial[n] / (kFactorial[i] * kFactorial[j] * kFactorial[k]);
+    return F8::splat(c) * ((pw[std::size_t(i)] * pu[std::size_t(j)]) * pv[std::size_t(k)]);
+  };
+  const auto at = [&](int j, int k) -> const Vec3& { return b[std::size_t(tri_index(D, j, k))]; };
+  const Vec3 zero = splat(glm::vec3(0.0f));
+  position = zero, du = zero, dv = zero;
+  for (int k = 0; k <= D; ++k)
+    for (int j = 0; j + k <= D; ++j) position = position + basis(D, j, k) * at(j, k);
+  for (int k = 0; k < D; ++k)
+    for (int j = 0; j + k < D; ++j) {
+      const F8 w1 = basis(D - 1, j, k);
+      const Vec3& base = at(j, k);
+      const Vec3& a = at(j + 1, k);
+      const Vec3& c = at(j, k + 1);
+      du = du + w1 * Vec3{a.x - base.x, a.y - base.y, a.z - base.z};
+      dv = dv + w1 * Vec3{c.x - base.x, c.y - base.y, c.z - base.z};
+    }
+  const F8 d = F8::splat(float(D));
+  du = Vec3{du.x * d, du.y * d, du.z * d};
+  dv = Vec3{dv.x * d, dv.y * d, dv.z * d};
 }
 
 }  // namespace lanes
@@ -143,6 +176,50 @@ class PatchLanes {
     fix_edges(fixed, u, v, out);
   }
 
+  // A 15-point triangular Gregory patch: gregory_triangle(g, u, v, w).
+  static void gregory_triangle(std::span<const glm::vec3, 15> g, std::span<const float> u, std::span<const float> v,
+                               std::span<const float> w, std::span<PatchPoint> out) {
+    using lanes::F8;
+    using lanes::Vec3;
+    // The 12 points that do not depend on the location (the degree-raised boundaries); the three
+    // interior ones are blended per lane.
+    std::array<Vec3, 15> bl;
+    {
+      const auto raise1 = [](const glm::vec3& a0, const glm::vec3& a1) { return 0.25f * (a0 + 3.0f * a1); };
+      const auto raise2 = [](const glm::vec3& a1, const glm::vec3& a2) { return 0.5f * (a1 + a2); };
+      const auto P = [&](std::size_t k) { return g[5 * k]; };
+      const auto Ep = [&](std::size_t k) { return g[5 * k + 1]; };
+      const auto Em = [&](std::size_t k) { return g[5 * k + 2]; };
+      const auto at = [&](int j, int k) -> Vec3& { return bl[std::size_t(tri_index(4, j, k))]; };
+      at(0, 0) = lanes::splat(P(0)), at(4, 0) = lanes::splat(P(1)), at(0, 4) = lanes::splat(P(2));
+      at(1, 0) = lanes::splat(raise1(P(0), Ep(0))), at(2, 0) = lanes::splat(raise2(Ep(0), Em(1)));
+      at(3, 0) = lanes::splat(raise1(P(1), Em(1))), at(3, 1) = lanes::splat(raise1(P(1), Ep(1)));
+      at(2, 2) = lanes::splat(raise2(Ep(1), Em(2))), at(1, 3) = lanes::splat(raise1(P(2), Em(2)));
+      at(0, 3) = lanes::splat(raise1(P(2), Ep(2))), at(0, 2) = lanes::splat(raise2(Ep(2), Em(0)));
+      at(0, 1) = lanes::splat(raise1(P(0), Em(0)));
+    }
+    std::array<Vec3, 3> fp, fm;
+    for (std::size_t k = 0; k < 3; ++k) fp[k] = lanes::splat(g[5 * k + 3]), fm[k] = lanes::splat(g[5 * k + 4]);
+    for_groups3(
+        u, v, w, out,
+        [&](F8 fu, F8 fv, F8 fw, Vec3& position, Vec3& du, Vec3& dv) {
+          bool degenerate = false;
+          const auto blend = [&](const Vec3& plus, F8 wp, const Vec3& minus, F8 wm) {
+            const F8 d = wp + wm;
+            degenerate = degenerate || any_zero(d);
+            return (wp * plus + wm * minus) / d;
+          };
+          bl[std::size_t(tri_index(4, 1, 1))] = blend(fp[0], fu, fm[0], fv);
+          bl[std::size_t(tri_index(4, 2, 1))] = blend(fp[1], fv, fm[1], fw);
+          bl[std::size_t(tri_index(4, 1, 2))] = blend(fp[2], fw, fm[2], fu);
+          if (degenerate) return false;
+          lanes::bezier_triangle4(bl, fu, fv, fw, position, du, dv);
+          return true;
+        },
+        [&](float pu, float pv, float pw) { return tessera::gregory_triangle(g, pu, pv, pw); });
+    for (std::size_t i = 0; i < u.size(); ++i) detail::gregory_triangle_edge(g, u[i], v[i], w[i], out[i].position);
+  }
+
  private:
   static bool any_zero(lanes::F8 d) {
     std::array<float, 8> a;
@@ -152,23 +229,23 @@ class PatchLanes {
     return false;
   }
 
-  // Runs `lanes_of(u, v, position, du, dv)` on groups of eight locations (a short last group repeats its
-  // last location) and stores each lane's PatchPoint. A group for which it returns false is evaluated
-  // one location at a time by `one(u, v)`.
+  // Runs `lanes_of(u, v, w, position, du, dv)` on groups of eight locations (a short last group repeats
+  // its last location) and stores each lane's PatchPoint. A group for which it returns false is
+  // evaluated one location at a time by `one(u, v, w)`.
   template <class LanesOf, class One>
-  static void for_groups(std::span<const float> u, std::span<const float> v, std::span<PatchPoint> out,
-                         const LanesOf& lanes_of, const One& one) {
+  static void for_groups3(std::span<const float> u, std::span<const float> v, std::span<const float> w,
+                          std::span<PatchPoint> out, const LanesOf& lanes_of, const One& one) {
     using lanes::F8;
     for (std::size_t first = 0; first < u.size(); first += 8) {
       const std::size_t count = std::min<std::size_t>(8, u.size() - first);
-      std::array<float, 8> lu, lv;
+      std::array<float, 8> lu, lv, lw;
       for (std::size_t k = 0; k < 8; ++k) {
         const std::size_t i = first + std::min(k, count - 1);
-        lu[k] = u[i], lv[k] = v[i];
+        lu[k] = u[i], lv[k] = v[i], lw[k] = w[i];
       }
       lanes::Vec3 position, du, dv;
-      if (!lanes_of(F8::load(lu), F8::load(lv), position, du, dv)) {
-        for (std::size_t k = 0; k < count; ++k) out[first + k] = one(lu[k], lv[k]);
+      if (!lanes_of(F8::load(lu), F8::load(lv), F8::load(lw), position, du, dv)) {
+        for (std::size_t k = 0; k < count; ++k) out[first + k] = one(lu[k], lv[k], lw[k]);
         continue;
       }
       std::array<float, 8> c[9];
@@ -182,6 +259,18 @@ class PatchLanes {
         p.dv = {c[6][k], c[7][k], c[8][k]};
       }
     }
+  }
+  // The same on the quad domain: lanes_of(u, v, position, du, dv) and one(u, v).
+  template <class LanesOf, class One>
+  static void for_groups(std::span<const float> u, std::span<const float> v, std::span<PatchPoint> out,
+                         const LanesOf& lanes_of, const One& one) {
+    using lanes::F8;
+    for_groups3(
+        u, v, v, out,
+        [&](F8 fu, F8 fv, F8, lanes::Vec3& position, lanes::Vec3& du, lanes::Vec3& dv) {
+          return lanes_of(fu, fv, position, du, dv);
+        },
+        [&](float pu, float pv, float) { return one(pu, pv); });
   }
   template <class LanesOf>
   static void for_groups(std::span<const float> u, std::span<const float> v, std::span<PatchPoint> out,

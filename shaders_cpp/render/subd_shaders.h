@@ -324,12 +324,18 @@ struct SubdDS {
   bool flip_normals = false;  // left-handed cages (the limit surface flips its own)
   bool triangles = false;     // the tri domain
 
-  // The patch's PatchPoint at each location (u[i], v[i]) of a quad patch of kind acc or gregory,
-  // eight locations at a time (patch_eval_lanes.h: the bits of evaluate() below). False, with nothing
-  // written, for other patches.
+  // The patch's PatchPoint at each location (u[i], v[i], w[i]) of a patch of kind acc, gregory or
+  // gregory_triangle, eight locations at a time (patch_eval_lanes.h: the bits of evaluate() below).
+  // False, with nothing written, for other patches.
   bool evaluate_lanes(const SubdPatch& patch, std::span<const SubdControlPoint> cp, std::span<const float> u,
-                      std::span<const float> v, std::span<PatchPoint> out) const {
-    if (triangles) return false;
+                      std::span<const float> v, std::span<const float> w, std::span<PatchPoint> out) const {
+    if (triangles) {
+      if (patch.kind != PatchKind::gregory_triangle) return false;
+      std::array<glm::vec3, 15> g;
+      for (std::size_t i = 0; i < 15; ++i) g[i] = cp[i].p;
+      PatchLanes::gregory_triangle(g, u, v, w, out);
+      return true;
+    }
     if (patch.kind == PatchKind::acc) {
       std::array<glm::vec3, 16> b;
       std::array<glm::vec3, 12> du, dv;
@@ -362,13 +368,15 @@ struct SubdDS {
   template <class Visit>
   void for_evaluated(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
                      std::span<const DomainLocation> locations, const Visit& visit) const {
-    std::array<float, kLanesBlock> u, v;
+    std::array<float, kLanesBlock> u, v, w;
     std::array<PatchPoint, kLanesBlock> points;
     for (std::size_t first = 0; first < locations.size(); first += kLanesBlock) {
       const std::size_t n = std::min(kLanesBlock, locations.size() - first);
-      for (std::size_t k = 0; k < n; ++k) u[k] = locations[first + k].u, v[k] = locations[first + k].v;
-      const bool lanes = evaluate_lanes(patch, cp, std::span<const float>(u.data(), n),
-                                        std::span<const float>(v.data(), n), std::span<PatchPoint>(points.data(), n));
+      for (std::size_t k = 0; k < n; ++k)
+        u[k] = locations[first + k].u, v[k] = locations[first + k].v, w[k] = locations[first + k].w;
+      const bool lanes =
+          evaluate_lanes(patch, cp, std::span<const float>(u.data(), n), std::span<const float>(v.data(), n),
+                         std::span<const float>(w.data(), n), std::span<PatchPoint>(points.data(), n));
       for (std::size_t k = 0; k < n; ++k) visit(first + k, lanes ? &points[k] : nullptr);
     }
   }
