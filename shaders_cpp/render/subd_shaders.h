@@ -6,7 +6,8 @@
 //   index order (or, for a 1-ring over 32 points, the pre-pass's rows: control_point_prepass.h), or for
 //   `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
 //   tessellation factors per cage edge (SubdFactors).
-// - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample.
+// - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample;
+//   its batch form evaluates Gregory and ACC patches eight locations at a time (patch_eval_lanes.h).
 // - ProjectingDS (ProjectDS for SurfaceSample) wraps a DS into one that returns ClipVertex for rendering.
 #pragma once
 
@@ -27,9 +28,9 @@
 #include "shaders_cpp/lod/back_patch_cull.h"
 #include "shaders_cpp/lod/frustum_cull.h"
 #include "shaders_cpp/lod/subd_factors.h"
+#include "shaders_cpp/render/patch_eval_lanes.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
-#include "shaders_cpp/render/patch_eval_lanes.h"
 #include "shaders_cpp/subdiv/patch_stencils.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 #include "shaders_cpp/subdiv/subd_patches.h"
