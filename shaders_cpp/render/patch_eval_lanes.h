@@ -115,29 +115,36 @@ class PatchLanes {
     std::array<Vec3, 12> dul, dvl;
     for (std::size_t i = 0; i < 16; ++i) bl[i] = lanes::splat(b[i]);
     for (std::size_t i = 0; i < 12; ++i) dul[i] = lanes::splat(du[i]), dvl[i] = lanes::splat(dv[i]);
-    for_groups(u, v, out, [&](F8 fu, F8 fv, Vec3& position, Vec3& pdu, Vec3& pdv) {
-      Vec3 unused_du, unused_dv;
-      lanes::bezier_patch(bl, fu, fv, false, position, unused_du, unused_dv);
-      // acc_tangents
-      const F8 one = F8::splat(1.0f);
-      const F8 su = one - fu, sv = one - fv;
-      const F8 qu[3] = {su * su, (F8::splat(2.0f) * su) * fu, fu * fu};
-      const F8 qv[3] = {sv * sv, (F8::splat(2.0f) * sv) * fv, fv * fv};
-      const lanes::Cubic cu = lanes::cubic_bernstein(fu), cv = lanes::cubic_bernstein(fv);
-      std::array<Vec3, 4> r;
-      for (std::size_t j = 0; j < 4; ++j) {
-        const Vec3* p = dul.data() + 3 * j;
-        r[j] = (qu[0] * p[0] + qu[2] * p[2]) + qu[1] * p[1];
-      }
-      pdu = lanes::cubic_sum(cv, r[0], r[1], r[2], r[3]);
-      std::array<Vec3, 3> c;
-      for (std::size_t j = 0; j < 3; ++j) {
-        const Vec3* p = dvl.data() + 4 * j;
-        c[j] = lanes::cubic_sum(cu, p[0], p[1], p[2], p[3]);
-      }
-      pdv = (qv[0] * c[0] + qv[2] * c[2]) + qv[1] * c[1];
-      return true;
-    });
+    for_groups(
+        u, v, out,
+        [&](F8 fu, F8 fv, Vec3& position, Vec3& pdu, Vec3& pdv) {
+          Vec3 unused_du, unused_dv;
+          lanes::bezier_patch(bl, fu, fv, false, position, unused_du, unused_dv);
+          // acc_tangents
+          const F8 one = F8::splat(1.0f);
+          const F8 su = one - fu, sv = one - fv;
+          const F8 qu[3] = {su * su, (F8::splat(2.0f) * su) * fu, fu * fu};
+          const F8 qv[3] = {sv * sv, (F8::splat(2.0f) * sv) * fv, fv * fv};
+          const lanes::Cubic cu = lanes::cubic_bernstein(fu), cv = lanes::cubic_bernstein(fv);
+          std::array<Vec3, 4> r;
+          for (std::size_t j = 0; j < 4; ++j) {
+            const Vec3* p = dul.data() + 3 * j;
+            r[j] = (qu[0] * p[0] + qu[2] * p[2]) + qu[1] * p[1];
+          }
+          pdu = lanes::cubic_sum(cv, r[0], r[1], r[2], r[3]);
+          std::array<Vec3, 3> c;
+          for (std::size_t j = 0; j < 3; ++j) {
+            const Vec3* p = dvl.data() + 4 * j;
+            c[j] = lanes::cubic_sum(cu, p[0], p[1], p[2], p[3]);
+          }
+          pdv = (qv[0] * c[0] + qv[2] * c[2]) + qv[1] * c[1];
+          return true;
+        },
+        [&](float pu, float pv) {
+          PatchPoint p = bezier_patch(b, pu, pv);
+          acc_tangents(du, dv, pu, pv, p.du, p.dv);
+          return p;
+        });
     fix_edges(b, u, v, out);
   }
 
@@ -157,12 +164,10 @@ class PatchLanes {
         [&](F8 s, F8 t, Vec3& position, Vec3& du, Vec3& dv) {
           const F8 one = F8::splat(1.0f);
           const F8 s1 = one - s, t1 = one - t;
-          // detail::gregory_blend; a lane whose weights sum to 0 (a corner) takes the scalar form below.
+          // A lane whose weights sum to 0 (a corner) takes the scalar form below.
           bool degenerate = false;
           const auto blend = [&](const Vec3& plus, F8 wp, const Vec3& minus, F8 wm) {
-            const F8 d = wp + wm;
-            degenerate = degenerate || any_zero(d);
-            return (wp * plus + wm * minus) / d;
+            return gregory_blend(plus, wp, minus, wm, degenerate);
           };
           bl[5] = blend(fp[0], s, fm[0], t);
           bl[6] = blend(fp[1], t, fm[1], s1);
@@ -205,9 +210,7 @@ class PatchLanes {
         [&](F8 fu, F8 fv, F8 fw, Vec3& position, Vec3& du, Vec3& dv) {
           bool degenerate = false;
           const auto blend = [&](const Vec3& plus, F8 wp, const Vec3& minus, F8 wm) {
-            const F8 d = wp + wm;
-            degenerate = degenerate || any_zero(d);
-            return (wp * plus + wm * minus) / d;
+            return gregory_blend(plus, wp, minus, wm, degenerate);
           };
           bl[std::size_t(tri_index(4, 1, 1))] = blend(fp[0], fu, fm[0], fv);
           bl[std::size_t(tri_index(4, 2, 1))] = blend(fp[1], fv, fm[1], fw);
@@ -221,12 +224,15 @@ class PatchLanes {
   }
 
  private:
-  static bool any_zero(lanes::F8 d) {
+  // detail::gregory_blend's division form in each lane; `degenerate` is set where the weights sum to 0
+  // (its other form, which the caller then takes one location at a time).
+  static lanes::Vec3 gregory_blend(const lanes::Vec3& plus, lanes::F8 wp, const lanes::Vec3& minus, lanes::F8 wm,
+                                   bool& degenerate) {
+    const lanes::F8 d = wp + wm;
     std::array<float, 8> a;
     d.store(a);
-    for (float x : a)
-      if (x == 0.0f) return true;
-    return false;
+    for (float x : a) degenerate = degenerate || x == 0.0f;
+    return (wp * plus + wm * minus) / d;
   }
 
   // Runs `lanes_of(u, v, w, position, du, dv)` on groups of eight locations (a short last group repeats
@@ -271,11 +277,6 @@ class PatchLanes {
           return lanes_of(fu, fv, position, du, dv);
         },
         [&](float pu, float pv, float) { return one(pu, pv); });
-  }
-  template <class LanesOf>
-  static void for_groups(std::span<const float> u, std::span<const float> v, std::span<PatchPoint> out,
-                         const LanesOf& lanes_of) {
-    for_groups(u, v, out, lanes_of, [](float, float) -> PatchPoint { return {}; });
   }
 
   // bezier_patch's edge branch: a location on an edge takes its position from that edge's points.
