@@ -435,8 +435,34 @@ TEST_CASE("tessera bench scaling times a scene over thread counts and checks the
   REQUIRE(text.exit_code == 0);
   CHECK(text.out.find("threads  time (ms)  speed-up  efficiency  busy") != std::string::npos);
   CHECK(text.out.find("independent") == std::string::npos);  // only with --ceiling
-  for (const char* bad : {"--scene cube", "--factor 0", "--factor 65", "--frames 0", "--max-threads -1"}) {
-    const auto b = run_cli(std::string("bench scaling ") + bad);
+  // The frog with bench frog's model options and MSAA, and a scene file (written by render
+  // --print-scene), drawn as render draws it: the same image on each count, at the scene's factor.
+  const std::string cage = data("osd-shapes/catmark_cube.obj");
+  const auto msaa = run_cli("bench scaling --scene frog --cage " + cage +
+                            " --scheme acc --lod screen --edge-pixels 4 --msaa 4 --resolution 96x54 --frames 1 "
+                            "--max-threads 2 --json");
+  INFO(msaa.err);
+  REQUIRE(msaa.exit_code == 0);
+  const auto m = nlohmann::json::parse(msaa.out);
+  CHECK(m["msaa"] == 4);
+  CHECK(m["same_image"] == true);
+  CHECK(m["resolution"] == "96x54");
+  const fs::path scene = temp_dir() / "scaling-scene.json";
+  REQUIRE(run_cli("render " + cage + " --scheme bspline --factor 3 --view wireframe --resolution 80x60 --print-scene " +
+                  scene.string())
+              .exit_code == 0);
+  const auto file = run_cli("bench scaling --scene " + scene.string() + " --frames 1 --max-threads 2 --json");
+  INFO(file.err);
+  REQUIRE(file.exit_code == 0);
+  const auto f = nlohmann::json::parse(file.out);
+  CHECK(f["factor"] == 3.0);
+  CHECK(f["resolution"] == "80x60");
+  CHECK(f["rows"].size() == 2);
+  // Options a scene does not read are refused, not ignored.
+  for (const std::string& bad : std::vector<std::string>{
+           "--scene cube", "--factor 0", "--factor 65", "--frames 0", "--max-threads -1", "--scheme acc", "--msaa 3",
+           "--threads 2", "--scene frog --lod none", "--scene " + scene.string() + " --factor 4"}) {
+    const auto b = run_cli("bench scaling " + bad);
     INFO(bad << ": " << b.err);
     CHECK(b.exit_code == 2);
     CHECK(std::count(b.err.begin(), b.err.end(), '\n') == 1);

@@ -1,9 +1,10 @@
 // `tessera bench scaling`: one scene rendered with 1, 2, 4, ... threads up to all cores (or
 // --max-threads), each count on its own device, median of --frames after one warm-up frame; a table of
 // time, speed-up over one thread and parallel efficiency (speed-up / threads), so that a user can size a
-// machine. The CPU's name (from /proc/cpuinfo, where there is one) heads the table; it changes no
-// result. The image is the same bytes for every thread count (device.h); this command checks it and
-// fails if not.
+// machine. The scene is the benchmark torus, the frog (any cage, scheme, LOD and displacement that
+// `bench frog` takes), or a scene file, drawn as `tessera render` draws it. The CPU's name (from
+// /proc/cpuinfo, where there is one) heads the table; it changes no result. The image is the same
+// bytes for every thread count (device.h); this command checks it and fails if not.
 //
 // Where the time goes: `busy` is the draw's summed stage time (VS, HS, tessellator, DS, setup, raster,
 // as each thread measured it) over threads x the draw's wall time; the rest is threads waiting. The
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -28,20 +30,42 @@
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
+#include "tools/scene/model_options.h"
+#include "tools/scene/scene_file.h"
 #include "tools/scene/scene_render.h"
 
 namespace tessera::cli {
 namespace {
 
 struct ScalingOptions {
-  std::string scene = "torus";
-  float factor = 64;
-  std::string resolution = "1920x1080";
+  std::string scene = "torus";  // torus, frog, or a scene file's path
+  RenderSettings s;             // the torus's factor, resolution and --msaa; the frog's model settings
   int frames = 5;
   int max_threads = 0;  // 0: the hardware's
   bool ceiling = false;
   bool json = false;
 };
+
+// The options a scene reads besides --scene, --frames, --max-threads, --ceiling and --json: the torus
+// reads these (it has its own cage, scheme and camera), the frog every model setting, a scene file none
+// (it sets them all).
+const char* const kTorusOptions[] = {"--factor", "--resolution", "--msaa"};
+const char* const kScalingOptions[] = {"--scene", "--frames", "--max-threads", "--ceiling", "--json", "--help"};
+
+// A setting given on the command line that `scene` does not read: UsageError naming it.
+void check_scene_options(const CLI::App& cmd, const std::string& scene, bool scene_file) {
+  for (const CLI::Option* opt : cmd.get_options()) {
+    if (opt->count() == 0) continue;
+    const std::string name = opt->get_name(false, true);
+    const auto in = [&](const auto& names) {
+      return std::find(std::begin(names), std::end(names), name) != std::end(names);
+    };
+    if (in(kScalingOptions)) continue;
+    if (scene_file) throw UsageError(name + " with a scene file: the scene sets it (edit the scene)");
+    if (scene == "torus" && !in(kTorusOptions))
+      throw UsageError(name + ": the torus has its own cage, scheme and camera (--scene frog reads it)");
+  }
+}
 
 std::string cpu_name() {
   std::ifstream in("/proc/cpuinfo");
@@ -62,36 +86,74 @@ std::vector<int> thread_counts(int most) {
   return counts;
 }
 
-int run_bench_scaling(const ScalingOptions& o) {
-  if (o.scene != "torus" && o.scene != "frog")
-    throw UsageError("--scene: '" + o.scene + "' is not a scaling scene (torus or frog)");
-  if (!std::isfinite(o.factor) || o.factor < 1.0f || o.factor > 64.0f)
+int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
+  const bool scene_file = o.scene != "torus" && o.scene != "frog";
+  if (scene_file && !std::filesystem::is_regular_file(o.scene))
+    throw UsageError("--scene: '" + o.scene + "' is not torus, frog or a scene file");
+  check_scene_options(cmd, o.scene, scene_file);
+  if (o.scene == "torus" && (!std::isfinite(o.s.factor) || o.s.factor < 1.0f || o.s.factor > 64.0f))
     throw UsageError("--factor: must be in 1..64 (the tessellator's range)");
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   const int hardware = int(std::max(1u, std::thread::hardware_concurrency()));
   if (o.max_threads < 0 || o.max_threads > 4096) throw UsageError("--max-threads: must be in 0..4096 (0: all cores)");
   const int most = o.max_threads > 0 ? o.max_threads : hardware;
-  const auto [w, h] = parse_resolution(o.resolution);
 
-  // One frame of the scene on a device: a function of the device and the target.
-  std::function<DrawResult(Device&, Framebuffer&)> frame;
+  // A run's targets: the one drawn into, and where a multisampled one is resolved (made once per run,
+  // as a swap chain's; a scene file's frame is `tessera render`'s, which resolves into a new one).
+  struct Targets {
+    std::optional<Framebuffer> fb, resolved;
+    const Framebuffer& image() const { return resolved ? *resolved : *fb; }
+  };
+  // One frame of the scene on a device: clear, draw, resolve; the draws' report.
+  std::function<DrawReport(Device&, Targets&)> frame;
   std::optional<scenes::TorusScene> torus;
   std::unique_ptr<PreparedScene> subd;
+  RenderSettings settings = o.s;
   if (o.scene == "torus") {
+    settings.msaa = msaa_option(settings.msaa);
+    const int w = settings.camera.width, h = settings.camera.height;
     log_info("building the torus scene");
     torus = scenes::make_torus_scene(w, h);
-    frame = [&, draw = scenes::make_torus_draw(*torus, o.factor, ts::Partitioning::integer, w, h)](
-                Device& device, Framebuffer& fb) { return device.draw(draw, fb); };
+    frame = [&, draw = scenes::make_torus_draw(*torus, settings.factor, ts::Partitioning::integer, w, h)](
+                Device& device, Targets& t) {
+      device.clear(*t.fb, kBackgroundColor, 1.0f);
+      DrawResult r = device.draw(draw, *t.fb);
+      if (!r.ok()) throw InputError(r.error);
+      if (t.resolved) device.resolve(*t.fb, *t.resolved);
+      return r.report;
+    };
+  } else if (o.scene == "frog") {
+    subd = prepare_bench_scene(settings);  // checks --msaa and the rest
+    frame = [&](Device& device, Targets& t) {
+      device.clear(*t.fb, kBackgroundColor, 1.0f);
+      DrawResult r =
+          render_surface(device, subd->model, subd->displacement ? &*subd->displacement : nullptr, subd->factors,
+                         subd->settings.partitioning, SubdView::shaded, subd->view.camera, *t.fb);
+      if (!r.ok()) throw InputError(subd->settings.cage + ": " + r.error);
+      if (t.resolved) device.resolve(*t.fb, *t.resolved);
+      return r.report;
+    };
   } else {
-    RenderSettings s;
-    s.factor = o.factor;
-    s.camera.width = w, s.camera.height = h;
-    subd = prepare_bench_scene(s);
-    frame = [&](Device& device, Framebuffer& fb) {
-      return render_surface(device, subd->model, subd->displacement ? &*subd->displacement : nullptr, subd->factors,
-                            subd->settings.partitioning, SubdView::shaded, subd->view.camera, fb);
+    settings = read_scene(o.scene);
+    subd = prepare_scene(settings);
+    frame = [&](Device& device, Targets& t) {
+      SceneImage image = render_scene(device, *subd, false, std::move(t.fb));
+      t.fb = std::move(image.fb);
+      return image.out.result.report;
     };
   }
+  const int w = subd ? subd->view.width : settings.camera.width, h = subd ? subd->view.height : settings.camera.height;
+  const int msaa = subd ? subd->settings.msaa : settings.msaa;
+  const float factor = subd ? subd->settings.factor : settings.factor;
+  const auto make_targets = [&] {
+    Targets t;
+    if (scene_file) return t;  // render_scene makes them
+    std::string error;
+    t.fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, msaa);
+    if (!t.fb) throw UsageError("--resolution: " + error);
+    if (msaa > 1) t.resolved = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
+    return t;
+  };
 
   struct Row {
     int threads;
@@ -107,17 +169,13 @@ int run_bench_scaling(const ScalingOptions& o) {
   // --frames frames (after one warm-up) on a new device of `threads` threads and its own target.
   const auto run = [&](int threads) {
     Device device(device_options(threads));
-    std::string error;
-    auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error);
-    if (!fb) throw UsageError("--resolution: " + error);
+    Targets targets = make_targets();
     std::vector<std::pair<double, double>> frames;  // seconds, busy
     for (int k = 0; k <= o.frames; ++k) {
       const auto start = std::chrono::steady_clock::now();
-      device.clear(*fb, kBackgroundColor, 1.0f);
-      const DrawResult r = frame(device, *fb);
+      const DrawReport report = frame(device, targets);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (!r.ok()) throw InputError(r.error);
-      const StageTimes& t = r.report.times;
+      const StageTimes& t = report.times;
       const double stages = t.ia_vs + t.hs + t.tessellator + t.ds + t.setup + t.raster;
       if (k > 0) frames.push_back({s, t.wall > 0 ? stages / (threads * t.wall) : 0.0});
     }
@@ -125,7 +183,7 @@ int run_bench_scaling(const ScalingOptions& o) {
     Run out;
     for (const auto& f : frames) out.times.push_back(f.first);
     out.busy = frames[frames.size() / 2].second;
-    out.image = fb->color_bytes();
+    out.image = targets.image().color_bytes();
     return out;
   };
   const auto check_image = [&](const std::vector<std::uint8_t>& image, const std::vector<std::uint8_t>& first,
@@ -191,7 +249,8 @@ int run_bench_scaling(const ScalingOptions& o) {
       list.push_back(std::move(row));
     }
     const Json j = {{"scene", o.scene},
-                    {"factor", json_float(o.factor)},
+                    {"factor", json_float(factor)},
+                    {"msaa", msaa},
                     {"resolution", std::to_string(w) + "x" + std::to_string(h)},
                     {"frames", o.frames},
                     {"cpu", cpu},
@@ -201,7 +260,8 @@ int run_bench_scaling(const ScalingOptions& o) {
     std::cout << json_text(j) << "\n";
   } else {
     std::ostringstream out;
-    out << "bench scaling: " << o.scene << " factor " << o.factor << ", " << w << "x" << h << ", median of " << o.frames
+    out << "bench scaling: " << o.scene << " factor " << factor << ", " << w << "x" << h
+        << (msaa > 1 ? ", " + std::to_string(msaa) + "x MSAA" : std::string()) << ", median of " << o.frames
         << " frames; " << cpu << ", " << hardware << " hardware threads\n";
     out << "threads  time (ms)  speed-up  efficiency  busy" << (o.ceiling ? "  independent" : "") << "\n";
     char line[160];
@@ -228,19 +288,25 @@ int run_bench_scaling(const ScalingOptions& o) {
 
 Runner add_bench_scaling_command(CLI::App& bench) {
   auto o = std::make_shared<ScalingOptions>();
+  o->s.factor = 64.0f;
   CLI::App* cmd = bench.add_subcommand(
       "scaling", "One scene over 1, 2, 4, ... threads up to all cores: time, speed-up and efficiency per count");
-  cmd->add_option("--scene", o->scene, "torus (the benchmark torus) or frog (the monster frog, gregory)")
+  cmd->add_option("--scene", o->scene,
+                  "torus (the benchmark torus), frog (a cage, by default the monster frog, with the model options "
+                  "below, as bench frog takes them) or a scene file (drawn as tessera render draws it)")
       ->capture_default_str();
-  cmd->add_option("--factor", o->factor, "tessellation factor on every edge (1..64)")->capture_default_str();
-  cmd->add_option("--resolution", o->resolution, "WxH")->capture_default_str();
+  cmd->add_option("--cage", o->s.cage, "--scene frog: the cage (default: the monster frog shipped with tessera)");
+  add_model_settings_options(*cmd, o->s, PatchCullMode::all);
+  cmd->remove_option(cmd->get_option("--threads"));  // the command's own subject
+  cmd->add_option("--msaa", o->s.msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
+      ->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per thread count (after one warm-up)")->capture_default_str();
   cmd->add_option("--max-threads", o->max_threads, "the largest thread count (0: all cores)")->capture_default_str();
   cmd->add_flag("--ceiling", o->ceiling,
                 "also render N independent one-thread frames at once per count: the speed-up the cores "
                 "reach with nothing waiting (the machine's limit, apart from the pipeline)");
   cmd->add_flag("--json", o->json, "print results as JSON");
-  return [o, cmd]() -> int { return cmd->parsed() ? run_bench_scaling(*o) : -1; };
+  return [o, cmd]() -> int { return cmd->parsed() ? run_bench_scaling(*o, *cmd) : -1; };
 }
 
 }  // namespace tessera::cli
