@@ -392,17 +392,11 @@ bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& leve
 
 }  // namespace
 
-void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod,
-                              std::array<glm::vec4, 4>& out) const {
-  const float l = clamp_lod(s, lod + s.mip_lod_bias);
-  if (s.filter != Filter::bilinear || channels_ != 1) {
-    for (std::size_t k = 0; k < 4; ++k) out[k] = sample_at_lod(s, uv[k], l);
-    return;
-  }
-  // bilerp<1> in lanes: the taps per lane as sample_bilinear finds them, then the same weights and
-  // the same operations in the same order.
+// bilerp<1> of one level in lanes: the taps per lane as sample_bilinear finds them, then the same
+// weights and the same operations in the same order.
+void Texture2D::bilinear4(const Sampler& s, const Level& level, const std::array<glm::vec2, 4>& uv,
+                          std::array<float, 4>& out) const {
   using simd::F4;
-  const Level& level = levels_info_[static_cast<std::size_t>(l + 0.5f)];
   const float* base = texels_.data() + level.offset;
   const std::size_t stride = static_cast<std::size_t>(level.width);
   std::array<float, 4> t00, t01, t10, t11, fu, fv;
@@ -423,9 +417,33 @@ void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& 
   const F4 u0 = one - u1, v0 = one - v1;
   const F4 top = F4::load(t00) * u0 + F4::load(t01) * u1;
   const F4 bottom = F4::load(t10) * u0 + F4::load(t11) * u1;
-  std::array<float, 4> r;
-  (top * v0 + bottom * v1).store(r);
-  for (std::size_t k = 0; k < 4; ++k) out[k] = glm::vec4(r[k], 0.0f, 0.0f, 1.0f);
+  (top * v0 + bottom * v1).store(out);
+}
+
+void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod,
+                              std::array<glm::vec4, 4>& out) const {
+  const float l = clamp_lod(s, lod + s.mip_lod_bias);
+  if (s.filter == Filter::point || channels_ != 1) {
+    for (std::size_t k = 0; k < 4; ++k) out[k] = sample_at_lod(s, uv[k], l);
+    return;
+  }
+  // sample_at_lod's levels and blend in lanes. A one-channel texel is (r, 0, 0, 1), and the blend keeps
+  // the constant channels exact ((1 - f) + f == 1), so only r is computed.
+  using simd::F4;
+  std::array<float, 4> lanes;
+  if (s.filter == Filter::bilinear) {
+    bilinear4(s, levels_info_[static_cast<std::size_t>(l + 0.5f)], uv, lanes);
+  } else {
+    const int l0 = static_cast<int>(l);
+    const float f = l - static_cast<float>(l0);
+    bilinear4(s, levels_info_[static_cast<std::size_t>(l0)], uv, lanes);
+    if (f != 0.0f) {
+      std::array<float, 4> next;
+      bilinear4(s, levels_info_[static_cast<std::size_t>(l0 + 1)], uv, next);
+      (F4::load(lanes) * F4::splat(1.0f - f) + F4::load(next) * F4::splat(f)).store(lanes);
+    }
+  }
+  for (std::size_t k = 0; k < 4; ++k) out[k] = glm::vec4(lanes[k], 0.0f, 0.0f, 1.0f);
 }
 
 glm::vec4 Texture2D::sample_grad(const Sampler& s, glm::vec2 uv, glm::vec2 ddx, glm::vec2 ddy) const {

@@ -99,7 +99,7 @@ class Texture2D {
   // HLSL SampleLevel: explicit lod, usable in any stage (no derivatives needed).
   glm::vec4 sample_level(const Sampler& s, glm::vec2 uv, float lod) const;
   // Four sample_level calls with one lod (a batch shader's lanes): out[k] = sample_level(s, uv[k], lod),
-  // the same bits; a one-channel bilinear level is filtered in SIMD lanes.
+  // the same bits; a one-channel texture's bilinear and trilinear filters run in SIMD lanes.
   void sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& uv, float lod,
                      std::array<glm::vec4, 4>& out) const;
 
@@ -126,6 +126,9 @@ class Texture2D {
   glm::vec4 sample_at_lod(const Sampler& s, glm::vec2 uv, float lod) const;
   glm::vec4 sample_point(const Sampler& s, const Level& level, glm::vec2 uv) const;
   glm::vec4 sample_bilinear(const Sampler& s, const Level& level, glm::vec2 uv) const;
+  // sample_bilinear's channel r at four coordinates of a one-channel texture, in lanes.
+  void bilinear4(const Sampler& s, const Level& level, const std::array<glm::vec2, 4>& uv,
+                 std::array<float, 4>& out) const;
 
   std::vector<float> texels_;  // all levels, contiguous, level 0 first
   std::array<Level, kMaxTextureLevels> levels_info_{};

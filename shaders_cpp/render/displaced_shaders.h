@@ -176,17 +176,61 @@ struct DisplacedDS {
   DisplacementParams params;
 
   // The batch form, for ProjectingDS: out[i] = (*this)(pc, cp, locations[i], patch_id), the patch
-  // evaluated in lanes where SubdDS::evaluate_lanes can.
+  // evaluated in lanes where SubdDS::evaluate_lanes can, and the map sampled four points at a time
+  // (Texture2D::sample_level4, the same bits) where consecutive points share their LOD (a patch's
+  // interior points, an edge's points).
   void samples(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp,
                std::span<const DomainLocation> locations, std::uint32_t patch_id, std::span<DisplacedPoint> out) const {
+    const Sampler s = sampler();
+    std::array<std::size_t, 4> pending{};  // points prepared, not yet displaced, all at LOD `pending_lod`
+    std::size_t held = 0;
+    float pending_lod = 0.0f;
+    const auto displace_pending = [&] {
+      if (held == 4) {
+        std::array<glm::vec2, 4> uv;
+        std::array<glm::vec4, 4> texel;
+        for (std::size_t k = 0; k < 4; ++k) uv[k] = out[pending[k]].uv;
+        params.map->sample_level4(s, uv, pending_lod, texel);
+        for (std::size_t k = 0; k < 4; ++k) displace(out[pending[k]], texel[k]);
+      } else {
+        for (std::size_t k = 0; k < held; ++k)
+          displace(out[pending[k]], params.map->sample_level(s, out[pending[k]].uv, pending_lod));
+      }
+      held = 0;
+    };
     base.for_evaluated(base.patches[patch_id], cp, locations, [&](std::size_t i, const PatchPoint* evaluated) {
-      out[i] = (*this)(pc, cp, locations[i], patch_id, evaluated);
+      float lod = 0.0f;
+      out[i] = prepare(pc, cp, locations[i], patch_id, evaluated, lod);
+      // A group holds one LOD's bits (a NaN LOD is its own group).
+      if (held != 0 && std::bit_cast<std::uint32_t>(lod) != std::bit_cast<std::uint32_t>(pending_lod))
+        displace_pending();
+      pending_lod = lod;
+      pending[held++] = i;
+      if (held == 4) displace_pending();
     });
+    displace_pending();
   }
 
   // `evaluated`, when given, is the base patch's PatchPoint at `loc` (SubdDS::operator()).
   DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
                             std::uint32_t patch_id, const PatchPoint* evaluated = nullptr) const {
+    float lod = 0.0f;
+    DisplacedPoint out = prepare(pc, cp, loc, patch_id, evaluated, lod);
+    displace(out, params.map->sample_level(sampler(), out.uv, lod));
+    return out;
+  }
+
+  Sampler sampler() const {
+    Sampler s;
+    s.filter = params.trilinear ? Filter::trilinear : Filter::bilinear;
+    s.address_u = s.address_v = AddressMode::clamp;
+    return s;
+  }
+
+  // The point before displacement: `position` is the base surface's, and the map is to be sampled at
+  // `uv` and `lod` (set here); displace() then moves it.
+  DisplacedPoint prepare(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
+                         std::uint32_t patch_id, const PatchPoint* evaluated, float& sample_lod) const {
     const SurfaceSample s = base(SubdPatchConstants{pc.factors, {}}, cp, loc, patch_id, evaluated);
     const PatchTexcoords& tc = texcoords[patch_id];
     const bool exact = base.patches[patch_id].kind == PatchKind::exact;
@@ -261,25 +305,29 @@ struct DisplacedDS {
       out.shade_uv = uv, out.shade_dpdu = out.dpdu, out.shade_dpdv = out.dpdv;
     }
 
-    Sampler sampler;
-    sampler.filter = params.trilinear ? Filter::trilinear : Filter::bilinear;
-    sampler.address_u = sampler.address_v = AddressMode::clamp;
-    const glm::vec4 texel = params.map->sample_level(sampler, uv, lod);
+    out.position = s.position;
+    sample_lod = lod;
+    return out;
+  }
+
+  // A prepared point moved by the map's `texel` (sampled at its uv and LOD) along its normal, tangent
+  // frame or object axes.
+  void displace(DisplacedPoint& p, const glm::vec4& texel) const {
+    const glm::vec3& n = p.normal;
     switch (params.kind) {
-      case DisplacementKind::scalar: out.position = s.position + (params.scale * texel.x + params.bias) * n; break;
+      case DisplacementKind::scalar: p.position = p.position + (params.scale * texel.x + params.bias) * n; break;
       case DisplacementKind::vector_object:
-        out.position = s.position + (params.scale * glm::vec3(texel) + params.bias);
+        p.position = p.position + (params.scale * glm::vec3(texel) + params.bias);
         break;
       case DisplacementKind::vector_tangent: {
-        const glm::vec3 tangent = unit_or_zero(out.dpdu - glm::dot(n, out.dpdu) * n);
+        const glm::vec3 tangent = unit_or_zero(p.dpdu - glm::dot(n, p.dpdu) * n);
         glm::vec3 bitangent = glm::cross(n, tangent);
-        if (glm::dot(bitangent, out.dpdv) < 0.0f) bitangent = -bitangent;
+        if (glm::dot(bitangent, p.dpdv) < 0.0f) bitangent = -bitangent;
         const glm::vec3 d = params.scale * glm::vec3(texel) + params.bias;
-        out.position = s.position + ((d.x * tangent + d.y * bitangent) + d.z * n);
+        p.position = p.position + ((d.x * tangent + d.y * bitangent) + d.z * n);
         break;
       }
     }
-    return out;
   }
 
  private:
