@@ -446,7 +446,7 @@ void Texture2D::sample_level4(const Sampler& s, const std::array<glm::vec2, 4>& 
   for (std::size_t k = 0; k < 4; ++k) out[k] = glm::vec4(lanes[k], 0.0f, 0.0f, 1.0f);
 }
 
-glm::vec4 Texture2D::sample_grad(const Sampler& s, glm::vec2 uv, glm::vec2 ddx, glm::vec2 ddy) const {
+float Texture2D::grad_lod(glm::vec2 ddx, glm::vec2 ddy) const {
   const Level& base = levels_info_[0];
   const float xu = ddx.x * base.fwidth;
   const float xv = ddx.y * base.fheight;
@@ -455,8 +455,16 @@ glm::vec4 Texture2D::sample_grad(const Sampler& s, glm::vec2 uv, glm::vec2 ddx, 
   const float lx = xu * xu + xv * xv;
   const float ly = yu * yu + yv * yv;
   // log2(max(|a|, |b|)) = log2(max(|a|^2, |b|^2)) / 2: one log, no square roots.
-  const float lod = 0.5f * std::log2(lx > ly ? lx : ly);
-  return sample_level(s, uv, lod);
+  return 0.5f * std::log2(lx > ly ? lx : ly);
+}
+
+glm::vec4 Texture2D::sample_grad(const Sampler& s, glm::vec2 uv, glm::vec2 ddx, glm::vec2 ddy) const {
+  return sample_level(s, uv, grad_lod(ddx, ddy));
+}
+
+void Texture2D::sample_grad4(const Sampler& s, const std::array<glm::vec2, 4>& uv, glm::vec2 ddx, glm::vec2 ddy,
+                             std::array<glm::vec4, 4>& out) const {
+  sample_level4(s, uv, grad_lod(ddx, ddy), out);
 }
 
 }  // namespace tessera

@@ -107,6 +107,12 @@ class Texture2D {
   // log2(max(|ddx * size|, |ddy * size|)), size = level 0's (width, height), then as sample_level.
   // Zero derivatives give lod -inf, which clamps to the lower bound.
   glm::vec4 sample_grad(const Sampler& s, glm::vec2 uv, glm::vec2 ddx, glm::vec2 ddy) const;
+  // Four sample_grad calls with one pair of derivatives (a pixel's neighbourhood): out[k] =
+  // sample_grad(s, uv[k], ddx, ddy), the same bits, through sample_level4.
+  void sample_grad4(const Sampler& s, const std::array<glm::vec2, 4>& uv, glm::vec2 ddx, glm::vec2 ddy,
+                    std::array<glm::vec4, 4>& out) const;
+  // The lod sample_grad samples at, before the sampler's bias and clamp.
+  float grad_lod(glm::vec2 ddx, glm::vec2 ddy) const;
 
   // Bytes of texel storage, all levels (for memory reports).
   std::size_t bytes() const { return texels_.size() * sizeof(float); }

@@ -457,6 +457,45 @@ TEST_CASE("texture: filter and address mode names round-trip", "[texture]") {
   CHECK_FALSE(parse_address_mode("").has_value());
 }
 
+TEST_CASE("texture: sample_grad4 gives the bits of four sample_grad calls", "[texture][simd]") {
+  // A pixel's four central-difference taps (DisplacedPS): derivatives from zero (lod -inf) to past the
+  // last level, and between levels (the trilinear blend), on a one-channel map and a four-channel one.
+  std::vector<float> one(128 * 64), four(16 * 16 * 4);
+  for (std::size_t i = 0; i < one.size(); ++i) one[i] = std::sin(float(i) * 0.13f);
+  for (std::size_t i = 0; i < four.size(); ++i) four[i] = std::cos(float(i) * 0.29f);
+  const Texture2D textures[] = {make(128, 64, 1, one), make(16, 16, 4, four)};
+  std::uint32_t state = 777;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);  // [0, 1)
+  };
+  int compared = 0, blended = 0;
+  for (const Texture2D& t : textures)
+    for (const Filter f : {Filter::bilinear, Filter::trilinear})
+      for (int round = 0; round < 300; ++round) {
+        const Sampler s = sampler(f, AddressMode::clamp, AddressMode::clamp);
+        const float scale = std::ldexp(1.0f, round % 12 - 10);  // 1/1024 .. 2 of the map per pixel
+        const glm::vec2 ddx = round % 50 == 0 ? glm::vec2(0.0f) : glm::vec2(next(), next() - 0.5f) * scale;
+        const glm::vec2 ddy = glm::vec2(next() - 0.5f, next()) * scale;
+        const glm::vec2 uv(next() * 1.2f - 0.1f, next() * 1.2f - 0.1f);
+        const float du = 1.0f / float(t.width()), dv = 1.0f / float(t.height());
+        const std::array<glm::vec2, 4> taps = {uv + glm::vec2(du, 0.0f), uv - glm::vec2(du, 0.0f),
+                                               uv + glm::vec2(0.0f, dv), uv - glm::vec2(0.0f, dv)};
+        std::array<glm::vec4, 4> batch;
+        t.sample_grad4(s, taps, ddx, ddy, batch);
+        const float lod = t.grad_lod(ddx, ddy);
+        if (lod > 0.0f && lod < float(t.levels() - 1) && lod != std::floor(lod)) ++blended;
+        for (std::size_t k = 0; k < 4; ++k) {
+          const glm::vec4 single = t.sample_grad(s, taps[k], ddx, ddy);
+          INFO("uv " << taps[k].x << ", " << taps[k].y << " lod " << lod);
+          CHECK(std::memcmp(&single, &batch[k], sizeof single) == 0);
+          ++compared;
+        }
+      }
+  CHECK(compared == 2 * 2 * 300 * 4);
+  CHECK(blended > 100);  // the trilinear lanes' blend was exercised
+}
+
 TEST_CASE("texture: sample_level4 gives the bits of four sample_level calls", "[texture][simd]") {
   // Coordinates inside, outside (every addressing mode), on texel edges and non-finite; one and four
   // channels (the SIMD paths and the fallback), each filter.
