@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -326,6 +327,77 @@ TEST_CASE("Without ownership the displaced frog cracks: per-face UVs at the seam
     INFO(to_string(s) << ": per-patch normals give " << own_normals.boundary_edges << " open edges");
     CHECK(own_normals.boundary_edges > 0);
   }
+}
+
+// The scalar displaced DS, keeping each patch's constants and control points (one thread: a test's
+// stream output on a one-thread device) so that the batch form can be run on the same inputs.
+struct KeepingDS {
+  DisplacedDS ds;
+  std::map<std::uint32_t, std::pair<DisplacedPatchConstants, std::vector<SubdControlPoint>>>* kept;
+  DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
+                            std::uint32_t id) const {
+    kept->try_emplace(id, pc, std::vector<SubdControlPoint>(cp.begin(), cp.end()));
+    return ds(pc, cp, loc, id);
+  }
+};
+
+TEST_CASE("The displaced DS's batch form gives every point the scalar form's bits", "[disp]") {
+  // Scalar, tangent-space and object-space maps (the map sampled four points at a time where they share
+  // a LOD, the patch in lanes where its kind allows), bilinear and trilinear, varying factors, on
+  // every patch of the frog under each scheme the render path batches, and one it does not.
+  const auto vector_map = DisplacementMap::load(kFrogMap, "R,G,A", 3);
+  std::vector<float> px;
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) {
+      const glm::vec4 t = vector_map.texture().load(0, x, y);
+      px.insert(px.end(), {t.x - 0.5f, t.y - 0.5f, t.z});
+    }
+  const std::string vector_path = write_image("batch-vector.exr", 512, 512, 3, OIIO::TypeDesc::FLOAT, px);
+  std::size_t compared = 0, mismatched = 0;
+  for (const Scheme scheme : {Scheme::gregory, Scheme::acc, Scheme::bspline, Scheme::exact}) {
+    const SubdModel m = load_subd_model(kFrog, scheme);
+    for (int variant = 0; variant < 3; ++variant) {
+      DisplacementOptions o = frog_options();
+      if (variant > 0) {
+        o.map = vector_path;
+        o.channel.clear();
+        o.scale = 0.5f;
+        o.bias = 0.0f;
+        o.space = variant == 1 ? DisplacementSpace::tangent : DisplacementSpace::object;
+      }
+      Displacement d = make_displacement(m, o);
+      for (const bool trilinear : {false, true}) {
+        if (scheme == Scheme::exact && trilinear) continue;  // slow, and its DS is not batched
+        d.trilinear = trilinear;
+        SubdFactors f;
+        f.factor = 5.0f;
+        f.vary = 1.5f;
+        std::map<std::uint32_t, std::pair<DisplacedPatchConstants, std::vector<SubdControlPoint>>> kept;
+        Device device(DeviceOptions{1});
+        const DrawResult r = with_displaced_group(
+            m, d, f, ts::Partitioning::fractional_odd,
+            [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
+              const StreamDraw<glm::vec3, SubdVS, DisplacedHS, KeepingDS> draw{
+                  m.vertex_buffer(), g.indices, g.control_points, m.vertex_shader(), hs, KeepingDS{ds, &kept}, ts};
+              return stream_out(device, draw, [&](const PatchOutput<DisplacedPoint>& p) {
+                const auto& [pc, cp] = kept.at(p.patch_id);
+                std::vector<DomainLocation> locations;
+                for (const ts::DomainPoint& q : p.domain) locations.push_back(detail::domain_location(q, ts.domain));
+                std::vector<DisplacedPoint> batch(locations.size());
+                ds.samples(pc, cp, locations, p.patch_id, batch);
+                for (std::size_t i = 0; i < batch.size(); ++i) {
+                  ++compared;
+                  if (std::memcmp(&batch[i], &p.points[i], sizeof(DisplacedPoint)) != 0) ++mismatched;
+                }
+              });
+            });
+        INFO(to_string(scheme) << " variant " << variant << (trilinear ? " trilinear" : " bilinear"));
+        REQUIRE(r.ok());
+        CHECK(mismatched == 0);
+      }
+    }
+  }
+  CHECK(compared > 200000);
 }
 
 TEST_CASE("Displaced stream output and rendering give the same bytes for 1 and 2 threads", "[disp]") {
