@@ -200,7 +200,7 @@ struct DisplacedDS {
     };
     base.for_evaluated(base.patches[patch_id], cp, locations, [&](std::size_t i, const PatchPoint* evaluated) {
       float lod = 0.0f;
-      out[i] = prepare(pc, cp, locations[i], patch_id, evaluated, lod);
+      prepare(pc, cp, locations[i], patch_id, evaluated, out[i], lod);
       // A group holds one LOD's bits (a NaN LOD is its own group).
       if (held != 0 && std::bit_cast<std::uint32_t>(lod) != std::bit_cast<std::uint32_t>(pending_lod))
         displace_pending();
@@ -215,7 +215,8 @@ struct DisplacedDS {
   DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
                             std::uint32_t patch_id, const PatchPoint* evaluated = nullptr) const {
     float lod = 0.0f;
-    DisplacedPoint out = prepare(pc, cp, loc, patch_id, evaluated, lod);
+    DisplacedPoint out;
+    prepare(pc, cp, loc, patch_id, evaluated, out, lod);
     displace(out, params.map->sample_level(sampler(), out.uv, lod));
     return out;
   }
@@ -227,15 +228,16 @@ struct DisplacedDS {
     return s;
   }
 
-  // The point before displacement: `position` is the base surface's, and the map is to be sampled at
-  // `uv` and `lod` (set here); displace() then moves it.
-  DisplacedPoint prepare(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
-                         std::uint32_t patch_id, const PatchPoint* evaluated, float& sample_lod) const {
+  // The point before displacement, every field of `out` written: `position` is the base surface's, and
+  // the map is to be sampled at `uv` and `sample_lod` (set here); displace() then moves it. (Written in
+  // place: a returned point was built on the stack and copied into the caller's array, and the copy's
+  // wide loads waited on the narrow stores that built it.)
+  void prepare(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
+               std::uint32_t patch_id, const PatchPoint* evaluated, DisplacedPoint& out, float& sample_lod) const {
     const SurfaceSample s = base(SubdPatchConstants{pc.factors, {}}, cp, loc, patch_id, evaluated);
     const PatchTexcoords& tc = texcoords[patch_id];
     const bool exact = base.patches[patch_id].kind == PatchKind::exact;
     const float u = loc.u, v = loc.v;
-    DisplacedPoint out;
     out.face = s.face, out.u = s.u, out.v = s.v;
     out.patch_u = loc.u, out.patch_v = loc.v;
     glm::vec3 n = s.normal, pa = s.du, pb = s.dv;
@@ -307,7 +309,6 @@ struct DisplacedDS {
 
     out.position = s.position;
     sample_lod = lod;
-    return out;
   }
 
   // A prepared point moved by the map's `texel` (sampled at its uv and LOD) along its normal, tangent

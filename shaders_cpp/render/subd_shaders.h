@@ -555,7 +555,13 @@ struct ProjectingDS {
     for (std::size_t first = 0; first < locations.size(); first += kBlock) {
       const std::size_t n = std::min(kBlock, locations.size() - first);
       inner.samples(pc, cps, locations.subspan(first, n), patch_id, std::span<Sample>(samples.data(), n));
-      for (std::size_t k = 0; k < n; ++k) out[first + k] = project(samples[k]);
+      // Written in place, field by field: a whole vertex built on the stack and copied stalled on
+      // store forwarding (its narrow stores, then the copy's wide loads).
+      for (std::size_t k = 0; k < n; ++k) {
+        ClipVertex<N>& o = out[first + k];
+        o.position = clip_position(view_projection, z_bias, samples[k].position);
+        o.attributes = AttributesOf{}(samples[k]);
+      }
     }
   }
   template <class Sample>
