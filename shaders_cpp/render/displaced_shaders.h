@@ -295,7 +295,11 @@ struct DisplacedDS {
       ja = (1.0f - v) * (c[1] - c[0]) + v * (c[2] - c[3]);
       jb = (1.0f - u) * (c[3] - c[0]) + u * (c[2] - c[1]);
     }
-    texture_derivatives(pa, pb, ja, jb, out.dpdu, out.dpdv);
+    // Into locals first, then each field of `out` from them: copying one field of `out` into another
+    // read back its fresh stores (a store-forwarding stall per point).
+    glm::vec3 dpdu, dpdv;
+    texture_derivatives(pa, pb, ja, jb, dpdu, dpdv);
+    out.dpdu = dpdu, out.dpdv = dpdv;
     out.normal = n;
     out.uv = uv;
     if (other_chart && params.own_chart_shading) {
@@ -304,7 +308,7 @@ struct DisplacedDS {
       texture_derivatives(s.du, s.dv, (1.0f - v) * (c[1] - c[0]) + v * (c[2] - c[3]),
                           (1.0f - u) * (c[3] - c[0]) + u * (c[2] - c[1]), out.shade_dpdu, out.shade_dpdv);
     } else {
-      out.shade_uv = uv, out.shade_dpdu = out.dpdu, out.shade_dpdv = out.dpdv;
+      out.shade_uv = uv, out.shade_dpdu = dpdu, out.shade_dpdv = dpdv;
     }
 
     out.position = s.position;
