@@ -2,7 +2,9 @@
 // chosen so that most expected results are exact in float; the rest use Approx with a stated margin.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -455,6 +457,45 @@ TEST_CASE("texture: filter and address mode names round-trip", "[texture]") {
   CHECK_FALSE(parse_filter("linear").has_value());
   CHECK_FALSE(parse_address_mode("border").has_value());
   CHECK_FALSE(parse_address_mode("").has_value());
+}
+
+TEST_CASE("texture: bilinear filtering of 3 and 4 channels gives the bits of the per-channel formula", "[texture][simd]") {
+  // The channels are filtered in SIMD lanes: each must be top * (1 - fv) + bottom * fv with top =
+  // t00 * (1 - fu) + t01 * fu (and bottom likewise), in that order, as the one-channel path computes it.
+  for (const int channels : {3, 4}) {
+    const int w = 37, h = 23;  // odd sizes: the last texel's fourth float lies past a 3-channel level
+    std::vector<float> texels(std::size_t(w * h * channels));
+    for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = std::sin(float(i) * 0.71f) * 3.0f;
+    const Texture2D t = make(w, h, channels, texels, false);
+    std::uint32_t state = 99;
+    auto next = [&] {
+      state = state * 1664525u + 1013904223u;
+      return float(state >> 8) / float(1u << 24);  // [0, 1)
+    };
+    int compared = 0;
+    for (int round = 0; round < 2000; ++round) {
+      const glm::vec2 uv(next() * 1.1f - 0.05f, next() * 1.1f - 0.05f);
+      const glm::vec4 got = t.sample_level(sampler(Filter::bilinear), uv, 0.0f);
+      const float x = uv.x * float(w) - 0.5f, y = uv.y * float(h) - 0.5f;
+      const int i = int(std::floor(x)), j = int(std::floor(y));
+      const float fu = x - float(i), fv = y - float(j);
+      const auto at = [&](int a, int b, int c) {
+        return texels[std::size_t(((std::clamp(b, 0, h - 1) * w) + std::clamp(a, 0, w - 1)) * channels + c)];
+      };
+      for (int c = 0; c < 4; ++c) {
+        float expect = 1.0f;
+        if (c < channels) {
+          const float top = at(i, j, c) * (1.0f - fu) + at(i + 1, j, c) * fu;
+          const float bottom = at(i, j + 1, c) * (1.0f - fu) + at(i + 1, j + 1, c) * fu;
+          expect = top * (1.0f - fv) + bottom * fv;
+        }
+        INFO(channels << " channels, uv " << uv.x << ", " << uv.y << " channel " << c);
+        CHECK(std::bit_cast<std::uint32_t>(got[c]) == std::bit_cast<std::uint32_t>(expect));
+        ++compared;
+      }
+    }
+    CHECK(compared == 8000);
+  }
 }
 
 TEST_CASE("texture: sample_grad4 gives the bits of four sample_grad calls", "[texture][simd]") {
