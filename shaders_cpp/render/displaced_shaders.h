@@ -33,6 +33,7 @@
 
 #include <glm/glm.hpp>
 
+#include "pipeline/simd8.h"
 #include "pipeline/texture.h"
 #include "shaders_cpp/displacement/displacement_frames.h"
 #include "shaders_cpp/displacement/watertight_uv.h"
@@ -198,17 +199,124 @@ struct DisplacedDS {
       }
       held = 0;
     };
-    base.for_evaluated(base.patches[patch_id], cp, locations, [&](std::size_t i, const PatchPoint* evaluated) {
-      float lod = 0.0f;
-      prepare(pc, cp, locations[i], patch_id, evaluated, out[i], lod);
-      // A group holds one LOD's bits (a NaN LOD is its own group).
-      if (held != 0 && std::bit_cast<std::uint32_t>(lod) != std::bit_cast<std::uint32_t>(pending_lod))
-        displace_pending();
-      pending_lod = lod;
-      pending[held++] = i;
-      if (held == 4) displace_pending();
+    const SubdPatch& patch = base.patches[patch_id];
+    // prepare()'s interior branch runs eight points at a time where nothing per point can differ from
+    // it: a quad patch evaluated in lanes (its normal is the derivatives' cross product there; corner
+    // and crease-line normals apply on edges only).
+    const bool interior_lanes = !base.triangles && patch.kind != PatchKind::exact;
+    base.for_evaluated_blocks(patch, cp, locations, [&](std::size_t first, std::size_t n, const PatchPoint* points) {
+      std::array<bool, SubdDS::kLanesBlock> prepared{};
+      if (points != nullptr && interior_lanes) {
+        std::array<std::size_t, 8> group{};
+        std::size_t grouped = 0;
+        const auto flush = [&] {
+          if (grouped != 0 && prepare_interior8(patch_id, locations, first, points, group, grouped, out))
+            for (std::size_t k = 0; k < grouped; ++k) prepared[group[k]] = true;
+          grouped = 0;
+        };
+        for (std::size_t k = 0; k < n; ++k) {
+          const DomainLocation& l = locations[first + k];
+          if (l.u == 0.0f || l.u == 1.0f || l.v == 0.0f || l.v == 1.0f) continue;
+          group[grouped++] = k;
+          if (grouped == 8) flush();
+        }
+        flush();
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = first + k;
+        float lod = pc.lod_interior;
+        if (!prepared[k]) prepare(pc, cp, locations[i], patch_id, points ? &points[k] : nullptr, out[i], lod);
+        // A group holds one LOD's bits (a NaN LOD is its own group).
+        if (held != 0 && std::bit_cast<std::uint32_t>(lod) != std::bit_cast<std::uint32_t>(pending_lod))
+          displace_pending();
+        pending_lod = lod;
+        pending[held++] = i;
+        if (held == 4) displace_pending();
+      }
     });
     displace_pending();
+  }
+
+  // prepare() of up to eight interior locations (0 < u, v < 1) of a quad patch, locations[first +
+  // group[k]] with their PatchPoints points[group[k]], in simd::F8 lanes: each lane computes SubdDS's
+  // and prepare()'s expressions on the same operands in the same order (glm's vec3 and vec2 operations
+  // are per component), and their branches are taken per lane. False, with nothing written, when a
+  // lane's derivatives are parallel (SubdDS then steps into the patch: left to prepare()).
+  bool prepare_interior8(std::uint32_t patch_id, std::span<const DomainLocation> locations, std::size_t first,
+                         const PatchPoint* points, const std::array<std::size_t, 8>& group, std::size_t count,
+                         std::span<DisplacedPoint> out) const {
+    using simd::F8;
+    const SubdPatch& patch = base.patches[patch_id];
+    std::array<float, 8> px, py, pz, ax, ay, az, bx, by, bz, lu, lv;
+    for (std::size_t k = 0; k < 8; ++k) {
+      const std::size_t j = group[k < count ? k : 0];  // a short group repeats its first point
+      const PatchPoint& p = points[j];
+      px[k] = p.position.x, py[k] = p.position.y, pz[k] = p.position.z;
+      ax[k] = p.du.x, ay[k] = p.du.y, az[k] = p.du.z;
+      bx[k] = p.dv.x, by[k] = p.dv.y, bz[k] = p.dv.z;
+      lu[k] = locations[first + j].u, lv[k] = locations[first + j].v;
+    }
+    const F8 Ax = F8::load(ax), Ay = F8::load(ay), Az = F8::load(az);
+    const F8 Bx = F8::load(bx), By = F8::load(by), Bz = F8::load(bz);
+    // SubdDS: n = cross(du, dv); the parallel-derivatives test on dot(n, n) against dot(du, du) *
+    // dot(dv, dv); the unit normal n / length(n), or zero.
+    const F8 nx = Ay * Bz - By * Az, ny = Az * Bx - Bz * Ax, nz = Ax * By - Bx * Ay;
+    const F8 nn = (nx * nx + ny * ny) + nz * nz;
+    const F8 scale = ((Ax * Ax + Ay * Ay) + Az * Az) * ((Bx * Bx + By * By) + Bz * Bz);
+    std::array<float, 8> nn_lanes, scale_lanes;
+    nn.store(nn_lanes);
+    scale.store(scale_lanes);
+    for (std::size_t k = 0; k < count; ++k)
+      if (scale_lanes[k] > 0.0f && nn_lanes[k] <= 1e-10f * scale_lanes[k]) return false;
+    const F8 len = simd::sqrt(nn);
+    std::array<float, 8> ux, uy, uz, len_lanes;
+    (nx / len).store(ux);
+    (ny / len).store(uy);
+    (nz / len).store(uz);
+    len.store(len_lanes);
+    // prepare()'s interior branch: the UV bilinear in the patch's corner UVs (bilerp_uv), its
+    // derivatives along u and v, and texture_derivatives' solve.
+    const auto& c = texcoords[patch_id].interior;
+    const F8 u = F8::load(lu), v = F8::load(lv), one = F8::splat(1.0f);
+    const F8 su = one - u, tv = one - v;
+    const auto splat2 = [](glm::vec2 a) { return std::array<F8, 2>{F8::splat(a.x), F8::splat(a.y)}; };
+    const auto c0 = splat2(c[0]), c1 = splat2(c[1]), c2 = splat2(c[2]), c3 = splat2(c[3]);
+    std::array<F8, 2> uv, ja, jb;
+    for (std::size_t i = 0; i < 2; ++i) {
+      uv[i] = tv * (su * c0[i] + u * c1[i]) + v * (su * c3[i] + u * c2[i]);
+      ja[i] = tv * F8::splat(c[1][int(i)] - c[0][int(i)]) + v * F8::splat(c[2][int(i)] - c[3][int(i)]);
+      jb[i] = su * F8::splat(c[3][int(i)] - c[0][int(i)]) + u * F8::splat(c[2][int(i)] - c[1][int(i)]);
+    }
+    const F8 det = ja[0] * jb[1] - jb[0] * ja[1];
+    std::array<float, 8> ux_, uy_, uz_, vx_, vy_, vz_, det_lanes, uv0, uv1;
+    ((Ax * jb[1] - Bx * ja[1]) / det).store(ux_);
+    ((Ay * jb[1] - By * ja[1]) / det).store(uy_);
+    ((Az * jb[1] - Bz * ja[1]) / det).store(uz_);
+    ((Bx * ja[0] - Ax * jb[0]) / det).store(vx_);
+    ((By * ja[0] - Ay * jb[0]) / det).store(vy_);
+    ((Bz * ja[0] - Az * jb[0]) / det).store(vz_);
+    det.store(det_lanes);
+    uv[0].store(uv0);
+    uv[1].store(uv1);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = first + group[k];
+      DisplacedPoint& o = out[i];
+      o.face = std::uint32_t(patch.face);
+      base.face_location(patch, locations[i], o.u, o.v);
+      o.patch_u = lu[k], o.patch_v = lv[k];
+      glm::vec3 n = len_lanes[k] > 0.0f ? glm::vec3(ux[k], uy[k], uz[k]) : glm::vec3(0.0f);
+      if (base.flip_normals) n = -n;
+      glm::vec3 dpdu(ax[k], ay[k], az[k]), dpdv(bx[k], by[k], bz[k]);
+      if (det_lanes[k] != 0.0f && std::isfinite(det_lanes[k]))
+        dpdu = glm::vec3(ux_[k], uy_[k], uz_[k]), dpdv = glm::vec3(vx_[k], vy_[k], vz_[k]);
+      const glm::vec2 texcoord(uv0[k], uv1[k]);
+      o.normal = n;
+      o.dpdu = dpdu, o.dpdv = dpdv, o.uv = texcoord;
+      o.shade_dpdu = dpdu, o.shade_dpdv = dpdv, o.shade_uv = texcoord;
+      // positive_zero: + 0 turns a -0 into +0.
+      o.position = glm::vec3(px[k] + 0.0f, py[k] + 0.0f, pz[k] + 0.0f);
+    }
+    return true;
   }
 
   // `evaluated`, when given, is the base patch's PatchPoint at `loc` (SubdDS::operator()).

@@ -363,12 +363,12 @@ struct SubdDS {
     });
   }
 
-  // Calls visit(i, evaluated) for each location i, `evaluated` its PatchPoint from evaluate_lanes or
-  // null; blocks of kLanesBlock locations at a time.
+  // Calls visit(first, n, evaluated) for each block of up to kLanesBlock locations [first, first + n),
+  // `evaluated` their PatchPoints from evaluate_lanes (n of them) or null.
   static constexpr std::size_t kLanesBlock = 64;
   template <class Visit>
-  void for_evaluated(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
-                     std::span<const DomainLocation> locations, const Visit& visit) const {
+  void for_evaluated_blocks(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
+                            std::span<const DomainLocation> locations, const Visit& visit) const {
     std::array<float, kLanesBlock> u, v, w;
     std::array<PatchPoint, kLanesBlock> points;
     for (std::size_t first = 0; first < locations.size(); first += kLanesBlock) {
@@ -378,7 +378,35 @@ struct SubdDS {
       const bool lanes =
           evaluate_lanes(patch, cp, std::span<const float>(u.data(), n), std::span<const float>(v.data(), n),
                          std::span<const float>(w.data(), n), std::span<PatchPoint>(points.data(), n));
-      for (std::size_t k = 0; k < n; ++k) visit(first + k, lanes ? &points[k] : nullptr);
+      visit(first, n, lanes ? points.data() : nullptr);
+    }
+  }
+  // visit(i, evaluated) for each location i, `evaluated` its PatchPoint from evaluate_lanes or null.
+  template <class Visit>
+  void for_evaluated(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
+                     std::span<const DomainLocation> locations, const Visit& visit) const {
+    for_evaluated_blocks(patch, cp, locations, [&](std::size_t first, std::size_t n, const PatchPoint* points) {
+      for (std::size_t k = 0; k < n; ++k) visit(first + k, points ? &points[k] : nullptr);
+    });
+  }
+
+  // The location in the face's own frame (corner 0 at (0,0), or at w = 1): the patch's rotation undone.
+  // Patch corner k is face corner k + r; on the tri domain face corner c takes the barycentric of patch
+  // corner c - r (corner 0: w, 1: u, 2: v).
+  void face_location(const SubdPatch& patch, DomainLocation loc, float& u, float& v) const {
+    if (triangles) {
+      switch (patch.rotation) {
+        case 1: u = loc.w, v = loc.u; break;
+        case 2: u = loc.v, v = loc.w; break;
+        default: u = loc.u, v = loc.v; break;
+      }
+    } else {
+      switch (patch.rotation) {
+        case 1: u = 1.0f - loc.v, v = loc.u; break;
+        case 2: u = 1.0f - loc.u, v = 1.0f - loc.v; break;
+        case 3: u = loc.v, v = 1.0f - loc.u; break;
+        default: u = loc.u, v = loc.v; break;
+      }
     }
   }
 
@@ -388,23 +416,7 @@ struct SubdDS {
     const SubdPatch& patch = patches[patch_id];
     SurfaceSample s;
     s.face = std::uint32_t(patch.face);
-    // Report the location in the face's own frame (corner 0 at (0,0), or at w = 1): undo the patch's
-    // rotation. Patch corner k is face corner k + r; on the tri domain face corner c takes the
-    // barycentric of patch corner c - r (corner 0: w, 1: u, 2: v).
-    if (triangles) {
-      switch (patch.rotation) {
-        case 1: s.u = loc.w, s.v = loc.u; break;
-        case 2: s.u = loc.v, s.v = loc.w; break;
-        default: s.u = loc.u, s.v = loc.v; break;
-      }
-    } else {
-      switch (patch.rotation) {
-        case 1: s.u = 1.0f - loc.v, s.v = loc.u; break;
-        case 2: s.u = 1.0f - loc.u, s.v = 1.0f - loc.v; break;
-        case 3: s.u = loc.v, s.v = 1.0f - loc.u; break;
-        default: s.u = loc.u, s.v = loc.v; break;
-      }
-    }
+    face_location(patch, loc, s.u, s.v);
     if (patch.kind == PatchKind::exact) {
       const SurfacePoint l = !triangles ? limit->evaluate(patch.face, patch.sub, loc.u, loc.v)
                              : limit->face_size(patch.face) == 3
