@@ -400,6 +400,68 @@ TEST_CASE("The displaced DS's batch form gives every point the scalar form's bit
   CHECK(compared > 200000);
 }
 
+// DisplacedPS without its quad form: the pipeline shades each pixel through operator().
+struct PerPixelDisplacedPS {
+  DisplacedPS ps;
+  glm::vec4 operator()(const PixelInput<kDisplacedAttributes>& in) const { return ps(in); }
+};
+
+TEST_CASE("The displaced pixel shader's quad form gives the per-pixel form's bits", "[disp]") {
+  // The frog's normal map (one sample_grad4 per quad) and derived normals (the height's taps), seam
+  // blending on and off, single-sampled and 4x: render_displaced (the quad form) against the same
+  // draw shading pixel by pixel.
+  static_assert(QuadPixelShader<DisplacedPS, kDisplacedAttributes> &&
+                !QuadPixelShader<PerPixelDisplacedPS, kDisplacedAttributes>);
+  const SubdModel m = load_subd_model(kFrog, Scheme::gregory);
+  for (const bool derived : {false, true}) {
+    DisplacementOptions o = frog_options();
+    if (derived) o.normal_map = "derived";
+    for (const bool seams : {true, false}) {
+      o.seam_blending = seams;
+      const Displacement d = make_displacement(m, o);
+      REQUIRE(d.normal_map.has_value() == !derived);
+      for (const int samples : {1, 4}) {
+        const int w = 256, h = 160;
+        const SubdCamera camera = frame_cage(m.cage, w, h, 35.0f, std::nullopt, std::nullopt);
+        SubdFactors f;
+        f.factor = 6.0f;
+        Device device(DeviceOptions{2});
+        auto quad = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, nullptr, samples);
+        auto pixel = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, nullptr, samples);
+        REQUIRE((quad && pixel));
+        quad->clear(glm::vec4(0.0f), 1.0f);
+        pixel->clear(glm::vec4(0.0f), 1.0f);
+        REQUIRE(render_displaced(device, m, d, f, ts::Partitioning::integer, SubdView::shaded, camera, *quad).ok());
+        const DrawResult r = with_displaced_group(
+            m, d, f, ts::Partitioning::integer,
+            [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
+              const SubdPassState st = subd_pass_state(m, *pixel, false);
+              const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
+              PerPixelDisplacedPS per_pixel;
+              DisplacedPS& ps = per_pixel.ps;
+              ps.light = glm::normalize(camera.eye - camera.target);
+              ps.sides = face_sides(m);
+              if (d.seam_blending) ps.texcoords = d.texcoords;
+              if (d.normal_map) {
+                ps.normal_map = &d.normal_map->texture();
+                ps.flip_green = d.flip_v;
+              } else {
+                ps.height = &d.map->texture();
+                ps.height_scale = d.scale;
+              }
+              return draw_group_pass(device, m, g, ts, hs, project, per_pixel, st, *pixel);
+            });
+        REQUIRE(r.ok());
+        INFO((derived ? "derived" : "normal map") << (seams ? ", seams blended" : "") << ", " << samples << "x");
+        const Framebuffer a = quad->resolve(), b = pixel->resolve();
+        CHECK(a.color_bytes() == b.color_bytes());
+        CHECK(std::count_if(a.color_bytes().begin(), a.color_bytes().end(), [](std::uint8_t x) { return x != 0; }) >
+              10000);
+      }
+    }
+  }
+}
+
 TEST_CASE("Displaced stream output and rendering give the same bytes for 1 and 2 threads", "[disp]") {
   const SubdModel m = load_subd_model(kFrog, Scheme::gregory);
   const Displacement d = make_displacement(m, frog_options());

@@ -504,35 +504,64 @@ struct DisplacedPS {
   FaceSides sides;
 
   glm::vec4 operator()(const PixelInput<kDisplacedAttributes>& in) const {
-    const auto& a = in.attributes;
-    const glm::vec3 n0 = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
-    const glm::vec3 dpdu(a[3], a[4], a[5]), dpdv(a[6], a[7], a[8]);
-    const glm::vec2 uv(a[9], a[10]);
     const glm::vec2 ddx = in.ddx_attributes ? glm::vec2(in.ddx(9), in.ddx(10)) : glm::vec2(0.0f);
     const glm::vec2 ddy = in.ddy_attributes ? glm::vec2(in.ddy(9), in.ddy(10)) : glm::vec2(0.0f);
-    const Texture2D* map = normal_map ? normal_map : height;
-    if (map == nullptr) return clay(sides.facing(n0, in.front_face), light, color);
-    glm::vec3 n = surface_normal(n0, uv, dpdu, dpdv, ddx, ddy);
-    if (!texcoords.empty() && in.primitive_id < texcoords.size())
-      n = blend_seams(n, n0, a[11], a[12], dpdu, dpdv, ddx, ddy, texcoords[in.primitive_id], *map);
-    return clay(sides.facing(n, in.front_face), light, color);
+    return shade(in.attributes, ddx, ddy, in.front_face, in.primitive_id, nullptr);
+  }
+
+  // The quad form (pipeline/stage_io.h): each written lane operator()'s bits. The quad's pixels share
+  // their UV derivatives, so the normal map's LOD (sample_grad's log2) is found once a quad; only the
+  // written lanes are sampled.
+  void shade_quad(const QuadInput<kDisplacedAttributes>& q, QuadColor& out) const {
+    const glm::vec2 ddx(q.ddx(9), q.ddx(10)), ddy(q.ddy(9), q.ddy(10));
+    const float lod = normal_map ? normal_map->grad_lod(ddx, ddy) : 0.0f;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (!(q.mask >> k & 1u)) continue;
+      std::array<float, kDisplacedAttributes> a;
+      for (std::size_t i = 0; i < kDisplacedAttributes; ++i) a[i] = q.attributes[i][k];
+      glm::vec4 texel(0.0f);
+      if (normal_map) texel = normal_map->sample_level(sampler(), glm::vec2(a[9], a[10]), lod);
+      const glm::vec4 c = shade(a, ddx, ddy, q.front_face, q.primitive_id, normal_map ? &texel : nullptr);
+      for (std::size_t ch = 0; ch < 4; ++ch) out.c[ch][k] = c[int(ch)];
+    }
   }
 
  private:
+  static Sampler sampler() {
+    Sampler s;  // trilinear
+    s.address_u = s.address_v = AddressMode::clamp;
+    return s;
+  }
+
+  // One pixel; `texel`, when given, is the normal map's sample at its UV (sample_grad with ddx, ddy).
+  glm::vec4 shade(const std::array<float, kDisplacedAttributes>& a, glm::vec2 ddx, glm::vec2 ddy, bool front_face,
+                  std::uint32_t primitive_id, const glm::vec4* texel) const {
+    const glm::vec3 n0 = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
+    const glm::vec3 dpdu(a[3], a[4], a[5]), dpdv(a[6], a[7], a[8]);
+    const glm::vec2 uv(a[9], a[10]);
+    const Texture2D* map = normal_map ? normal_map : height;
+    if (map == nullptr) return clay(sides.facing(n0, front_face), light, color);
+    glm::vec3 n = texel ? mapped_normal(*texel, n0, dpdu, dpdv) : surface_normal(n0, uv, dpdu, dpdv, ddx, ddy);
+    if (!texcoords.empty() && primitive_id < texcoords.size())
+      n = blend_seams(n, n0, a[11], a[12], dpdu, dpdv, ddx, ddy, texcoords[primitive_id], *map);
+    return clay(sides.facing(n, front_face), light, color);
+  }
+
+  // The tangent-space normal map's texel `t` in the frame of n0, du, dv (Gram-Schmidt).
+  glm::vec3 mapped_normal(const glm::vec4& t, const glm::vec3& n0, const glm::vec3& du, const glm::vec3& dv) const {
+    const glm::vec3 m(2.0f * t.x - 1.0f, (2.0f * t.y - 1.0f) * (flip_green ? -1.0f : 1.0f), 2.0f * t.z - 1.0f);
+    const glm::vec3 tangent = unit_or_zero(du - glm::dot(n0, du) * n0);
+    const glm::vec3 bitangent = unit_or_zero(dv - glm::dot(n0, dv) * n0 - glm::dot(tangent, dv) * tangent);
+    const glm::vec3 shaded = unit_or_zero(m.x * tangent + m.y * bitangent + m.z * n0);
+    return shaded != glm::vec3(0.0f) ? shaded : n0;
+  }
+
   // The shading normal at `uv` of a chart whose dP/dU, dP/dV are `du`, `dv` (the base normal where the
   // map gives none).
   glm::vec3 surface_normal(const glm::vec3& n0, glm::vec2 uv, const glm::vec3& du, const glm::vec3& dv, glm::vec2 ddx,
                            glm::vec2 ddy) const {
-    Sampler sampler;  // trilinear
-    sampler.address_u = sampler.address_v = AddressMode::clamp;
-    if (normal_map) {
-      const glm::vec4 t = normal_map->sample_grad(sampler, uv, ddx, ddy);
-      const glm::vec3 m(2.0f * t.x - 1.0f, (2.0f * t.y - 1.0f) * (flip_green ? -1.0f : 1.0f), 2.0f * t.z - 1.0f);
-      const glm::vec3 tangent = unit_or_zero(du - glm::dot(n0, du) * n0);
-      const glm::vec3 bitangent = unit_or_zero(dv - glm::dot(n0, dv) * n0 - glm::dot(tangent, dv) * tangent);
-      const glm::vec3 shaded = unit_or_zero(m.x * tangent + m.y * bitangent + m.z * n0);
-      return shaded != glm::vec3(0.0f) ? shaded : n0;
-    }
+    const Sampler sampler = DisplacedPS::sampler();
+    if (normal_map) return mapped_normal(normal_map->sample_grad(sampler, uv, ddx, ddy), n0, du, dv);
     const float su = 1.0f / float(height->width()), sv = 1.0f / float(height->height());
     // The four central-difference taps share the pixel's derivatives, so one LOD: sampled at once.
     std::array<glm::vec4, 4> h;
