@@ -46,6 +46,19 @@ std::string write_image(const std::string& name, int w, int h, int c, OIIO::Type
   return path;
 }
 
+// A 3-channel float vector displacement map made from the frog's normal map and height, written to
+// the test directory as `name` (EXR).
+std::string write_vector_map(const std::string& name) {
+  const auto n = DisplacementMap::load(kFrogMap, "R,G,A", 3);
+  std::vector<float> px;
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) {
+      const glm::vec4 t = n.texture().load(0, x, y);
+      px.insert(px.end(), {t.x - 0.5f, t.y - 0.5f, t.z});
+    }
+  return write_image(name, 512, 512, 3, OIIO::TypeDesc::FLOAT, px);
+}
+
 std::vector<float> ramp(int n, float scale) {
   std::vector<float> v(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) v[std::size_t(i)] = float((i * 37) % 256) * scale;
@@ -285,15 +298,7 @@ TEST_CASE("Owner frames are stored once per distinct unit and read back identica
 }
 
 TEST_CASE("Vector displacement (tangent and object space) on the frog is watertight too", "[disp]") {
-  // A 3-channel float map made from the frog's normal map and height.
-  const auto n = DisplacementMap::load(kFrogMap, "R,G,A", 3);
-  std::vector<float> px;
-  for (int y = 0; y < 512; ++y)
-    for (int x = 0; x < 512; ++x) {
-      const glm::vec4 t = n.texture().load(0, x, y);
-      px.insert(px.end(), {t.x - 0.5f, t.y - 0.5f, t.z});
-    }
-  const std::string path = write_image("vector.exr", 512, 512, 3, OIIO::TypeDesc::FLOAT, px);
+  const std::string path = write_vector_map("vector.exr");
   for (Scheme s : {Scheme::acc, Scheme::gregory, Scheme::exact}) {
     const SubdModel m = load_subd_model(kFrog, s);
     for (DisplacementSpace space : {DisplacementSpace::tangent, DisplacementSpace::object}) {
@@ -345,14 +350,7 @@ TEST_CASE("The displaced DS's batch form gives every point the scalar form's bit
   // Scalar, tangent-space and object-space maps (the map sampled four points at a time where they share
   // a LOD, the patch in lanes where its kind allows), bilinear and trilinear, varying factors, on
   // every patch of the frog under each scheme the render path batches, and one it does not.
-  const auto vector_map = DisplacementMap::load(kFrogMap, "R,G,A", 3);
-  std::vector<float> px;
-  for (int y = 0; y < 512; ++y)
-    for (int x = 0; x < 512; ++x) {
-      const glm::vec4 t = vector_map.texture().load(0, x, y);
-      px.insert(px.end(), {t.x - 0.5f, t.y - 0.5f, t.z});
-    }
-  const std::string vector_path = write_image("batch-vector.exr", 512, 512, 3, OIIO::TypeDesc::FLOAT, px);
+  const std::string vector_path = write_vector_map("batch-vector.exr");
   std::size_t compared = 0, mismatched = 0;
   for (const Scheme scheme : {Scheme::gregory, Scheme::acc, Scheme::bspline, Scheme::exact}) {
     const SubdModel m = load_subd_model(kFrog, scheme);

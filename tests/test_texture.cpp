@@ -459,9 +459,10 @@ TEST_CASE("texture: filter and address mode names round-trip", "[texture]") {
   CHECK_FALSE(parse_address_mode("").has_value());
 }
 
-TEST_CASE("texture: bilinear filtering of 3 and 4 channels gives the bits of the per-channel formula", "[texture][simd]") {
-  // The channels are filtered in SIMD lanes: each must be top * (1 - fv) + bottom * fv with top =
-  // t00 * (1 - fu) + t01 * fu (and bottom likewise), in that order, as the one-channel path computes it.
+TEST_CASE("texture: bilinear filtering of 3 and 4 channels gives the bits of the per-channel formula",
+          "[texture][simd]") {
+  // Each channel must be top * (1 - fv) + bottom * fv with top = t00 * (1 - fu) + t01 * fu (and bottom
+  // likewise), in that order: the formula the one-channel lanes (sample_level4) reproduce.
   for (const int channels : {3, 4}) {
     const int w = 37, h = 23;  // odd sizes: the last texel's fourth float lies past a 3-channel level
     std::vector<float> texels(std::size_t(w * h * channels));

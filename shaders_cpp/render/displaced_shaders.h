@@ -565,10 +565,10 @@ struct DisplacedPS {
     const float su = 1.0f / float(height->width()), sv = 1.0f / float(height->height());
     // The four central-difference taps share the pixel's derivatives, so one LOD: sampled at once.
     std::array<glm::vec4, 4> h;
-    height->sample_grad4(sampler,
-                         {uv + glm::vec2(su, 0.0f), uv - glm::vec2(su, 0.0f), uv + glm::vec2(0.0f, sv),
-                          uv - glm::vec2(0.0f, sv)},
-                         ddx, ddy, h);
+    height->sample_grad4(
+        sampler,
+        {uv + glm::vec2(su, 0.0f), uv - glm::vec2(su, 0.0f), uv + glm::vec2(0.0f, sv), uv - glm::vec2(0.0f, sv)}, ddx,
+        ddy, h);
     const float dhdu = height_scale * (h[0].x - h[1].x) / (2.0f * su);
     const float dhdv = height_scale * (h[2].x - h[3].x) / (2.0f * sv);
     glm::vec3 d = unit_or_zero(glm::cross(du + dhdu * n0, dv + dhdv * n0));
