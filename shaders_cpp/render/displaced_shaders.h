@@ -269,10 +269,10 @@ struct DisplacedDS {
     for (std::size_t k = 0; k < count; ++k)
       if (scale_lanes[k] > 0.0f && nn_lanes[k] <= 1e-10f * scale_lanes[k]) return false;
     const F8 len = simd::sqrt(nn);
-    std::array<float, 8> ux, uy, uz, len_lanes;
-    (nx / len).store(ux);
-    (ny / len).store(uy);
-    (nz / len).store(uz);
+    std::array<float, 8> nx_unit, ny_unit, nz_unit, len_lanes;
+    (nx / len).store(nx_unit);
+    (ny / len).store(ny_unit);
+    (nz / len).store(nz_unit);
     len.store(len_lanes);
     // prepare()'s interior branch: the UV bilinear in the patch's corner UVs (bilerp_uv), its
     // derivatives along u and v, and texture_derivatives' solve.
@@ -288,13 +288,13 @@ struct DisplacedDS {
       jb[i] = su * F8::splat(c[3][int(i)] - c[0][int(i)]) + u * F8::splat(c[2][int(i)] - c[1][int(i)]);
     }
     const F8 det = ja[0] * jb[1] - jb[0] * ja[1];
-    std::array<float, 8> ux_, uy_, uz_, vx_, vy_, vz_, det_lanes, uv0, uv1;
-    ((Ax * jb[1] - Bx * ja[1]) / det).store(ux_);
-    ((Ay * jb[1] - By * ja[1]) / det).store(uy_);
-    ((Az * jb[1] - Bz * ja[1]) / det).store(uz_);
-    ((Bx * ja[0] - Ax * jb[0]) / det).store(vx_);
-    ((By * ja[0] - Ay * jb[0]) / det).store(vy_);
-    ((Bz * ja[0] - Az * jb[0]) / det).store(vz_);
+    std::array<float, 8> dux, duy, duz, dvx, dvy, dvz, det_lanes, uv0, uv1;
+    ((Ax * jb[1] - Bx * ja[1]) / det).store(dux);
+    ((Ay * jb[1] - By * ja[1]) / det).store(duy);
+    ((Az * jb[1] - Bz * ja[1]) / det).store(duz);
+    ((Bx * ja[0] - Ax * jb[0]) / det).store(dvx);
+    ((By * ja[0] - Ay * jb[0]) / det).store(dvy);
+    ((Bz * ja[0] - Az * jb[0]) / det).store(dvz);
     det.store(det_lanes);
     uv[0].store(uv0);
     uv[1].store(uv1);
@@ -304,11 +304,11 @@ struct DisplacedDS {
       o.face = std::uint32_t(patch.face);
       base.face_location(patch, locations[i], o.u, o.v);
       o.patch_u = lu[k], o.patch_v = lv[k];
-      glm::vec3 n = len_lanes[k] > 0.0f ? glm::vec3(ux[k], uy[k], uz[k]) : glm::vec3(0.0f);
+      glm::vec3 n = len_lanes[k] > 0.0f ? glm::vec3(nx_unit[k], ny_unit[k], nz_unit[k]) : glm::vec3(0.0f);
       if (base.flip_normals) n = -n;
       glm::vec3 dpdu(ax[k], ay[k], az[k]), dpdv(bx[k], by[k], bz[k]);
       if (det_lanes[k] != 0.0f && std::isfinite(det_lanes[k]))
-        dpdu = glm::vec3(ux_[k], uy_[k], uz_[k]), dpdv = glm::vec3(vx_[k], vy_[k], vz_[k]);
+        dpdu = glm::vec3(dux[k], duy[k], duz[k]), dpdv = glm::vec3(dvx[k], dvy[k], dvz[k]);
       const glm::vec2 texcoord(uv0[k], uv1[k]);
       o.normal = n;
       o.dpdu = dpdu, o.dpdv = dpdv, o.uv = texcoord;
