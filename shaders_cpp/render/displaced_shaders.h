@@ -237,88 +237,6 @@ struct DisplacedDS {
     displace_pending();
   }
 
-  // prepare() of up to eight interior locations (0 < u, v < 1) of a quad patch, locations[first +
-  // group[k]] with their PatchPoints points[group[k]], in simd::F8 lanes: each lane computes SubdDS's
-  // and prepare()'s expressions on the same operands in the same order (glm's vec3 and vec2 operations
-  // are per component), and their branches are taken per lane. False, with nothing written, when a
-  // lane's derivatives are parallel (SubdDS then steps into the patch: left to prepare()).
-  bool prepare_interior8(std::uint32_t patch_id, std::span<const DomainLocation> locations, std::size_t first,
-                         const PatchPoint* points, const std::array<std::size_t, 8>& group, std::size_t count,
-                         std::span<DisplacedPoint> out) const {
-    using simd::F8;
-    const SubdPatch& patch = base.patches[patch_id];
-    std::array<float, 8> px, py, pz, ax, ay, az, bx, by, bz, lu, lv;
-    for (std::size_t k = 0; k < 8; ++k) {
-      const std::size_t j = group[k < count ? k : 0];  // a short group repeats its first point
-      const PatchPoint& p = points[j];
-      px[k] = p.position.x, py[k] = p.position.y, pz[k] = p.position.z;
-      ax[k] = p.du.x, ay[k] = p.du.y, az[k] = p.du.z;
-      bx[k] = p.dv.x, by[k] = p.dv.y, bz[k] = p.dv.z;
-      lu[k] = locations[first + j].u, lv[k] = locations[first + j].v;
-    }
-    const F8 Ax = F8::load(ax), Ay = F8::load(ay), Az = F8::load(az);
-    const F8 Bx = F8::load(bx), By = F8::load(by), Bz = F8::load(bz);
-    // SubdDS: n = cross(du, dv); the parallel-derivatives test on dot(n, n) against dot(du, du) *
-    // dot(dv, dv); the unit normal n / length(n), or zero.
-    const F8 nx = Ay * Bz - By * Az, ny = Az * Bx - Bz * Ax, nz = Ax * By - Bx * Ay;
-    const F8 nn = (nx * nx + ny * ny) + nz * nz;
-    const F8 scale = ((Ax * Ax + Ay * Ay) + Az * Az) * ((Bx * Bx + By * By) + Bz * Bz);
-    std::array<float, 8> nn_lanes, scale_lanes;
-    nn.store(nn_lanes);
-    scale.store(scale_lanes);
-    for (std::size_t k = 0; k < count; ++k)
-      if (scale_lanes[k] > 0.0f && nn_lanes[k] <= 1e-10f * scale_lanes[k]) return false;
-    const F8 len = simd::sqrt(nn);
-    std::array<float, 8> nx_unit, ny_unit, nz_unit, len_lanes;
-    (nx / len).store(nx_unit);
-    (ny / len).store(ny_unit);
-    (nz / len).store(nz_unit);
-    len.store(len_lanes);
-    // prepare()'s interior branch: the UV bilinear in the patch's corner UVs (bilerp_uv), its
-    // derivatives along u and v, and texture_derivatives' solve.
-    const auto& c = texcoords[patch_id].interior;
-    const F8 u = F8::load(lu), v = F8::load(lv), one = F8::splat(1.0f);
-    const F8 su = one - u, tv = one - v;
-    const auto splat2 = [](glm::vec2 a) { return std::array<F8, 2>{F8::splat(a.x), F8::splat(a.y)}; };
-    const auto c0 = splat2(c[0]), c1 = splat2(c[1]), c2 = splat2(c[2]), c3 = splat2(c[3]);
-    std::array<F8, 2> uv, ja, jb;
-    for (std::size_t i = 0; i < 2; ++i) {
-      uv[i] = tv * (su * c0[i] + u * c1[i]) + v * (su * c3[i] + u * c2[i]);
-      ja[i] = tv * F8::splat(c[1][int(i)] - c[0][int(i)]) + v * F8::splat(c[2][int(i)] - c[3][int(i)]);
-      jb[i] = su * F8::splat(c[3][int(i)] - c[0][int(i)]) + u * F8::splat(c[2][int(i)] - c[1][int(i)]);
-    }
-    const F8 det = ja[0] * jb[1] - jb[0] * ja[1];
-    std::array<float, 8> dux, duy, duz, dvx, dvy, dvz, det_lanes, uv0, uv1;
-    ((Ax * jb[1] - Bx * ja[1]) / det).store(dux);
-    ((Ay * jb[1] - By * ja[1]) / det).store(duy);
-    ((Az * jb[1] - Bz * ja[1]) / det).store(duz);
-    ((Bx * ja[0] - Ax * jb[0]) / det).store(dvx);
-    ((By * ja[0] - Ay * jb[0]) / det).store(dvy);
-    ((Bz * ja[0] - Az * jb[0]) / det).store(dvz);
-    det.store(det_lanes);
-    uv[0].store(uv0);
-    uv[1].store(uv1);
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t i = first + group[k];
-      DisplacedPoint& o = out[i];
-      o.face = std::uint32_t(patch.face);
-      base.face_location(patch, locations[i], o.u, o.v);
-      o.patch_u = lu[k], o.patch_v = lv[k];
-      glm::vec3 n = len_lanes[k] > 0.0f ? glm::vec3(nx_unit[k], ny_unit[k], nz_unit[k]) : glm::vec3(0.0f);
-      if (base.flip_normals) n = -n;
-      glm::vec3 dpdu(ax[k], ay[k], az[k]), dpdv(bx[k], by[k], bz[k]);
-      if (det_lanes[k] != 0.0f && std::isfinite(det_lanes[k]))
-        dpdu = glm::vec3(dux[k], duy[k], duz[k]), dpdv = glm::vec3(dvx[k], dvy[k], dvz[k]);
-      const glm::vec2 texcoord(uv0[k], uv1[k]);
-      o.normal = n;
-      o.dpdu = dpdu, o.dpdv = dpdv, o.uv = texcoord;
-      o.shade_dpdu = dpdu, o.shade_dpdv = dpdv, o.shade_uv = texcoord;
-      // positive_zero: + 0 turns a -0 into +0.
-      o.position = glm::vec3(px[k] + 0.0f, py[k] + 0.0f, pz[k] + 0.0f);
-    }
-    return true;
-  }
-
   // `evaluated`, when given, is the base patch's PatchPoint at `loc` (SubdDS::operator()).
   DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
                             std::uint32_t patch_id, const PatchPoint* evaluated = nullptr) const {
@@ -329,6 +247,7 @@ struct DisplacedDS {
     return out;
   }
 
+ private:
   Sampler sampler() const {
     Sampler s;
     s.filter = params.trilinear ? Filter::trilinear : Filter::bilinear;
@@ -443,7 +362,88 @@ struct DisplacedDS {
     }
   }
 
- private:
+  // prepare() of up to eight interior locations (0 < u, v < 1) of a quad patch, locations[first +
+  // group[k]] with their PatchPoints points[group[k]], in simd::F8 lanes: each lane computes SubdDS's
+  // and prepare()'s expressions on the same operands in the same order (glm's vec3 and vec2 operations
+  // are per component), and their branches are taken per lane. False, with nothing written, when a
+  // lane's derivatives are parallel (SubdDS then steps into the patch: left to prepare()).
+  bool prepare_interior8(std::uint32_t patch_id, std::span<const DomainLocation> locations, std::size_t first,
+                         const PatchPoint* points, const std::array<std::size_t, 8>& group, std::size_t count,
+                         std::span<DisplacedPoint> out) const {
+    using simd::F8;
+    const SubdPatch& patch = base.patches[patch_id];
+    std::array<float, 8> px, py, pz, ax, ay, az, bx, by, bz, lu, lv;
+    for (std::size_t k = 0; k < 8; ++k) {
+      const std::size_t j = group[k < count ? k : 0];  // a short group repeats its first point
+      const PatchPoint& p = points[j];
+      px[k] = p.position.x, py[k] = p.position.y, pz[k] = p.position.z;
+      ax[k] = p.du.x, ay[k] = p.du.y, az[k] = p.du.z;
+      bx[k] = p.dv.x, by[k] = p.dv.y, bz[k] = p.dv.z;
+      lu[k] = locations[first + j].u, lv[k] = locations[first + j].v;
+    }
+    const F8 Ax = F8::load(ax), Ay = F8::load(ay), Az = F8::load(az);
+    const F8 Bx = F8::load(bx), By = F8::load(by), Bz = F8::load(bz);
+    // SubdDS: n = cross(du, dv); the parallel-derivatives test on dot(n, n) against dot(du, du) *
+    // dot(dv, dv); the unit normal n / length(n), or zero.
+    const F8 nx = Ay * Bz - By * Az, ny = Az * Bx - Bz * Ax, nz = Ax * By - Bx * Ay;
+    const F8 nn = (nx * nx + ny * ny) + nz * nz;
+    const F8 scale = ((Ax * Ax + Ay * Ay) + Az * Az) * ((Bx * Bx + By * By) + Bz * Bz);
+    std::array<float, 8> nn_lanes, scale_lanes;
+    nn.store(nn_lanes);
+    scale.store(scale_lanes);
+    for (std::size_t k = 0; k < count; ++k)
+      if (scale_lanes[k] > 0.0f && nn_lanes[k] <= 1e-10f * scale_lanes[k]) return false;
+    const F8 len = simd::sqrt(nn);
+    std::array<float, 8> nx_unit, ny_unit, nz_unit, len_lanes;
+    (nx / len).store(nx_unit);
+    (ny / len).store(ny_unit);
+    (nz / len).store(nz_unit);
+    len.store(len_lanes);
+    // prepare()'s interior branch: the UV bilinear in the patch's corner UVs (bilerp_uv), its
+    // derivatives along u and v, and texture_derivatives' solve.
+    const auto& c = texcoords[patch_id].interior;
+    const F8 u = F8::load(lu), v = F8::load(lv), one = F8::splat(1.0f);
+    const F8 su = one - u, tv = one - v;
+    const auto splat2 = [](glm::vec2 a) { return std::array<F8, 2>{F8::splat(a.x), F8::splat(a.y)}; };
+    const auto c0 = splat2(c[0]), c1 = splat2(c[1]), c2 = splat2(c[2]), c3 = splat2(c[3]);
+    std::array<F8, 2> uv, ja, jb;
+    for (std::size_t i = 0; i < 2; ++i) {
+      uv[i] = tv * (su * c0[i] + u * c1[i]) + v * (su * c3[i] + u * c2[i]);
+      ja[i] = tv * F8::splat(c[1][int(i)] - c[0][int(i)]) + v * F8::splat(c[2][int(i)] - c[3][int(i)]);
+      jb[i] = su * F8::splat(c[3][int(i)] - c[0][int(i)]) + u * F8::splat(c[2][int(i)] - c[1][int(i)]);
+    }
+    const F8 det = ja[0] * jb[1] - jb[0] * ja[1];
+    std::array<float, 8> dux, duy, duz, dvx, dvy, dvz, det_lanes, uv0, uv1;
+    ((Ax * jb[1] - Bx * ja[1]) / det).store(dux);
+    ((Ay * jb[1] - By * ja[1]) / det).store(duy);
+    ((Az * jb[1] - Bz * ja[1]) / det).store(duz);
+    ((Bx * ja[0] - Ax * jb[0]) / det).store(dvx);
+    ((By * ja[0] - Ay * jb[0]) / det).store(dvy);
+    ((Bz * ja[0] - Az * jb[0]) / det).store(dvz);
+    det.store(det_lanes);
+    uv[0].store(uv0);
+    uv[1].store(uv1);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = first + group[k];
+      DisplacedPoint& o = out[i];
+      o.face = std::uint32_t(patch.face);
+      base.face_location(patch, locations[i], o.u, o.v);
+      o.patch_u = lu[k], o.patch_v = lv[k];
+      glm::vec3 n = len_lanes[k] > 0.0f ? glm::vec3(nx_unit[k], ny_unit[k], nz_unit[k]) : glm::vec3(0.0f);
+      if (base.flip_normals) n = -n;
+      glm::vec3 dpdu(ax[k], ay[k], az[k]), dpdv(bx[k], by[k], bz[k]);
+      if (det_lanes[k] != 0.0f && std::isfinite(det_lanes[k]))
+        dpdu = glm::vec3(dux[k], duy[k], duz[k]), dpdv = glm::vec3(dvx[k], dvy[k], dvz[k]);
+      const glm::vec2 texcoord(uv0[k], uv1[k]);
+      o.normal = n;
+      o.dpdu = dpdu, o.dpdv = dpdv, o.uv = texcoord;
+      o.shade_dpdu = dpdu, o.shade_dpdv = dpdv, o.shade_uv = texcoord;
+      // positive_zero: + 0 turns a -0 into +0.
+      o.position = glm::vec3(px[k] + 0.0f, py[k] + 0.0f, pz[k] + 0.0f);
+    }
+    return true;
+  }
+
   glm::vec3 oriented(const glm::vec3& n) const { return base.flip_normals ? -n : n; }
   // The limit surface's derivatives of face f along its edge from corner c (parameter t) and across it
   // (into the face), at that edge point (exact scheme, quads: corner c at (0,0),(1,0),(1,1),(0,1)).

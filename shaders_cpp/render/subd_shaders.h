@@ -567,22 +567,21 @@ struct ProjectingDS {
     for (std::size_t first = 0; first < locations.size(); first += kBlock) {
       const std::size_t n = std::min(kBlock, locations.size() - first);
       inner.samples(pc, cps, locations.subspan(first, n), patch_id, std::span<Sample>(samples.data(), n));
-      // Written in place, field by field: a whole vertex built on the stack and copied stalled on
-      // store forwarding (its narrow stores, then the copy's wide loads).
-      for (std::size_t k = 0; k < n; ++k) {
-        ClipVertex<N>& o = out[first + k];
-        o.position = clip_position(view_projection, z_bias, samples[k].position);
-        o.attributes = AttributesOf{}(samples[k]);
-      }
+      for (std::size_t k = 0; k < n; ++k) project(samples[k], out[first + k]);
     }
   }
   template <class Sample>
   auto project(const Sample& s) const {
-    const auto attributes = AttributesOf{}(s);
-    ClipVertex<std::tuple_size_v<decltype(attributes)>> out;
-    out.position = clip_position(view_projection, z_bias, s.position);
-    out.attributes = attributes;
+    ClipVertex<std::tuple_size_v<decltype(AttributesOf{}(s))>> out;
+    project(s, out);
     return out;
+  }
+  // Written in place, field by field: a whole vertex built on the stack and copied into the batch's
+  // array stalled on store forwarding (its narrow stores, then the copy's wide loads).
+  template <class Sample, std::size_t N>
+  void project(const Sample& s, ClipVertex<N>& out) const {
+    out.position = clip_position(view_projection, z_bias, s.position);
+    out.attributes = AttributesOf{}(s);
   }
 };
 

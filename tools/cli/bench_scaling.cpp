@@ -104,8 +104,10 @@ int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
     std::optional<Framebuffer> fb, resolved;
     const Framebuffer& image() const { return resolved ? *resolved : *fb; }
   };
-  // One frame of the scene on a device: clear, draw, resolve; the draws' report.
+  // One frame of the scene on a device: clear, draw, resolve; the draws' report. The torus and the
+  // frog are one draw into the run's cleared target (`draw`); a scene file's frame is render_scene's.
   std::function<DrawReport(Device&, Targets&)> frame;
+  std::function<DrawResult(Device&, Framebuffer&)> draw;
   std::optional<scenes::TorusScene> torus;
   std::unique_ptr<PreparedScene> subd;
   RenderSettings settings = o.s;
@@ -114,24 +116,16 @@ int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
     const int w = settings.camera.width, h = settings.camera.height;
     log_info("building the torus scene");
     torus = scenes::make_torus_scene(w, h);
-    frame = [&, draw = scenes::make_torus_draw(*torus, settings.factor, ts::Partitioning::integer, w, h)](
-                Device& device, Targets& t) {
-      device.clear(*t.fb, kBackgroundColor, 1.0f);
-      DrawResult r = device.draw(draw, *t.fb);
-      if (!r.ok()) throw InputError(r.error);
-      if (t.resolved) device.resolve(*t.fb, *t.resolved);
-      return r.report;
-    };
+    draw = [&, d = scenes::make_torus_draw(*torus, settings.factor, ts::Partitioning::integer, w, h)](
+               Device& device, Framebuffer& fb) { return device.draw(d, fb); };
   } else if (o.scene == "frog") {
     subd = prepare_bench_scene(settings);  // checks --msaa and the rest
-    frame = [&](Device& device, Targets& t) {
-      device.clear(*t.fb, kBackgroundColor, 1.0f);
+    draw = [&](Device& device, Framebuffer& fb) {
       DrawResult r =
           render_surface(device, subd->model, subd->displacement ? &*subd->displacement : nullptr, subd->factors,
-                         subd->settings.partitioning, SubdView::shaded, subd->view.camera, *t.fb);
-      if (!r.ok()) throw InputError(subd->settings.cage + ": " + r.error);
-      if (t.resolved) device.resolve(*t.fb, *t.resolved);
-      return r.report;
+                         subd->settings.partitioning, SubdView::shaded, subd->view.camera, fb);
+      if (!r.ok()) r.error = subd->settings.cage + ": " + r.error;
+      return r;
     };
   } else {
     settings = read_scene(o.scene);
@@ -142,6 +136,14 @@ int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
       return image.out.result.report;
     };
   }
+  if (draw)
+    frame = [&](Device& device, Targets& t) {
+      device.clear(*t.fb, kBackgroundColor, 1.0f);
+      const DrawResult r = draw(device, *t.fb);
+      if (!r.ok()) throw InputError(r.error);
+      if (t.resolved) device.resolve(*t.fb, *t.resolved);
+      return r.report;
+    };
   const int w = subd ? subd->view.width : settings.camera.width, h = subd ? subd->view.height : settings.camera.height;
   const int msaa = subd ? subd->settings.msaa : settings.msaa;
   const float factor = subd ? subd->settings.factor : settings.factor;
