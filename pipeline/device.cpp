@@ -57,13 +57,17 @@ void Device::finish_clear(Framebuffer& fb) {
   fb.finish_clear();
 }
 
-void Device::resolve(const Framebuffer& fb, Framebuffer& out) {
-  // Every pixel of `out` is written below: a clear pending there is void.
-  out.cancel_clear();
+void Device::resolve(const Framebuffer& fb, Framebuffer& out, ResolvedPlanes planes) {
+  // Every pixel of `out` is written below: a clear pending there is void, or, when its depth is not
+  // written, that plane's clear is kept.
+  if (planes == ResolvedPlanes::color_and_depth)
+    out.cancel_clear();
+  else
+    finish_clear(out);
   constexpr int kRows = 16;  // rows per task (a row of a 1920-wide 8x target is 60 KB of colour)
   detail::arena_execute(*arena_, [&] {
     detail::parallel_for(tbb::blocked_range<int>(0, (fb.height() + kRows - 1) / kRows, 1), [&](const auto& r) {
-      fb.resolve_rows(out, r.begin() * kRows, std::min(r.end() * kRows, fb.height()));
+      fb.resolve_rows(out, r.begin() * kRows, std::min(r.end() * kRows, fb.height()), planes);
     });
   });
 }

@@ -370,8 +370,9 @@ class Device {
   // Writes fb's pending clear, if any, on the device's threads (tile by tile).
   void finish_clear(Framebuffer& fb);
   // Framebuffer::resolve into `out` (single-sampled, of fb's size and format) on the device's threads
-  // (bands of rows); the same bytes. A clear pending on `out` is dropped: every pixel is written.
-  void resolve(const Framebuffer& fb, Framebuffer& out);
+  // (bands of rows); the same bytes. A clear pending on `out` is dropped where every pixel is written
+  // (both planes), else written first (its depth stays).
+  void resolve(const Framebuffer& fb, Framebuffer& out, ResolvedPlanes planes = ResolvedPlanes::color_and_depth);
 
   template <class Vertex, class Vs, class Hs, class Ds, class Ps>
   DrawResult draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer& fb);

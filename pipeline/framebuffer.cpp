@@ -61,10 +61,11 @@ Framebuffer::StoredClear Framebuffer::stored_clear(glm::vec4 c, float d) const {
   return v;
 }
 
-void Framebuffer::fill(std::size_t begin, std::size_t end, const StoredClear& v) {
+void Framebuffer::fill(std::size_t begin, std::size_t end, const StoredClear& v, ResolvedPlanes planes) {
   if (begin == end) return;
   const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
-  std::fill(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end), v.depth);
+  if (planes == ResolvedPlanes::color_and_depth)
+    std::fill(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end), v.depth);
   // The first pixels one by one, the rest copied from them.
   std::uint8_t* first = &color_[begin * pixel_bytes];
   const std::size_t run = std::min<std::size_t>(end - begin, 256);
@@ -73,13 +74,13 @@ void Framebuffer::fill(std::size_t begin, std::size_t end, const StoredClear& v)
     std::memcpy(&color_[i * pixel_bytes], first, std::min(run, end - i) * pixel_bytes);
 }
 
-void Framebuffer::fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v) {
+void Framebuffer::fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v, ResolvedPlanes planes) {
   if (samples_ == 1) {
-    for (int y = y0; y < y1; ++y) fill(index(x0, y), index(x0, y) + std::size_t(x1 - x0), v);
+    for (int y = y0; y < y1; ++y) fill(index(x0, y), index(x0, y) + std::size_t(x1 - x0), v, planes);
     return;
   }
   // Quad rows: a row's quads [x0 / 2, (x1 + 1) / 2) are adjacent, all their samples together.
-  for (int qy = y0 >> 1; 2 * qy < y1; ++qy) fill(quad_index(x0 >> 1, qy), quad_index((x1 + 1) >> 1, qy), v);
+  for (int qy = y0 >> 1; 2 * qy < y1; ++qy) fill(quad_index(x0 >> 1, qy), quad_index((x1 + 1) >> 1, qy), v, planes);
 }
 
 void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
@@ -136,16 +137,16 @@ void Framebuffer::set_other_samples(int x, int y, glm::vec4 c) {
   for (int s = 1; s < samples_; ++s) set_sample_color(index(x, y) + sample_offset(s), c);
 }
 
-Framebuffer Framebuffer::resolve() const {
+Framebuffer Framebuffer::resolve(ResolvedPlanes planes) const {
   Framebuffer out(width_, height_, format_, 1);
-  resolve_rows(out, 0, height_);
+  resolve_rows(out, 0, height_, planes);
   return out;
 }
 
-void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
+void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1, ResolvedPlanes planes) const {
   if (y0 >= y1) return;
   if (!pending_) {
-    resolve_block(out, 0, width_, y0, y1);
+    resolve_block(out, 0, width_, y0, y1, planes);
     return;
   }
   // Under a pending clear, band by band of tile rows (tiles are an even number of pixels from 0, so
@@ -158,9 +159,9 @@ void Framebuffer::resolve_rows(Framebuffer& out, int y0, int y1) const {
     for (int column = 0; column < pending_->columns; ++column) {
       const int x0 = column * size, x1 = std::min(x0 + size, width_);
       if (pending_->marked[std::size_t(row * pending_->columns + column)])
-        out.fill_rect(x0, band, x1, band_end, resolved);
+        out.fill_rect(x0, band, x1, band_end, resolved, planes);
       else
-        resolve_block(out, x0, x1, band, band_end);
+        resolve_block(out, x0, x1, band, band_end, planes);
     }
     band = band_end;
   }
@@ -190,16 +191,18 @@ Framebuffer::StoredClear Framebuffer::resolved_clear(const StoredClear& v) const
   return r;
 }
 
-void Framebuffer::resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1) const {
+void Framebuffer::resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1, ResolvedPlanes planes) const {
   // Quad by quad: its samples are adjacent, sample s of its four pixels at 4 s, summed (and the
   // nearest depth taken) in sample order, the same sums and minima as one pixel at a time.
   const bool bytes = format_ == ColorFormat::rgba8_unorm;
+  const bool with_depth = planes == ResolvedPlanes::color_and_depth;
   if (samples_ == 1) {  // the same layout: a copy, row by row
     const std::size_t pixel_bytes = bytes ? 4 : 16;
     for (int y = y0; y < y1; ++y) {
       const std::size_t begin = index(x0, y), end = begin + std::size_t(x1 - x0);
-      std::copy(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end),
-                out.depth_.begin() + std::ptrdiff_t(begin));
+      if (with_depth)
+        std::copy(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end),
+                  out.depth_.begin() + std::ptrdiff_t(begin));
       std::copy(color_.begin() + std::ptrdiff_t(begin * pixel_bytes),
                 color_.begin() + std::ptrdiff_t(end * pixel_bytes),
                 out.color_.begin() + std::ptrdiff_t(begin * pixel_bytes));
@@ -215,27 +218,30 @@ void Framebuffer::resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1
       // and summed, the depths' minimum as std::min takes it ((d < n) ? d : n is minps(d, n)).
       if (bytes && 2 * qx + 1 < width_ && 2 * qy >= y0 && 2 * qy + 1 < y1) {
         __m256i sum = _mm256_set1_epi16(std::int16_t(samples_ / 2));
-        __m128 near = _mm_loadu_ps(&depth_[q]);
         for (int s = 0; s < samples_; ++s) {
           const std::size_t e = q + sample_offset(s);
           sum = _mm256_add_epi16(
               sum, _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&color_[e * 4]))));
-          if (s > 0) near = _mm_min_ps(_mm_loadu_ps(&depth_[e]), near);
         }
         const __m256i mean = _mm256_srli_epi16(sum, shift);
         const __m128i rgba = _mm_packus_epi16(_mm256_castsi256_si128(mean), _mm256_extracti128_si256(mean, 1));
         const std::size_t top = out.index(2 * qx, 2 * qy), bottom = top + std::size_t(width_);
         _mm_storel_epi64(reinterpret_cast<__m128i*>(&out.color_[top * 4]), rgba);
         _mm_storel_epi64(reinterpret_cast<__m128i*>(&out.color_[bottom * 4]), _mm_srli_si128(rgba, 8));
-        _mm_storel_pi(reinterpret_cast<__m64*>(&out.depth_[top]), near);
-        _mm_storeh_pi(reinterpret_cast<__m64*>(&out.depth_[bottom]), near);
+        if (with_depth) {
+          __m128 near = _mm_loadu_ps(&depth_[q]);
+          for (int s = 1; s < samples_; ++s) near = _mm_min_ps(_mm_loadu_ps(&depth_[q + sample_offset(s)]), near);
+          _mm_storel_pi(reinterpret_cast<__m64*>(&out.depth_[top]), near);
+          _mm_storeh_pi(reinterpret_cast<__m64*>(&out.depth_[bottom]), near);
+        }
         continue;
       }
 #endif
       float nearest[4];
       std::copy_n(&depth_[q], 4, nearest);
-      for (int s = 1; s < samples_; ++s)
-        for (std::size_t k = 0; k < 4; ++k) nearest[k] = std::min(nearest[k], depth_[q + sample_offset(s) + k]);
+      if (with_depth)
+        for (int s = 1; s < samples_; ++s)
+          for (std::size_t k = 0; k < 4; ++k) nearest[k] = std::min(nearest[k], depth_[q + sample_offset(s) + k]);
       alignas(16) std::uint8_t rgba8[16];  // [pixel][channel]
       alignas(16) float mean[16];
       if (bytes) {
@@ -262,7 +268,7 @@ void Framebuffer::resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1
         const int x = 2 * qx + (k & 1), y = 2 * qy + (k >> 1);
         if (x >= width_ || y < y0 || y >= y1) continue;
         const std::size_t o = out.index(x, y);
-        out.depth_[o] = nearest[k];
+        if (with_depth) out.depth_[o] = nearest[k];
         if (bytes)
           std::memcpy(&out.color_[o * 4], &rgba8[4 * k], 4);
         else

@@ -41,6 +41,8 @@
 namespace tessera {
 
 enum class ColorFormat : std::uint8_t { rgba8_unorm, rgba32_float };
+// What a resolve writes into its single-sampled target.
+enum class ResolvedPlanes : std::uint8_t { color_and_depth, color };
 
 inline constexpr int kMaxRenderTargetSize = 16384;  // D3D11_REQ_RENDER_TO_BUFFER_WINDOW_WIDTH
 
@@ -65,10 +67,14 @@ class Framebuffer {
   // The single-sampled target of the average of each pixel's samples (D3D11's ResolveSubresource with a
   // box filter): RGBA8 as the rounded mean of the samples' bytes, RGBA32F as their mean summed in sample
   // order; depth is the nearest sample's (overlays test against it). A copy when samples() == 1.
-  Framebuffer resolve() const;
+  // ResolvedPlanes::color resolves the colour alone, as ResolveSubresource does (D3D11 resolves no depth
+  // format): a frame that only shows or writes its colour does not read its depth samples, half of a
+  // resolve's input. The new target's depth is then 1.0 everywhere, as created.
+  Framebuffer resolve(ResolvedPlanes planes = ResolvedPlanes::color_and_depth) const;
   // resolve() of rows [y0, y1) into `out`, a single-sampled target of this size and format: disjoint
-  // row ranges may be resolved by different threads (Device::resolve does).
-  void resolve_rows(Framebuffer& out, int y0, int y1) const;
+  // row ranges may be resolved by different threads (Device::resolve does). With ResolvedPlanes::color,
+  // out's depth is left as it was.
+  void resolve_rows(Framebuffer& out, int y0, int y1, ResolvedPlanes planes = ResolvedPlanes::color_and_depth) const;
 
   // Ends any pending clear (its tiles are overwritten too).
   void clear(glm::vec4 color, float depth) {
@@ -289,16 +295,19 @@ class Framebuffer {
     float depth = 1.0f;
   };
   StoredClear stored_clear(glm::vec4 c, float d) const;
-  // Elements [begin, end) of both buffers set to `v`.
-  void fill(std::size_t begin, std::size_t end, const StoredClear& v);
-  // Pixels [x0, x1) x [y0, y1) set to `v`; on a multisampled target x0 and y0 are even (whole quads:
-  // a quad padding an odd width or height is filled with its pixels).
-  void fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v);
+  // Elements [begin, end) of the colour buffer, and of the depth buffer unless `planes` is colour
+  // only, set to `v`.
+  void fill(std::size_t begin, std::size_t end, const StoredClear& v,
+            ResolvedPlanes planes = ResolvedPlanes::color_and_depth);
+  // Pixels [x0, x1) x [y0, y1) set to `v`, as fill; on a multisampled target x0 and y0 are even (whole
+  // quads: a quad padding an odd width or height is filled with its pixels).
+  void fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v,
+                 ResolvedPlanes planes = ResolvedPlanes::color_and_depth);
   // What resolve_block makes of a pixel whose samples all hold `v`.
   StoredClear resolved_clear(const StoredClear& v) const;
   // resolve_rows of pixels [x0, x1) x [y0, y1), ignoring any pending clear; x0 even on a multisampled
   // target.
-  void resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1) const;
+  void resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1, ResolvedPlanes planes) const;
   void expect_no_pending_clear(const char* reader) const {
     if (pending_) throw std::logic_error(std::string("Framebuffer::") + reader + " with a clear pending");
   }

@@ -3,6 +3,7 @@
 // clear values, or finish_clear wrote it.
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -87,6 +88,22 @@ TEST_CASE("tile clear: a frame cleared by tiles has the bytes of one cleared at 
           const Framebuffer serial = by_tiles.resolve();
           CHECK(serial.color_bytes() == expected.color_bytes());
           CHECK(serial.depth_values() == expected.depth_values());
+          // The colour alone: the same colour bytes, the target's depth as it was (or, with a clear
+          // pending on it, that clear's), and a new target's depth as created.
+          Framebuffer color_only = target(w, h, f, 1);
+          const std::vector<float> depth_before = color_only.depth_values();
+          device.resolve(by_tiles, color_only, ResolvedPlanes::color);
+          CHECK(color_only.color_bytes() == expected.color_bytes());
+          CHECK(color_only.depth_values() == depth_before);
+          Framebuffer pending_out = target(w, h, f, 1);
+          pending_out.clear_by_tiles(glm::vec4(0.5f), 0.75f, tile);
+          device.resolve(at_once, pending_out, ResolvedPlanes::color);
+          CHECK(pending_out.pending_clear_tile_size() == 0);
+          CHECK(pending_out.color_bytes() == expected.color_bytes());
+          CHECK(pending_out.depth_values() == std::vector<float>(depth_before.size(), 0.75f));
+          const Framebuffer serial_color = by_tiles.resolve(ResolvedPlanes::color);
+          CHECK(serial_color.color_bytes() == expected.color_bytes());
+          CHECK(serial_color.depth_values() == std::vector<float>(depth_before.size(), 1.0f));
         }
         device.finish_clear(by_tiles);
         CHECK(by_tiles.pending_clear_tile_size() == 0);

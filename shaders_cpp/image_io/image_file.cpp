@@ -23,7 +23,7 @@ std::string write_image_atomically(const std::string& path, int width, int heigh
 }
 
 std::string write_color(const Framebuffer& fb, const ImageTarget& target) {
-  if (fb.samples() > 1) return write_color(fb.resolve(), target);
+  if (fb.samples() > 1) return write_color(fb.resolve(ResolvedPlanes::color), target);
   const bool is_float = fb.format() == ColorFormat::rgba32_float;
   return write_image(target, plain_layout(target.path, fb.width(), fb.height(), 4, is_float),
                      is_float ? PixelType::f32 : PixelType::u8, fb.color_bytes().data());

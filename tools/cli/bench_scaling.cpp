@@ -141,7 +141,7 @@ int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
       device.clear(*t.fb, kBackgroundColor, 1.0f);
       const DrawResult r = draw(device, *t.fb);
       if (!r.ok()) throw InputError(r.error);
-      if (t.resolved) device.resolve(*t.fb, *t.resolved);
+      if (t.resolved) device.resolve(*t.fb, *t.resolved, ResolvedPlanes::color);  // as ResolveSubresource
       return r.report;
     };
   const int w = subd ? subd->view.width : settings.camera.width, h = subd ? subd->view.height : settings.camera.height;

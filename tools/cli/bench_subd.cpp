@@ -50,7 +50,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.s.msaa);
   if (!fb) throw UsageError("--resolution: " + error);  // prepare_scene has checked --msaa
-  // A multisampled frame ends with its resolve, into a target made once (as a swap chain's).
+  // A multisampled frame ends with its colour's resolve (as ResolveSubresource), into a target made
+  // once (as a swap chain's).
   auto resolved = o.s.msaa > 1 ? Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error) : std::nullopt;
 
   using Clock = std::chrono::steady_clock;
@@ -65,7 +66,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
       device.clear(*fb, kBackgroundColor, 1.0f);
       const DrawResult r = render_surface(device, model, d, f, partitioning, SubdView::shaded, camera, *fb);
       if (!r.ok()) throw InputError(cage + ": " + r.error);
-      if (resolved) device.resolve(*fb, *resolved);  // also writes the tiles no draw entered
+      if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
       if (k > 0) t.frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
       t.last = r.report;
     }

@@ -122,8 +122,8 @@ int run_bench_torus(const TorusOptions& o) {
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, msaa_option(o.msaa));
   if (!fb) throw UsageError("--resolution: " + error);
-  // A multisampled frame ends with its resolve, as a GPU's frame would before display, into a target
-  // made once (as a swap chain's).
+  // A multisampled frame ends with its colour's resolve, as a GPU's frame would before display
+  // (ResolveSubresource: colour only), into a target made once (as a swap chain's).
   auto resolved = o.msaa > 1 ? Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error) : std::nullopt;
   log_info("building the torus scene");
   const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
@@ -142,7 +142,7 @@ int run_bench_torus(const TorusOptions& o) {
       const auto start = std::chrono::steady_clock::now();
       device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
       DrawResult r = device.draw(draw, *fb);
-      if (resolved) device.resolve(*fb, *resolved);  // also writes the tiles no draw entered
+      if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (!r.ok()) throw InputError(r.error);
       if (frame > 0) round_times.push_back(s);  // frame 0 warms caches and allocations, as the harness does
