@@ -181,6 +181,18 @@ TEST_CASE("tessera bench torus: bad arguments are one-line usage errors", "[cli]
     CHECK_THAT(m.err, Catch::Contains("--msaa: 3 is not 1, 2, 4, 8 or 16"));
   }
   CHECK_FALSE(fs::exists(png));
+  // The device options, shared by both scenes: each bad value is refused, naming its option.
+  for (const char* command : {"bench torus --frames 1", "bench frog --frames 1"})
+    for (const auto& [args, option] : {std::pair{" --tile-size 7", "--tile-size"},
+                                       {" --tile-size 2048", "--tile-size"},
+                                       {" --chunks-in-flight -1", "--chunks-in-flight"},
+                                       {" --rounds-in-flight 1", "--rounds-in-flight"}}) {
+      INFO(command << args);
+      const auto m = run_cli(std::string(command) + args);
+      CHECK(m.exit_code == 2);
+      CHECK(lines(m.err) == 1);
+      CHECK_THAT(m.err, Catch::Contains(option));
+    }
 }
 
 TEST_CASE("tessera bench torus --rounds takes turns with the harness and reports the median ratio", "[cli][pipeline]") {

@@ -300,7 +300,8 @@ Runner add_bench_scaling_command(CLI::App& bench) {
   cmd->add_option("--cage", o->s.cage, "--scene frog: the cage (default: the monster frog shipped with tessera)");
   add_model_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->remove_option(cmd->get_option("--threads"));  // the command's own subject
-  cmd->add_option("--msaa", o->s.msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
+  cmd->add_option("--msaa", o->s.msaa,
+                  "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per thread count (after one warm-up)")->capture_default_str();
   cmd->add_option("--max-threads", o->max_threads, "the largest thread count (0: all cores)")->capture_default_str();

@@ -9,7 +9,7 @@
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/displaced_render.h"
 #include "shaders_cpp/render/subd_render.h"
-#include "tools/cli/bench_rounds.h"
+#include "tools/cli/bench_device_options.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -24,14 +24,14 @@ struct BenchSubdOptions {
   RenderSettings s;  // s.cage empty: the monster frog shipped beside the binary (shared_data_file)
   std::string output;
   int frames = 5;
-  BenchRounds pipelining;
+  BenchDeviceOptions device;
   bool json = false, compare_cull = false;
 };
 
 int run_bench_subd(const BenchSubdOptions& o) {
   if (o.frames < 1 || o.frames > 1000) throw UsageError("--frames: must be in 1..1000");
   DeviceOptions dopt = device_options(o.s.threads);
-  o.pipelining.apply(dopt);
+  o.device.apply(dopt);
   const std::string cage = cage_or_shipped_frog(o.s.cage);
   check_output_paths({{"-o", o.output}}, {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
   // The scene library's one route from settings to a model, its view and factors.
@@ -168,9 +168,10 @@ Runner add_bench_subd_command(CLI::App& bench) {
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
   add_model_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
-  cmd->add_option("--msaa", o->s.msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
+  cmd->add_option("--msaa", o->s.msaa,
+                  "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
       ->capture_default_str();
-  o->pipelining.add_options(*cmd);
+  o->device.add_options(*cmd);
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");
   cmd->add_flag("--compare-cull", o->compare_cull,

@@ -17,7 +17,7 @@
 #include "pipeline/device.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/torus_scene.h"
-#include "tools/cli/bench_rounds.h"
+#include "tools/cli/bench_device_options.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -39,9 +39,8 @@ struct TorusOptions {
   std::string output;
   std::string stats;
   std::string llvmpipe;
-  int tile_size = DeviceOptions{}.tile_size;
   std::size_t chunk_primitives = DeviceOptions{}.chunk_primitives;
-  BenchRounds pipelining;
+  BenchDeviceOptions device;
   int window_patches = DeviceOptions{}.window_patches;
   bool json = false;
 };
@@ -100,8 +99,6 @@ int run_bench_torus(const TorusOptions& o) {
   if (o.rounds < 1 || o.rounds > 100) throw UsageError("--rounds: must be in 1..100");
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}}, {});
   // The device would clamp these silently; a benchmark must run what it was asked to.
-  if (o.tile_size < 8 || o.tile_size > 1024 || o.tile_size % 2 != 0)
-    throw UsageError("--tile-size: " + std::to_string(o.tile_size) + " is not an even size in 8..1024");
   if (o.chunk_primitives < 64 || o.chunk_primitives > (std::size_t(1) << 24))
     throw UsageError("--chunk-primitives: " + std::to_string(o.chunk_primitives) + " is not in 64..16777216");
   if (o.window_patches < 1 || o.window_patches > (1 << 20))
@@ -114,9 +111,8 @@ int run_bench_torus(const TorusOptions& o) {
   if (!o.llvmpipe.empty()) check_llvmpipe(o, partitioning);
 
   DeviceOptions dopt = device_options(o.threads);
-  dopt.tile_size = o.tile_size;
   dopt.chunk_primitives = o.chunk_primitives;
-  o.pipelining.apply(dopt);
+  o.device.apply(dopt);
   dopt.window_patches = o.window_patches;
   Device device(dopt);
   std::string error;
@@ -262,14 +258,14 @@ Runner add_bench_torus_command(CLI::App& bench) {
          "measure this many times, taking turns with --llvmpipe; its speedup is the median of the rounds' ratios")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads, 0 = all")->capture_default_str();
-  cmd->add_option("--msaa", o->msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes the resolve)")
+  cmd->add_option("--msaa", o->msaa,
+                  "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
       ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times and memory as JSON");
   cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");
-  cmd->add_option("--tile-size", o->tile_size, "screen tile size in pixels")->capture_default_str();
   cmd->add_option("--chunk-primitives", o->chunk_primitives, "primitives per geometry chunk")->capture_default_str();
-  o->pipelining.add_options(*cmd);
+  o->device.add_options(*cmd);
   cmd->add_option("--window-patches", o->window_patches, "patches through the vertex and hull shaders at once")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print results as JSON");

@@ -1,5 +1,5 @@
-// The benchmarks' pipelining options (--chunks-in-flight, --rounds-in-flight): one definition for every
-// `bench` scene that takes them, so their ranges, help and defaults cannot drift apart. Out-of-range
+// The benchmarks' device options (--tile-size, --chunks-in-flight, --rounds-in-flight): one definition
+// for every `bench` scene that takes them, so their ranges, help and defaults cannot drift apart. Out-of-range
 // values are usage errors (the device would clamp them silently; a benchmark runs what it was asked).
 #pragma once
 
@@ -11,11 +11,13 @@
 
 namespace tessera::cli {
 
-struct BenchRounds {
+struct BenchDeviceOptions {
+  int tile_size = DeviceOptions{}.tile_size;
   int chunks_in_flight = 0;  // 0: the device's default
   int rounds_in_flight = 0;  // 0: the device's default
 
   void add_options(CLI::App& cmd) {
+    cmd.add_option("--tile-size", tile_size, "screen tile size in pixels (even, 8..1024)")->capture_default_str();
     cmd.add_option("--chunks-in-flight", chunks_in_flight,
                    "chunks produced per round, 0 = the device's default (4 x threads, at least 4)")
         ->capture_default_str();
@@ -26,10 +28,13 @@ struct BenchRounds {
   }
   // Checks the values (UsageError naming the option) and sets them on `o`.
   void apply(DeviceOptions& o) const {
+    if (tile_size < 8 || tile_size > 1024 || tile_size % 2 != 0)
+      throw UsageError("--tile-size: " + std::to_string(tile_size) + " is not an even size in 8..1024");
     if (chunks_in_flight < 0 || chunks_in_flight > 4096)
       throw UsageError("--chunks-in-flight: " + std::to_string(chunks_in_flight) + " is not in 0..4096");
     if (rounds_in_flight != 0 && (rounds_in_flight < 2 || rounds_in_flight > 64))
       throw UsageError("--rounds-in-flight: " + std::to_string(rounds_in_flight) + " is not 0 or in 2..64");
+    o.tile_size = tile_size;
     o.chunks_in_flight = chunks_in_flight;
     o.rounds_in_flight = rounds_in_flight;
   }
