@@ -66,12 +66,25 @@ void Framebuffer::fill(std::size_t begin, std::size_t end, const StoredClear& v,
   const std::size_t pixel_bytes = format_ == ColorFormat::rgba8_unorm ? 4 : 16;
   if (planes == ResolvedPlanes::color_and_depth)
     std::fill(depth_.begin() + std::ptrdiff_t(begin), depth_.begin() + std::ptrdiff_t(end), v.depth);
+#if defined(__AVX2__)
+  // 32 bytes (8 RGBA8 pixels or 2 RGBA32F ones) a store: the copies below, a loop of 4-byte moves and
+  // a memcpy, were half of a 4x frame's clear (each entered tile's 128 KB).
+  __m128i pixel = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v.color));  // 16 bytes: 1 or 4 pixels
+  if (pixel_bytes == 4) pixel = _mm_shuffle_epi32(pixel, 0);
+  const __m256i pattern = _mm256_broadcastsi128_si256(pixel);
+  std::uint8_t* out = &color_[begin * pixel_bytes];
+  const std::size_t bytes = (end - begin) * pixel_bytes;
+  std::size_t i = 0;
+  for (; i + 32 <= bytes; i += 32) _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), pattern);
+  for (; i < bytes; i += pixel_bytes) std::memcpy(out + i, v.color, pixel_bytes);
+#else
   // The first pixels one by one, the rest copied from them.
   std::uint8_t* first = &color_[begin * pixel_bytes];
   const std::size_t run = std::min<std::size_t>(end - begin, 256);
   for (std::size_t i = 0; i < run; ++i) std::memcpy(first + i * pixel_bytes, v.color, pixel_bytes);
   for (std::size_t i = begin + run; i < end; i += run)
     std::memcpy(&color_[i * pixel_bytes], first, std::min(run, end - i) * pixel_bytes);
+#endif
 }
 
 void Framebuffer::fill_rect(int x0, int y0, int x1, int y1, const StoredClear& v, ResolvedPlanes planes) {

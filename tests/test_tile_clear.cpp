@@ -1,6 +1,7 @@
 // A clear written tile by tile (Framebuffer::clear_by_tiles, Device::clear): every pixel a reader sees
 // has the bytes of an immediate clear, whether a draw entered its tile, the resolve wrote it from the
 // clear values, or finish_clear wrote it.
+#include <cstring>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -170,6 +171,35 @@ TEST_CASE("tile clear: whole-buffer readers and row clears refuse a target with 
   for (int y = 0; y < 30; ++y)
     for (int x = 0; x < 40; ++x) wrong += fb.sample_depth(x, y, 3) != 0.5f;
   CHECK(wrong == 0);
+}
+
+TEST_CASE("tile clear: a clear writes its colour and depth to every sample, for any run of pixels", "[raster]") {
+  // Widths 1..40 give every run length of a row (the clear stores 32 bytes at a time, then the rest
+  // pixel by pixel); both formats, single and multisampled, cleared at once and by tiles.
+  const glm::vec4 color(0.2f, 0.4f, 0.6f, 0.8f);
+  const std::uint8_t rgba8[4] = {51, 102, 153, 204};  // float_to_unorm8 of each channel
+  for (const int samples : {1, 4})
+    for (const ColorFormat f : {ColorFormat::rgba8_unorm, ColorFormat::rgba32_float})
+      for (int w = 1; w <= 40; ++w) {
+        INFO(samples << " samples, format " << int(f) << ", width " << w);
+        for (const bool by_tiles : {false, true}) {
+          Framebuffer fb = target(w, 3, f, samples);
+          if (by_tiles) {
+            fb.clear_by_tiles(color, 0.5f, 8);
+            fb.finish_clear();
+          } else {
+            fb.clear(color, 0.5f);
+          }
+          const std::vector<std::uint8_t>& bytes = fb.color_bytes();
+          const std::size_t pixel_bytes = f == ColorFormat::rgba8_unorm ? 4 : 16;
+          bool all = true;
+          for (std::size_t i = 0; i < bytes.size(); i += pixel_bytes)
+            all = all && (f == ColorFormat::rgba8_unorm ? std::memcmp(&bytes[i], rgba8, 4) == 0
+                                                        : std::memcmp(&bytes[i], &color[0], 16) == 0);
+          CHECK(all);
+          CHECK(fb.depth_values() == std::vector<float>(fb.depth_values().size(), 0.5f));
+        }
+      }
 }
 
 }  // namespace tessera
