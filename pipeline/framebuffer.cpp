@@ -250,11 +250,12 @@ void Framebuffer::resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1
         continue;
       }
 #endif
-      float nearest[4];
-      std::copy_n(&depth_[q], 4, nearest);
-      if (with_depth)
+      float nearest[4] = {};
+      if (with_depth) {
+        std::copy_n(&depth_[q], 4, nearest);
         for (int s = 1; s < samples_; ++s)
           for (std::size_t k = 0; k < 4; ++k) nearest[k] = std::min(nearest[k], depth_[q + sample_offset(s) + k]);
+      }
       alignas(16) std::uint8_t rgba8[16];  // [pixel][channel]
       alignas(16) float mean[16];
       if (bytes) {

@@ -1,6 +1,7 @@
 // The benchmarks' device options (--tile-size, --chunks-in-flight, --rounds-in-flight): one definition
-// for every `bench` scene that takes them, so their ranges, help and defaults cannot drift apart. Out-of-range
-// values are usage errors (the device would clamp them silently; a benchmark runs what it was asked).
+// for every `bench` scene that takes them, so their ranges, help and defaults cannot drift apart.
+// Out-of-range values are usage errors (the device would clamp them silently; a benchmark runs what it
+// was asked).
 #pragma once
 
 #include <CLI/CLI.hpp>
