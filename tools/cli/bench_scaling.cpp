@@ -27,6 +27,7 @@
 #include "shaders_cpp/render/displaced_render.h"
 #include "shaders_cpp/render/subd_render.h"
 #include "shaders_cpp/render/torus_scene.h"
+#include "tools/cli/bench_options.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -300,9 +301,7 @@ Runner add_bench_scaling_command(CLI::App& bench) {
   cmd->add_option("--cage", o->s.cage, "--scene frog: the cage (default: the monster frog shipped with tessera)");
   add_model_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->remove_option(cmd->get_option("--threads"));  // the command's own subject
-  cmd->add_option("--msaa", o->s.msaa,
-                  "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
-      ->capture_default_str();
+  add_bench_msaa_option(*cmd, o->s.msaa);
   cmd->add_option("--frames", o->frames, "timed frames per thread count (after one warm-up)")->capture_default_str();
   cmd->add_option("--max-threads", o->max_threads, "the largest thread count (0: all cores)")->capture_default_str();
   cmd->add_flag("--ceiling", o->ceiling,

@@ -9,7 +9,7 @@
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/displaced_render.h"
 #include "shaders_cpp/render/subd_render.h"
-#include "tools/cli/bench_device_options.h"
+#include "tools/cli/bench_options.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -168,9 +168,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
   cmd->add_option("--cage", o->s.cage, "the cage (default: the monster frog shipped with tessera)");
   add_model_settings_options(*cmd, o->s, PatchCullMode::all);
   cmd->add_option("--frames", o->frames, "timed frames (after one warm-up)")->capture_default_str();
-  cmd->add_option("--msaa", o->s.msaa,
-                  "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
-      ->capture_default_str();
+  add_bench_msaa_option(*cmd, o->s.msaa);
   o->device.add_options(*cmd);
   cmd->add_option("-o,--output", o->output, "write the last frame");
   cmd->add_flag("--json", o->json, "print results as JSON");

@@ -17,7 +17,7 @@
 #include "pipeline/device.h"
 #include "shaders_cpp/image_io/image_file.h"
 #include "shaders_cpp/render/torus_scene.h"
-#include "tools/cli/bench_device_options.h"
+#include "tools/cli/bench_options.h"
 #include "tools/cli/commands.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
@@ -258,9 +258,7 @@ Runner add_bench_torus_command(CLI::App& bench) {
          "measure this many times, taking turns with --llvmpipe; its speedup is the median of the rounds' ratios")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads, 0 = all")->capture_default_str();
-  cmd->add_option("--msaa", o->msaa,
-                  "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
-      ->capture_default_str();
+  add_bench_msaa_option(*cmd, o->msaa);
   cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times and memory as JSON");
   cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");

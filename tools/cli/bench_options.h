@@ -1,7 +1,7 @@
-// The benchmarks' device options (--tile-size, --chunks-in-flight, --rounds-in-flight): one definition
-// for every `bench` scene that takes them, so their ranges, help and defaults cannot drift apart.
-// Out-of-range values are usage errors (the device would clamp them silently; a benchmark runs what it
-// was asked).
+// The options every `bench` scene shares, one definition each so that their ranges, help and defaults
+// cannot drift apart: the device options (--tile-size, --chunks-in-flight, --rounds-in-flight) and
+// --msaa. Out-of-range device values are usage errors (the device would clamp them silently; a
+// benchmark runs what it was asked); --msaa is checked where the target is made.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -40,5 +40,11 @@ struct BenchDeviceOptions {
     o.rounds_in_flight = rounds_in_flight;
   }
 };
+
+// --msaa for a benchmark whose timed frame ends with its colour's resolve.
+inline void add_bench_msaa_option(CLI::App& cmd, int& msaa) {
+  cmd.add_option("--msaa", msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
+      ->capture_default_str();
+}
 
 }  // namespace tessera::cli
