@@ -39,6 +39,7 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include "pipeline/draw_trace.h"
 #include "pipeline/framebuffer.h"
 #include "pipeline/front_end.h"
 #include "pipeline/parallel.h"
@@ -49,6 +50,7 @@
 #include "pipeline/stage_io.h"
 #include "pipeline/patch_orientation.h"
 #include "pipeline/statistics.h"
+#include "pipeline/tile_schedule.h"
 #include "pipeline/triangle_list_setup.h"
 
 namespace tessera {
@@ -62,10 +64,10 @@ struct DeviceOptions {
   // window holds a whole frog (1292 patches): 16 threads, displaced frog 19.4 -> 17.9 ms, frog 7.8 ->
   // 7.6 (1024 patches before; medians of five rounds, docs/performance.md).
   int window_patches = 4096;
-  // Chunks per round: a round's chunks are produced in parallel, and rasterized together once all are
-  // done. 0: four times the thread count, at least 4.
+  // Chunks per round: a round's tiles are rasterized once all its chunks are produced (each tile once
+  // its earlier rounds are; tile_schedule.h). 0: four times the thread count, at least 4.
   int chunks_in_flight = 0;
-  // Rounds that may exist at once (produced while earlier ones are rasterized; at least 2). Chunk
+  // Rounds whose storage exists at once (produced while earlier ones are rasterized; at least 2). Chunk
   // storage is rounds_in_flight x chunks_in_flight chunk buffers. 0: the default, 2 on up to two
   // threads, else 3.
   int rounds_in_flight = 0;
@@ -123,89 +125,145 @@ std::string validate_patch_draw(std::size_t index_count, int control_points, con
 
 namespace detail {
 
-// The back end: chunk slots, and the tile-parallel flush that rasterizes them in draw order. The slots
-// are the device's (Device::kept): their storage outlives the draw.
+// The back end: chunk slots, and the schedule (tile_schedule.h) that produces them and rasterizes their
+// tiles in draw order. The slots are the device's (Device::kept): their storage outlives the draw.
 template <std::size_t N, class Ps>
 class Backend {
  public:
   // `slot_count` chunks per round; the slots hold `rounds` rounds in flight (at least 2): produced in
-  // parallel while earlier ones are rasterized.
+  // parallel while earlier ones are rasterized. `trace`, when given, records each chunk, round's tile lists and tile.
   Backend(const SetupContext& setup, const DepthState& depth, const Ps& ps, Framebuffer& fb,
-          std::vector<ChunkBuffer<N>>& slots, int slot_count, int rounds)
+          std::vector<ChunkBuffer<N>>& slots, int slot_count, int rounds, DrawTrace* trace = nullptr)
       : setup_(setup),
         rc_{depth, setup.min_depth, setup.max_depth},
         ps_(ps),
         fb_(fb),
         slots_(slots),
         per_round_(std::size_t(std::max(slot_count, 1))),
-        sets_(std::size_t(std::max(rounds, 2))) {
+        sets_(std::size_t(std::max(rounds, 2))),
+        trace_(trace) {
     slots_.resize(sets_ * per_round_);
   }
 
   const SetupContext& setup() const { return setup_; }
 
-  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), in rounds of `slot_count` chunks, each
-  // round's chunks in parallel and several rounds at once, and rasterizes the rounds in order as each is
-  // produced (pipelined_rounds: geometry and raster overlap, and no thread waits for a round's slowest
-  // chunk while a later round has work; each tile still takes the rounds, and the chunks within a
-  // round, in draw order). after_round(chunks done) follows each round's rasterization, in order.
+  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), in rounds of `slot_count` chunks, and
+  // rasterizes each tile's primitives as the rounds holding them are produced (tile_schedule.h: one pool
+  // of workers, no barrier between rounds; each tile takes its rounds, and the chunks within a round, in
+  // draw order). after_round(chunks done) follows each round's rasterization, in order.
   template <class Produce, class AfterRound>
   void run(std::size_t count, Produce&& produce, DrawReport& report, AfterRound&& after_round) {
-    const std::size_t rounds = (count + per_round_ - 1) / per_round_;
-    const auto chunks_of = [&](std::size_t r) { return std::min(per_round_, count - r * per_round_); };
-    std::vector<char> produced(rounds, 0);  // guarded by `produced_mutex`
-    std::mutex produced_mutex;
-    std::size_t flushed = 0;                       // rounds rasterized (the consuming stage's alone)
-    std::vector<std::size_t> set_bytes(sets_, 0);  // chunk storage per set (the consuming stage's)
+    const TileGrid& g = setup_.tiles;
+    const std::size_t tiles = std::size_t(g.count());
+    std::vector<std::size_t> set_bytes(sets_, 0);  // chunk storage per set, as last seen
     for (std::size_t i = 0; i < slots_.size(); ++i) set_bytes[i / per_round_] += slots_[i].capacity_bytes();
-    detail::pipelined_rounds(
-        rounds, sets_,
-        [&](std::size_t r) {
-          ChunkBuffer<N>* set = slots_.data() + (r % sets_) * per_round_;
-          detail::parallel_for(tbb::blocked_range<std::size_t>(0, chunks_of(r), 1), [&](const auto& range) {
-            for (std::size_t s = range.begin(); s != range.end(); ++s) {
-              set[s].reset(setup_.tiles.count());
-              produce(r * per_round_ + s, set[s]);
-              set[s].finish_bins();
-            }
-          });
-          const std::lock_guard<std::mutex> lock(produced_mutex);
-          produced[r] = 1;
-        },
-        [&](std::size_t r) {
-          if (flushed == r) {
-            // Round r, and the rounds after it already produced (their storage is still held: at most
-            // sets_ rounds are in flight), rasterized in one pass: each tile runs through them all,
-            // instead of every tile waiting for the round's busiest tile before the next round.
-            std::size_t last = r;
-            {
-              const std::lock_guard<std::mutex> lock(produced_mutex);
-              while (last + 1 < rounds && last + 1 < r + sets_ && produced[last + 1]) ++last;
-            }
-            // Nothing can be produced while this flush runs when it holds every set or ends the
-            // window: then its last tile is every thread's wait, and heavy tiles are split.
-            const bool drains = last + 1 == rounds || last + 1 - r == sets_;
-            flush(r, last, chunks_of, drains, report);
-            flushed = last + 1;
+    lists_.resize(sets_);
+    const auto chunks_of = [&](std::size_t r) { return std::min(per_round_, count - r * per_round_); };
+    const std::size_t workers = std::size_t(tbb::this_task_arena::max_concurrency());
+    tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, raster seconds
+
+    const auto produce_chunk = [&](std::size_t c) {
+      ChunkBuffer<N>& slot = slots_[((c / per_round_) % sets_) * per_round_ + c % per_round_];
+      const auto start = trace_ ? Clock::now() : Clock::time_point{};
+      slot.reset(setup_.tiles.count());
+      produce(c, slot);
+      slot.finish_bins();
+      if (trace_)
+        trace_->record(TraceStage::chunk, trace_worker(), start, Clock::now(), std::uint32_t(c / per_round_),
+                       std::uint32_t(c));
+    };
+    // A round's tile lists: for each tile, the round's chunks holding its primitives, in draw order (a
+    // counting sort, stable in chunk order, over the chunks' touched tiles: the work is proportional to
+    // the (chunk, tile) pairs with primitives, not to chunks x tiles), and the busy tiles with their loads.
+    const auto list_tiles = [&](std::size_t r) -> std::span<const TileLoad> {
+      const auto start = trace_ ? Clock::now() : Clock::time_point{};
+      RoundLists& l = lists_[r % sets_];
+      const ChunkBuffer<N>* set = slots_.data() + (r % sets_) * per_round_;
+      const std::size_t n = chunks_of(r);
+      l.tile_first.assign(tiles + 1, 0);
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::uint32_t t : set[k].touched) ++l.tile_first[t + 1];
+      l.busy.clear();
+      for (std::size_t t = 0; t < tiles; ++t) {
+        if (l.tile_first[t + 1] != 0) l.busy.push_back({std::uint32_t(t), 0});
+        l.tile_first[t + 1] += l.tile_first[t];
+      }
+      l.tile_chunks.resize(l.tile_first.back());
+      l.cursor.assign(l.tile_first.begin(), l.tile_first.end() - 1);
+      for (std::uint32_t k = 0; k < n; ++k)
+        for (std::uint32_t t : set[k].touched) l.tile_chunks[l.cursor[t]++] = k;
+      for (TileLoad& b : l.busy)
+        for (std::uint32_t k = l.tile_first[b.tile]; k != l.tile_first[b.tile + 1]; ++k)
+          b.load += std::uint32_t(set[l.tile_chunks[k]].bin(int(b.tile)).size());
+      if (trace_) trace_->record(TraceStage::tile_lists, trace_worker(), start, Clock::now(), std::uint32_t(r));
+      return l.busy;
+    };
+    const auto prepare = [&](std::uint32_t t) { fb_.prepare_tile(int(t)); };
+    const auto rasterize = [&](std::uint32_t t, std::span<const std::uint32_t> rounds, std::uint8_t quarter) {
+      auto& mine = local.local();
+      const auto start = Clock::now();
+      int tx0 = int(t % std::uint32_t(g.columns)) * g.tile_size, ty0 = int(t / std::uint32_t(g.columns)) * g.tile_size;
+      int tx1 = tx0 + g.tile_size, ty1 = ty0 + g.tile_size;
+      if (quarter == 0) {
+        fb_.prepare_tile(int(t));  // a pending clear lands in this core's cache just before the tile's primitives
+      } else {
+        // Quarters are tile_size / 2 wide, an even number of pixels: no 2x2 quad straddles two.
+        const int half = g.tile_size / 2, q = quarter - 1;
+        tx0 += (q % 2) * half;
+        ty0 += (q / 2) * half;
+        tx1 = tx0 + half;
+        ty1 = ty0 + half;
+      }
+      tx1 = std::min(tx1, fb_.width());
+      ty1 = std::min(ty1, fb_.height());
+      const auto for_each_primitive = [&](const auto& visit) {
+        for (const std::uint32_t r : rounds) {
+          const RoundLists& l = lists_[r % sets_];
+          const ChunkBuffer<N>* set = slots_.data() + (r % sets_) * per_round_;
+          for (std::uint32_t k = l.tile_first[t]; k != l.tile_first[t + 1]; ++k) {
+            const ChunkBuffer<N>& chunk = set[l.tile_chunks[k]];
+            for (std::uint32_t i : chunk.bin(int(t))) visit(chunk.primitives[i]);
           }
-          const std::size_t set = r % sets_, n = chunks_of(r);
-          for (std::size_t s = 0; s < n; ++s) {
-            const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
-            report.statistics += slot.statistics;
-            report.times += slot.times;
-            report.patches_back_culled += slot.patches_back_culled;
-          }
-          report.memory.chunks += n;
-          // Only this round's set may be read here (later rounds are being produced into theirs); the
-          // others' storage is counted as last seen (before the draw, or at their last round).
-          std::size_t bytes = 0;
-          for (std::size_t s = 0; s < per_round_; ++s) bytes += slots_[set * per_round_ + s].capacity_bytes();
-          set_bytes[set] = bytes;
-          std::size_t total = 0;
-          for (const std::size_t b : set_bytes) total += b;
-          chunk_bytes_peak_ = std::max(chunk_bytes_peak_, total);
-          after_round(r * per_round_ + n);
-        });
+        }
+      };
+      if (tx0 < tx1 && ty0 < ty1)
+        mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
+      const auto end = Clock::now();
+      mine.second += std::chrono::duration<double>(end - start).count();
+      if (trace_) trace_->record(TraceStage::tile, trace_worker(), start, end, t, quarter);
+    };
+    // Under the schedule's lock, before the round's storage is reused.
+    const auto consumed = [&](std::size_t r) {
+      const std::size_t set = r % sets_, n = chunks_of(r);
+      std::size_t bytes = 0;
+      for (std::size_t s = 0; s < per_round_; ++s) {
+        const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
+        bytes += slot.capacity_bytes();
+        if (s >= n) continue;
+        report.statistics += slot.statistics;
+        report.times += slot.times;
+        report.patches_back_culled += slot.patches_back_culled;
+      }
+      report.memory.chunks += n;
+      set_bytes[set] = bytes;
+      std::size_t total = 0;
+      for (const std::size_t b : set_bytes) total += b;
+      chunk_bytes_peak_ = std::max(chunk_bytes_peak_, total);
+    };
+    const auto finished = [&](std::size_t r) { after_round(r * per_round_ + chunks_of(r)); };
+    ScheduleShape shape;
+    shape.chunks = count;
+    shape.per_round = per_round_;
+    shape.sets = sets_;
+    shape.tiles = tiles;
+    shape.workers = int(workers);
+    shape.can_split = g.tile_size % 4 == 0;
+    report.memory.tiles_split +=
+        run_tile_schedule(shape, produce_chunk, list_tiles, prepare, rasterize, consumed, finished);
+    for (const auto& [invocations, seconds] : local) {
+      report.statistics.PSInvocations += invocations;
+      report.times.raster += seconds;
+    }
   }
   template <class Produce>
   void run(std::size_t count, Produce&& produce, DrawReport& report) {
@@ -215,104 +273,11 @@ class Backend {
   std::size_t chunk_bytes_peak() const { return chunk_bytes_peak_; }
 
  private:
-  // Rasterizes rounds [first, last] (chunks_of(r) chunks each), every tile taking them in order. It
-  // alone writes the report's PS invocations and raster time, so it may run beside production.
-  // The tiles' chunk lists are gathered first from each chunk's touched tiles, so that the work is
-  // proportional to the (chunk, tile) pairs that hold primitives, not to chunks x tiles (at 64
-  // threads a round is 256 chunks, and the screen 510 tiles). `drains`: nothing can be produced
-  // beside this flush (it holds every set, or ends the window), so heavy tiles are split.
-  template <class ChunksOf>
-  void flush(std::size_t first, std::size_t last, const ChunksOf& chunks_of, bool drains, DrawReport& report) {
-    const TileGrid& g = setup_.tiles;
-    std::vector<const ChunkBuffer<N>*>& chunks = flush_chunks_;
-    chunks.clear();
-    for (std::size_t r = first; r <= last; ++r)
-      for (std::size_t s = 0, n = chunks_of(r); s < n; ++s) chunks.push_back(&slots_[(r % sets_) * per_round_ + s]);
-    // tile_chunks_[tile_first_[t], tile_first_[t + 1]): the chunks holding primitives of tile t, in
-    // draw order (a counting sort, stable in chunk order).
-    tile_first_.assign(std::size_t(g.count()) + 1, 0);
-    for (const ChunkBuffer<N>* c : chunks)
-      for (std::uint32_t t : c->touched) ++tile_first_[t + 1];
-    busy_tiles_.clear();
-    for (std::size_t t = 0; t < std::size_t(g.count()); ++t) {
-      if (tile_first_[t + 1] != 0) busy_tiles_.push_back(int(t));
-      tile_first_[t + 1] += tile_first_[t];
-    }
-    tile_chunks_.resize(tile_first_.back());
-    tile_load_.assign(std::size_t(g.count()), 0);
-    {
-      std::vector<std::uint32_t>& cursor = tile_cursor_;
-      cursor.assign(tile_first_.begin(), tile_first_.end() - 1);
-      for (std::uint32_t k = 0; k < chunks.size(); ++k)
-        for (std::uint32_t t : chunks[k]->touched) {
-          tile_chunks_[cursor[t]++] = k;
-          tile_load_[t] += chunks[k]->bin(int(t)).size();
-        }
-    }
-    // Tiles are taken heaviest first (by primitives binned), each by the next free thread: a flush
-    // ends when its last tile does, and production waits for it when every set is held, so a heavy
-    // tile taken last left most threads idle (the screen-LOD frog at 16 threads). In a flush that
-    // `drains` (nothing else can run beside it), a tile holding more than half a thread's share is
-    // rasterized as four quarters, each by any thread: each pixel is still written by one thread
-    // taking the primitives in draw order, so the image is the same bytes. Elsewhere idle threads
-    // produce later rounds, and quarters only cost their extra walks of the tile's primitives (torus
-    // F64 on 16 threads, split in every flush: 51.3 -> 54.7 ms).
-    const std::size_t threads = std::size_t(tbb::this_task_arena::max_concurrency());
-    std::size_t total = 0;
-    for (const int t : busy_tiles_) total += tile_load_[std::size_t(t)];
-    const bool can_split = drains && threads > 1 && g.tile_size % 4 == 0;
-    flush_items_.clear();
-    for (const int t : busy_tiles_) {
-      const std::size_t load = tile_load_[std::size_t(t)];
-      if (can_split && load * 2 * threads > total) {
-        fb_.prepare_tile(t);  // before its quarters, which may run at once
-        ++report.memory.tiles_split;
-        for (std::uint8_t q = 1; q <= 4; ++q) flush_items_.push_back({t, q, load / 4});
-      } else {
-        flush_items_.push_back({t, 0, load});
-      }
-    }
-    std::stable_sort(flush_items_.begin(), flush_items_.end(),
-                     [](const FlushItem& a, const FlushItem& b) { return a.load > b.load; });
-    std::atomic<std::size_t> next_item{0};
-    tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, seconds
-    const std::size_t takers = std::min(flush_items_.size(), threads);
-    detail::parallel_for(tbb::blocked_range<std::size_t>(0, takers, 1), [&](const auto&) {
-      auto& mine = local.local();
-      for (std::size_t b; (b = next_item.fetch_add(1, std::memory_order_relaxed)) < flush_items_.size();) {
-        const FlushItem item = flush_items_[b];
-        const int t = item.tile;
-        const auto start = Clock::now();
-        int tx0 = (t % g.columns) * g.tile_size, ty0 = (t / g.columns) * g.tile_size;
-        int tx1 = tx0 + g.tile_size, ty1 = ty0 + g.tile_size;
-        if (item.quarter == 0) {
-          fb_.prepare_tile(t);  // a pending clear lands in this core's cache just before the tile's primitives
-        } else {
-          // Quarters are tile_size / 2 wide, an even number of pixels: no 2x2 quad straddles two.
-          const int half = g.tile_size / 2, q = item.quarter - 1;
-          tx0 += (q % 2) * half;
-          ty0 += (q / 2) * half;
-          tx1 = tx0 + half;
-          ty1 = ty0 + half;
-        }
-        tx1 = std::min(tx1, fb_.width());
-        ty1 = std::min(ty1, fb_.height());
-        const auto for_each_primitive = [&](const auto& visit) {
-          for (std::uint32_t k = tile_first_[std::size_t(t)]; k != tile_first_[std::size_t(t) + 1]; ++k) {
-            const ChunkBuffer<N>& chunk = *chunks[tile_chunks_[k]];
-            for (std::uint32_t i : chunk.bin(t)) visit(chunk.primitives[i]);
-          }
-        };
-        if (tx0 < tx1 && ty0 < ty1)
-          mine.first += rasterize_tile<N>(for_each_primitive, tx0, ty0, tx1, ty1, ps_, rc_, fb_);
-        mine.second += seconds_since(start);
-      }
-    });
-    for (const auto& [invocations, seconds] : local) {
-      report.statistics.PSInvocations += invocations;
-      report.times.raster += seconds;
-    }
-  }
+  // A round's tile lists (built once its chunks are produced; held until it is consumed).
+  struct RoundLists {
+    std::vector<std::uint32_t> tile_first, cursor, tile_chunks;
+    std::vector<TileLoad> busy;
+  };
 
   SetupContext setup_;
   RasterContext rc_;
@@ -321,18 +286,9 @@ class Backend {
   std::vector<ChunkBuffer<N>>& slots_;
   std::size_t per_round_;
   std::size_t sets_;
+  DrawTrace* trace_;
   std::size_t chunk_bytes_peak_ = 0;
-  // flush()'s lists, kept between flushes (the consuming stage runs one flush at a time).
-  std::vector<const ChunkBuffer<N>*> flush_chunks_;
-  std::vector<std::uint32_t> tile_first_, tile_cursor_, tile_chunks_;
-  std::vector<std::size_t> tile_load_;
-  struct FlushItem {
-    int tile;
-    std::uint8_t quarter;  // 0: the whole tile; 1, 2 (top left, right), 3, 4 (bottom left, right)
-    std::size_t load;      // primitives binned (a quarter: a quarter of its tile's)
-  };
-  std::vector<FlushItem> flush_items_;
-  std::vector<int> busy_tiles_;
+  std::vector<RoundLists> lists_;  // per set
 };
 
 template <std::size_t N>
@@ -359,6 +315,9 @@ class Device {
   const DeviceOptions& options() const { return options_; }
   // Sets (or, with an empty function, removes) the progress hook of the draws that follow.
   void set_progress(DrawProgress progress) { progress_ = std::move(progress); }
+  // Records the patch draws that follow into `trace` (draw_trace.h), or, with nullptr, stops. The trace
+  // must outlive those draws.
+  void set_trace(DrawTrace* trace) { trace_ = trace; }
   // The arena the device's work runs in (stream_output.h runs there too).
   tbb::task_arena& arena() const { return *arena_; }
 
@@ -402,6 +361,7 @@ class Device {
 
   DeviceOptions options_;
   DrawProgress progress_;
+  DrawTrace* trace_ = nullptr;
   int threads_ = 1;
   std::mutex draw_mutex_;                                     // one draw at a time: they share the slots
   std::map<std::type_index, std::shared_ptr<void>> kept_;     // kept(), by type
@@ -432,13 +392,13 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, kept<std::vector<ChunkBuffer<N>>>(),
-                                   options_.chunks_in_flight, options_.rounds_in_flight);
+                                   options_.chunks_in_flight, options_.rounds_in_flight, trace_);
     tbb::enumerable_thread_specific<detail::PatchScratch<N>>& scratch =
         kept<tbb::enumerable_thread_specific<detail::PatchScratch<N>>>();
     for (auto& s : scratch) s.patterns.reset_counters();  // the report counts this draw's hits and misses
     const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
-                   options_.chunk_primitives, &kept<typename FrontEnd::Storage>());
+                   options_.chunk_primitives, &kept<typename FrontEnd::Storage>(), trace_);
     std::size_t scratch_bytes_peak = 0;
 
     // A patch through the DS (in its batch form when it has one) and setup_vertex, then its primitives
@@ -546,7 +506,7 @@ DrawResult Device::draw(const MeshDraw<Vertex, Vs, Ps>& d, Framebuffer& fb) {
     const SetupContext setup =
         make_setup_context(d.viewport, d.rasterizer, fb.width(), fb.height(), options_.tile_size, fb.samples());
     detail::Backend<N, Ps> backend(setup, d.depth, d.ps, fb, kept<std::vector<ChunkBuffer<N>>>(),
-                                   options_.chunks_in_flight, options_.rounds_in_flight);
+                                   options_.chunks_in_flight, options_.rounds_in_flight, trace_);
     detail::VertexCache vcache;
     std::vector<VsOut> vs_out;
     std::vector<SetupVertex<N>> setup_vertices;

@@ -23,6 +23,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 
+#include "pipeline/draw_trace.h"
 #include "pipeline/parallel.h"
 #include "pipeline/pattern_cache.h"
 #include "pipeline/pipeline_state.h"
@@ -145,10 +146,10 @@ struct HullPhase {
   std::vector<ts::ProcessedFactors> processed;
   std::vector<std::uint32_t> cost;  // primitives; 0 when culled
 
-  // times_of() returns the calling thread's StageTimes.
+  // times_of() returns the calling thread's StageTimes; each range of patches is a span of `trace`, if any.
   template <class Hs, class TimesOf>
   void run(const Hs& hs, const std::vector<VsOut>& vs_out, const VertexCache& vcache, std::size_t n, std::size_t n_in,
-           std::size_t first, const TessellatorState& tstate, TimesOf&& times_of) {
+           std::size_t first, const TessellatorState& tstate, TimesOf&& times_of, DrawTrace* trace = nullptr) {
     constexpr int kOut = Hs::kOutputControlPoints;
     control_points.resize(n * kOut);
     constants.resize(n);
@@ -156,6 +157,7 @@ struct HullPhase {
     cost.resize(n);
     detail::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
       StageTimes& times = times_of();
+      const auto range_start = Clock::now();
       std::array<VsOut, 32> inputs;
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
         const auto start = Clock::now();
@@ -170,6 +172,9 @@ struct HullPhase {
         // Counted, not tessellated: the pattern is made once, when the DS needs it.
         cost[p] = static_cast<std::uint32_t>(ts::primitive_count(processed[p], tstate.output));
       }
+      if (trace)
+        trace->record(TraceStage::hull_shader, trace_worker(), range_start, Clock::now(),
+                      std::uint32_t(first + r.begin()), std::uint32_t(first + r.end()));
     });
   }
 
@@ -213,10 +218,10 @@ class PatchFrontEnd {
 
   // The draw's inputs must outlive the front end; validate_patch_draw() has accepted them. `storage`,
   // when given, must outlive it too and serve one front end at a time; without it the front end has
-  // its own.
+  // its own. `trace`, when given, records the VS and HS phases.
   PatchFrontEnd(std::span<const Vertex> vertices, std::span<const std::uint32_t> indices, int control_points,
                 const Vs& vs, const Hs& hs, const TessellatorState& tessellator, int window_patches,
-                std::size_t chunk_primitives, Storage* storage = nullptr)
+                std::size_t chunk_primitives, Storage* storage = nullptr, DrawTrace* trace = nullptr)
       : owned_(storage ? nullptr : std::make_unique<Storage>()),
         s_(storage ? *storage : *owned_),
         vertices_(vertices),
@@ -226,7 +231,8 @@ class PatchFrontEnd {
         hs_(hs),
         tstate_(tessellator),
         window_(std::size_t(std::max(1, window_patches))),
-        chunk_primitives_(chunk_primitives) {}
+        chunk_primitives_(chunk_primitives),
+        trace_(trace) {}
 
   // Runs the front end window by window; after each window's HS phase, on_window() handles its
   // chunk_count() chunks (with for_each_patch).
@@ -236,10 +242,13 @@ class PatchFrontEnd {
     const std::size_t patch_count = indices_.size() / n_in_;
     for (first_ = 0; first_ < patch_count; first_ += window_) {
       const std::size_t n = std::min(window_, patch_count - first_);
+      const auto vs_start = Clock::now();
       assemble_and_shade_vertices(vs_, vertices_, indices_.subspan(first_ * n_in_, n * n_in_), n, s_.vcache, s_.vs_out,
                                   report);
-      s_.hull.run(hs_, s_.vs_out, s_.vcache, n, n_in_, first_, tstate_,
-                  [&]() -> StageTimes& { return front_times.local(); });
+      if (trace_) trace_->record(TraceStage::vertex_shader, trace_worker(), vs_start, Clock::now());
+      s_.hull.run(
+          hs_, s_.vs_out, s_.vcache, n, n_in_, first_, tstate_, [&]() -> StageTimes& { return front_times.local(); },
+          trace_);
       report.statistics.HSInvocations += n;
       for (std::size_t p = 0; p < n; ++p) report.patches_culled += s_.hull.processed[p].culled ? 1u : 0u;
       cut_chunks(s_.hull.cost, chunk_primitives_, 256, s_.chunks);
@@ -285,6 +294,7 @@ class PatchFrontEnd {
   TessellatorState tstate_;
   std::size_t window_;
   std::size_t chunk_primitives_;
+  DrawTrace* trace_;
 
   std::size_t first_ = 0;  // the current window's first patch
   std::size_t window_bytes_peak_ = 0;

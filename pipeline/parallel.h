@@ -11,7 +11,6 @@
 #include <cstddef>
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #if defined(__SANITIZE_THREAD__)
@@ -52,46 +51,6 @@ void arena_execute(tbb::task_arena& arena, const F& f) {
     happens_before(&join);
   });
   happens_after(&join);
-}
-
-// Rounds 0 .. rounds - 1 through two stages without a barrier between rounds: produce(r) runs for up to
-// `in_flight` rounds at once (each may fork further), and consume(r) runs after produce(r), in round
-// order, one round at a time. Round r + in_flight is not produced before consume(r) has returned, so
-// r % in_flight names storage a round may own until it is consumed. Threads that finish their part of
-// a round take up the next rounds' production instead of waiting for the round's slowest task.
-// The edges TSan cannot see in oneTBB's pipeline are stated: the issue of a round before its
-// production, the production before its consumption, and a consumption before the production of the
-// round that reuses its storage.
-template <class Produce, class Consume>
-void pipelined_rounds(std::size_t rounds, std::size_t in_flight, const Produce& produce, const Consume& consume) {
-  if (rounds == 0) return;
-  std::size_t next = 0;
-  char issued = 0, produced = 0, consumed = 0;  // TSan's synchronization objects (only the addresses matter)
-  happens_before(&issued);
-  tbb::parallel_pipeline(
-      in_flight,
-      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> std::size_t {
-        happens_after(&issued);
-        if (next == rounds) {
-          fc.stop();
-          return 0;
-        }
-        const std::size_t r = next++;
-        happens_before(&issued);
-        return r;
-      }) & tbb::make_filter<std::size_t, std::size_t>(tbb::filter_mode::parallel, [&](std::size_t r) {
-        happens_after(&issued);
-        happens_after(&consumed);
-        produce(r);
-        happens_before(&produced);
-        return r;
-      }) & tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t r) {
-        happens_after(&produced);
-        happens_after(&consumed);
-        consume(r);
-        happens_before(&consumed);
-      }));
-  happens_after(&consumed);
 }
 
 }  // namespace tessera::detail

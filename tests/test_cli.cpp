@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 
 #include "cli_runner.h"
 #include "tessellator/tessellator.h"
@@ -500,6 +502,47 @@ TEST_CASE("tessera bench frog runs the subdivision scene and reports its rates",
   CHECK(k["triangles"] == j["triangles"]);
   CHECK(k["displacement"].get<std::string>().find("monsterfrog.dds") != std::string::npos);
   CHECK(j["displacement"] == "");
+}
+
+TEST_CASE("tessera bench torus and frog --trace write a timeline a trace viewer reads", "[cli][pipeline]") {
+  const fs::path dir = temp_dir();
+  for (const std::string& command : {std::string("bench torus --factor 6 --resolution 160x90 --chunk-primitives 256"),
+                                     std::string("bench frog --factor 4 --resolution 160x90")}) {
+    INFO(command);
+    const fs::path trace = dir / "trace.json";
+    fs::remove(trace);
+    const auto r = run_cli(command + " --frames 1 --threads 3 --json --trace " + trace.string());
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    const auto& summary = j["trace"];
+    CHECK(summary["workers"].get<int>() >= 1);
+    CHECK(summary["workers"].get<int>() <= 3);
+    CHECK(summary["busy"].get<double>() > 0);
+    CHECK(summary["busy"].get<double>() <= 1.0);
+    CHECK(summary["first_tile_s"].get<double>() <= summary["wall_s"].get<double>());
+    // Chrome's trace event format: complete ("X") events in microseconds, one row (tid) per worker.
+    const auto t = nlohmann::json::parse(slurp(trace));
+    std::map<std::string, int> count;
+    std::set<int> rounds;
+    double busy_us = 0;
+    for (const auto& e : t["traceEvents"]) {
+      if (e["ph"] != "X") continue;
+      ++count[e["name"].get<std::string>()];
+      CHECK(e["dur"].get<double>() >= 0);
+      CHECK(e["tid"].get<int>() >= 0);
+      CHECK(e["tid"].get<int>() < 3);
+      if (e["name"] != "IA+VS") busy_us += e["dur"].get<double>();
+      if (e["name"] == "chunk") rounds.insert(e["args"]["round"].get<int>());
+    }
+    for (const char* stage : {"IA+VS", "HS", "chunk", "tile lists", "tile"}) CHECK(count[stage] > 0);
+    CHECK(count["tile lists"] == int(rounds.size()));  // one per round
+    CHECK(std::abs(busy_us * 1e-6 - summary["busy_s"].get<double>()) < 1e-6);
+  }
+  // A path that cannot be written is refused before anything is drawn: one line, exit 2.
+  const auto bad = run_cli("bench torus --factor 2 --resolution 32x32 --frames 1 --trace /nonexistent/dir/t.json");
+  CHECK(bad.exit_code == 2);
+  CHECK(lines(bad.err) == 1);
+  CHECK_THAT(bad.err, Catch::Contains("/nonexistent/dir/t.json"));
 }
 
 TEST_CASE("tessera bench frog finds its default cage beside the binary, and says so when it is missing", "[cli]") {

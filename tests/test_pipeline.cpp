@@ -10,7 +10,9 @@
 #include <set>
 #include <thread>
 
+#include "pipeline/draw_trace.h"
 #include "pipeline/parallel.h"
+#include "pipeline/tile_schedule.h"
 #include "pipeline/triangle_list_setup.h"
 #include "pipeline_support.h"
 #include "shaders_cpp/render/torus_scene.h"
@@ -183,50 +185,113 @@ TEST_CASE("pipeline: wireframe fill draws edges only", "[pipeline][lines]") {
   CHECK(s.counts[std::size_t((h / 2 + 3) * w + w / 4 + 3)] == 0);  // inside a cell of the 4x4 grid
 }
 
-TEST_CASE("pipeline: pipelined rounds consume in order, after their production, and reuse storage only when free",
+TEST_CASE("pipeline: the tile schedule keeps each tile's rounds in order and reuses storage only when consumed",
           "[pipeline][parallel]") {
-  for (const std::size_t in_flight : {std::size_t(2), std::size_t(3), std::size_t(5)}) {
-    tbb::task_arena arena(4);
-    const std::size_t rounds = 40;
+  using tessera::detail::TileLoad;
+  struct Case {
+    int workers;
+    std::size_t chunks, per_round, sets, tiles;
+    bool can_split;
+  } cases[] = {{4, 40, 3, 2, 9, true}, {4, 41, 4, 3, 16, true}, {6, 100, 2, 5, 7, true},
+               {1, 23, 4, 2, 9, true}, {3, 7, 8, 2, 5, false},  {4, 0, 4, 2, 9, true}};
+  for (const Case& c : cases) {
+    INFO("workers " << c.workers << " chunks " << c.chunks << " per round " << c.per_round << " sets " << c.sets);
+    const std::size_t rounds = (c.chunks + c.per_round - 1) / c.per_round;
+    // Round r's busy tiles: a pseudo-random subset with uneven loads; the last round piles its load on
+    // tile 0, so that a drain splits it.
+    std::vector<std::vector<TileLoad>> lists(rounds);
+    for (std::size_t r = 0; r < rounds; ++r)
+      for (std::uint32_t t = 0; t < c.tiles; ++t)
+        if ((r * 7 + t * 3) % 5 != 0) lists[r].push_back({t, std::uint32_t(1 + (r * 13 + t * 5) % 11)});
+    if (rounds > 0) lists[rounds - 1].push_back({std::uint32_t(c.tiles), 100000});
     std::mutex m;
-    std::vector<int> state(rounds, 0);  // 0 waiting, 1 producing, 2 produced, 3 consumed
-    std::vector<std::size_t> consumed;
-    std::vector<int> owner(in_flight, -1);  // the round holding each storage slot
     bool ok = true;
+    std::string why;
+    const auto fail = [&](std::string text) {
+      if (ok) why = std::move(text);
+      ok = false;
+    };
+    std::size_t next_started = 0;
+    std::vector<std::size_t> produced(rounds, 0);
+    std::vector<int> listed(rounds, 0), consumed(rounds, 0);
+    std::vector<std::size_t> finished;
+    std::vector<std::set<std::uint32_t>> given(c.tiles + 1);  // rounds rasterized per tile
+    std::vector<int> running(c.tiles + 1, 0);                 // calls on a tile in progress
+    std::vector<int> quarters_running(c.tiles + 1, 0);
+    std::vector<int> prepared(c.tiles + 1, 0);
+    const auto busy = [] { tbb::parallel_for(0, 3, [](int) { std::this_thread::yield(); }); };
+    const auto produce = [&](std::size_t chunk) {
+      const std::size_t r = chunk / c.per_round;
+      {
+        const std::lock_guard<std::mutex> lock(m);
+        if (chunk != next_started++) fail("chunk " + std::to_string(chunk) + " started out of order");
+        if (r >= c.sets && !consumed[r - c.sets]) fail("round " + std::to_string(r) + " reused unconsumed storage");
+      }
+      busy();
+      const std::lock_guard<std::mutex> lock(m);
+      ++produced[r];
+    };
+    const auto list_tiles = [&](std::size_t r) -> std::span<const TileLoad> {
+      const std::lock_guard<std::mutex> lock(m);
+      if (produced[r] != std::min(c.per_round, c.chunks - r * c.per_round)) fail("listed before produced");
+      if (listed[r]++) fail("listed twice");
+      return lists[r];
+    };
+    const auto prepare = [&](std::uint32_t t) {
+      const std::lock_guard<std::mutex> lock(m);
+      ++prepared[t];
+      if (running[t] || quarters_running[t]) fail("prepared while rasterized");
+    };
+    const auto rasterize = [&](std::uint32_t t, std::span<const std::uint32_t> rs, std::uint8_t q) {
+      {
+        const std::lock_guard<std::mutex> lock(m);
+        if (q == 0 ? running[t]++ || quarters_running[t] : running[t] || quarters_running[t]++ >= 4)
+          fail("tile " + std::to_string(t) + " rasterized twice at once");
+        if (q != 0 && !prepared[t]) fail("a quarter before its tile was prepared");
+        for (std::size_t i = 0; i < rs.size(); ++i) {
+          if (i > 0 && rs[i] <= rs[i - 1]) fail("rounds out of order");
+          if (rs[i] >= rounds || !listed[rs[i]]) fail("an unlisted round");
+          if (q <= 1 && !given[t].insert(rs[i]).second) fail("a round given to a tile twice");
+        }
+      }
+      busy();
+      const std::lock_guard<std::mutex> lock(m);
+      --(q == 0 ? running[t] : quarters_running[t]);
+    };
+    const auto on_consumed = [&](std::size_t r) {
+      for (const TileLoad& tl : lists[r])
+        if (!given[tl.tile].count(std::uint32_t(r))) fail("consumed before every tile rasterized it");
+      if (consumed[r]++) fail("consumed twice");
+    };
+    const auto on_finished = [&](std::size_t r) {
+      if (!consumed[r]) fail("finished before consumed");
+      finished.push_back(r);
+    };
+    tessera::detail::ScheduleShape shape;
+    shape.chunks = c.chunks;
+    shape.per_round = c.per_round;
+    shape.sets = c.sets;
+    shape.tiles = c.tiles + 1;
+    shape.workers = c.workers;
+    shape.can_split = c.can_split;
+    tbb::task_arena arena(c.workers);
+    std::uint64_t splits = 0;
     arena.execute([&] {
-      tessera::detail::pipelined_rounds(
-          rounds, in_flight,
-          [&](std::size_t r) {
-            {
-              const std::lock_guard<std::mutex> lock(m);
-              // The slot's last round must have been consumed before this one may write it.
-              const int last = owner[r % in_flight];
-              if (last >= 0 && state[std::size_t(last)] != 3) ok = false;
-              owner[r % in_flight] = int(r);
-              state[r] = 1;
-            }
-            // Uneven work, forked further: later rounds often finish first.
-            tbb::parallel_for(0, int((r * 7) % 5 + 1), [](int) { std::this_thread::yield(); });
-            const std::lock_guard<std::mutex> lock(m);
-            state[r] = 2;
-          },
-          [&](std::size_t r) {
-            const std::lock_guard<std::mutex> lock(m);
-            if (state[r] != 2 || owner[r % in_flight] != int(r)) ok = false;
-            state[r] = 3;
-            consumed.push_back(r);
-          });
+      splits =
+          tessera::detail::run_tile_schedule(shape, produce, list_tiles, prepare, rasterize, on_consumed, on_finished);
     });
-    INFO("rounds in flight " << in_flight);
+    INFO(why);
     CHECK(ok);
-    REQUIRE(consumed.size() == rounds);
-    for (std::size_t r = 0; r < rounds; ++r) CHECK(consumed[r] == r);
+    CHECK(next_started == c.chunks);
+    REQUIRE(finished.size() == rounds);
+    for (std::size_t r = 0; r < rounds; ++r) CHECK(finished[r] == r);
+    std::size_t units = 0, given_units = 0;
+    for (const auto& l : lists) units += l.size();
+    for (const auto& g : given) given_units += g.size();
+    CHECK(given_units == units);  // every (tile, round) pair, once
+    // The heavy tile of the last round is split when several workers may take its quarters.
+    CHECK(splits == (c.workers > 1 && c.can_split && rounds > 0 ? 1u : 0u));
   }
-  // No rounds: nothing is called.
-  bool called = false;
-  tessera::detail::pipelined_rounds(
-      0, 3, [&](std::size_t) { called = true; }, [&](std::size_t) { called = true; });
-  CHECK(!called);
 }
 
 TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads and any chunking or pipelining",
@@ -284,9 +349,37 @@ TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads an
   Device device(DeviceOptions{2});
   auto other = make_target(w, h), fb = make_target(w, h);
   REQUIRE(device.draw(scenes::make_torus_draw(scene, 23.0f, ts::Partitioning::integer, w, h), other).ok());
-  REQUIRE(device.draw(draw, fb).ok());
+  const DrawResult plain = device.draw(draw, fb);
+  REQUIRE(plain.ok());
   CHECK(image_hash(fb) == reference);
   CHECK(image_hash(other) != reference);
+  // Recording a timeline changes no byte and no statistic; it holds a span for every chunk.
+  DrawTrace trace;
+  device.set_trace(&trace);
+  auto traced = make_target(w, h);
+  const DrawResult t = device.draw(draw, traced);
+  device.set_trace(nullptr);
+  REQUIRE(t.ok());
+  CHECK(image_hash(traced) == reference);
+  CHECK(t.report.statistics == plain.report.statistics);
+  std::size_t chunks = 0, tiles = 0;
+  for (const TraceSpan& span : trace.spans()) {
+    CHECK(span.end_s >= span.start_s);
+    CHECK(span.worker >= 0);
+    CHECK(span.worker < 2);
+    chunks += span.stage == TraceStage::chunk;
+    tiles += span.stage == TraceStage::tile;
+  }
+  CHECK(chunks == t.report.memory.chunks);
+  CHECK(tiles > 0);
+  const TraceSummary summary = trace.summary();
+  CHECK(summary.busy_fraction() > 0);
+  CHECK(summary.busy_fraction() <= 1.0);
+  CHECK(summary.first_tile_s < summary.wall_s);
+  // Draws after set_trace(nullptr) add nothing.
+  const std::size_t spans = trace.spans().size();
+  REQUIRE(device.draw(draw, traced).ok());
+  CHECK(trace.spans().size() == spans);
 }
 
 // The torus's shaders have SIMD forms (a quad pixel shader and a batch domain shader) that must give

@@ -1,6 +1,6 @@
 // The options every `bench` scene shares, one definition each so that their ranges, help and defaults
-// cannot drift apart: the device options (--tile-size, --chunks-in-flight, --rounds-in-flight) and
-// --msaa. Out-of-range device values are usage errors (the device would clamp them silently; a
+// cannot drift apart: the device options (--tile-size, --chunks-in-flight, --rounds-in-flight),
+// --msaa and --trace. Out-of-range device values are usage errors (the device would clamp them silently; a
 // benchmark runs what it was asked); --msaa is checked where the target is made.
 #pragma once
 
@@ -8,7 +8,9 @@
 #include <string>
 
 #include "pipeline/device.h"
+#include "pipeline/draw_trace.h"
 #include "tools/scene/common.h"
+#include "tools/scene/trace_file.h"
 
 namespace tessera::cli {
 
@@ -45,6 +47,30 @@ struct BenchDeviceOptions {
 inline void add_bench_msaa_option(CLI::App& cmd, int& msaa) {
   cmd.add_option("--msaa", msaa, "samples per pixel: 1, 2, 4, 8 or 16 (the timed frame includes its colour's resolve)")
       ->capture_default_str();
+}
+
+// --trace FILE: a timeline of one more frame, after the timed ones (which it does not disturb).
+inline void add_bench_trace_option(CLI::App& cmd, std::string& path) {
+  cmd.add_option("--trace", path,
+                 "after the timed frames, draw one more and write its timeline (which worker ran which chunk and "
+                 "tile, when) as Chrome trace JSON, for ui.perfetto.dev or chrome://tracing");
+}
+
+// Runs frame() once with `device` recording its draws, writes the timeline to `path` (labelled
+// `label`) and returns its summary.
+template <class Frame>
+TraceSummary trace_frame(Device& device, const Frame& frame, const std::string& path, const std::string& label) {
+  DrawTrace trace;
+  device.set_trace(&trace);
+  try {
+    frame();
+  } catch (...) {
+    device.set_trace(nullptr);
+    throw;
+  }
+  device.set_trace(nullptr);
+  write_trace_file(trace, label, path);
+  return trace.summary();
 }
 
 }  // namespace tessera::cli

@@ -23,6 +23,7 @@ namespace {
 struct BenchSubdOptions {
   RenderSettings s;  // s.cage empty: the monster frog shipped beside the binary (shared_data_file)
   std::string output;
+  std::string trace;
   int frames = 5;
   BenchDeviceOptions device;
   bool json = false, compare_cull = false;
@@ -33,7 +34,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   DeviceOptions dopt = device_options(o.s.threads);
   o.device.apply(dopt);
   const std::string cage = cage_or_shipped_frog(o.s.cage);
-  check_output_paths({{"-o", o.output}}, {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
+  check_output_paths({{"-o", o.output}, {"--trace", o.trace}},
+                     {cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
   // The scene library's one route from settings to a model, its view and factors.
   const std::unique_ptr<PreparedScene> scene = prepare_bench_scene(o.s);
   const Scheme scheme = scene->settings.scheme;
@@ -108,6 +110,17 @@ int run_bench_subd(const BenchSubdOptions& o) {
   const Timed timed = time_frames(factors);
   const std::vector<double>& frame_s = timed.frame_s;
   const DrawReport& last = timed.last;
+  std::optional<TraceSummary> traced;
+  if (!o.trace.empty())
+    traced = trace_frame(
+        device,
+        [&] {
+          device.clear(*fb, kBackgroundColor, 1.0f);
+          const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, camera, *fb);
+          if (!r.ok()) throw InputError(cage + ": " + r.error);
+          if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);
+        },
+        o.trace, "bench frog, " + std::to_string(device.threads()) + " threads");
   if (!o.output.empty())
     if (auto e = write_color(*fb, {o.output}); !e.empty()) throw InputError(e);
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
@@ -143,6 +156,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
               {"adaptive", adaptive_patches_json(model)},
               {"times", to_json(last.times)}};
     if (o.compare_cull) j["cull_modes"] = cull_modes;
+    if (traced) j["trace"] = to_json(*traced);
     std::cout << json_text(j) << "\n";
   } else {
     char line[400];
@@ -154,6 +168,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
         median, frame_s.front(), (unsigned long long)st.CInvocations, double(st.CInvocations) / median / 1e6, stream_s,
         hs_rate / 1e6, ds_rate / 1e6);
     std::cout << line;
+    if (traced) std::cout << summary_line(*traced) << "\n";
   }
   return kExitOk;
 }
@@ -171,6 +186,7 @@ Runner add_bench_subd_command(CLI::App& bench) {
   add_bench_msaa_option(*cmd, o->s.msaa);
   o->device.add_options(*cmd);
   cmd->add_option("-o,--output", o->output, "write the last frame");
+  add_bench_trace_option(*cmd, o->trace);
   cmd->add_flag("--json", o->json, "print results as JSON");
   cmd->add_flag("--compare-cull", o->compare_cull,
                 "also time the frames under each --cull mode (none, frustum, backface, all): the time each "

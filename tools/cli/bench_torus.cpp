@@ -39,6 +39,7 @@ struct TorusOptions {
   std::string output;
   std::string stats;
   std::string llvmpipe;
+  std::string trace;
   std::size_t chunk_primitives = DeviceOptions{}.chunk_primitives;
   BenchDeviceOptions device;
   int window_patches = DeviceOptions{}.window_patches;
@@ -97,7 +98,7 @@ int run_bench_torus(const TorusOptions& o) {
     throw UsageError("--factor: must be finite (the scene's factor, clamped as D3D11 does)");
   if (o.frames < 1 || o.frames > 10000) throw UsageError("--frames: must be in 1..10000");
   if (o.rounds < 1 || o.rounds > 100) throw UsageError("--rounds: must be in 1..100");
-  check_output_paths({{"-o", o.output}, {"--stats", o.stats}}, {});
+  check_output_paths({{"-o", o.output}, {"--stats", o.stats}, {"--trace", o.trace}}, {});
   // The device would clamp these silently; a benchmark must run what it was asked to.
   if (o.chunk_primitives < 64 || o.chunk_primitives > (std::size_t(1) << 24))
     throw UsageError("--chunk-primitives: " + std::to_string(o.chunk_primitives) + " is not in 64..16777216");
@@ -132,15 +133,19 @@ int run_bench_torus(const TorusOptions& o) {
   std::vector<double> times, round_speedups;
   std::vector<LlvmpipeRun> llvmpipe_rounds;
   DrawReport report;
+  const auto render_frame = [&] {
+    device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
+    DrawResult r = device.draw(draw, *fb);
+    if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
+    if (!r.ok()) throw InputError(r.error);
+    return r;
+  };
   for (int round = 0; round < o.rounds; ++round) {
     std::vector<double> round_times;
     for (int frame = 0; frame <= o.frames; ++frame) {
       const auto start = std::chrono::steady_clock::now();
-      device.clear(*fb, glm::vec4(0, 0, 0, 1), 1.0f);
-      DrawResult r = device.draw(draw, *fb);
-      if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
+      DrawResult r = render_frame();
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (!r.ok()) throw InputError(r.error);
       if (frame > 0) round_times.push_back(s);  // frame 0 warms caches and allocations, as the harness does
       report = r.report;
       log_info("round " + std::to_string(round) + " frame " + std::to_string(frame) + ": " + std::to_string(s) + " s");
@@ -154,6 +159,11 @@ int run_bench_torus(const TorusOptions& o) {
   const double median = median_of(times), minimum = *std::min_element(times.begin(), times.end());
   const std::uint64_t triangles = report.statistics.CInvocations;
   const std::uint64_t rss = peak_rss_bytes();
+  std::optional<TraceSummary> traced;
+  if (!o.trace.empty())
+    traced = trace_frame(
+        device, render_frame, o.trace,
+        "bench torus, factor " + float_text(o.factor) + ", " + std::to_string(device.threads()) + " threads");
 
   if (!o.output.empty()) {
     if (auto e = write_color(*fb, {o.output}); !e.empty()) throw InputError(e);
@@ -210,6 +220,7 @@ int run_bench_torus(const TorusOptions& o) {
               {"framebuffer_bytes", report.memory.framebuffer_bytes},
               {"peak_rss_bytes", rss},
               {"times", to_json(report.times)}};
+    if (traced) j["trace"] = to_json(*traced);
     if (lp)
       j["llvmpipe"] = {{"median_s", lp->median_s},         {"min_s", lp->min_s},
                        {"triangles", lp->triangles},       {"speedup", speedup},
@@ -227,6 +238,7 @@ int run_bench_torus(const TorusOptions& o) {
         double(report.memory.geometry_peak_bytes) / 1e6, double(report.memory.framebuffer_bytes) / 1e6,
         double(rss) / 1e6);
     std::cout << line;
+    if (traced) std::cout << summary_line(*traced) << "\n";
     if (lp) {
       std::snprintf(line, sizeof line,
                     "llvmpipe: triangles %llu median_s %.4f min_s %.4f; speedup %.2fx; pixels differing by more than "
@@ -262,6 +274,7 @@ Runner add_bench_torus_command(CLI::App& bench) {
   cmd->add_option("-o,--output", o->output, "write the last frame (PNG, EXR, ...)");
   cmd->add_option("--stats", o->stats, "write D3D11 pipeline statistics, stage times and memory as JSON");
   cmd->add_option("--llvmpipe", o->llvmpipe, "path of the tessbench harness: run it too and compare");
+  add_bench_trace_option(*cmd, o->trace);
   cmd->add_option("--chunk-primitives", o->chunk_primitives, "primitives per geometry chunk")->capture_default_str();
   o->device.add_options(*cmd);
   cmd->add_option("--window-patches", o->window_patches, "patches through the vertex and hull shaders at once")
