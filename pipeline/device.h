@@ -155,34 +155,39 @@ class Backend {
   void run(std::size_t count, Produce&& produce, DrawReport& report, AfterRound&& after_round) {
     const TileGrid& g = setup_.tiles;
     const std::size_t tiles = std::size_t(g.count());
-    std::vector<std::size_t> set_bytes(sets_, 0);  // chunk storage per set, as last seen
-    for (std::size_t i = 0; i < slots_.size(); ++i) set_bytes[i / per_round_] += slots_[i].capacity_bytes();
-    lists_.resize(sets_);
-    const auto chunks_of = [&](std::size_t r) { return std::min(per_round_, count - r * per_round_); };
+    // Chunk storage per slot, as last seen: a slot is read only by the stage that owns it (its producer,
+    // or the consumption of its round), so the others' sizes are those of their last consumption.
+    std::vector<std::size_t> slot_bytes(slots_.size(), 0);
+    for (std::size_t i = 0; i < slots_.size(); ++i) slot_bytes[i] = slots_[i].capacity_bytes();
+    // Tile lists for twice as many rounds as full rounds fit in the slots: the window's last rounds are
+    // smaller (round_starts), and their lists need not wait for an older round's to be freed.
+    const std::size_t list_sets = 2 * sets_;
+    lists_.resize(list_sets);
     const std::size_t workers = std::size_t(tbb::this_task_arena::max_concurrency());
     tbb::enumerable_thread_specific<std::pair<std::uint64_t, double>> local;  // PS invocations, raster seconds
 
-    const auto produce_chunk = [&](std::size_t c) {
-      ChunkBuffer<N>& slot = slots_[((c / per_round_) % sets_) * per_round_ + c % per_round_];
+    const auto produce_chunk = [&](std::size_t c, std::size_t r, std::size_t s) {
+      ChunkBuffer<N>& slot = slots_[s];
       const auto start = trace_ ? Clock::now() : Clock::time_point{};
       slot.reset(setup_.tiles.count());
       produce(c, slot);
       slot.finish_bins();
       if (trace_)
-        trace_->record(TraceStage::chunk, trace_worker(), start, Clock::now(), std::uint32_t(c / per_round_),
-                       std::uint32_t(c));
+        trace_->record(TraceStage::chunk, trace_worker(), start, Clock::now(), std::uint32_t(r), std::uint32_t(c));
     };
     // A round's tile lists: for each tile, the round's chunks holding its primitives, in draw order (a
     // counting sort, stable in chunk order, over the chunks' touched tiles: the work is proportional to
     // the (chunk, tile) pairs with primitives, not to chunks x tiles), and the busy tiles with their loads.
-    const auto list_tiles = [&](std::size_t r) -> std::span<const TileLoad> {
+    const auto list_tiles = [&](std::size_t r,
+                                std::span<const std::uint32_t> chunk_slots) -> std::span<const TileLoad> {
       const auto start = trace_ ? Clock::now() : Clock::time_point{};
-      RoundLists& l = lists_[r % sets_];
-      const ChunkBuffer<N>* set = slots_.data() + (r % sets_) * per_round_;
-      const std::size_t n = chunks_of(r);
+      RoundLists& l = lists_[r % list_sets];
+      l.slots.assign(chunk_slots.begin(), chunk_slots.end());
+      const std::size_t n = chunk_slots.size();
+      const auto chunk = [&](std::size_t k) -> const ChunkBuffer<N>& { return slots_[l.slots[k]]; };
       l.tile_first.assign(tiles + 1, 0);
       for (std::size_t k = 0; k < n; ++k)
-        for (std::uint32_t t : set[k].touched) ++l.tile_first[t + 1];
+        for (std::uint32_t t : chunk(k).touched) ++l.tile_first[t + 1];
       l.busy.clear();
       for (std::size_t t = 0; t < tiles; ++t) {
         if (l.tile_first[t + 1] != 0) l.busy.push_back({std::uint32_t(t), 0});
@@ -191,10 +196,10 @@ class Backend {
       l.tile_chunks.resize(l.tile_first.back());
       l.cursor.assign(l.tile_first.begin(), l.tile_first.end() - 1);
       for (std::uint32_t k = 0; k < n; ++k)
-        for (std::uint32_t t : set[k].touched) l.tile_chunks[l.cursor[t]++] = k;
+        for (std::uint32_t t : chunk(k).touched) l.tile_chunks[l.cursor[t]++] = k;
       for (TileLoad& b : l.busy)
         for (std::uint32_t k = l.tile_first[b.tile]; k != l.tile_first[b.tile + 1]; ++k)
-          b.load += std::uint32_t(set[l.tile_chunks[k]].bin(int(b.tile)).size());
+          b.load += std::uint32_t(chunk(l.tile_chunks[k]).bin(int(b.tile)).size());
       if (trace_) trace_->record(TraceStage::tile_lists, trace_worker(), start, Clock::now(), std::uint32_t(r));
       return l.busy;
     };
@@ -218,10 +223,9 @@ class Backend {
       ty1 = std::min(ty1, fb_.height());
       const auto for_each_primitive = [&](const auto& visit) {
         for (const std::uint32_t r : rounds) {
-          const RoundLists& l = lists_[r % sets_];
-          const ChunkBuffer<N>* set = slots_.data() + (r % sets_) * per_round_;
+          const RoundLists& l = lists_[r % list_sets];
           for (std::uint32_t k = l.tile_first[t]; k != l.tile_first[t + 1]; ++k) {
-            const ChunkBuffer<N>& chunk = set[l.tile_chunks[k]];
+            const ChunkBuffer<N>& chunk = slots_[l.slots[l.tile_chunks[k]]];
             for (std::uint32_t i : chunk.bin(int(t))) visit(chunk.primitives[i]);
           }
         }
@@ -233,28 +237,26 @@ class Backend {
       if (trace_) trace_->record(TraceStage::tile, trace_worker(), start, end, t, quarter);
     };
     // Under the schedule's lock, before the round's storage is reused.
-    const auto consumed = [&](std::size_t r) {
-      const std::size_t set = r % sets_, n = chunks_of(r);
-      std::size_t bytes = 0;
-      for (std::size_t s = 0; s < per_round_; ++s) {
-        const ChunkBuffer<N>& slot = slots_[set * per_round_ + s];
-        bytes += slot.capacity_bytes();
-        if (s >= n) continue;
+    const auto consumed = [&](std::size_t, std::span<const std::uint32_t> chunk_slots) {
+      for (const std::uint32_t s : chunk_slots) {
+        const ChunkBuffer<N>& slot = slots_[s];
+        slot_bytes[s] = slot.capacity_bytes();
         report.statistics += slot.statistics;
         report.times += slot.times;
         report.patches_back_culled += slot.patches_back_culled;
       }
-      report.memory.chunks += n;
-      set_bytes[set] = bytes;
+      report.memory.chunks += chunk_slots.size();
       std::size_t total = 0;
-      for (const std::size_t b : set_bytes) total += b;
+      for (const std::size_t b : slot_bytes) total += b;
       chunk_bytes_peak_ = std::max(chunk_bytes_peak_, total);
     };
-    const auto finished = [&](std::size_t r) { after_round(r * per_round_ + chunks_of(r)); };
+    const auto finished = [&](std::size_t, std::size_t end) { after_round(end); };
     ScheduleShape shape;
     shape.chunks = count;
     shape.per_round = per_round_;
-    shape.sets = sets_;
+    shape.smallest = std::max<std::size_t>(1, workers / 2);
+    shape.slots = slots_.size();
+    shape.lists = list_sets;
     shape.tiles = tiles;
     shape.workers = int(workers);
     shape.can_split = g.tile_size % 4 == 0;
@@ -275,6 +277,7 @@ class Backend {
  private:
   // A round's tile lists (built once its chunks are produced; held until it is consumed).
   struct RoundLists {
+    std::vector<std::uint32_t> slots;  // the round's chunks' slots, in chunk order
     std::vector<std::uint32_t> tile_first, cursor, tile_chunks;
     std::vector<TileLoad> busy;
   };
@@ -288,7 +291,7 @@ class Backend {
   std::size_t sets_;
   DrawTrace* trace_;
   std::size_t chunk_bytes_peak_ = 0;
-  std::vector<RoundLists> lists_;  // per set
+  std::vector<RoundLists> lists_;  // by round, modulo their count
 };
 
 template <std::size_t N>

@@ -188,15 +188,30 @@ TEST_CASE("pipeline: wireframe fill draws edges only", "[pipeline][lines]") {
 TEST_CASE("pipeline: the tile schedule keeps each tile's rounds in order and reuses storage only when consumed",
           "[pipeline][parallel]") {
   using tessera::detail::TileLoad;
+  // Rounds: full ones, then halving down to the smallest size, covering every chunk once.
+  CHECK(tessera::detail::round_starts(162, 64, 8) == std::vector<std::size_t>{0, 64, 113, 138, 150, 158, 162});
+  CHECK(tessera::detail::round_starts(256, 64, 8) == std::vector<std::size_t>{0, 64, 128, 192, 224, 240, 248, 256});
+  CHECK(tessera::detail::round_starts(5, 4, 1) == std::vector<std::size_t>{0, 3, 4, 5});
+  CHECK(tessera::detail::round_starts(0, 4, 1) == std::vector<std::size_t>{0});
+  for (std::size_t chunks = 0; chunks < 300; chunks += 7) {
+    const auto first = tessera::detail::round_starts(chunks, 16, 3);
+    CHECK(first.back() == chunks);
+    for (std::size_t r = 0; r + 1 < first.size(); ++r) {
+      CHECK(first[r + 1] > first[r]);
+      CHECK(first[r + 1] - first[r] <= 16);
+    }
+  }
   struct Case {
     int workers;
-    std::size_t chunks, per_round, sets, tiles;
+    std::size_t chunks, per_round, smallest, sets, tiles;  // sets: slots = sets x per_round; as many lists
     bool can_split;
-  } cases[] = {{4, 40, 3, 2, 9, true}, {4, 41, 4, 3, 16, true}, {6, 100, 2, 5, 7, true},
-               {1, 23, 4, 2, 9, true}, {3, 7, 8, 2, 5, false},  {4, 0, 4, 2, 9, true}};
+  } cases[] = {{4, 40, 3, 1, 2, 9, true},  {4, 41, 4, 2, 3, 16, true}, {6, 100, 2, 1, 5, 7, true},
+               {1, 23, 4, 1, 2, 9, true},  {3, 7, 8, 1, 2, 5, false},  {4, 0, 4, 1, 2, 9, true},
+               {8, 90, 16, 4, 3, 12, true}};
   for (const Case& c : cases) {
     INFO("workers " << c.workers << " chunks " << c.chunks << " per round " << c.per_round << " sets " << c.sets);
-    const std::size_t rounds = (c.chunks + c.per_round - 1) / c.per_round;
+    const std::vector<std::size_t> first = tessera::detail::round_starts(c.chunks, c.per_round, c.smallest);
+    const std::size_t rounds = first.size() - 1;
     // Round r's busy tiles: a pseudo-random subset with uneven loads; the last round piles its load on
     // tile 0, so that a drain splits it.
     std::vector<std::vector<TileLoad>> lists(rounds);
@@ -212,7 +227,11 @@ TEST_CASE("pipeline: the tile schedule keeps each tile's rounds in order and reu
       ok = false;
     };
     std::size_t next_started = 0;
+    std::vector<int> started(c.chunks, 0);
     std::vector<std::size_t> produced(rounds, 0);
+    const std::size_t slots = c.sets * c.per_round;
+    std::vector<long> slot_owner(slots, -1);  // the round holding each slot
+    std::vector<std::uint32_t> chunk_slot(c.chunks, 0);
     std::vector<int> listed(rounds, 0), consumed(rounds, 0);
     std::vector<std::size_t> finished;
     std::vector<std::set<std::uint32_t>> given(c.tiles + 1);  // rounds rasterized per tile
@@ -220,20 +239,33 @@ TEST_CASE("pipeline: the tile schedule keeps each tile's rounds in order and reu
     std::vector<int> quarters_running(c.tiles + 1, 0);
     std::vector<int> prepared(c.tiles + 1, 0);
     const auto busy = [] { tbb::parallel_for(0, 3, [](int) { std::this_thread::yield(); }); };
-    const auto produce = [&](std::size_t chunk) {
-      const std::size_t r = chunk / c.per_round;
+    const auto produce = [&](std::size_t chunk, std::size_t r, std::size_t slot) {
       {
         const std::lock_guard<std::mutex> lock(m);
-        if (chunk != next_started++) fail("chunk " + std::to_string(chunk) + " started out of order");
-        if (r >= c.sets && !consumed[r - c.sets]) fail("round " + std::to_string(r) + " reused unconsumed storage");
+        // Chunks are handed out in draw order, but two workers' calls may begin in either order.
+        ++next_started;
+        if (chunk >= c.chunks || started[chunk]++) fail("chunk " + std::to_string(chunk) + " produced twice");
+        if (r >= rounds || chunk < first[r] || chunk >= first[r + 1])
+          fail("chunk " + std::to_string(chunk) + " given the wrong round");
+        if (slot >= slots || slot_owner[slot] != -1) fail("chunk " + std::to_string(chunk) + " given a slot in use");
+        if (slot < slots) slot_owner[slot] = long(r);
+        chunk_slot[chunk] = std::uint32_t(slot);
+        if (r >= c.sets && !consumed[r - c.sets]) fail("round " + std::to_string(r) + " reused unconsumed lists");
       }
       busy();
       const std::lock_guard<std::mutex> lock(m);
       ++produced[r];
     };
-    const auto list_tiles = [&](std::size_t r) -> std::span<const TileLoad> {
+    // The round's slots, in chunk order, as its chunks were given them.
+    const auto check_slots = [&](std::size_t r, std::span<const std::uint32_t> s) {
+      if (s.size() != first[r + 1] - first[r]) return fail("a round's size is wrong");
+      for (std::size_t i = 0; i < s.size(); ++i)
+        if (s[i] != chunk_slot[first[r] + i]) fail("a round's slots are wrong");
+    };
+    const auto list_tiles = [&](std::size_t r, std::span<const std::uint32_t> s) -> std::span<const TileLoad> {
       const std::lock_guard<std::mutex> lock(m);
-      if (produced[r] != std::min(c.per_round, c.chunks - r * c.per_round)) fail("listed before produced");
+      check_slots(r, s);
+      if (produced[r] != s.size()) fail("listed before produced");
       if (listed[r]++) fail("listed twice");
       return lists[r];
     };
@@ -258,19 +290,25 @@ TEST_CASE("pipeline: the tile schedule keeps each tile's rounds in order and reu
       const std::lock_guard<std::mutex> lock(m);
       --(q == 0 ? running[t] : quarters_running[t]);
     };
-    const auto on_consumed = [&](std::size_t r) {
+    const auto on_consumed = [&](std::size_t r, std::span<const std::uint32_t> s) {
+      const std::lock_guard<std::mutex> lock(m);
+      check_slots(r, s);
+      for (const std::uint32_t slot : s) slot_owner[slot] = -1;
       for (const TileLoad& tl : lists[r])
         if (!given[tl.tile].count(std::uint32_t(r))) fail("consumed before every tile rasterized it");
       if (consumed[r]++) fail("consumed twice");
     };
-    const auto on_finished = [&](std::size_t r) {
+    const auto on_finished = [&](std::size_t r, std::size_t end) {
       if (!consumed[r]) fail("finished before consumed");
+      if (end != first[r + 1]) fail("finished with the wrong end");
       finished.push_back(r);
     };
     tessera::detail::ScheduleShape shape;
     shape.chunks = c.chunks;
     shape.per_round = c.per_round;
-    shape.sets = c.sets;
+    shape.smallest = c.smallest;
+    shape.slots = slots;
+    shape.lists = c.sets;
     shape.tiles = c.tiles + 1;
     shape.workers = c.workers;
     shape.can_split = c.can_split;
