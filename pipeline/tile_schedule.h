@@ -23,6 +23,7 @@
 //   increasing order, all produced and listed, none of them given to that tile before. One call per
 //   tile runs at a time, except the four quarters (1..4) of a split tile, which cover disjoint pixels.
 //   So each pixel sees its primitives in draw order, whatever the thread count.
+// - Callbacks may fork and wait (each runs isolated: its thread then takes only its own tasks).
 // - consumed(r, slots) runs once every tile of round r is rasterized, before its slots are freed;
 //   finished(r, end) runs for
 //   r = 0, 1, ... in order, after consumed(r), with `end` the chunk after the round's last. Both under
@@ -43,6 +44,7 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/task_arena.h>
 
 #include "pipeline/parallel.h"
 
@@ -74,7 +76,7 @@ struct ScheduleShape {
   std::size_t chunks = 0;     // the draw's (window's) chunks
   std::size_t per_round = 1;  // chunks per round
   std::size_t smallest = 1;   // the last rounds' smallest size
-  std::size_t slots = 2;      // chunk storage: at least 2 x per_round
+  std::size_t slots = 2;      // chunk storage (at least per_round; 2 x per_round lets rounds overlap)
   std::size_t lists = 2;      // rounds whose tile lists exist at once
   std::size_t tiles = 0;      // the screen's tiles
   int workers = 1;
@@ -93,6 +95,9 @@ class TileSchedule {
         rasterize_(rasterize),
         consumed_(consumed),
         finished_(finished) {
+    // A round never needs more slots than exist: only the round being handed out can be incomplete,
+    // and every earlier one is consumed in time, freeing its slots.
+    s_.per_round = std::max<std::size_t>(s_.per_round, 1);
     s_.lists = std::max<std::size_t>(s_.lists, 1);
     s_.slots = std::max<std::size_t>(s_.slots, s_.per_round);
     free_slots_.resize(s_.slots);
@@ -142,6 +147,14 @@ class TileSchedule {
   };
   static bool later(const Ready& a, const Ready& b) {
     return a.major != b.major ? a.major > b.major : a.minor > b.minor;
+  }
+
+  // Runs a callback so that, if it forks and waits, its thread takes only the callback's own tasks:
+  // not another worker's loop of this schedule, which would hold the thread (and the callback's
+  // unfinished work, on its stack) until the whole schedule ended, a deadlock.
+  template <class F>
+  static decltype(auto) isolated(F&& f) {
+    return tbb::this_task_arena::isolate(std::forward<F>(f));
   }
 
   std::size_t chunks_of(std::size_t r) const { return first_[r + 1] - first_[r]; }
@@ -210,12 +223,12 @@ class TileSchedule {
   }
 
   void round_done(std::size_t r) {
-    consumed_(r, slots_of(r));
+    isolated([&] { consumed_(r, slots_of(r)); });
     for (const std::uint32_t slot : slots_of(r)) free_slots_.push_back(slot);
     done_[r] = 1;
     news_ = true;  // its storage set may take the next round's chunks
     for (; finished_count_ < rounds_ && done_[finished_count_]; ++finished_count_)
-      finished_(finished_count_, first_[finished_count_ + 1]);
+      isolated([&] { finished_(finished_count_, first_[finished_count_ + 1]); });
   }
 
   // The tile's rounds are rasterized: each round may be done; the tile goes back to the queue if more
@@ -269,7 +282,7 @@ class TileSchedule {
         if (item.quarter != 0) {
           Split& sp = splits_[item.split];
           lock.unlock();
-          rasterize_(item.tile, std::span<const std::uint32_t>(sp.rounds), item.quarter);
+          isolated([&] { rasterize_(item.tile, std::span<const std::uint32_t>(sp.rounds), item.quarter); });
           lock.lock();
           if (--sp.left == 0) {
             tile_done(item.tile, sp.rounds);
@@ -304,14 +317,14 @@ class TileSchedule {
           splits_[id].left = 4;
           ++tiles_split_;
           lock.unlock();
-          prepare_(item.tile);  // before its quarters, which may run at once
+          isolated([&] { prepare_(item.tile); });  // before its quarters, which may run at once
           lock.lock();
           for (std::uint8_t q = 1; q <= 4; ++q) push_ready({0, 0, item.tile, id, q});
           wake();
           continue;
         }
         lock.unlock();
-        rasterize_(item.tile, std::span<const std::uint32_t>(rounds), 0);
+        isolated([&] { rasterize_(item.tile, std::span<const std::uint32_t>(rounds), 0); });
         lock.lock();
         tile_done(item.tile, rounds);
         wake();
@@ -324,11 +337,11 @@ class TileSchedule {
         free_slots_.pop_back();
         chunk_slot_[c] = slot;
         lock.unlock();
-        produce_(c, r, std::size_t(slot));
+        isolated([&] { produce_(c, r, std::size_t(slot)); });
         lock.lock();
         if (--unproduced_[r] == 0) {
           lock.unlock();
-          const std::span<const TileLoad> list = list_tiles_(r, slots_of(r));
+          const std::span<const TileLoad> list = isolated([&] { return list_tiles_(r, slots_of(r)); });
           lock.lock();
           lists_[r] = list;
           listed_[r] = 1;
