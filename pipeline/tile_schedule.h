@@ -118,7 +118,9 @@ class TileSchedule {
   void run() {
     if (rounds_ == 0) return;
     const std::size_t workers = std::size_t(std::max(1, s_.workers));
-    parallel_for(tbb::blocked_range<std::size_t>(0, workers, 1), [&](const auto& range) {
+    // Qualified: an unqualified call would find oneTBB's own (more constrained) parallel_for by ADL, without
+    // the edges parallel.h states for ThreadSanitizer.
+    detail::parallel_for(tbb::blocked_range<std::size_t>(0, workers, 1), [&](const auto& range) {
       for (std::size_t w = range.begin(); w != range.end(); ++w) work();
     });
   }
