@@ -7,10 +7,10 @@
 //   chunks' primitives in draw order; every computation on a primitive is a pure function of it.
 // - Bounded memory: the front end (front_end.h) handles at most `window_patches` patches at a time
 //   (VS and HS outputs), and cuts their output into chunks of about `chunk_primitives` primitives, in
-//   rounds of `chunks_in_flight`; at most `rounds_in_flight` rounds exist at once (produced while
-//   earlier ones are rasterized). Peak memory therefore does not grow with the tessellation factor (one
-//   patch is at most 8192 triangles); it grows linearly with the thread count (rounds_in_flight x
-//   chunks_in_flight chunk buffers).
+//   rounds of up to `chunks_in_flight` (tile_schedule.h); the chunks in flight (produced while earlier
+//   ones are rasterized) share rounds_in_flight x chunks_in_flight chunk buffers. Peak memory therefore
+//   does not grow with the tessellation factor (one patch is at most 8192 triangles); it grows
+//   linearly with the thread count (the default chunks_in_flight is 4 x threads).
 // - A Device runs one draw at a time (draws on one device from several threads take turns): its chunk
 //   slots are reused from draw to draw, so their storage is allocated and touched once, not per frame.
 // - Bad data is reported, not crashed on: validate() errors are returned as one-line messages;
@@ -147,7 +147,8 @@ class Backend {
 
   const SetupContext& setup() const { return setup_; }
 
-  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), in rounds of `slot_count` chunks, and
+  // Produces chunks [0, count) with produce(chunk, ChunkBuffer&), in rounds of `slot_count` chunks (the
+  // window's last rounds smaller: tile_schedule.h's round_starts), and
   // rasterizes each tile's primitives as the rounds holding them are produced (tile_schedule.h: one pool
   // of workers, no barrier between rounds; each tile takes its rounds, and the chunks within a round, in
   // draw order). after_round(chunks done) follows each round's rasterization, in order.
@@ -254,6 +255,8 @@ class Backend {
     ScheduleShape shape;
     shape.chunks = count;
     shape.per_round = per_round_;
+    // The last rounds halve down to half a chunk per worker: smaller, their tile lists and the tiles'
+    // extra visits would cost more than the raster they leave after the last chunk.
     shape.smallest = std::max<std::size_t>(1, workers / 2);
     shape.slots = slots_.size();
     shape.lists = list_sets;

@@ -228,7 +228,7 @@ class TileSchedule {
     isolated([&] { consumed_(r, slots_of(r)); });
     for (const std::uint32_t slot : slots_of(r)) free_slots_.push_back(slot);
     done_[r] = 1;
-    news_ = true;  // its storage set may take the next round's chunks
+    news_ = true;  // its slots and list storage may take the next chunks
     for (; finished_count_ < rounds_ && done_[finished_count_]; ++finished_count_)
       isolated([&] { finished_(finished_count_, first_[finished_count_ + 1]); });
   }

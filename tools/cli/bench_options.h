@@ -61,14 +61,14 @@ inline void add_bench_trace_option(CLI::App& cmd, std::string& path) {
 template <class Frame>
 TraceSummary trace_frame(Device& device, const Frame& frame, const std::string& path, const std::string& label) {
   DrawTrace trace;
-  device.set_trace(&trace);
-  try {
+  {
+    struct Recording {  // the device stops recording however frame() ends
+      Device& device;
+      ~Recording() { device.set_trace(nullptr); }
+    } recording{device};
+    device.set_trace(&trace);
     frame();
-  } catch (...) {
-    device.set_trace(nullptr);
-    throw;
   }
-  device.set_trace(nullptr);
   write_trace_file(trace, label, path);
   return trace.summary();
 }

@@ -61,14 +61,19 @@ int run_bench_subd(const BenchSubdOptions& o) {
     std::vector<double> frame_s;  // sorted
     DrawReport last;
   };
+  // One frame: clear, draw, and a multisampled target's colour resolved.
+  const auto render_frame = [&](const SubdFactors& f) {
+    device.clear(*fb, kBackgroundColor, 1.0f);
+    DrawResult r = render_surface(device, model, d, f, partitioning, SubdView::shaded, camera, *fb);
+    if (!r.ok()) throw InputError(cage + ": " + r.error);
+    if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
+    return r;
+  };
   const auto time_frames = [&](const SubdFactors& f) {
     Timed t;
     for (int k = 0; k < o.frames + 1; ++k) {  // one warm-up frame
       const auto start = Clock::now();
-      device.clear(*fb, kBackgroundColor, 1.0f);
-      const DrawResult r = render_surface(device, model, d, f, partitioning, SubdView::shaded, camera, *fb);
-      if (!r.ok()) throw InputError(cage + ": " + r.error);
-      if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
+      const DrawResult r = render_frame(f);
       if (k > 0) t.frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
       t.last = r.report;
     }
@@ -113,14 +118,8 @@ int run_bench_subd(const BenchSubdOptions& o) {
   std::optional<TraceSummary> traced;
   if (!o.trace.empty())
     traced = trace_frame(
-        device,
-        [&] {
-          device.clear(*fb, kBackgroundColor, 1.0f);
-          const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, camera, *fb);
-          if (!r.ok()) throw InputError(cage + ": " + r.error);
-          if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);
-        },
-        o.trace, "bench frog, " + std::to_string(device.threads()) + " threads");
+        device, [&] { render_frame(factors); }, o.trace,
+        "bench frog, " + std::to_string(device.threads()) + " threads");
   if (!o.output.empty())
     if (auto e = write_color(*fb, {o.output}); !e.empty()) throw InputError(e);
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
