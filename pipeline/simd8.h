@@ -1,7 +1,7 @@
 // Eight float lanes for batch shader code (a batch domain shader's points), where the work per lane is
 // long and the same for every lane.
 //
-// With AVX (a TESSERA_ISA=host build on an x86-64-v3 machine) each operation is one 256-bit
+// With AVX (an x86-64-v3 or -v4 build: TESSERA_ISA in CMakeLists.txt) each operation is one 256-bit
 // instruction; without it, F8 is two F4s (simd4.h), so code written over F8 compiles and gives the same
 // bits in every build. Each operation is one IEEE-754 operation per lane (add, sub, mul, div and sqrt
 // are correctly rounded in every form), and no FMA is formed.

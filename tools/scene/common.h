@@ -20,7 +20,9 @@ namespace tessera::cli {
 // The instruction set this build was compiled for (TESSERA_ISA in CMakeLists.txt): benchmark reports
 // name it, since timings depend on it (the images do not).
 inline constexpr const char* kBuildIsa =
-#if defined(__AVX2__)
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__) && defined(__AVX512DQ__)
+    "x86-64-v4";
+#elif defined(__AVX2__)
     "x86-64-v3";
 #else
     "baseline";
