@@ -69,11 +69,33 @@ struct alignas(128) ChunkBuffer {
   void finish_bins() {
     const std::size_t tiles = tile_start.size() - 1;
     std::fill(tile_start.begin(), tile_start.end(), 0);
-    for (const auto& e : entries) ++tile_start[e.first + 1];
+    // Both passes go run by run: setup appends entries in draw order, and consecutive primitives
+    // mostly lie in one tile (runs of 8-16 at factor 16). A run's count and cursor stay in a register;
+    // incremented per entry in memory, the tile's counter was one chain of stores and reloads (these
+    // two loops were 4 % of a one-thread torus frame).
+    const std::size_t n = entries.size();
+    const auto run_end = [&](std::size_t i) {
+      const std::uint32_t t = entries[i].first;
+      std::size_t j = i + 1;
+      while (j < n && entries[j].first == t) ++j;
+      return j;
+    };
+    for (std::size_t i = 0; i < n;) {
+      const std::size_t j = run_end(i);
+      tile_start[entries[i].first + 1] += std::uint32_t(j - i);
+      i = j;
+    }
     for (std::size_t t = 0; t < tiles; ++t) tile_start[t + 1] += tile_start[t];
-    binned.resize(entries.size());
+    binned.resize(n);
     // Fill using a running cursor per tile; tile_start is restored afterwards.
-    for (const auto& e : entries) binned[tile_start[e.first]++] = e.second;
+    for (std::size_t i = 0; i < n;) {
+      const std::size_t j = run_end(i);
+      std::uint32_t& cursor = tile_start[entries[i].first];
+      std::uint32_t at = cursor;
+      for (std::size_t k = i; k < j; ++k) binned[at++] = entries[k].second;
+      cursor = at;
+      i = j;
+    }
     for (std::size_t t = tiles; t > 0; --t) tile_start[t] = tile_start[t - 1];
     tile_start[0] = 0;
     touched.clear();

@@ -673,6 +673,47 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
   CHECK(std::size_t(edges32) < lanes.primitive_count);  // some large triangles went through setup_triangle
 }
 
+TEST_CASE("pipeline: a chunk's bins are a stable sort of its entries by tile, runs or not", "[pipeline][bins]") {
+  // finish_bins counts and places runs of one tile at a time: compare it with std::stable_sort on entry
+  // lists of long runs, single entries, a tile revisited after others, the first and last tiles, and none.
+  constexpr int kTiles = 37;
+  std::uint64_t state = 12345;
+  const auto next = [&](std::uint32_t n) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return std::uint32_t((state >> 33) % n);
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    ChunkBuffer<3> chunk;
+    chunk.reset(kTiles);
+    const std::uint32_t count = trial == 0 ? 0 : next(600) + 1;
+    std::uint32_t tile = next(kTiles);
+    for (std::uint32_t p = 0; p < count; ++p) {
+      if (next(trial % 4 == 0 ? 2 : 10) == 0) tile = next(5) == 0 ? (next(2) ? 0u : kTiles - 1u) : next(kTiles);
+      chunk.entries.emplace_back(tile, p);
+      if (next(7) == 0) chunk.entries.emplace_back(next(kTiles), p);  // a primitive in two tiles
+    }
+    auto expected = chunk.entries;
+    std::stable_sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    chunk.finish_bins();
+    INFO("trial " << trial << ", " << chunk.entries.size() << " entries");
+    REQUIRE(chunk.binned.size() == expected.size());
+    std::vector<std::uint32_t> touched;
+    std::size_t at = 0;
+    for (int t = 0; t < kTiles; ++t) {
+      const auto bin = chunk.bin(t);
+      if (!bin.empty()) touched.push_back(std::uint32_t(t));
+      for (const std::uint32_t p : bin) {
+        REQUIRE(at < expected.size());
+        CHECK(expected[at].first == std::uint32_t(t));
+        CHECK(expected[at].second == p);
+        ++at;
+      }
+    }
+    CHECK(at == expected.size());
+    CHECK(chunk.touched == touched);
+  }
+}
+
 TEST_CASE("pipeline: default rounds follow the thread count, and a window holds a 2048-patch draw",
           "[pipeline][memory]") {
   // Two rounds of chunks on up to two threads, three from three up; a value given is kept.

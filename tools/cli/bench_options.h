@@ -25,8 +25,8 @@ struct BenchDeviceOptions {
                    "chunks produced per round, 0 = the device's default (4 x threads, at least 4)")
         ->capture_default_str();
     cmd.add_option("--rounds-in-flight", rounds_in_flight,
-                   "rounds of chunks produced or rasterized at once, 0 = the device's default "
-                   "(2 on up to two threads, else 3)")
+                   "chunk buffers in rounds' worth: the chunks in flight share rounds x chunks-in-flight "
+                   "buffers, 0 = the device's default (2 on up to two threads, else 3)")
         ->capture_default_str();
   }
   // Checks the values (UsageError naming the option) and sets them on `o`.
