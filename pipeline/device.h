@@ -403,8 +403,11 @@ DrawResult Device::draw(const PatchDraw<Vertex, Vs, Hs, Ds, Ps>& d, Framebuffer&
         kept<tbb::enumerable_thread_specific<detail::PatchScratch<N>>>();
     for (auto& s : scratch) s.patterns.reset_counters();  // the report counts this draw's hits and misses
     const bool culls_an_orientation = rasterizer_culls(setup, 1) || rasterizer_culls(setup, -1);
+    // A window's last chunk per worker, in quarters (cut_chunks): less left for few workers at its end.
+    // The cut does not change what is drawn (chunks are cut and drawn in draw order).
+    const std::size_t tail_primitives = threads_ > 1 ? std::size_t(threads_) * options_.chunk_primitives : 0;
     FrontEnd front(d.vertices, d.indices, d.control_points, d.vs, d.hs, tstate, options_.window_patches,
-                   options_.chunk_primitives, &kept<typename FrontEnd::Storage>(), trace_);
+                   options_.chunk_primitives, &kept<typename FrontEnd::Storage>(), trace_, tail_primitives);
     std::size_t scratch_bytes_peak = 0;
 
     // A patch through the DS (in its batch form when it has one) and setup_vertex, then its primitives

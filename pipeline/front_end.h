@@ -7,7 +7,8 @@
 // - Windows hold at most `window_patches` patches; their VS and HS outputs are the only storage that
 //   grows with the draw, and it is bounded by the window.
 // - Chunks are ranges of a window's patches in draw order whose primitive counts sum to at most
-//   `chunk_primitives` (a chunk holds at least one patch, and at most 256).
+//   `chunk_primitives` (a chunk holds at least one patch, and at most 256); in a window's last
+//   `tail_primitives`, a quarter of that (cut_chunks).
 // - Everything stored is indexed by patch, so results do not depend on the thread count.
 #pragma once
 
@@ -97,19 +98,29 @@ void assemble_and_shade_vertices(const Vs& vs, std::span<const Vertex> vertices,
 }
 
 // Cuts [0, count) into ranges whose summed cost stays at or below `budget` (a range holds at least one
-// item) and at most `max_items` items.
+// item) and at most `max_items` items. The items that start within the last `tail_cost` of the total
+// cost are cut at a quarter of the budget: a window's last chunks are produced while the workers that
+// found no chunk left wait for them, and their round's tiles wait too (the uniform displaced frog on
+// 16 threads: 1.7 ms of an 11 ms frame with 2 to 8 of 16 workers busy, chunks of 0.4 ms on average).
 inline void cut_chunks(std::span<const std::uint32_t> cost, std::size_t budget, std::size_t max_items,
-                       std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+                       std::vector<std::pair<std::uint32_t, std::uint32_t>>& out, std::size_t tail_cost = 0) {
   out.clear();
+  std::size_t total = 0;
+  if (tail_cost != 0)
+    for (const std::uint32_t c : cost) total += c;
+  const std::size_t tail_from = total > tail_cost ? total - tail_cost : 0;
+  const std::size_t tail_budget = std::max<std::size_t>(budget / 4, 1);
   std::uint32_t begin = 0;
-  std::size_t sum = 0;
+  std::size_t sum = 0, before = 0;  // the current range's cost, and the cost of the items before i
   for (std::uint32_t i = 0; i < cost.size(); ++i) {
-    if (i > begin && (sum + cost[i] > budget || i - begin >= max_items)) {
+    const std::size_t b = tail_cost != 0 && before >= tail_from ? tail_budget : budget;
+    if (i > begin && (sum + cost[i] > b || i - begin >= max_items)) {
       out.emplace_back(begin, i);
       begin = i;
       sum = 0;
     }
     sum += cost[i];
+    before += cost[i];
   }
   if (begin < cost.size()) out.emplace_back(begin, static_cast<std::uint32_t>(cost.size()));
 }
@@ -221,7 +232,8 @@ class PatchFrontEnd {
   // its own. `trace`, when given, records the VS and HS phases.
   PatchFrontEnd(std::span<const Vertex> vertices, std::span<const std::uint32_t> indices, int control_points,
                 const Vs& vs, const Hs& hs, const TessellatorState& tessellator, int window_patches,
-                std::size_t chunk_primitives, Storage* storage = nullptr, DrawTrace* trace = nullptr)
+                std::size_t chunk_primitives, Storage* storage = nullptr, DrawTrace* trace = nullptr,
+                std::size_t tail_primitives = 0)
       : owned_(storage ? nullptr : std::make_unique<Storage>()),
         s_(storage ? *storage : *owned_),
         vertices_(vertices),
@@ -232,6 +244,7 @@ class PatchFrontEnd {
         tstate_(tessellator),
         window_(std::size_t(std::max(1, window_patches))),
         chunk_primitives_(chunk_primitives),
+        tail_primitives_(tail_primitives),
         trace_(trace) {}
 
   // Runs the front end window by window; after each window's HS phase, on_window() handles its
@@ -251,7 +264,7 @@ class PatchFrontEnd {
           trace_);
       report.statistics.HSInvocations += n;
       for (std::size_t p = 0; p < n; ++p) report.patches_culled += s_.hull.processed[p].culled ? 1u : 0u;
-      cut_chunks(s_.hull.cost, chunk_primitives_, 256, s_.chunks);
+      cut_chunks(s_.hull.cost, chunk_primitives_, 256, s_.chunks, tail_primitives_);
       on_window();
       window_bytes_peak_ = std::max(window_bytes_peak_, window_bytes());
     }
@@ -294,6 +307,7 @@ class PatchFrontEnd {
   TessellatorState tstate_;
   std::size_t window_;
   std::size_t chunk_primitives_;
+  std::size_t tail_primitives_;  // each window's last primitives, cut into smaller chunks (cut_chunks)
   DrawTrace* trace_;
 
   std::size_t first_ = 0;  // the current window's first patch

@@ -673,6 +673,58 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
   CHECK(std::size_t(edges32) < lanes.primitive_count);  // some large triangles went through setup_triangle
 }
 
+TEST_CASE("pipeline: chunks cover the window in order, within budget, a quarter of it in the tail", "[pipeline][bins]") {
+  std::uint64_t state = 777;
+  const auto next = [&](std::uint32_t n) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return std::uint32_t((state >> 33) % n);
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<std::uint32_t> cost(trial == 0 ? 0 : next(400) + 1);
+    for (auto& c : cost) c = next(6) == 0 ? next(9000) : next(600);  // some patches past the budget
+    const std::size_t budget = 4096, max_items = 256;
+    const std::size_t tail = trial % 3 == 0 ? 0 : std::size_t(next(6)) * budget;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
+    detail::cut_chunks(cost, budget, max_items, chunks, tail);
+    std::size_t total = 0;
+    for (const auto c : cost) total += c;
+    const std::size_t tail_from = tail == 0 ? total + 1 : (total > tail ? total - tail : 0);
+    INFO("trial " << trial << ": " << cost.size() << " items, cost " << total << ", tail " << tail);
+    std::uint32_t at = 0;
+    std::size_t before = 0, in_tail = 0;
+    for (const auto& [begin, end] : chunks) {
+      REQUIRE(begin == at);
+      REQUIRE(end > begin);
+      CHECK(end - begin <= max_items);
+      std::size_t sum = 0;
+      for (std::uint32_t i = begin; i < end; ++i) sum += cost[i];
+      // A chunk over its budget is one item; a chunk that starts in the tail keeps to a quarter.
+      const std::size_t b = before >= tail_from ? budget / 4 : budget;
+      if (end - begin > 1) CHECK(sum <= b);
+      if (before >= tail_from) ++in_tail;
+      // Greedy: the next item would not have fitted (or the chunk is full, or the window ends).
+      if (end < cost.size() && end - begin < max_items && before + sum < tail_from) CHECK(sum + cost[end] > budget);
+      before += sum;
+      at = end;
+    }
+    CHECK(at == cost.size());
+    if (tail == 0) CHECK(in_tail == 0);
+  }
+  // 100 patches of 512 primitives with a tail of 16384: eight chunks of eight, the four patches before
+  // the tail, then sixteen chunks of two.
+  const std::vector<std::uint32_t> even(100, 512);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;
+  detail::cut_chunks(even, 4096, 256, chunks, 16384);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+  for (std::uint32_t c = 0; c < 8; ++c) expected.emplace_back(8 * c, 8 * c + 8);
+  expected.emplace_back(64, 68);
+  for (std::uint32_t c = 0; c < 16; ++c) expected.emplace_back(68 + 2 * c, 70 + 2 * c);
+  CHECK(chunks == expected);
+  detail::cut_chunks(even, 4096, 256, chunks);  // no tail: thirteen chunks of eight and one of four
+  CHECK(chunks.size() == 13);
+  CHECK(chunks.back() == std::pair<std::uint32_t, std::uint32_t>(96, 100));
+}
+
 TEST_CASE("pipeline: a chunk's bins are a stable sort of its entries by tile, runs or not", "[pipeline][bins]") {
   // finish_bins counts and places runs of one tile at a time: compare it with std::stable_sort on entry
   // lists of long runs, single entries, a tile revisited after others, the first and last tiles, and none.
