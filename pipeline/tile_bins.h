@@ -70,9 +70,9 @@ struct alignas(128) ChunkBuffer {
     const std::size_t tiles = tile_start.size() - 1;
     std::fill(tile_start.begin(), tile_start.end(), 0);
     // Both passes go run by run: setup appends entries in draw order, and consecutive primitives
-    // mostly lie in one tile (runs of 8-16 at factor 16). A run's count and cursor stay in a register;
-    // incremented per entry in memory, the tile's counter was one chain of stores and reloads (these
-    // two loops were 4 % of a one-thread torus frame).
+    // mostly lie in one tile. A run's count and cursor stay in a register; incremented per entry in
+    // memory, the tile's counter was one chain of stores and reloads (these two loops were 4 % of a
+    // one-thread torus frame).
     const std::size_t n = entries.size();
     const auto run_end = [&](std::size_t i) {
       const std::uint32_t t = entries[i].first;
