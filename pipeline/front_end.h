@@ -16,6 +16,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <utility>
@@ -105,15 +106,18 @@ void assemble_and_shade_vertices(const Vs& vs, std::span<const Vertex> vertices,
 inline void cut_chunks(std::span<const std::uint32_t> cost, std::size_t budget, std::size_t max_items,
                        std::vector<std::pair<std::uint32_t, std::uint32_t>>& out, std::size_t tail_cost = 0) {
   out.clear();
-  std::size_t total = 0;
-  if (tail_cost != 0)
+  // Where the tail begins, as a cost before an item (past every item without a tail).
+  std::size_t tail_from = std::numeric_limits<std::size_t>::max();
+  if (tail_cost != 0) {
+    std::size_t total = 0;
     for (const std::uint32_t c : cost) total += c;
-  const std::size_t tail_from = total > tail_cost ? total - tail_cost : 0;
+    tail_from = total > tail_cost ? total - tail_cost : 0;
+  }
   const std::size_t tail_budget = std::max<std::size_t>(budget / 4, 1);
   std::uint32_t begin = 0;
   std::size_t sum = 0, before = 0;  // the current range's cost, and the cost of the items before i
   for (std::uint32_t i = 0; i < cost.size(); ++i) {
-    const std::size_t b = tail_cost != 0 && before >= tail_from ? tail_budget : budget;
+    const std::size_t b = before >= tail_from ? tail_budget : budget;
     if (i > begin && (sum + cost[i] > b || i - begin >= max_items)) {
       out.emplace_back(begin, i);
       begin = i;

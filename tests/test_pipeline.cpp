@@ -674,11 +674,8 @@ TEST_CASE("pipeline: triangle list setup in lanes gives setup_triangle's records
 }
 
 TEST_CASE("pipeline: chunks cover the window in order, within budget, a quarter of it in the tail", "[pipeline][bins]") {
-  std::uint64_t state = 777;
-  const auto next = [&](std::uint32_t n) {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return std::uint32_t((state >> 33) % n);
-  };
+  test::Rng rng(777);
+  const auto next = [&](std::uint32_t n) { return std::uint32_t(rng.integer(0, int(n) - 1)); };
   for (int trial = 0; trial < 300; ++trial) {
     std::vector<std::uint32_t> cost(trial == 0 ? 0 : next(400) + 1);
     for (auto& c : cost) c = next(6) == 0 ? next(9000) : next(600);  // some patches past the budget
@@ -729,11 +726,8 @@ TEST_CASE("pipeline: a chunk's bins are a stable sort of its entries by tile, ru
   // finish_bins counts and places runs of one tile at a time: compare it with std::stable_sort on entry
   // lists of long runs, single entries, a tile revisited after others, the first and last tiles, and none.
   constexpr int kTiles = 37;
-  std::uint64_t state = 12345;
-  const auto next = [&](std::uint32_t n) {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return std::uint32_t((state >> 33) % n);
-  };
+  test::Rng rng(12345);
+  const auto next = [&](std::uint32_t n) { return std::uint32_t(rng.integer(0, int(n) - 1)); };
   for (int trial = 0; trial < 200; ++trial) {
     ChunkBuffer<3> chunk;
     chunk.reset(kTiles);
