@@ -158,6 +158,13 @@ class Framebuffer {
     const std::size_t i = index(x, y);
     return {i, i + (samples_ == 1 ? std::size_t(width_) : 2u)};
   }
+  // quad_site on a single-sampled target (the caller knows samples() == 1): rows are width() apart.
+  // Inlined into the single-sampled rasterizer's quad loop, where GCC otherwise called quad_site out
+  // of line for every quad.
+  [[gnu::always_inline]] QuadSite single_sample_quad_site(int x, int y) const {
+    const std::size_t i = std::size_t(y) * std::size_t(width_) + std::size_t(x);
+    return {i, i + std::size_t(width_)};
+  }
   // The same quad's sample s.
   QuadSite sample_site(QuadSite q, int s) const { return {q.top + sample_offset(s), q.bottom + sample_offset(s)}; }
   // Depth of the quad's pixels in lanes k = 0 (x, y), 1 (x + 1, y), 2 (x, y + 1), 3 (x + 1, y + 1).

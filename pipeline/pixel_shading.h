@@ -121,9 +121,10 @@ template <std::size_t N, class Ps>
   }
 }
 
-// One 2x2 quad of triangle `p` at (qx, qy) whose lanes `covered` (bit k = pixel (qx + (k & 1),
-// qy + (k >> 1))) are inside the triangle and the tile: early depth, perspective-correct attributes,
-// the pixel shader, the output merger. Returns the pixel shader invocations.
+// One 2x2 quad of triangle `p` on a single-sampled target, at (qx, qy), whose lanes `covered` (bit k =
+// pixel (qx + (k & 1), qy + (k >> 1))) are inside the triangle and the tile: early depth,
+// perspective-correct attributes, the pixel shader, the output merger. Returns the pixel shader
+// invocations.
 //
 // Inlined into the loop over a small box's quads, which shades nearly every quad at high factors (an
 // out-of-line call there made the loop save and restore its registers around every quad); the edge
@@ -147,7 +148,7 @@ template <std::size_t N, class Ps, CompareFunc kDepthFunc>
   // four depths at once (its other lanes are in the same tile, so owned by this thread); one that
   // hangs over the target's last row or column reads only its covered pixels.
   const bool inside = fb.quad_inside(qx, qy);
-  const Framebuffer::QuadSite site = inside ? fb.quad_site(qx, qy) : Framebuffer::QuadSite{};
+  const Framebuffer::QuadSite site = inside ? fb.single_sample_quad_site(qx, qy) : Framebuffer::QuadSite{};
   unsigned passed = covered;
   F4 stored = F4::splat(0.0f);
   if (rc.depth.test) {

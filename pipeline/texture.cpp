@@ -345,11 +345,14 @@ namespace {
 // mode applies): the coordinate, its floor and its fraction in lanes, each the scalar expression of
 // linear_taps (truncate, then one less where the coordinate is below it; the fraction by subtraction).
 // False, with nothing written, when any lane needs linear_taps' far-coordinate or addressing paths.
+//
+// The taps come back in registers (simd::F4), each vector built from its four loads: written to an
+// array lane by lane and read back as one vector, every such read waited for its four stores to reach
+// the cache (a load that spans several stores is not forwarded from the store buffer).
 template <class Level>
 bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& level, const float* base,
-                           std::size_t stride, std::array<float, 4>& t00, std::array<float, 4>& t01,
-                           std::array<float, 4>& t10, std::array<float, 4>& t11, std::array<float, 4>& fu,
-                           std::array<float, 4>& fv) {
+                           std::size_t stride, simd::F4& t00, simd::F4& t01, simd::F4& t10, simd::F4& t11, simd::F4& fu,
+                           simd::F4& fv) {
 #if defined(__SSE2__)
   const __m128 x = _mm_sub_ps(_mm_mul_ps(_mm_setr_ps(uv[0].x, uv[1].x, uv[2].x, uv[3].x), _mm_set1_ps(level.fwidth)),
                               _mm_set1_ps(0.5f));
@@ -371,18 +374,18 @@ bool bilinear_taps_inside4(const std::array<glm::vec2, 4>& uv, const Level& leve
   };
   if (_mm_movemask_ps(_mm_castsi128_ps(_mm_and_si128(inside(iu, level.width), inside(iv, level.height)))) != 0xF)
     return false;
-  _mm_storeu_ps(fu.data(), _mm_sub_ps(x, _mm_cvtepi32_ps(iu)));
-  _mm_storeu_ps(fv.data(), _mm_sub_ps(y, _mm_cvtepi32_ps(iv)));
+  fu = simd::F4{_mm_sub_ps(x, _mm_cvtepi32_ps(iu))};
+  fv = simd::F4{_mm_sub_ps(y, _mm_cvtepi32_ps(iv))};
   alignas(16) std::int32_t column[4], row[4];
   _mm_store_si128(reinterpret_cast<__m128i*>(column), iu);
   _mm_store_si128(reinterpret_cast<__m128i*>(row), iv);
-  for (std::size_t k = 0; k < 4; ++k) {
-    const float* row0 = base + static_cast<std::size_t>(row[k]) * stride + static_cast<std::size_t>(column[k]);
-    t00[k] = row0[0];
-    t01[k] = row0[1];
-    t10[k] = row0[stride];
-    t11[k] = row0[stride + 1];
-  }
+  const float* r[4];
+  for (std::size_t k = 0; k < 4; ++k)
+    r[k] = base + static_cast<std::size_t>(row[k]) * stride + static_cast<std::size_t>(column[k]);
+  t00 = simd::F4{_mm_setr_ps(r[0][0], r[1][0], r[2][0], r[3][0])};
+  t01 = simd::F4{_mm_setr_ps(r[0][1], r[1][1], r[2][1], r[3][1])};
+  t10 = simd::F4{_mm_setr_ps(r[0][stride], r[1][stride], r[2][stride], r[3][stride])};
+  t11 = simd::F4{_mm_setr_ps(r[0][stride + 1], r[1][stride + 1], r[2][stride + 1], r[3][stride + 1])};
   return true;
 #else
   (void)uv, (void)level, (void)base, (void)stride, (void)t00, (void)t01, (void)t10, (void)t11, (void)fu, (void)fv;
@@ -399,24 +402,28 @@ void Texture2D::bilinear4(const Sampler& s, const Level& level, const std::array
   using simd::F4;
   const float* base = texels_.data() + level.offset;
   const std::size_t stride = static_cast<std::size_t>(level.width);
-  std::array<float, 4> t00, t01, t10, t11, fu, fv;
-  if (!bilinear_taps_inside4(uv, level, base, stride, t00, t01, t10, t11, fu, fv))
+  F4 t00, t01, t10, t11, u1, v1;
+  if (!bilinear_taps_inside4(uv, level, base, stride, t00, t01, t10, t11, u1, v1)) {
+    std::array<float, 4> a00, a01, a10, a11, fu, fv;
     for (std::size_t k = 0; k < 4; ++k) {
       const LinearTaps tu = linear_taps(uv[k].x * level.fwidth - 0.5f, level.width, s.address_u);
       const LinearTaps tv = linear_taps(uv[k].y * level.fheight - 0.5f, level.height, s.address_v);
       const float* row0 = base + static_cast<std::size_t>(tv.i0) * stride;
       const float* row1 = base + static_cast<std::size_t>(tv.i1) * stride;
-      t00[k] = row0[tu.i0];
-      t01[k] = row0[tu.i1];
-      t10[k] = row1[tu.i0];
-      t11[k] = row1[tu.i1];
+      a00[k] = row0[tu.i0];
+      a01[k] = row0[tu.i1];
+      a10[k] = row1[tu.i0];
+      a11[k] = row1[tu.i1];
       fu[k] = tu.frac;
       fv[k] = tv.frac;
     }
-  const F4 one = F4::splat(1.0f), u1 = F4::load(fu), v1 = F4::load(fv);
+    t00 = F4::load(a00), t01 = F4::load(a01), t10 = F4::load(a10), t11 = F4::load(a11);
+    u1 = F4::load(fu), v1 = F4::load(fv);
+  }
+  const F4 one = F4::splat(1.0f);
   const F4 u0 = one - u1, v0 = one - v1;
-  const F4 top = F4::load(t00) * u0 + F4::load(t01) * u1;
-  const F4 bottom = F4::load(t10) * u0 + F4::load(t11) * u1;
+  const F4 top = t00 * u0 + t01 * u1;
+  const F4 bottom = t10 * u0 + t11 * u1;
   (top * v0 + bottom * v1).store(out);
 }
 

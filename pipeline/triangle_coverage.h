@@ -106,7 +106,7 @@ struct BoxQuads {
   BoxQuads(std::uint32_t coverage, int min_x, int min_y)
       : grid(std::uint64_t(coverage) << ((min_x & 1) + 8 * (min_y & 1))) {}
   // Keeps the pixels of columns [c0, c1) and rows [r0, r1) of the grid (each bound clamped to 0..8).
-  void keep(int c0, int c1, int r0, int r1) {
+  [[gnu::always_inline]] void keep(int c0, int c1, int r0, int r1) {
     c0 = std::clamp(c0, 0, 8), c1 = std::clamp(c1, 0, 8), r0 = std::clamp(r0, 0, 8), r1 = std::clamp(r1, 0, 8);
     if (c0 >= c1 || r0 >= r1) {
       grid = 0;
@@ -136,8 +136,9 @@ struct BoxQuads {
 // rows stepped down by adds. Centres up to eight pixels past the box may wrap modulo 2^32; the caller
 // keeps only the box's pixels, whose values are exact (kEdges32MaxExtent). `offset`, when given, moves
 // the points from the centres by a sample's offset: offset[i] is edge i's change (raster_multisample.h).
-inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x_from_min, int origin_y_from_min,
-                                   int rows, const std::int32_t* offset = nullptr) {
+[[gnu::always_inline]] inline std::uint64_t grid_coverage(const SmallTriangleEdges& edges, int origin_x_from_min,
+                                                          int origin_y_from_min, int rows,
+                                                          const std::int32_t* offset = nullptr) {
   const __m256i columns = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i e[3], down[3];
   for (int i = 0; i < 3; ++i) {

@@ -220,16 +220,24 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     Lanes s, t;
     ((F8::splat(float(pi)) + fu) / F8::splat(float(kTorusColumns))).store(s);
     ((F8::splat(float(pj)) + fv) / F8::splat(float(kTorusRows))).store(t);
-    Lanes h{};
+    // The heights go into their lanes from registers: stored one by one and loaded as a vector, the
+    // load waited for its eight stores to reach the cache (a load spanning several stores is not
+    // forwarded from the store buffer).
+    std::array<simd::F4, 2> h4;
     for (std::size_t half = 0; half < kLanes; half += 4) {
       std::array<glm::vec2, 4> st;
       for (std::size_t k = 0; k < 4; ++k) st[k] = glm::vec2(s[half + k], t[half + k]);
       std::array<glm::vec4, 4> texels;
       height->sample_level4(sampler, st, 0.0f, texels);
-      for (std::size_t k = 0; k < 4; ++k) h[half + k] = texels[k].x;
+      h4[half / 4] = simd::F4::lanes(texels[0].x, texels[1].x, texels[2].x, texels[3].x);
     }
+#if defined(__AVX__)
+    const F8 h{_mm256_set_m128(h4[1].v, h4[0].v)};
+#else
+    const F8 h{h4[0], h4[1]};
+#endif
     // p += n * scale * (h - 0.5f), grouped as glm does: (n * scale) * (h - 0.5f).
-    const F8 dh = F8::load(h) - F8::splat(0.5f), sc = F8::splat(scale);
+    const F8 dh = h - F8::splat(0.5f), sc = F8::splat(scale);
     p = p + V3{(n.x * sc) * dh, (n.y * sc) * dh, (n.z * sc) * dh};
     // view_projection * vec4(p, 1), in glm's order: (m0 x + m1 y) + (m2 z + m3 * 1).
     const glm::mat4& m = view_projection;
