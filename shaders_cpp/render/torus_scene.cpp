@@ -130,6 +130,17 @@ V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z
 V3 operator*(F8 s, const V3& v) { return {s * v.x, s * v.y, s * v.z}; }
 V3 splat(const glm::vec3& v) { return {F8::splat(v.x), F8::splat(v.y), F8::splat(v.z)}; }
 
+// Eight lanes from two halves. The DS builds its lanes from values in registers: stored one by one
+// into an array and loaded as a vector, they made the load wait for its stores to reach the cache (a
+// load spanning several stores is not forwarded from the store buffer).
+F8 join(simd::F4 lo, simd::F4 hi) {
+#if defined(__AVX__)
+  return {_mm256_set_m128(hi.v, lo.v)};
+#else
+  return {lo, hi};
+#endif
+}
+
 // bspline_basis() in lanes, with its exact expression trees (left to right, as C++ groups them).
 struct BasisLanes {
   F8 b[4], d[4];
@@ -195,13 +206,11 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
   for (std::size_t first = 0; first < locations.size(); first += kLanes) {
     // A short last group repeats its last point; the extra lanes are computed and dropped.
     const std::size_t count = std::min<std::size_t>(kLanes, locations.size() - first);
-    Lanes u{}, v{};
-    for (std::size_t k = 0; k < kLanes; ++k) {
-      const DomainLocation& l = locations[first + std::min(k, count - 1)];
-      u[k] = l.u;
-      v[k] = l.v;
-    }
-    const F8 fu = F8::load(u), fv = F8::load(v);
+    std::array<const DomainLocation*, kLanes> l;
+    for (std::size_t k = 0; k < kLanes; ++k) l[k] = &locations[first + std::min(k, count - 1)];
+    using simd::F4;
+    const F8 fu = join(F4::lanes(l[0]->u, l[1]->u, l[2]->u, l[3]->u), F4::lanes(l[4]->u, l[5]->u, l[6]->u, l[7]->u));
+    const F8 fv = join(F4::lanes(l[0]->v, l[1]->v, l[2]->v, l[3]->v), F4::lanes(l[4]->v, l[5]->v, l[6]->v, l[7]->v));
     const BasisLanes bu = basis_lanes(fu), bv = basis_lanes(fv);
     V3 p{zero, zero, zero}, pu = p, pv = p;
     for (int r = 0; r < 4; ++r) {
@@ -220,22 +229,15 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     Lanes s, t;
     ((F8::splat(float(pi)) + fu) / F8::splat(float(kTorusColumns))).store(s);
     ((F8::splat(float(pj)) + fv) / F8::splat(float(kTorusRows))).store(t);
-    // The heights go into their lanes from registers: stored one by one and loaded as a vector, the
-    // load waited for its eight stores to reach the cache (a load spanning several stores is not
-    // forwarded from the store buffer).
-    std::array<simd::F4, 2> h4;
+    std::array<F4, 2> h4;
     for (std::size_t half = 0; half < kLanes; half += 4) {
       std::array<glm::vec2, 4> st;
       for (std::size_t k = 0; k < 4; ++k) st[k] = glm::vec2(s[half + k], t[half + k]);
       std::array<glm::vec4, 4> texels;
       height->sample_level4(sampler, st, 0.0f, texels);
-      h4[half / 4] = simd::F4::lanes(texels[0].x, texels[1].x, texels[2].x, texels[3].x);
+      h4[half / 4] = F4::lanes(texels[0].x, texels[1].x, texels[2].x, texels[3].x);
     }
-#if defined(__AVX__)
-    const F8 h{_mm256_set_m128(h4[1].v, h4[0].v)};
-#else
-    const F8 h{h4[0], h4[1]};
-#endif
+    const F8 h = join(h4[0], h4[1]);
     // p += n * scale * (h - 0.5f), grouped as glm does: (n * scale) * (h - 0.5f).
     const F8 dh = h - F8::splat(0.5f), sc = F8::splat(scale);
     p = p + V3{(n.x * sc) * dh, (n.y * sc) * dh, (n.z * sc) * dh};
