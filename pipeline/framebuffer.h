@@ -155,8 +155,9 @@ class Framebuffer {
     std::size_t top = 0, bottom = 0;
   };
   QuadSite quad_site(int x, int y) const {
+    if (samples_ == 1) return single_sample_quad_site(x, y);
     const std::size_t i = index(x, y);
-    return {i, i + (samples_ == 1 ? std::size_t(width_) : 2u)};
+    return {i, i + 2u};
   }
   // quad_site on a single-sampled target (the caller knows samples() == 1): rows are width() apart.
   // Inlined into the single-sampled rasterizer's quad loop, where GCC otherwise called quad_site out
