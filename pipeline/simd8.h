@@ -32,6 +32,10 @@ struct F8 {
   friend F8 operator-(F8 a) { return {_mm256_xor_ps(a.v, _mm256_set1_ps(-0.0f))}; }  // flips the sign bit, as -x
 };
 inline F8 sqrt(F8 a) { return {_mm256_sqrt_ps(a.v)}; }
+// Eight lanes from two halves (lanes 0..3 from lo). Code that builds lanes from values in registers
+// joins two F4s instead of storing eight floats one by one and loading them as a vector: a load that
+// spans several stores is not forwarded from the store buffer and waits for them to reach the cache.
+inline F8 join(F4 lo, F4 hi) { return {_mm256_set_m128(hi.v, lo.v)}; }
 
 #if defined(__AVX2__)
 // Eight 32-bit integer lanes (AVX2), as simd4.h's I4: the eight-lane triangle setup
@@ -73,6 +77,7 @@ struct F8 {
   friend F8 operator-(F8 a) { return {-a.lo, -a.hi}; }
 };
 inline F8 sqrt(F8 a) { return {sqrt(a.lo), sqrt(a.hi)}; }
+inline F8 join(F4 lo, F4 hi) { return {lo, hi}; }
 
 #endif
 

@@ -381,8 +381,19 @@ struct DisplacedDS {
       bx[k] = p.dv.x, by[k] = p.dv.y, bz[k] = p.dv.z;
       lu[k] = locations[first + j].u, lv[k] = locations[first + j].v;
     }
-    const F8 Ax = F8::load(ax), Ay = F8::load(ay), Az = F8::load(az);
-    const F8 Bx = F8::load(bx), By = F8::load(by), Bz = F8::load(bz);
+    // The lanes are built from the points' fields in registers, not loaded from the arrays above (filled
+    // lane by lane, used by the scalar loop below): a load spanning eight stores is not forwarded from
+    // the store buffer and waits for them to reach the cache.
+    const auto lanes_of = [&](auto field) {
+      const auto at = [&](std::size_t k) { return field(k, points[group[k < count ? k : 0]]); };
+      return simd::join(simd::F4::lanes(at(0), at(1), at(2), at(3)), simd::F4::lanes(at(4), at(5), at(6), at(7)));
+    };
+    const F8 Ax = lanes_of([](std::size_t, const PatchPoint& p) { return p.du.x; });
+    const F8 Ay = lanes_of([](std::size_t, const PatchPoint& p) { return p.du.y; });
+    const F8 Az = lanes_of([](std::size_t, const PatchPoint& p) { return p.du.z; });
+    const F8 Bx = lanes_of([](std::size_t, const PatchPoint& p) { return p.dv.x; });
+    const F8 By = lanes_of([](std::size_t, const PatchPoint& p) { return p.dv.y; });
+    const F8 Bz = lanes_of([](std::size_t, const PatchPoint& p) { return p.dv.z; });
     // SubdDS: n = cross(du, dv); the parallel-derivatives test on dot(n, n) against dot(du, du) *
     // dot(dv, dv); the unit normal n / length(n), or zero.
     const F8 nx = Ay * Bz - By * Az, ny = Az * Bx - Bz * Ax, nz = Ax * By - Bx * Ay;
@@ -402,7 +413,9 @@ struct DisplacedDS {
     // prepare()'s interior branch: the UV bilinear in the patch's corner UVs (bilerp_uv), its
     // derivatives along u and v, and texture_derivatives' solve.
     const auto& c = texcoords[patch_id].interior;
-    const F8 u = F8::load(lu), v = F8::load(lv), one = F8::splat(1.0f);
+    const F8 u = lanes_of([&](std::size_t k, const PatchPoint&) { return lu[k]; });
+    const F8 v = lanes_of([&](std::size_t k, const PatchPoint&) { return lv[k]; });
+    const F8 one = F8::splat(1.0f);
     const F8 su = one - u, tv = one - v;
     const auto splat2 = [](glm::vec2 a) { return std::array<F8, 2>{F8::splat(a.x), F8::splat(a.y)}; };
     const auto c0 = splat2(c[0]), c1 = splat2(c[1]), c2 = splat2(c[2]), c3 = splat2(c[3]);

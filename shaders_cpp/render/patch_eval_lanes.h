@@ -249,8 +249,13 @@ class PatchLanes {
         const std::size_t i = first + std::min(k, count - 1);
         lu[k] = u[i], lv[k] = v[i], lw[k] = w[i];
       }
+      // Lanes built in registers (the arrays serve the scalar fallback): a vector load of the arrays just
+      // filled lane by lane would wait for eight stores to reach the cache (no store forwarding).
+      const auto in_lanes = [](const std::array<float, 8>& a) {
+        return simd::join(simd::F4::lanes(a[0], a[1], a[2], a[3]), simd::F4::lanes(a[4], a[5], a[6], a[7]));
+      };
       lanes::Vec3 position, du, dv;
-      if (!lanes_of(F8::load(lu), F8::load(lv), F8::load(lw), position, du, dv)) {
+      if (!lanes_of(in_lanes(lu), in_lanes(lv), in_lanes(lw), position, du, dv)) {
         for (std::size_t k = 0; k < count; ++k) out[first + k] = one(lu[k], lv[k], lw[k]);
         continue;
       }

@@ -118,6 +118,7 @@ ClipVertex<3> DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::spa
 namespace {
 
 using simd::F8;
+using simd::join;
 
 // Eight domain points per step: with AVX one instruction per operation, otherwise two SSE ones (simd8.h).
 constexpr std::size_t kLanes = 8;
@@ -129,17 +130,6 @@ struct V3 {
 V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 V3 operator*(F8 s, const V3& v) { return {s * v.x, s * v.y, s * v.z}; }
 V3 splat(const glm::vec3& v) { return {F8::splat(v.x), F8::splat(v.y), F8::splat(v.z)}; }
-
-// Eight lanes from two halves. The DS builds its lanes from values in registers: stored one by one
-// into an array and loaded as a vector, they made the load wait for its stores to reach the cache (a
-// load spanning several stores is not forwarded from the store buffer).
-F8 join(simd::F4 lo, simd::F4 hi) {
-#if defined(__AVX__)
-  return {_mm256_set_m128(hi.v, lo.v)};
-#else
-  return {lo, hi};
-#endif
-}
 
 // bspline_basis() in lanes, with its exact expression trees (left to right, as C++ groups them).
 struct BasisLanes {
