@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Builds everything and runs the test suite through ctest, then builds the suite again with ASan +
-# UBSan in BUILD_DIR-asan and runs it there (CI runs exactly this). On 2 cores from a fresh clone:
-# about 59 minutes on CI's machine, 29 on a faster one (README, "Two commands"). TESSERA_ASAN=0 skips the
-# sanitizer part (a quick local run); TSan is scripts/tsan.sh.
+# UBSan (at -O1) in BUILD_DIR-asan and runs it there (CI runs exactly this; its times are in the README,
+# "Two commands"). TESSERA_ASAN=0 skips the sanitizer part (a quick local run); TSan is scripts/tsan.sh.
 #   scripts/test.sh [BUILD_DIR]     (default build/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
