@@ -23,6 +23,12 @@ namespace tessera::simd {
 struct F8 {
   __m256 v;
   static F8 splat(float x) { return {_mm256_set1_ps(x)}; }
+  // Eight values in lanes 0..7, as F4::lanes. Lanes built from values in registers (or read one by one)
+  // take this or join(), not load() of an array just filled lane by lane: a load that spans several
+  // stores is not forwarded from the store buffer and waits for them to reach the cache.
+  static F8 lanes(float a, float b, float c, float d, float e, float f, float g, float h) {
+    return {_mm256_setr_ps(a, b, c, d, e, f, g, h)};
+  }
   static F8 load(const std::array<float, 8>& a) { return {_mm256_loadu_ps(a.data())}; }
   void store(std::array<float, 8>& a) const { _mm256_storeu_ps(a.data(), v); }
   friend F8 operator+(F8 a, F8 b) { return {_mm256_add_ps(a.v, b.v)}; }
@@ -32,9 +38,7 @@ struct F8 {
   friend F8 operator-(F8 a) { return {_mm256_xor_ps(a.v, _mm256_set1_ps(-0.0f))}; }  // flips the sign bit, as -x
 };
 inline F8 sqrt(F8 a) { return {_mm256_sqrt_ps(a.v)}; }
-// Eight lanes from two halves (lanes 0..3 from lo). Code that builds lanes from values in registers
-// joins two F4s instead of storing eight floats one by one and loading them as a vector: a load that
-// spans several stores is not forwarded from the store buffer and waits for them to reach the cache.
+// Eight lanes from two halves (lanes 0..3 from lo), for values that arrive four at a time (F8::lanes).
 inline F8 join(F4 lo, F4 hi) { return {_mm256_set_m128(hi.v, lo.v)}; }
 
 #if defined(__AVX2__)
@@ -65,6 +69,9 @@ inline I8 min(I8 a, I8 b) { return I8(_mm256_min_epi32(a.v, b.v)); }
 struct F8 {
   F4 lo, hi;  // lanes 0..3, 4..7
   static F8 splat(float x) { return {F4::splat(x), F4::splat(x)}; }
+  static F8 lanes(float a, float b, float c, float d, float e, float f, float g, float h) {
+    return {F4::lanes(a, b, c, d), F4::lanes(e, f, g, h)};
+  }
   static F8 load(const std::array<float, 8>& a) { return {F4::load_at(a.data()), F4::load_at(a.data() + 4)}; }
   void store(std::array<float, 8>& a) const {
     lo.store_at(a.data());

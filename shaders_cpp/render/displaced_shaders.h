@@ -381,19 +381,18 @@ struct DisplacedDS {
       bx[k] = p.dv.x, by[k] = p.dv.y, bz[k] = p.dv.z;
       lu[k] = locations[first + j].u, lv[k] = locations[first + j].v;
     }
-    // The lanes are built from the points' fields in registers, not loaded from the arrays above (filled
-    // lane by lane, used by the scalar loop below): a load spanning eight stores is not forwarded from
-    // the store buffer and waits for them to reach the cache.
-    const auto lanes_of = [&](auto field) {
-      const auto at = [&](std::size_t k) { return field(k, points[group[k < count ? k : 0]]); };
-      return simd::join(simd::F4::lanes(at(0), at(1), at(2), at(3)), simd::F4::lanes(at(4), at(5), at(6), at(7)));
+    // The lanes are read from the points one by one (F8::lanes), not loaded from the arrays above,
+    // which are filled lane by lane for the scalar loop below.
+    const auto lanes_of = [&](auto value) {  // value(j) for the group's point j in each lane
+      const auto at = [&](std::size_t k) { return value(group[k < count ? k : 0]); };
+      return F8::lanes(at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7));
     };
-    const F8 Ax = lanes_of([](std::size_t, const PatchPoint& p) { return p.du.x; });
-    const F8 Ay = lanes_of([](std::size_t, const PatchPoint& p) { return p.du.y; });
-    const F8 Az = lanes_of([](std::size_t, const PatchPoint& p) { return p.du.z; });
-    const F8 Bx = lanes_of([](std::size_t, const PatchPoint& p) { return p.dv.x; });
-    const F8 By = lanes_of([](std::size_t, const PatchPoint& p) { return p.dv.y; });
-    const F8 Bz = lanes_of([](std::size_t, const PatchPoint& p) { return p.dv.z; });
+    const F8 Ax = lanes_of([&](std::size_t j) { return points[j].du.x; });
+    const F8 Ay = lanes_of([&](std::size_t j) { return points[j].du.y; });
+    const F8 Az = lanes_of([&](std::size_t j) { return points[j].du.z; });
+    const F8 Bx = lanes_of([&](std::size_t j) { return points[j].dv.x; });
+    const F8 By = lanes_of([&](std::size_t j) { return points[j].dv.y; });
+    const F8 Bz = lanes_of([&](std::size_t j) { return points[j].dv.z; });
     // SubdDS: n = cross(du, dv); the parallel-derivatives test on dot(n, n) against dot(du, du) *
     // dot(dv, dv); the unit normal n / length(n), or zero.
     const F8 nx = Ay * Bz - By * Az, ny = Az * Bx - Bz * Ax, nz = Ax * By - Bx * Ay;
@@ -413,8 +412,8 @@ struct DisplacedDS {
     // prepare()'s interior branch: the UV bilinear in the patch's corner UVs (bilerp_uv), its
     // derivatives along u and v, and texture_derivatives' solve.
     const auto& c = texcoords[patch_id].interior;
-    const F8 u = lanes_of([&](std::size_t k, const PatchPoint&) { return lu[k]; });
-    const F8 v = lanes_of([&](std::size_t k, const PatchPoint&) { return lv[k]; });
+    const F8 u = lanes_of([&](std::size_t j) { return locations[first + j].u; });
+    const F8 v = lanes_of([&](std::size_t j) { return locations[first + j].v; });
     const F8 one = F8::splat(1.0f);
     const F8 su = one - u, tv = one - v;
     const auto splat2 = [](glm::vec2 a) { return std::array<F8, 2>{F8::splat(a.x), F8::splat(a.y)}; };

@@ -249,13 +249,14 @@ class PatchLanes {
         const std::size_t i = first + std::min(k, count - 1);
         lu[k] = u[i], lv[k] = v[i], lw[k] = w[i];
       }
-      // Lanes built in registers (the arrays serve the scalar fallback): a vector load of the arrays just
-      // filled lane by lane would wait for eight stores to reach the cache (no store forwarding).
-      const auto in_lanes = [](const std::array<float, 8>& a) {
-        return simd::join(simd::F4::lanes(a[0], a[1], a[2], a[3]), simd::F4::lanes(a[4], a[5], a[6], a[7]));
+      // The lanes are read from the spans one by one (F8::lanes), not loaded from the arrays above, which
+      // are filled lane by lane for the scalar fallback.
+      const auto in_lanes = [&](std::span<const float> s) {
+        const auto at = [&](std::size_t k) { return s[first + std::min(k, count - 1)]; };
+        return F8::lanes(at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7));
       };
       lanes::Vec3 position, du, dv;
-      if (!lanes_of(in_lanes(lu), in_lanes(lv), in_lanes(lw), position, du, dv)) {
+      if (!lanes_of(in_lanes(u), in_lanes(v), in_lanes(w), position, du, dv)) {
         for (std::size_t k = 0; k < count; ++k) out[first + k] = one(lu[k], lv[k], lw[k]);
         continue;
       }

@@ -199,8 +199,8 @@ void DisplacedBsplineDS::operator()(const UniformFactorPatch&, std::span<const g
     std::array<const DomainLocation*, kLanes> l;
     for (std::size_t k = 0; k < kLanes; ++k) l[k] = &locations[first + std::min(k, count - 1)];
     using simd::F4;
-    const F8 fu = join(F4::lanes(l[0]->u, l[1]->u, l[2]->u, l[3]->u), F4::lanes(l[4]->u, l[5]->u, l[6]->u, l[7]->u));
-    const F8 fv = join(F4::lanes(l[0]->v, l[1]->v, l[2]->v, l[3]->v), F4::lanes(l[4]->v, l[5]->v, l[6]->v, l[7]->v));
+    const F8 fu = F8::lanes(l[0]->u, l[1]->u, l[2]->u, l[3]->u, l[4]->u, l[5]->u, l[6]->u, l[7]->u);
+    const F8 fv = F8::lanes(l[0]->v, l[1]->v, l[2]->v, l[3]->v, l[4]->v, l[5]->v, l[6]->v, l[7]->v);
     const BasisLanes bu = basis_lanes(fu), bv = basis_lanes(fv);
     V3 p{zero, zero, zero}, pu = p, pv = p;
     for (int r = 0; r < 4; ++r) {
