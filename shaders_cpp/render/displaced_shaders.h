@@ -372,17 +372,8 @@ struct DisplacedDS {
                          std::span<DisplacedPoint> out) const {
     using simd::F8;
     const SubdPatch& patch = base.patches[patch_id];
-    std::array<float, 8> px, py, pz, ax, ay, az, bx, by, bz, lu, lv;
-    for (std::size_t k = 0; k < 8; ++k) {
-      const std::size_t j = group[k < count ? k : 0];  // a short group repeats its first point
-      const PatchPoint& p = points[j];
-      px[k] = p.position.x, py[k] = p.position.y, pz[k] = p.position.z;
-      ax[k] = p.du.x, ay[k] = p.du.y, az[k] = p.du.z;
-      bx[k] = p.dv.x, by[k] = p.dv.y, bz[k] = p.dv.z;
-      lu[k] = locations[first + j].u, lv[k] = locations[first + j].v;
-    }
-    // The lanes are read from the points one by one (F8::lanes), not loaded from the arrays above,
-    // which are filled lane by lane for the scalar loop below.
+    // The lanes are read from the points one by one (F8::lanes): a vector load of values just stored one
+    // by one would wait for the stores to reach the cache. A short group repeats its first point.
     const auto lanes_of = [&](auto value) {  // value(j) for the group's point j in each lane
       const auto at = [&](std::size_t k) { return value(group[k < count ? k : 0]); };
       return F8::lanes(at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7));
@@ -440,10 +431,11 @@ struct DisplacedDS {
       DisplacedPoint& o = out[i];
       o.face = std::uint32_t(patch.face);
       base.face_location(patch, locations[i], o.u, o.v);
-      o.patch_u = lu[k], o.patch_v = lv[k];
+      const PatchPoint& p = points[group[k]];
+      o.patch_u = locations[i].u, o.patch_v = locations[i].v;
       glm::vec3 n = len_lanes[k] > 0.0f ? glm::vec3(nx_unit[k], ny_unit[k], nz_unit[k]) : glm::vec3(0.0f);
       if (base.flip_normals) n = -n;
-      glm::vec3 dpdu(ax[k], ay[k], az[k]), dpdv(bx[k], by[k], bz[k]);
+      glm::vec3 dpdu = p.du, dpdv = p.dv;
       if (det_lanes[k] != 0.0f && std::isfinite(det_lanes[k]))
         dpdu = glm::vec3(dux[k], duy[k], duz[k]), dpdv = glm::vec3(dvx[k], dvy[k], dvz[k]);
       const glm::vec2 texcoord(uv0[k], uv1[k]);
@@ -451,7 +443,7 @@ struct DisplacedDS {
       o.dpdu = dpdu, o.dpdv = dpdv, o.uv = texcoord;
       o.shade_dpdu = dpdu, o.shade_dpdv = dpdv, o.shade_uv = texcoord;
       // positive_zero: + 0 turns a -0 into +0.
-      o.position = glm::vec3(px[k] + 0.0f, py[k] + 0.0f, pz[k] + 0.0f);
+      o.position = p.position + 0.0f;
     }
     return true;
   }

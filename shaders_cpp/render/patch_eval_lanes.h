@@ -244,20 +244,15 @@ class PatchLanes {
     using lanes::F8;
     for (std::size_t first = 0; first < u.size(); first += 8) {
       const std::size_t count = std::min<std::size_t>(8, u.size() - first);
-      std::array<float, 8> lu, lv, lw;
-      for (std::size_t k = 0; k < 8; ++k) {
-        const std::size_t i = first + std::min(k, count - 1);
-        lu[k] = u[i], lv[k] = v[i], lw[k] = w[i];
-      }
-      // The lanes are read from the spans one by one (F8::lanes), not loaded from the arrays above, which
-      // are filled lane by lane for the scalar fallback.
+      // Each lane read one by one (F8::lanes): a vector load of values just stored one by one would wait
+      // for the stores to reach the cache. A short last group repeats its last location.
       const auto in_lanes = [&](std::span<const float> s) {
         const auto at = [&](std::size_t k) { return s[first + std::min(k, count - 1)]; };
         return F8::lanes(at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7));
       };
       lanes::Vec3 position, du, dv;
       if (!lanes_of(in_lanes(u), in_lanes(v), in_lanes(w), position, du, dv)) {
-        for (std::size_t k = 0; k < count; ++k) out[first + k] = one(lu[k], lv[k], lw[k]);
+        for (std::size_t i = first; i < first + count; ++i) out[i] = one(u[i], v[i], w[i]);
         continue;
       }
       std::array<float, 8> c[9];
