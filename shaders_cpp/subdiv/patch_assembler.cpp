@@ -1,0 +1,90 @@
+#include "shaders_cpp/subdiv/patch_assembler.h"
+
+#include "shaders_cpp/subdiv/patch_construction.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace tessera::subdiv {
+
+SubdPatch& PatchAssembler::add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
+                               const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges,
+                               int rotation, int corners) {
+  const bool precompute = ring.size() > std::size_t(kMaxPatchControlPoints);
+  if (precompute && (corners == 0 || stencils.empty()))
+    throw CageError(where(cage_, face) + ": internal error, a 1-ring of " + std::to_string(ring.size()) +
+                    " vertices for a patch that cannot be precomputed");
+  std::map<int, int> position;
+  for (std::size_t i = 0; i < ring.size(); ++i) position.emplace(ring[i], int(i));
+  StencilTable table;
+  table.rows = int(stencils.size());
+  table.ring = int(ring.size());
+  table.weights.assign(std::size_t(table.rows) * ring.size(), 0.0f);
+  for (std::size_t r = 0; r < stencils.size(); ++r)
+    for (const auto& [v, w] : stencils[r].terms) {
+      const auto it = position.find(v);
+      if (it == position.end())
+        throw CageError(where(cage_, face) + ": internal error, a stencil reaches vertex " + std::to_string(v) +
+                        " outside the face's 1-ring");
+      table.weights[r * ring.size() + std::size_t(it->second)] = static_cast<float>(w);
+    }
+  SubdPatch p;
+  p.face = face;
+  p.sub = sub;
+  p.kind = kind;
+  const std::vector<int> ia = precompute ? std::vector<int>(ring.begin(), ring.begin() + corners) : ring;
+  p.ring_size = int(ia.size());
+  if (precompute) {
+    // The rows over the whole ring, its vertices in ascending order (the hull shader's order).
+    PrecomputedPatch pre;
+    pre.rows = table.rows;
+    std::vector<int> by_vertex(ring.size());
+    std::iota(by_vertex.begin(), by_vertex.end(), 0);
+    std::sort(by_vertex.begin(), by_vertex.end(),
+              [&](int a, int b) { return ring[std::size_t(a)] < ring[std::size_t(b)]; });
+    for (const int i : by_vertex) pre.vertices.push_back(ring[std::size_t(i)]);
+    pre.weights.resize(table.weights.size());
+    for (std::size_t r = 0; r < std::size_t(table.rows); ++r)
+      for (std::size_t k = 0; k < ring.size(); ++k)
+        pre.weights[r * ring.size() + k] = table.weights[r * ring.size() + std::size_t(by_vertex[k])];
+    p.precomputed = out_.precomputed_rows;
+    out_.precomputed_rows += pre.rows;
+    out_.precomputed.push_back(std::move(pre));
+  }
+  // Patches evaluated without control points (exact) need no table. A precomputed patch's table
+  // (over its whole ring) still names its topology combination and row count.
+  p.table = stencils.empty() ? -1 : intern(std::move(table));
+  std::vector<int> order(ia.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return ia[std::size_t(a)] < ia[std::size_t(b)]; });
+  for (std::size_t i = 0; i < order.size(); ++i) p.order[i] = std::uint8_t(order[i]);
+  p.edge_keys = edges;
+  p.rotation = std::uint8_t(rotation);
+  group.patches.push_back(p);
+  rings_.push_back(ia);
+  groups_.push_back(&group);
+  return group.patches.back();
+}
+
+void PatchAssembler::finish() {
+  for (PatchGroup* g : {&out_.quads, &out_.tris}) {
+    g->control_points = 1;
+    for (const auto& p : g->patches) g->control_points = std::max(g->control_points, p.ring_size);
+  }
+  for (std::size_t i = 0; i < rings_.size(); ++i) {
+    PatchGroup& g = *groups_[i];
+    const auto& ring = rings_[i];
+    for (int k = 0; k < g.control_points; ++k)
+      g.indices.push_back(std::uint32_t(ring[std::size_t(k) < ring.size() ? std::size_t(k) : 0]));
+  }
+}
+
+int PatchAssembler::intern(StencilTable&& table) {
+  std::string key(reinterpret_cast<const char*>(table.weights.data()), table.weights.size() * sizeof(float));
+  key += std::to_string(table.rows) + ":" + std::to_string(table.ring);
+  const auto [it, added] = interned_.emplace(std::move(key), int(out_.tables.size()));
+  if (added) out_.tables.push_back(std::move(table));
+  return it->second;
+}
+
+}  // namespace tessera::subdiv

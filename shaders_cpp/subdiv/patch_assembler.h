@@ -1,0 +1,54 @@
+// Collects a cage's patches as build_patches' constructions make them: each patch's stencil table
+// (deduplicated by content: the talk's topology combinations), its IA patch, its summation order, and
+// the control-point pre-pass's rows for a 1-ring larger than an IA patch holds.
+//
+// Contract
+// - add() appends one patch to a group, in the order called: the constructions call it in face order,
+//   so each group's patches keep face order.
+// - Tables are interned by their weights, row count and ring size: equal tables share an index.
+// - A patch's `order` lists its IA patch's positions by ascending cage vertex index (stencil.h: the
+//   hull shader sums in that order, so shared points come out bit-identical).
+// - finish() once, after the last add(): it fills both groups' index buffers, each patch's ring padded
+//   with its first vertex to the group's largest ring.
+// - A stencil reaching outside the ring, or a ring over 32 points that cannot be precomputed, is a
+//   construction's bug: a CageError naming the face (bad data never gets here).
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "shaders_cpp/cage/cage.h"
+#include "shaders_cpp/subdiv/stencil.h"
+#include "shaders_cpp/subdiv/subd_patches.h"
+
+namespace tessera::subdiv {
+
+class PatchAssembler {
+ public:
+  PatchAssembler(const Cage& cage, SubdPatches& out) : cage_(cage), out_(out) {}
+
+  // Adds a patch whose control points are `stencils` over the gathered ring. A ring larger than an IA
+  // patch (only the stencil schemes' rings can be) makes a precomputed patch: its IA patch is the face's
+  // `corners` (the ring's first entries) and its rows go to the pre-pass. Returns the patch, for the
+  // construction's crease masks.
+  SubdPatch& add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
+                 const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0,
+                 int corners = 0);
+
+  // Fills each group's index buffer once every patch is known (the control point count is the
+  // group's largest ring).
+  void finish();
+
+ private:
+  int intern(StencilTable&& table);
+
+  const Cage& cage_;
+  SubdPatches& out_;
+  std::map<std::string, int> interned_;
+  std::vector<std::vector<int>> rings_;
+  std::vector<PatchGroup*> groups_;
+};
+
+}  // namespace tessera::subdiv
