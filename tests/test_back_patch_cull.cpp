@@ -41,11 +41,16 @@ std::vector<SubdCamera> cameras(const Cage& cage, int w, int h) {
   return out;
 }
 
-SubdFactors factors_for(const SubdModel& m, const SubdCamera& camera, int w, int h, float factor, bool back) {
+SubdFactors uniform_factor(float factor) {
   SubdFactors f;
   f.factor = factor;
-  if (back) f.back = BackPatchCull(camera.view_projection, w, h, subd_culled_screen_sign(m));
   return f;
+}
+
+PatchCull cull_for(const SubdModel& m, const SubdCamera& camera, int w, int h, bool back) {
+  PatchCull c;
+  if (back) c.back = BackPatchCull(camera.view_projection, w, h, subd_culled_screen_sign(m));
+  return c;
 }
 
 }  // namespace
@@ -99,9 +104,11 @@ TEST_CASE("Every triangle of a patch proven to face away faces away on screen", 
       for (const auto partitioning : {ts::Partitioning::integer, ts::Partitioning::fractional_odd}) {
         for (const float factor : {3.0f, 9.5f, 40.0f}) {
           if (test::kSanitized && factor > 10.0f) continue;
-          const SubdFactors f = factors_for(m, camera, w, h, factor, true);
-          const PatchTables tables = build_patch_tables(m, nullptr, f, partitioning, DicingCamera{camera.eye, 1.0f});
-          const DrawResult r = stream_subd(device, m, f, partitioning, [&](const auto& out, const PatchGroup& g) {
+          const SubdFactors f = uniform_factor(factor);
+          const PatchCull cull = cull_for(m, camera, w, h, true);
+          const PatchTables tables =
+              build_patch_tables(m, nullptr, f, cull, partitioning, DicingCamera{camera.eye, 1.0f});
+          const DrawResult r = stream_subd(device, m, f, cull, partitioning, [&](const auto& out, const PatchGroup& g) {
             if (!tables.of(g.domain)[out.patch_id].faces_away) return;
             ++proven;
             // Window-space orientation (y down, clockwise positive) of each triangle, in double from
@@ -148,7 +155,7 @@ TEST_CASE("Back-patch culling never changes a pixel: shapes, schemes, views, cam
             auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, nullptr);
             REQUIRE(fb);
             fb->clear(glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), 1.0f);
-            const DrawResult r = render_subd(device, m, factors_for(m, camera, w, h, factor, back),
+            const DrawResult r = render_subd(device, m, uniform_factor(factor), cull_for(m, camera, w, h, back),
                                              ts::Partitioning::fractional_odd, view, camera, *fb);
             REQUIRE(r.ok());
             away = r.report.patches_back_culled;
@@ -176,14 +183,15 @@ TEST_CASE("Displaced patches make no orientation claim, the left-handed rule fol
   Device device(DeviceOptions{});
   const int w = 240, h = 180;
   const SubdCamera camera = frame_cage(m.cage, w, h, 35.0f, std::nullopt, std::nullopt);
-  SubdFactors f = factors_for(m, camera, w, h, 12.0f, true);
+  const SubdFactors f = uniform_factor(12.0f);
+  const PatchCull cull = cull_for(m, camera, w, h, true);
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, nullptr);
   REQUIRE(fb);
   const DrawResult displaced =
-      render_displaced(device, m, d, f, ts::Partitioning::integer, SubdView::shaded, camera, *fb);
+      render_displaced(device, m, d, f, cull, ts::Partitioning::integer, SubdView::shaded, camera, *fb);
   REQUIRE(displaced.ok());
   CHECK(displaced.report.patches_back_culled == 0);
-  const DrawResult plain = render_subd(device, m, f, ts::Partitioning::integer, SubdView::shaded, camera, *fb);
+  const DrawResult plain = render_subd(device, m, f, cull, ts::Partitioning::integer, SubdView::shaded, camera, *fb);
   REQUIRE(plain.ok());
   CHECK(plain.report.patches_back_culled > 0);
   // A right-handed cage culls back faces: clockwise on screen with front_counter_clockwise.

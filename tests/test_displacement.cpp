@@ -373,7 +373,7 @@ TEST_CASE("The displaced DS's batch form gives every point the scalar form's bit
         std::map<std::uint32_t, std::pair<DisplacedPatchConstants, std::vector<SubdControlPoint>>> kept;
         Device device(DeviceOptions{1});
         const DrawResult r = with_displaced_group(
-            m, d, f, ts::Partitioning::fractional_odd,
+            m, d, f, PatchCull{}, ts::Partitioning::fractional_odd,
             [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
               const StreamDraw<glm::vec3, SubdVS, DisplacedHS, KeepingDS> draw{
                   m.vertex_buffer(), g.indices, g.control_points, m.vertex_shader(), hs, KeepingDS{ds, &kept}, ts};
@@ -429,9 +429,9 @@ TEST_CASE("The displaced pixel shader's quad form gives the per-pixel form's bit
         REQUIRE((quad && pixel));
         quad->clear(glm::vec4(0.0f), 1.0f);
         pixel->clear(glm::vec4(0.0f), 1.0f);
-        REQUIRE(render_displaced(device, m, d, f, ts::Partitioning::integer, SubdView::shaded, camera, *quad).ok());
+        REQUIRE(render_displaced(device, m, d, f, PatchCull{}, ts::Partitioning::integer, SubdView::shaded, camera, *quad).ok());
         const DrawResult r = with_displaced_group(
-            m, d, f, ts::Partitioning::integer,
+            m, d, f, PatchCull{}, ts::Partitioning::integer,
             [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
               const SubdPassState st = subd_pass_state(m, *pixel, false);
               const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
@@ -477,7 +477,7 @@ TEST_CASE("Displaced stream output and rendering give the same bytes for 1 and 2
     SubdFactors f;
     f.factor = 4.0f;
     const SubdCamera cam = frame_cage(m.cage, 160, 120, 35.0f, std::nullopt, std::nullopt);
-    REQUIRE(render_displaced(device, m, d, f, ts::Partitioning::integer, SubdView::shaded, cam, *fb).ok());
+    REQUIRE(render_displaced(device, m, d, f, PatchCull{}, ts::Partitioning::integer, SubdView::shaded, cam, *fb).ok());
     return fb->color_bytes();
   };
   const auto a = image(1);

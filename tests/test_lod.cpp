@@ -178,10 +178,12 @@ TEST_CASE("Frustum culling removes patches and never changes a pixel, displaced,
           fb->clear(glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), 1.0f);
           SubdFactors f;
           f.factor = 5.0f;
-          f.cull.enabled = cull;
-          f.cull.view_projection = camera.view_projection;
-          f.cull.growth = d.bound;
-          const DrawResult r = render_displaced(device, m, d, f, ts::Partitioning::fractional_odd, view, camera, *fb);
+          PatchCull c;
+          c.frustum.enabled = cull;
+          c.frustum.view_projection = camera.view_projection;
+          c.frustum.growth = d.bound;
+          const DrawResult r =
+              render_displaced(device, m, d, f, c, ts::Partitioning::fractional_odd, view, camera, *fb);
           REQUIRE(r.ok());
           culled = r.report.patches_culled;
           return fb->color_bytes();
@@ -235,24 +237,27 @@ TEST_CASE("factor policy: ranges and view-dependent LOD's exclusions are FactorS
   const LodModel model{cage.positions, topology, 1, 0.0f, false};
   SubdFactors f = base_factors(8.0f, 0.0f);
   LodRequest screen{LodMode::screen, PatchCullMode::none, 8.0f, 0.0f, std::nullopt};
-  const LodSettings s = apply_lod(screen, view, model, f);
+  PatchCull c;
+  const LodSettings s = apply_lod(screen, view, model, f, c);
   CHECK(s.mode == LodMode::screen);
   REQUIRE(f.per_edge);
   CHECK(f.per_edge->size() > 0);
-  CHECK_FALSE(f.cull.enabled);
+  CHECK_FALSE(c.frustum.enabled);
+  CHECK_FALSE(c.back.enabled());
 
   SubdFactors varied = base_factors(8.0f, 1.0f);
-  CHECK_THROWS_WITH(apply_lod(screen, view, model, varied),
+  CHECK_THROWS_WITH(apply_lod(screen, view, model, varied, c),
                     "--lod screen sets every edge's factor: drop --factors-per-edge and --vary-factors");
   LodRequest uniform{LodMode::uniform, PatchCullMode::all, 6.0f, 0.0f, std::nullopt};
   SubdFactors u = base_factors(8.0f, 0.0f);
-  CHECK_THROWS_AS(apply_lod(uniform, view, model, u), FactorSettingError);
+  CHECK_THROWS_AS(apply_lod(uniform, view, model, u, c), FactorSettingError);
   uniform.edge_pixels = 8.0f;
-  CHECK(apply_lod(uniform, view, model, u).mode == LodMode::uniform);
+  CHECK(apply_lod(uniform, view, model, u, c).mode == LodMode::uniform);
   CHECK_FALSE(u.per_edge);
-  CHECK(u.cull.enabled);  // --cull all: the frustum test, and the back-patch test of an undisplaced model
+  CHECK(c.frustum.enabled);  // --cull all: the frustum test, and the back-patch test of an undisplaced model
+  CHECK(c.back.enabled());
   LodRequest bad{LodMode::screen, PatchCullMode::none, 0.1f, 0.0f, std::nullopt};
-  CHECK_THROWS_WITH(apply_lod(bad, view, model, u), "--edge-pixels: 0.1 is not in [0.25, 4096]");
+  CHECK_THROWS_WITH(apply_lod(bad, view, model, u, c), "--edge-pixels: 0.1 is not in [0.25, 4096]");
 }
 
 TEST_CASE("bounding boxes: empty until extended, glm::min and max of the points in order", "[lod][issue32]") {

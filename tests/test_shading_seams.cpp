@@ -56,9 +56,9 @@ SeamSteps measure(const std::string& normal_map, bool fixed) {
   shaded->clear(glm::vec4(0, 0, 0, 1), 1.0f);
   ids->clear(glm::vec4(0, 0, 0, 0), 1.0f);
   REQUIRE(
-      render_displaced(device, model, d, factors, ts::Partitioning::integer, SubdView::shaded, camera, *shaded).ok());
+      render_displaced(device, model, d, factors, PatchCull{}, ts::Partitioning::integer, SubdView::shaded, camera, *shaded).ok());
   const DrawResult r = with_displaced_group(
-      model, d, factors, ts::Partitioning::integer,
+      model, d, factors, PatchCull{}, ts::Partitioning::integer,
       [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
         const SubdPassState st = subd_pass_state(model, *ids, false);
         const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, 0.0f};

@@ -236,7 +236,7 @@ TEST_CASE("viewer picks name the patch an independent id buffer has under the pi
     }
   };
   REQUIRE(with_displaced_group(
-              model, d, factors, ts::Partitioning::integer,
+              model, d, factors, PatchCull{}, ts::Partitioning::integer,
               [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
                 const SubdPassState st = subd_pass_state(model, *ids, false);
                 const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, 0.0f};

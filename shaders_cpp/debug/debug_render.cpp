@@ -3,11 +3,11 @@
 namespace tessera {
 
 PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
-                               ts::Partitioning partitioning, const DicingCamera& camera) {
+                               const PatchCull& cull, ts::Partitioning partitioning, const DicingCamera& camera) {
   PatchTables tables;
   tables.combinations = analyze_combinations(*model.topology);
   const std::vector<std::int64_t> seam_keys = uv_seam_edge_keys(model.cage, *model.topology);
-  for_each_surface_group(model, displacement, factors, partitioning,
+  for_each_surface_group(model, displacement, factors, cull, partitioning,
                          [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto&) {
                            auto rows = build_patch_table(model, g, hs, ts, tables.combinations, seam_keys, camera);
                            (g.domain == ts::Domain::tri ? tables.tris : tables.quads) = std::move(rows);
@@ -17,13 +17,14 @@ PatchTables build_patch_tables(const SubdModel& model, const Displacement* displ
 }
 
 DrawResult render_debug(Device& device, const SubdModel& model, const Displacement* displacement,
-                        const SubdFactors& factors, ts::Partitioning partitioning, const DebugRender& view,
+                        const SubdFactors& factors, const PatchCull& cull, ts::Partitioning partitioning,
+                        const DebugRender& view,
                         const PatchTables& tables, const SubdCamera& camera, Framebuffer& fb) {
   DrawResult total;
   for (const bool wire : {false, true}) {
     if (wire && !view.wire_pass) continue;
     const DrawResult r = for_each_surface_group(
-        model, displacement, factors, partitioning,
+        model, displacement, factors, cull, partitioning,
         [&](const PatchGroup& g, const TessellatorState& ts, const auto& hs, const auto& ds) {
           const SubdPassState st = subd_pass_state(model, fb, wire);
           using Ds = std::decay_t<decltype(ds)>;

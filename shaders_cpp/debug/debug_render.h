@@ -28,7 +28,7 @@ struct PatchTables {
   }
 };
 PatchTables build_patch_tables(const SubdModel& model, const Displacement* displacement, const SubdFactors& factors,
-                               ts::Partitioning partitioning, const DicingCamera& camera);
+                               const PatchCull& cull, ts::Partitioning partitioning, const DicingCamera& camera);
 
 struct DebugRender {
   DebugPS ps;              // the view and its parameters; `patches` is set per group
@@ -38,7 +38,8 @@ struct DebugRender {
 // Draws the view's surface pass (and its wire pass when asked). The report counts the surface once:
 // a wire pass adds its time and memory, not its counts.
 DrawResult render_debug(Device& device, const SubdModel& model, const Displacement* displacement,
-                        const SubdFactors& factors, ts::Partitioning partitioning, const DebugRender& view,
+                        const SubdFactors& factors, const PatchCull& cull, ts::Partitioning partitioning,
+                        const DebugRender& view,
                         const PatchTables& tables, const SubdCamera& camera, Framebuffer& fb);
 
 }  // namespace tessera

@@ -19,7 +19,8 @@ SubdFactors base_factors(float factor, float vary,
   return f;
 }
 
-LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& model, SubdFactors& factors) {
+LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& model, SubdFactors& factors,
+                      PatchCull& cull) {
   if (!(std::isfinite(r.edge_pixels) && r.edge_pixels >= 0.25f && r.edge_pixels <= 4096.0f))
     throw FactorSettingError("--edge-pixels: " + float_text(r.edge_pixels) + " is not in [0.25, 4096]");
   if (!(std::isfinite(r.lod_distance) && r.lod_distance >= 0.0f))
@@ -42,13 +43,13 @@ LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& 
     factors.per_edge = edge_lod_factors(model.positions, model.topology, s);
   }
   if (culls_frustum(r.cull)) {
-    factors.cull.enabled = true;
-    factors.cull.view_projection = view.view_projection;
-    factors.cull.growth = model.displacement_bound;
+    cull.frustum.enabled = true;
+    cull.frustum.view_projection = view.view_projection;
+    cull.frustum.growth = model.displacement_bound;
   }
   // Displaced patches carry no orientation claim (back_patch_cull.h): no test for them.
   if (culls_backface(r.cull) && !model.displaced)
-    factors.back = BackPatchCull(view.view_projection, view.width, view.height, model.culled_screen_sign);
+    cull.back = BackPatchCull(view.view_projection, view.width, view.height, model.culled_screen_sign);
   return s;
 }
 

@@ -1,6 +1,7 @@
-// The hull shader's factor input (SubdFactors) and the policy that builds it from a user's settings:
-// the ranges of a uniform factor and its variation, per-edge factors read from a file, view-dependent
-// edge LOD (edge_lod.h), and patch culling (frustum_cull.h, back_patch_cull.h). The scene library,
+// The hull shader's two inputs, the factor table (SubdFactors) and the cull policy (PatchCull,
+// patch_cull.h), and the policy that builds them from a user's settings: the ranges of a uniform
+// factor and its variation, per-edge factors read from a file, view-dependent edge LOD (edge_lod.h),
+// and patch culling (frustum_cull.h, back_patch_cull.h). The scene library,
 // the benchmarks and the bindings all come through here, so a setting means one thing everywhere.
 //
 // Errors: a value out of its range is a FactorSettingError (the caller's usage: the message names the
@@ -18,9 +19,8 @@
 #include <glm/glm.hpp>
 
 #include "shaders_cpp/cage/topology.h"
-#include "shaders_cpp/lod/back_patch_cull.h"
 #include "shaders_cpp/lod/edge_lod.h"
-#include "shaders_cpp/lod/frustum_cull.h"
+#include "shaders_cpp/lod/patch_cull.h"
 #include "shaders_cpp/subdiv/subd_patches.h"
 
 namespace tessera {
@@ -29,14 +29,11 @@ namespace tessera {
 // an edge always agree. `vary` > 0 spreads factors over [factor, factor * (1 + vary)] by a hash of the
 // key (to test edges whose factors differ); inside factors average the edges of each direction.
 // `per_edge` (a --factors-per-edge file, or the view-dependent LOD of lod/edge_lod.h) overrides both
-// for the edges it lists. `cull` zeroes the factors of patches outside the view (lod/frustum_cull.h);
-// `back` bounds the screen orientation of a patch's triangles (lod/back_patch_cull.h).
+// for the edges it lists.
 struct SubdFactors {
   float factor = 8.0f;
   float vary = 0.0f;
   std::shared_ptr<const std::unordered_map<std::int64_t, float>> per_edge;  // by cage_edge_key
-  FrustumCull cull;
-  BackPatchCull back;
   // The factor of one cage edge (the base factor for key -1).
   float edge(std::int64_t key) const {
     if (key >= 0 && per_edge) {
@@ -92,12 +89,12 @@ struct LodModel {
   float displacement_bound = 0.0f;
   bool displaced = false;
 };
-// Fills factors.per_edge from the LOD (nothing for uniform), factors.cull and factors.back from the
-// cull mode, with the displacement's bound in every LOD sphere and cull bound; returns the LOD's
-// settings. Displaced patches carry no orientation claim, so they get no back-patch test. (Under a
+// Fills factors.per_edge from the LOD (nothing for uniform) and `cull` from the cull mode, with the
+// displacement's bound in every LOD sphere and cull bound; returns the LOD's settings. Displaced patches carry no orientation claim, so they get no back-patch test. (Under a
 // view-dependent LOD the displacement's sampling LOD moves with the camera: the caller blends its mip
 // levels, Displacement::trilinear, so the surface does not pop between levels.)
 // FactorSettingError for values out of range, or a view-dependent LOD with per-edge or varied factors.
-LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& model, SubdFactors& factors);
+LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& model, SubdFactors& factors,
+                      PatchCull& cull);
 
 }  // namespace tessera

@@ -90,13 +90,13 @@ float displacement_bound(const Texture2D& map, DisplacementKind kind, float scal
 // draw(group, tessellator_state, hs, ds) -> DrawResult.
 template <class Draw>
 DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const SubdFactors& factors,
-                                ts::Partitioning partitioning, Draw&& draw) {
+                                const PatchCull& cull, ts::Partitioning partitioning, Draw&& draw) {
   const PatchGroup& g = m.patches.quads;
   if (g.patches.empty()) return {};
   const TessellatorState ts{g.domain, partitioning, ts::OutputPrimitive::triangle_cw};
   // The frames of precomputed patches follow the pose: summed here, before the draw.
   const std::vector<glm::vec3> frame_rows = precompute_rows(d.frames.precomputed, m.positions());
-  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning, m.precomputed},
+  const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning, m.precomputed, cull},
                        d.texcoords, &d.frames, glm::vec2(float(d.map->width()), float(d.map->height())), frame_rows};
   const DisplacedDS ds{SubdDS{g.patches, m.limit.get(), m.cage.tags.left_handed, false}, d.texcoords, d.params()};
   return draw(g, ts, hs, ds);
@@ -105,9 +105,9 @@ DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const
 // IA..DS with displacement; each patch's DisplacedPoints go to sink(PatchOutput<DisplacedPoint>, group).
 template <class Sink>
 DrawResult stream_displaced(Device& device, const SubdModel& m, const Displacement& d, const SubdFactors& factors,
-                            ts::Partitioning partitioning, Sink&& sink) {
+                            const PatchCull& cull, ts::Partitioning partitioning, Sink&& sink) {
   return with_displaced_group(
-      m, d, factors, partitioning,
+      m, d, factors, cull, partitioning,
       [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
         const StreamDraw<glm::vec3, SubdVS, DisplacedHS, DisplacedDS> draw{
             m.vertex_buffer(), g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
@@ -119,17 +119,29 @@ DrawResult stream_displaced(Device& device, const SubdModel& m, const Displaceme
 // (for_each_patch_group): draw(group, tessellator_state, hs, ds) -> DrawResult with the matching shaders.
 template <class Draw>
 DrawResult for_each_surface_group(const SubdModel& m, const Displacement* d, const SubdFactors& factors,
-                                  ts::Partitioning partitioning, Draw&& draw) {
-  if (d != nullptr) return with_displaced_group(m, *d, factors, partitioning, draw);
-  return for_each_patch_group(m, factors, partitioning, draw);
+                                  const PatchCull& cull, ts::Partitioning partitioning, Draw&& draw) {
+  if (d != nullptr) return with_displaced_group(m, *d, factors, cull, partitioning, draw);
+  return for_each_patch_group(m, factors, cull, partitioning, draw);
 }
 
 // stream_displaced or stream_subd by `d`: the sink takes (PatchOutput<DisplacedPoint or SurfaceSample>, group).
 template <class Sink>
 DrawResult stream_surface(Device& device, const SubdModel& m, const Displacement* d, const SubdFactors& factors,
+                          const PatchCull& cull, ts::Partitioning partitioning, Sink&& sink) {
+  if (d != nullptr) return stream_displaced(device, m, *d, factors, cull, partitioning, sink);
+  return stream_subd(device, m, factors, cull, partitioning, sink);
+}
+
+// The streams without a cull policy: every patch.
+template <class Sink>
+DrawResult stream_displaced(Device& device, const SubdModel& m, const Displacement& d, const SubdFactors& factors,
+                            ts::Partitioning partitioning, Sink&& sink) {
+  return stream_displaced(device, m, d, factors, PatchCull{}, partitioning, std::forward<Sink>(sink));
+}
+template <class Sink>
+DrawResult stream_surface(Device& device, const SubdModel& m, const Displacement* d, const SubdFactors& factors,
                           ts::Partitioning partitioning, Sink&& sink) {
-  if (d != nullptr) return stream_displaced(device, m, *d, factors, partitioning, sink);
-  return stream_subd(device, m, factors, partitioning, sink);
+  return stream_surface(device, m, d, factors, PatchCull{}, partitioning, std::forward<Sink>(sink));
 }
 
 }  // namespace tessera

@@ -2,19 +2,16 @@
 
 namespace tessera {
 DrawResult render_displaced(Device& device, const SubdModel& model, const Displacement& displacement,
-                            const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
-                            const SubdCamera& camera, Framebuffer& fb) {
+                            const SubdFactors& factors, const PatchCull& cull, ts::Partitioning partitioning,
+                            SubdView view, const SubdCamera& camera, Framebuffer& fb) {
   const glm::vec3 light = glm::normalize(camera.eye - camera.target);
   auto pass = [&](bool wire) {
+    const SubdPassState st = subd_pass_state(model, fb, wire);
     return with_displaced_group(
-        model, displacement, factors, partitioning,
+        model, displacement, factors, cull.with_depth_bias(st.z_bias), partitioning,  // the pass's depth bias
         [&](const PatchGroup& g, const TessellatorState& ts, const DisplacedHS& hs, const DisplacedDS& ds) {
-          const SubdPassState st = subd_pass_state(model, fb, wire);
           const DisplacedProjectDS<DisplacedDS> project{ds, camera.view_projection, st.z_bias};
-          DisplacedHS pass_hs = hs;  // the frustum test sees the pass's depth bias
-          pass_hs.base.factors.cull.z_bias = st.z_bias;
-          pass_hs.base.factors.back.z_bias = st.z_bias;
-          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
+          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, hs, project, ps, st, fb); };
           if (wire) return go(ConstantPS<kDisplacedAttributes>{});
           DisplacedPS ps;
           ps.light = light;
@@ -34,10 +31,10 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
 }
 
 DrawResult render_surface(Device& device, const SubdModel& model, const Displacement* displacement,
-                          const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
-                          const SubdCamera& camera, Framebuffer& fb) {
-  return displacement ? render_displaced(device, model, *displacement, factors, partitioning, view, camera, fb)
-                      : render_subd(device, model, factors, partitioning, view, camera, fb);
+                          const SubdFactors& factors, const PatchCull& cull, ts::Partitioning partitioning,
+                          SubdView view, const SubdCamera& camera, Framebuffer& fb) {
+  return displacement ? render_displaced(device, model, *displacement, factors, cull, partitioning, view, camera, fb)
+                      : render_subd(device, model, factors, cull, partitioning, view, camera, fb);
 }
 
 }  // namespace tessera

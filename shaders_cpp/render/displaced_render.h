@@ -8,12 +8,12 @@
 namespace tessera {
 
 DrawResult render_displaced(Device& device, const SubdModel& model, const Displacement& displacement,
-                            const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
-                            const SubdCamera& camera, Framebuffer& fb);
+                            const SubdFactors& factors, const PatchCull& cull, ts::Partitioning partitioning,
+                            SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
 // render_displaced when `displacement` is given, else render_subd.
 DrawResult render_surface(Device& device, const SubdModel& model, const Displacement* displacement,
-                          const SubdFactors& factors, ts::Partitioning partitioning, SubdView view,
-                          const SubdCamera& camera, Framebuffer& fb);
+                          const SubdFactors& factors, const PatchCull& cull, ts::Partitioning partitioning,
+                          SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
 }  // namespace tessera

@@ -88,14 +88,14 @@ inline void add_draw_report(DrawReport& total, const DrawReport& part) {
 // draw(group, tessellator_state, hs, ds) -> DrawResult; stops at the first error. Returns the
 // statistics and stage times summed, and the largest geometry peak.
 template <class Draw>
-DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, ts::Partitioning partitioning,
-                                Draw&& draw) {
+DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, const PatchCull& cull,
+                                ts::Partitioning partitioning, Draw&& draw) {
   DrawResult total;
   for (const PatchGroup* g : {&m.patches.quads, &m.patches.tris}) {
     if (g->patches.empty()) continue;
     const bool tri = g->domain == ts::Domain::tri;
     const TessellatorState ts{g->domain, partitioning, ts::OutputPrimitive::triangle_cw};
-    const SubdHS hs{g->patches, m.patches.tables, factors, tri, m.ring_boxes, partitioning, m.precomputed};
+    const SubdHS hs{g->patches, m.patches.tables, factors, tri, m.ring_boxes, partitioning, m.precomputed, cull};
     const SubdDS ds{g->patches, m.limit.get(), m.cage.tags.left_handed, tri};
     DrawResult r = draw(*g, ts, hs, ds);
     if (!r.ok()) return r;
@@ -104,16 +104,23 @@ DrawResult for_each_patch_group(const SubdModel& m, const SubdFactors& factors, 
   return total;
 }
 
-// Runs IA..DS over both patch groups and hands each patch's SurfaceSamples to sink(PatchOutput, group).
+// Runs IA..DS over both patch groups and hands each patch's SurfaceSamples to sink(PatchOutput, group);
+// without a cull policy, every patch.
 template <class Sink>
-DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& factors, ts::Partitioning partitioning,
-                       Sink&& sink) {
-  return for_each_patch_group(m, factors, partitioning,
+DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& factors, const PatchCull& cull,
+                       ts::Partitioning partitioning, Sink&& sink) {
+  return for_each_patch_group(m, factors, cull, partitioning,
                               [&](const PatchGroup& g, const TessellatorState& ts, const SubdHS& hs, const SubdDS& ds) {
                                 const StreamDraw<glm::vec3, SubdVS, SubdHS, SubdDS> d{
                                     m.vertex_buffer(), g.indices, g.control_points, m.vertex_shader(), hs, ds, ts};
                                 return stream_out(device, d, [&](const PatchOutput<SurfaceSample>& p) { sink(p, g); });
                               });
+}
+
+template <class Sink>
+DrawResult stream_subd(Device& device, const SubdModel& m, const SubdFactors& factors, ts::Partitioning partitioning,
+                       Sink&& sink) {
+  return stream_subd(device, m, factors, PatchCull{}, partitioning, std::forward<Sink>(sink));
 }
 
 }  // namespace tessera

@@ -85,19 +85,16 @@ SubdPassState subd_pass_state(const SubdModel& model, const Framebuffer& fb, boo
   return st;
 }
 
-DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors,
+DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, const PatchCull& cull,
                        ts::Partitioning partitioning, SubdView view, const SubdCamera& camera, Framebuffer& fb) {
   const glm::vec3 light = glm::normalize(camera.eye - camera.target);
   auto pass = [&](bool wire) {
+    const SubdPassState st = subd_pass_state(model, fb, wire);
     return for_each_patch_group(
-        model, factors, partitioning,
+        model, factors, cull.with_depth_bias(st.z_bias), partitioning,  // the tests see the pass's depth bias
         [&](const PatchGroup& g, const TessellatorState& ts, const SubdHS& hs, const SubdDS& ds) {
-          const SubdPassState st = subd_pass_state(model, fb, wire);
           const ProjectDS<SubdDS> project{ds, camera.view_projection, st.z_bias};
-          SubdHS pass_hs = hs;  // the frustum test sees the pass's depth bias
-          pass_hs.factors.cull.z_bias = st.z_bias;
-          pass_hs.factors.back.z_bias = st.z_bias;
-          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, pass_hs, project, ps, st, fb); };
+          auto go = [&](const auto& ps) { return draw_group_pass(device, model, g, ts, hs, project, ps, st, fb); };
           return wire ? go(ConstantPS<>{}) : go(ClayPS{light, kClayColor, face_sides(model)});
         });
   };

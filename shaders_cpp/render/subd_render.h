@@ -35,7 +35,7 @@ SubdCamera look_at(std::span<const glm::vec3> bounds, int width, int height, flo
 glm::vec3 default_view_direction(glm::vec3 up);
 
 // Draws the model into fb (not cleared here); returns the first draw error, statistics summed.
-DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors,
+DrawResult render_subd(Device& device, const SubdModel& model, const SubdFactors& factors, const PatchCull& cull,
                        ts::Partitioning partitioning, SubdView view, const SubdCamera& camera, Framebuffer& fb);
 
 // The fixed-function state of one pass over a subdivision model: back faces culled (front faces on a

@@ -5,7 +5,8 @@
 // - SubdHS: control-point phase = the patch's stencil table applied to its 1-ring, summed in vertex
 //   index order (or, for a 1-ring over 32 points, the pre-pass's rows: control_point_prepass.h), or for
 //   `pn` the PN points of the face's corners (pn_patch.h); patch-constant phase =
-//   tessellation factors per cage edge (SubdFactors).
+//   tessellation factors per cage edge (SubdFactors), zero for a patch the cull policy (PatchCull) proves
+//   outside the view, and the patch's orientation bound.
 // - SubdDS: evaluates the patch (patch_eval.h, or the exact limit surface) and returns a SurfaceSample;
 //   its batch form evaluates Gregory and ACC patches eight locations at a time (patch_eval_lanes.h).
 // - ProjectingDS (ProjectDS for SurfaceSample) wraps a DS into one that returns ClipVertex for rendering.
@@ -82,6 +83,7 @@ struct SubdHS {
   // The control-point pre-pass's output (control_point_prepass.h): the rows of the patches whose 1-ring
   // is larger than an IA patch, read in place of the sum over `in`.
   std::span<const glm::vec3> precomputed{};
+  PatchCull cull{};  // the pass's cull policy (with its depth bias); none by default
 
   // A Gregory patch's own rows in its table, before the crease and corner rows the rest of it holds.
   static int own_rows(const SubdPatch& patch) {
@@ -156,13 +158,13 @@ struct SubdHS {
   // The back-patch claim for the quad patches whose positions are a Bezier net (the others: none).
   OrientationBound orientation_bound(const SubdPatch& patch, std::span<const SubdControlPoint> cp,
                                      const TessFactors& f) const {
-    if (!factors.back.enabled() || triangles) return {};
+    if (!cull.back.enabled() || triangles) return {};
     int segments = 64;
     for (const float e : f.edge) segments = std::min(segments, max_edge_segments(e));
     if (patch.kind == PatchKind::acc || patch.kind == PatchKind::pn_quad) {
       std::array<glm::vec3, 16> net;
       for (std::size_t i = 0; i < 16; ++i) net[i] = cp[i].p;
-      return factors.back.bound(net, 3, segments);
+      return cull.back.bound(net, 3, segments);
     }
     if (patch.kind == PatchKind::gregory) {
       // Polynomial where each corner's face points coincide (bspline's regular faces): the Bezier
@@ -173,11 +175,11 @@ struct SubdHS {
         if (g[5 * k + 3] != g[5 * k + 4]) return {};
       std::array<glm::vec3, 16> net = gregory_to_bezier(g, 0.5f, 0.5f);
       net[5] = g[3], net[6] = g[8], net[10] = g[13], net[9] = g[18];
-      return factors.back.bound(net, 3, segments);
+      return cull.back.bound(net, 3, segments);
     }
     if (patch.kind == PatchKind::bilinear) {  // corners around the quad; the net is row by row
       const std::array<glm::vec3, 4> net = {cp[0].p, cp[1].p, cp[3].p, cp[2].p};
-      return factors.back.bound(net, 1, segments);
+      return cull.back.bound(net, 1, segments);
     }
     return {};
   }
@@ -212,8 +214,8 @@ struct SubdHS {
 
   // The frustum test on the patch's hull.
   bool outside_view(const SubdPatch& patch, std::span<const SubdControlPoint> cp) const {
-    if (!factors.cull.enabled) return false;
-    return factors.cull.outside(hull_size(patch), [&](int i) { return hull_point(patch, cp, i); });
+    if (!cull.frustum.enabled) return false;
+    return cull.frustum.outside(hull_size(patch), [&](int i) { return hull_point(patch, cp, i); });
   }
   // The points whose convex hull holds the patch's surface: its control points, or for `exact`, whose
   // IA patch is the face alone, the corners of the box of the face's 1-ring (none without the box).

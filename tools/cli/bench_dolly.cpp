@@ -126,10 +126,11 @@ int run_dolly(const DollyOptions& o) {
     const glm::vec3 eye = glm::mix(from, to, t);
     const ViewSetup view = view_at(o.s.camera, model, eye, target);
     SubdFactors factors = base_factors;
-    apply_lod_options(o.s.lod, view, model, d, factors);
+    PatchCull cull;
+    apply_lod_options(o.s.lod, view, model, d, factors, cull);
     const auto t0 = Clock::now();
     device.clear(*fb, kBackgroundColor, 1.0f);
-    const DrawResult r = render_surface(device, model, d, factors, partitioning, SubdView::shaded, view.camera, *fb);
+    const DrawResult r = render_surface(device, model, d, factors, cull, partitioning, SubdView::shaded, view.camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     // The same tessellation, streamed: where every vertex is.
@@ -141,7 +142,7 @@ int run_dolly(const DollyOptions& o) {
         pts.position.push_back(p.points[i].position);
       }
     };
-    const DrawResult s = stream_surface(device, model, d, factors, partitioning, sink);
+    const DrawResult s = stream_surface(device, model, d, factors, cull, partitioning, sink);
     if (!s.ok()) throw InputError(cage + ": " + s.error);
     const double move = f == 0 ? 0.0 : largest_move(before, now, view.camera.view_projection, view.width, view.height);
     before = std::move(now);

@@ -124,7 +124,7 @@ int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
     draw = [&](Device& device, Framebuffer& fb) {
       DrawResult r =
           render_surface(device, subd->model, subd->displacement ? &*subd->displacement : nullptr, subd->factors,
-                         subd->settings.partitioning, SubdView::shaded, subd->view.camera, fb);
+                         subd->cull, subd->settings.partitioning, SubdView::shaded, subd->view.camera, fb);
       if (!r.ok()) r.error = subd->settings.cage + ": " + r.error;
       return r;
     };

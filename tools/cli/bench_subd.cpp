@@ -48,6 +48,7 @@ int run_bench_subd(const BenchSubdOptions& o) {
   Displacement* d = scene->displacement ? &*scene->displacement : nullptr;
   const SubdFactors& base_factors = scene->base_factors;
   const SubdFactors& factors = scene->factors;
+  const PatchCull& cull = scene->cull;
   Device device(dopt);
   std::string error;
   auto fb = Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error, o.s.msaa);
@@ -62,18 +63,18 @@ int run_bench_subd(const BenchSubdOptions& o) {
     DrawReport last;
   };
   // One frame: clear, draw, and a multisampled target's colour resolved.
-  const auto render_frame = [&](const SubdFactors& f) {
+  const auto render_frame = [&](const SubdFactors& f, const PatchCull& c) {
     device.clear(*fb, kBackgroundColor, 1.0f);
-    DrawResult r = render_surface(device, model, d, f, partitioning, SubdView::shaded, camera, *fb);
+    DrawResult r = render_surface(device, model, d, f, c, partitioning, SubdView::shaded, camera, *fb);
     if (!r.ok()) throw InputError(cage + ": " + r.error);
     if (resolved) device.resolve(*fb, *resolved, ResolvedPlanes::color);  // also the tiles no draw entered
     return r;
   };
-  const auto time_frames = [&](const SubdFactors& f) {
+  const auto time_frames = [&](const SubdFactors& f, const PatchCull& c) {
     Timed t;
     for (int k = 0; k < o.frames + 1; ++k) {  // one warm-up frame
       const auto start = Clock::now();
-      const DrawResult r = render_frame(f);
+      const DrawResult r = render_frame(f, c);
       if (k > 0) t.frame_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
       t.last = r.report;
     }
@@ -91,8 +92,9 @@ int run_bench_subd(const BenchSubdOptions& o) {
       LodCullSettings lod = o.s.lod;
       lod.cull = mode;
       SubdFactors f = base_factors;
-      apply_lod_options(lod, view, model, d, f);
-      const Timed t = time_frames(f);
+      PatchCull c;
+      apply_lod_options(lod, view, model, d, f, c);
+      const Timed t = time_frames(f, c);
       const double median = t.frame_s[t.frame_s.size() / 2];
       std::vector<std::uint8_t> bytes = fb->color_bytes();
       if (reference.empty()) reference = bytes, none_median = median;
@@ -112,20 +114,20 @@ int run_bench_subd(const BenchSubdOptions& o) {
     }
   }
 
-  const Timed timed = time_frames(factors);
+  const Timed timed = time_frames(factors, cull);
   const std::vector<double>& frame_s = timed.frame_s;
   const DrawReport& last = timed.last;
   std::optional<TraceSummary> traced;
   if (!o.trace.empty())
     traced = trace_frame(
-        device, [&] { render_frame(factors); }, o.trace,
+        device, [&] { render_frame(factors, cull); }, o.trace,
         "bench frog, " + std::to_string(device.threads()) + " threads");
   if (!o.output.empty())
     if (auto e = write_color(*fb, {o.output}); !e.empty()) throw InputError(e);
   // Front end alone: HS (stencils) and DS through stream output, nothing rasterized.
   const auto discard = [](const auto&, const PatchGroup&) {};
   const auto start = Clock::now();
-  const DrawResult s = stream_surface(device, model, d, factors, partitioning, discard);
+  const DrawResult s = stream_surface(device, model, d, factors, cull, partitioning, discard);
   const double stream_s = std::chrono::duration<double>(Clock::now() - start).count();
   const double median = frame_s[frame_s.size() / 2];
   const auto& st = last.statistics;

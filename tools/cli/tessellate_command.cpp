@@ -56,13 +56,14 @@ int run_tessellate(const TessellateOptions& o) {
              " faces are not regular and are drawn as Gregory patches");
   const ViewSetup& view = scene->view;
   const LodResult& lod = scene->lod;
-  SubdFactors factors = scene->factors;
+  const SubdFactors& factors = scene->factors;
+  PatchCull cull = scene->cull;
   // Back-patch culling skips what a rasterizer would cull; tessellate writes every patch.
   if (lod.cull == PatchCullMode::backface)
     throw UsageError(
         "--cull backface: tessellate writes every patch's triangles (nothing rasterizes them); "
         "use none, frustum or all (= frustum here)");
-  factors.back = {};
+  cull.back = {};
   log_debug(std::to_string(model.patches.quads.size() + model.patches.tris.size()) + " patches, " +
             std::to_string(model.patches.tables.size()) + " stencil tables");
 
@@ -100,7 +101,7 @@ int run_tessellate(const TessellateOptions& o) {
       triangles += faces;
       vertices += p.points.size();
     };
-    result = stream_surface(device, model, displacement ? &*displacement : nullptr, factors, partitioning, sink);
+    result = stream_surface(device, model, displacement ? &*displacement : nullptr, factors, cull, partitioning, sink);
     if (!result.ok()) throw InputError(o.s.cage + ": " + result.error);
   };
 
@@ -144,7 +145,7 @@ int run_tessellate(const TessellateOptions& o) {
 
   if (!o.stats.empty()) {
     const ViewInputs inputs{
-        model, displacement ? &*displacement : nullptr, factors, partitioning, view, o.s.lod.edge_pixels, false};
+        model, displacement ? &*displacement : nullptr, factors, cull, partitioning, view, o.s.lod.edge_pixels, false};
     const PatchTables tables = view_patch_tables(inputs);
     // Counts only, the same bytes on any thread count; times and memory are in --json.
     Json s = {{"statistics", to_json(result.report.statistics)}, {"warnings", model.cage.warnings}};

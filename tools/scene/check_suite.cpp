@@ -68,7 +68,7 @@ GeometryDigest digest_of(Device& device, const PreparedScene& scene, const Scene
     verify::add_patch_triangles(weld, out);
   };
   const DrawResult r = stream_surface(device, scene.model, scene.displacement ? &*scene.displacement : nullptr,
-                                      scene.factors, scene.settings.partitioning, sink);
+                                      scene.factors, scene.cull, scene.settings.partitioning, sink);
   if (!r.ok()) throw InputError(scene.settings.cage + ": " + r.error);
   const verify::WeldReport w = weld.report();
   d.open_edges = w.boundary_edges;

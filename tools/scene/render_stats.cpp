@@ -115,7 +115,7 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
       areas.add(0.5 * std::abs(e1.x * e2.y - e1.y * e2.x));
     }
   };
-  const DrawResult r = stream_surface(device, in.model, in.displacement, in.factors, in.partitioning, sink);
+  const DrawResult r = stream_surface(device, in.model, in.displacement, in.factors, in.cull, in.partitioning, sink);
   if (!r.ok()) throw InputError(in.model.cage.name + ": " + r.error);
 
   stats["lod"] = {{"mode", to_string(lod.settings.mode)},

@@ -27,7 +27,7 @@ std::vector<glm::vec3> sample_ramp(F&& color) {
 }
 
 DrawResult draw_shaded(Device& device, const ViewInputs& in, Framebuffer& fb) {
-  return render_surface(device, in.model, in.displacement, in.factors, in.partitioning, SubdView::shaded,
+  return render_surface(device, in.model, in.displacement, in.factors, in.cull, in.partitioning, SubdView::shaded,
                         in.view.camera, fb);
 }
 
@@ -56,7 +56,7 @@ SubdCamera overview_camera(const ViewInputs& in, int w, int h) {
 
 PatchTables view_patch_tables(const ViewInputs& in) {
   const DicingCamera camera{in.view.camera.eye, pixels_per_unit(in.view.height, in.view.fov)};
-  return build_patch_tables(in.model, in.displacement, in.factors, in.partitioning, camera);
+  return build_patch_tables(in.model, in.displacement, in.factors, in.cull, in.partitioning, camera);
 }
 
 bool view_uses_patch_tables(ViewKind kind) {
@@ -117,9 +117,9 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
 // the same triangles either way, and the culled ones are checked too.
 void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, ViewOutput& out) {
   verify::WeldChecker weld;
-  SubdFactors all = in.factors;
-  all.cull.enabled = false;
-  const DrawResult s = stream_surface(device, in.model, in.displacement, all, in.partitioning,
+  PatchCull all = in.cull;
+  all.frustum.enabled = false;
+  const DrawResult s = stream_surface(device, in.model, in.displacement, in.factors, all, in.partitioning,
                                       [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
   if (!s.ok()) {
     out.result = s;
@@ -137,7 +137,7 @@ void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, Vie
       std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
       std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
           " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
-  if (in.factors.cull.enabled)
+  if (in.cull.frustum.enabled)
     out.legend.lines.push_back("welded with culling off: culled patches' borders are not cracks");
 }
 
@@ -308,15 +308,14 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
     throw std::logic_error("render_view: --view " + std::string(to_string(kind)) + " needs the patch tables");
   DebugRender r = debug_view_setup(kind, in, *given, out);
   // The culled view draws what the view culled, from outside, with the view's frustum.
-  SubdFactors factors = in.factors;
+  PatchCull cull = in.cull;
   SubdCamera camera = in.view.camera;
   if (kind == ViewKind::culled) {
-    factors.cull.enabled = false;
-    factors.back = {};  // its claims are about the view camera, not this one
+    cull = {};  // its claims are about the view camera, not this one
     camera = overview_camera(in, fb.width(), fb.height());
   }
   r.ps.light = glm::normalize(camera.eye - camera.target);
-  out.result = render_debug(device, in.model, in.displacement, factors, in.partitioning, r, *given, camera, fb);
+  out.result = render_debug(device, in.model, in.displacement, in.factors, cull, in.partitioning, r, *given, camera, fb);
   if (out.result.ok() && kind == ViewKind::culled) {
     std::vector<OverlayLine> lines;
     frustum_lines(in.view.camera.view_projection, lines);
@@ -330,14 +329,13 @@ DrawResult render_pick_buffer(Device& device, ViewKind kind, const ViewInputs& i
   fb.clear(glm::vec4(0.0f), 1.0f);
   DebugRender r;
   r.ps.view = DebugView::pick;
-  SubdFactors factors = in.factors;
+  PatchCull cull = in.cull;
   SubdCamera camera = in.view.camera;
   if (kind == ViewKind::culled) {
-    factors.cull.enabled = false;
-    factors.back = {};
+    cull = {};
     camera = overview_camera(in, fb.width(), fb.height());
   }
-  return render_debug(device, in.model, in.displacement, factors, in.partitioning, r, tables, camera, fb);
+  return render_debug(device, in.model, in.displacement, in.factors, cull, in.partitioning, r, tables, camera, fb);
 }
 
 const PatchInfo* picked_patch(const PatchTables& tables, std::uint32_t code, std::size_t* index) {

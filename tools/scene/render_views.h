@@ -16,7 +16,8 @@ namespace tessera::cli {
 struct ViewInputs {
   const SubdModel& model;
   const Displacement* displacement = nullptr;
-  SubdFactors factors;  // with the LOD's per-edge factors and the cull
+  SubdFactors factors;  // with the LOD's per-edge factors
+  PatchCull cull;       // the cull policy of the view
   ts::Partitioning partitioning = ts::Partitioning::integer;
   const ViewSetup& view;
   float edge_pixels = 8.0f;  // density's target

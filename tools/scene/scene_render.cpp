@@ -11,6 +11,7 @@ ViewInputs PreparedScene::inputs() const {
   return ViewInputs{model,
                     displacement ? &*displacement : nullptr,
                     factors,
+                    cull,
                     settings.partitioning,
                     view,
                     settings.lod.edge_pixels,
@@ -73,9 +74,12 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
     SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
     ViewSetup view = view_option(s.camera, p.model);
     SubdFactors factors = base;
-    LodResult lod = apply_lod_options(s.lod, view, p.model, p.displacement ? &*p.displacement : nullptr, factors);
+    PatchCull cull;
+    LodResult lod =
+        apply_lod_options(s.lod, view, p.model, p.displacement ? &*p.displacement : nullptr, factors, cull);
     p.base_factors = std::move(base);
     p.factors = std::move(factors);
+    p.cull = cull;
     p.view = view;
     p.lod = std::move(lod);
   }
@@ -89,14 +93,18 @@ void pose_scene(PreparedScene& p, double time) {
   p.settings.asset.time = time;
   p.derived_from.reset();
   p.factors = p.base_factors;
-  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
+  p.cull = {};
+  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors,
+                            p.cull);
 }
 
 void view_scene(PreparedScene& p, const ViewSetup& view) {
   p.view = view;
   p.derived_from.reset();
   p.factors = p.base_factors;
-  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors);
+  p.cull = {};
+  p.lod = apply_lod_options(p.settings.lod, p.view, p.model, p.displacement ? &*p.displacement : nullptr, p.factors,
+                            p.cull);
 }
 
 std::string describe_scene(const PreparedScene& p) {

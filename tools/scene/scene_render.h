@@ -23,6 +23,7 @@ struct PreparedScene {
   ViewSetup view;
   SubdFactors base_factors;  // before LOD and culling (pose_scene starts again from them)
   SubdFactors factors;
+  PatchCull cull;
   LodResult lod;
   bool configured = false;  // configure_scene has succeeded once: base_factors hold settings' factors
   // The settings `view`, `factors` and `lod` were last computed from by configure_scene; pose_scene

@@ -145,7 +145,7 @@ void add_lod_options(CLI::App& cmd, LodCullSettings& l, PatchCullMode cull_defau
 }
 
 LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model,
-                            Displacement* displacement, SubdFactors& factors) {
+                            Displacement* displacement, SubdFactors& factors, PatchCull& cull) {
   const LodRequest request{l.mode, l.cull, l.edge_pixels, l.lod_distance, l.dicing_eye};
   const LodView lod_view{view.camera.eye, view.camera.target, view.camera.view_projection,
                          view.width,      view.height,        view.fov};
@@ -153,7 +153,7 @@ LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, con
                            displacement ? displacement->bound : 0.0f, displacement != nullptr};
   LodResult r;
   r.cull = l.cull;
-  r.settings = with_usage_errors([&] { return apply_lod(request, lod_view, lod_model, factors); });
+  r.settings = with_usage_errors([&] { return apply_lod(request, lod_view, lod_model, factors, cull); });
   // Set both ways: a scene reconfigured from view-dependent to uniform LOD samples as a fresh one.
   if (displacement) displacement->trilinear = r.settings.mode != LodMode::uniform;
   return r;

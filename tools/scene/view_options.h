@@ -54,6 +54,6 @@ struct LodResult {
   PatchCullMode cull = PatchCullMode::none;
 };
 LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model,
-                            Displacement* displacement, SubdFactors& factors);
+                            Displacement* displacement, SubdFactors& factors, PatchCull& cull);
 
 }  // namespace tessera::cli
