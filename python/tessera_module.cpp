@@ -22,7 +22,7 @@
 
 namespace py = pybind11;
 using namespace tessera;
-using namespace tessera::cli;
+using namespace tessera::scene;
 
 namespace {
 

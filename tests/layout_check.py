@@ -9,7 +9,11 @@
 3. no Catch test case's name starts with '-' (ctest would pass it to the test binary as an option),
 4. the viewer and the Python module use the scene library (tools/scene), never the command line
    (tools/cli), and
-5. no source file sits loose at the top of shaders_cpp/ or tools/: every module is in a room.
+5. no source file sits loose at the top of shaders_cpp/ or tools/: every module is in a room, and
+6. a file opens only its folder's namespaces (NAMESPACES): the tessellator `tessera::ts`, the pipeline
+   and the shaders' shared vocabulary `tessera`, a shaders room's own names `tessera::<room>`, each
+   tools room its own (`tessera::scene`, `tessera::viewer`, `tessera::cli`, ...); any of them may
+   hold a `detail` namespace.
 
 Usage: layout_check.py SOURCE_DIR. Prints each violation as FILE:LINE: message; exit 1 if any.
 """
@@ -45,6 +49,22 @@ ALLOWED = {
     "python": BELOW_TOOLS + ["tools/scene"],
     "tools/cli": BELOW_TOOLS + ["tools/scene", "tools/viewer"],
 }
+# folder -> the namespaces its files may open (and their ::detail). A shaders room declares the
+# vocabulary the rooms share in `tessera` and the names only it uses in `tessera::<room>`.
+NAMESPACES = {
+    "tessellator": ["tessera::ts", "tessera::ts::hlsl"],
+    "pipeline": ["tessera", "tessera::simd"],
+    "tools/verify": ["tessera::verify", "tessera::oracle"],
+    "tools/measure": ["tessera::measure"],
+    "tools/scene": ["tessera::scene"],
+    "tools/viewer": ["tessera::viewer"],
+    "tools/cli": ["tessera::cli"],
+    "python": [],
+}
+for _room in ALLOWED:
+    if _room.startswith("shaders_cpp/"):
+        NAMESPACES[_room] = ["tessera", "tessera::" + _room.split("/")[1]]
+NAMESPACE = re.compile(r"^namespace\s+(tessera[\w:]*)\s*\{")
 # Folders that hold only subfolders (and scripts): a source file at their top is a loose module.
 ROOMS_ONLY = ["shaders_cpp", "tools"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
@@ -100,6 +120,17 @@ def main():
                     errors.append(f"{where}: {folder} may not depend on {target_folder} (\"{target}\")")
                 elif os.path.basename(target) not in public[target_folder]:
                     errors.append(f"{where}: \"{target}\" is private to {target_folder}")
+    for folder, names in NAMESPACES.items():
+        allowed = set(names) | {n + "::detail" for n in names}
+        directory = os.path.join(root, folder)
+        for name in sorted(os.listdir(directory)):
+            if not name.endswith((".h", ".cpp", ".cpp.in")):
+                continue
+            for number, line in enumerate(open(os.path.join(directory, name), encoding="utf-8"), 1):
+                m = NAMESPACE.match(line)
+                if m and m.group(1) not in allowed:
+                    errors.append(f"{folder}/{name}:{number}: namespace {m.group(1)} is not {folder}'s "
+                                  f"({', '.join(names) or 'none'})")
     # Test case names ctest cannot carry: catch_discover_tests reads a leading '-' as an option, and a
     # ';' splits the name (CMake's list separator), so ctest runs a spec matching nothing.
     case = re.compile(r'TEST_CASE\(\s*"([^"]*)"')

@@ -39,13 +39,13 @@ double subdivided_curve(const double q[4], double sharpness, double x, int steps
     left -= 1.0;
   }
   double w[4], dw[4];
-  osd_detail::cubic_bspline_basis(x, w, dw);
+  subdiv::cubic_bspline_basis(x, w, dw);
   return w[0] * p[0] + w[1] * p[1] + w[2] * p[2] + w[3] * p[3];
 }
 
 double curve(const double q[4], double sharpness, double x) {
   double w[4], dw[4];
-  osd_detail::crease_curve_basis(x, sharpness, w, dw);
+  subdiv::crease_curve_basis(x, sharpness, w, dw);
   return w[0] * q[0] + w[1] * q[1] + w[2] * q[2] + w[3] * q[3];
 }
 
@@ -74,7 +74,7 @@ TEST_CASE("adaptive: the crease curve is the subdivision it stands for", "[adapt
       // 40 steps: the smooth tail's B-spline segment is 2^-40 long, its variation below round-off.
       CHECK(curve(q, sharpness, x) == Approx(subdivided_curve(q, sharpness, x, 40)).margin(1e-9));
       double w[4], dw[4];
-      osd_detail::crease_curve_basis(x, sharpness, w, dw);
+      subdiv::crease_curve_basis(x, sharpness, w, dw);
       sum_at = w[0] + w[1] + w[2] + w[3];
       CHECK(sum_at == Approx(1.0).margin(1e-14));
       CHECK(dw[0] + dw[1] + dw[2] + dw[3] == Approx(0.0).margin(1e-12));
@@ -88,10 +88,10 @@ TEST_CASE("adaptive: the crease curve is the subdivision it stands for", "[adapt
   }
   // Sharpness 0 is the B-spline; a high sharpness interpolates the crease point.
   double w[4], dw[4], b[4], db[4];
-  osd_detail::crease_curve_basis(0.3, 0.0, w, dw);
-  osd_detail::cubic_bspline_basis(0.3, b, db);
+  subdiv::crease_curve_basis(0.3, 0.0, w, dw);
+  subdiv::cubic_bspline_basis(0.3, b, db);
   for (int k = 0; k < 4; ++k) CHECK(w[k] == b[k]);
-  osd_detail::crease_curve_basis(1.0, 30.0, w, dw);
+  subdiv::crease_curve_basis(1.0, 30.0, w, dw);
   CHECK(w[2] == Approx(1.0).margin(1e-8));
 }
 

@@ -137,7 +137,7 @@ TEST_CASE("tessera bench torus renders, reports JSON and D3D11 statistics", "[cl
   CHECK(j["scene"] == "torus");
   CHECK(j["factor"] == 3);
   CHECK(j["resolution"] == "96x54");
-  CHECK(j["isa"] == tessera::cli::kBuildIsa);  // timings are comparable only within one instruction set
+  CHECK(j["isa"] == tessera::scene::kBuildIsa);  // timings are comparable only within one instruction set
   CHECK(j["triangles"] == 2048 * 2 * 3 * 3);
   CHECK(j["median_s"].get<double>() >= j["min_s"].get<double>());
   CHECK(j["min_s"].get<double>() > 0);

@@ -32,6 +32,7 @@
 #include "shaders_cpp/cage/topology.h"
 
 using namespace tessera;
+using namespace tessera::measure;
 using tessera::test::data;
 namespace {
 
@@ -249,7 +250,7 @@ TEST_CASE("limit surface corners equal PrimvarRefiner Limit", "[limit]") {
     INFO(name);
     const Cage cage = load_obj_cage(osd_shape(name));
     const LimitSurface s = LimitSurface::create(cage);
-    auto refiner = osd_detail::build_osd_refiner(cage);
+    auto refiner = subdiv::build_osd_refiner(cage);
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
@@ -662,7 +663,7 @@ TEST_CASE("limit surface: Far patches agree with Bfr where both work", "[limit][
     std::vector<int> faces;
     for (int f = 0; f < cage.face_count(); ++f)
       if (bfr.has_surface(f)) faces.push_back(f);
-    const osd_detail::FarPatches far(cage, bfr.approx_level(), faces);
+    const subdiv::FarPatches far(cage, bfr.approx_level(), faces);
     double worst = 0.0;
     for (int f : faces)
       for (int k = 0; k < bfr.sub_patch_count(f); ++k)
@@ -680,7 +681,7 @@ TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided",
   // catmark_val2_interior: faces with a valence-2 interior corner, a boundary corner and creases,
   // which Bfr 3.5.0 builds from uninitialized memory (a crash in most runs). Far evaluates them.
   const Cage cage = load_obj_cage(osd_shape("catmark_val2_interior"));
-  const std::vector<int> far_faces = osd_detail::needs_far_patches(Topology(cage));
+  const std::vector<int> far_faces = subdiv::needs_far_patches(Topology(cage));
   CHECK_FALSE(far_faces.empty());
   for (int run = 0; run < 3; ++run) {
     const LimitSurface s = LimitSurface::create(cage);
@@ -698,7 +699,7 @@ TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided",
   // The creases are honoured: without them the same faces give another surface.
   Cage smooth = cage;
   smooth.tags.creases.clear();
-  CHECK(osd_detail::needs_far_patches(Topology(smooth)).empty());
+  CHECK(subdiv::needs_far_patches(Topology(smooth)).empty());
   const LimitSurface a = LimitSurface::create(cage), b = LimitSurface::create(smooth);
   double apart = 0.0;
   for (int f : far_faces)

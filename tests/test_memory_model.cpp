@@ -14,6 +14,7 @@
 #include "shaders_cpp/cage/topology.h"
 
 using namespace tessera;
+using namespace tessera::measure;
 using tessera::test::data;
 
 namespace {

@@ -335,8 +335,8 @@ TEST_CASE("pipeline: the tile schedule keeps each tile's rounds in order and reu
 TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads and any chunking or pipelining",
           "[pipeline][determinism]") {
   const int w = 320, h = 180;
-  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  const auto draw = scenes::make_torus_draw(scene, 7.3f, ts::Partitioning::fractional_odd, w, h);
+  const render::TorusScene scene = render::make_torus_scene(w, h);
+  const auto draw = render::make_torus_draw(scene, 7.3f, ts::Partitioning::fractional_odd, w, h);
   std::uint64_t reference = 0;
   PipelineStatistics reference_stats;
   // The last three pipeline many small rounds: one or three chunks a round, up to 7 rounds in flight,
@@ -386,7 +386,7 @@ TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads an
   // primitives, the same bytes again.
   Device device(DeviceOptions{2});
   auto other = make_target(w, h), fb = make_target(w, h);
-  REQUIRE(device.draw(scenes::make_torus_draw(scene, 23.0f, ts::Partitioning::integer, w, h), other).ok());
+  REQUIRE(device.draw(render::make_torus_draw(scene, 23.0f, ts::Partitioning::integer, w, h), other).ok());
   const DrawResult plain = device.draw(draw, fb);
   REQUIRE(plain.ok());
   CHECK(image_hash(fb) == reference);
@@ -424,12 +424,12 @@ TEST_CASE("pipeline: the torus renders bit-identically for 1, 2 and 7 threads an
 // the bits of their per-pixel and per-point forms; hiding the SIMD forms behind wrappers makes the
 // pipeline use the scalar ones.
 struct PerPixelPS {
-  scenes::NormalColorPS ps;
+  render::NormalColorPS ps;
   glm::vec4 operator()(const PixelInput<3>& in) const { return ps(in); }
 };
 struct PerPointDS {
-  scenes::DisplacedBsplineDS ds;
-  ClipVertex<3> operator()(const scenes::UniformFactorPatch& pc, std::span<const glm::vec3> cp, DomainLocation l,
+  render::DisplacedBsplineDS ds;
+  ClipVertex<3> operator()(const render::UniformFactorPatch& pc, std::span<const glm::vec3> cp, DomainLocation l,
                            std::uint32_t id) const {
     return ds(pc, cp, l, id);
   }
@@ -437,11 +437,11 @@ struct PerPointDS {
 
 TEST_CASE("pipeline: SIMD quad pixel shader and batch domain shader match their scalar forms", "[pipeline][simd]") {
   const int w = 320, h = 180;
-  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  const render::TorusScene scene = render::make_torus_scene(w, h);
   for (const auto& [factor, partitioning] :
        {std::pair{7.3f, ts::Partitioning::fractional_odd}, std::pair{5.0f, ts::Partitioning::integer}}) {
-    const auto draw = scenes::make_torus_draw(scene, factor, partitioning, w, h);
-    PatchDraw<glm::vec3, scenes::PassThroughVS, scenes::UniformFactorHS, PerPointDS, PerPixelPS> scalar;
+    const auto draw = render::make_torus_draw(scene, factor, partitioning, w, h);
+    PatchDraw<glm::vec3, render::PassThroughVS, render::UniformFactorHS, PerPointDS, PerPixelPS> scalar;
     scalar.vertices = draw.vertices;
     scalar.indices = draw.indices;
     scalar.control_points = draw.control_points;
@@ -451,9 +451,9 @@ TEST_CASE("pipeline: SIMD quad pixel shader and batch domain shader match their 
     scalar.rasterizer = draw.rasterizer;
     scalar.depth = draw.depth;
     scalar.viewport = draw.viewport;
-    static_assert(QuadPixelShader<scenes::NormalColorPS, 3> && !QuadPixelShader<PerPixelPS, 3>);
-    static_assert(BatchDomainShader<scenes::DisplacedBsplineDS, scenes::UniformFactorPatch, glm::vec3, 3> &&
-                  !BatchDomainShader<PerPointDS, scenes::UniformFactorPatch, glm::vec3, 3>);
+    static_assert(QuadPixelShader<render::NormalColorPS, 3> && !QuadPixelShader<PerPixelPS, 3>);
+    static_assert(BatchDomainShader<render::DisplacedBsplineDS, render::UniformFactorPatch, glm::vec3, 3> &&
+                  !BatchDomainShader<PerPointDS, render::UniformFactorPatch, glm::vec3, 3>);
     Device device(DeviceOptions{2});
     auto a = make_target(w, h), b = make_target(w, h);
     REQUIRE(device.draw(draw, a).ok());
@@ -484,10 +484,10 @@ struct DerivativeQuadPS : DerivativePixelPS {
 
 TEST_CASE("pipeline: a quad shader's derivatives are the per-pixel form's", "[pipeline][simd]") {
   const int w = 320, h = 180;
-  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  const auto torus = scenes::make_torus_draw(scene, 6.0f, ts::Partitioning::integer, w, h);
+  const render::TorusScene scene = render::make_torus_scene(w, h);
+  const auto torus = render::make_torus_draw(scene, 6.0f, ts::Partitioning::integer, w, h);
   const auto with_ps = [&](auto ps) {
-    PatchDraw<glm::vec3, scenes::PassThroughVS, scenes::UniformFactorHS, scenes::DisplacedBsplineDS, decltype(ps)> d;
+    PatchDraw<glm::vec3, render::PassThroughVS, render::UniformFactorHS, render::DisplacedBsplineDS, decltype(ps)> d;
     d.vertices = torus.vertices;
     d.indices = torus.indices;
     d.control_points = torus.control_points;
@@ -773,8 +773,8 @@ TEST_CASE("pipeline: default rounds follow the thread count, and a window holds 
   // The torus's 2048 patches in one window: each of its 64 x 32 cage vertices is shaded once (vertex
   // caching is per window); in windows of 1024 patches the seam's vertices are shaded twice.
   const int w = 256, h = 144;
-  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  const auto draw = scenes::make_torus_draw(scene, 4.0f, ts::Partitioning::integer, w, h);
+  const render::TorusScene scene = render::make_torus_scene(w, h);
+  const auto draw = render::make_torus_draw(scene, 4.0f, ts::Partitioning::integer, w, h);
   const auto vs_invocations = [&](DeviceOptions o) {
     Device device(o);
     auto fb = make_target(w, h);
@@ -782,21 +782,21 @@ TEST_CASE("pipeline: default rounds follow the thread count, and a window holds 
     REQUIRE(r.ok());
     return r.report.statistics.VSInvocations;
   };
-  CHECK(vs_invocations(DeviceOptions{2}) == std::uint64_t(scenes::kTorusColumns * scenes::kTorusRows));
+  CHECK(vs_invocations(DeviceOptions{2}) == std::uint64_t(render::kTorusColumns * render::kTorusRows));
   DeviceOptions half{2};
   half.window_patches = 1024;
-  CHECK(vs_invocations(half) > std::uint64_t(scenes::kTorusColumns * scenes::kTorusRows));
+  CHECK(vs_invocations(half) > std::uint64_t(render::kTorusColumns * render::kTorusRows));
 }
 
 TEST_CASE("pipeline: geometry memory does not grow with the tessellation factor", "[pipeline][memory]") {
   const int w = 256, h = 144;
-  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
+  const render::TorusScene scene = render::make_torus_scene(w, h);
   auto peak = [&](float factor) {
     // A device per factor: a device keeps its chunk slots' storage from draw to draw, so a second
     // draw's report would include what the first one grew.
     Device device(DeviceOptions{2});
     auto fb = make_target(w, h);
-    const DrawResult r = device.draw(scenes::make_torus_draw(scene, factor, ts::Partitioning::integer, w, h), fb);
+    const DrawResult r = device.draw(render::make_torus_draw(scene, factor, ts::Partitioning::integer, w, h), fb);
     REQUIRE(r.ok());
     return double(r.report.memory.geometry_peak_bytes + r.report.memory.framebuffer_bytes);
   };

@@ -73,15 +73,15 @@ TEST_CASE("A printed scene holds the framed camera, and renders the same bytes",
 
 TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
   const fs::path dir = test::cli_temp_dir() / "scene-roundtrip";
-  cli::RenderSettings s;
+  scene::RenderSettings s;
   s.cage = (dir / "assets/cage.obj").string();
   s.scheme = Scheme::pn;
   s.partitioning = ts::Partitioning::pow2;
   s.factor = 7.3f;
   s.vary = 0.1f;
   s.factors_file = (dir / "factors.txt").string();
-  s.view = cli::ViewKind::density;
-  s.factor_kind = cli::FactorKind::processed;
+  s.view = scene::ViewKind::density;
+  s.factor_kind = scene::FactorKind::processed;
   s.camera = {640, 360, glm::vec3(0.1f, -2.3e-5f, 1e6f), glm::vec3(3, 2, 1), glm::vec3(0, 0, 1), 29.7f};
   s.lod.mode = LodMode::distance;
   s.lod.cull = PatchCullMode::backface;
@@ -96,12 +96,12 @@ TEST_CASE("Scene settings survive a round trip bit for bit", "[scene]") {
                     (dir / "maps/n.png").string(),
                     0.7f,
                     -0.35f,
-                    cli::UvSeams::raw};
+                    scene::UvSeams::raw};
   s.asset.time = 0.25;
   s.asset.animation = "walk";
   s.source = {"Blender 3.4.1", "/home/a/bar.blend", "Bar", 12.0};  // the exporting tool's record
-  const fs::path file = write(dir / "scenes/s.json", cli::scene_json(s, (dir / "scenes").string()).dump(2));
-  cli::RenderSettings r = cli::read_scene(file.string());
+  const fs::path file = write(dir / "scenes/s.json", scene::scene_json(s, (dir / "scenes").string()).dump(2));
+  scene::RenderSettings r = scene::read_scene(file.string());
   CHECK(fs::path(r.cage).lexically_normal() == fs::path(s.cage).lexically_normal());
   CHECK(fs::path(r.factors_file) == fs::path(s.factors_file).lexically_normal());
   CHECK(fs::path(r.displacement.map) == fs::path(s.displacement.map).lexically_normal());
@@ -147,7 +147,7 @@ TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema
       FAIL("no sample value for schema property " << key);
     const fs::path file = write(dir / ("p-" + key + ".json"), scene.dump());
     INFO(key << ": " << scene.dump());
-    CHECK_NOTHROW(cli::read_scene(file.string()));
+    CHECK_NOTHROW(scene::read_scene(file.string()));
     ++accepted;
   }
   CHECK(accepted == int(schema["properties"].size()));
@@ -166,11 +166,11 @@ TEST_CASE("The schema and the reader agree, and --scene-schema prints the schema
       if (std::string(object) == "displacement") scene[object]["map"] = "h.exr";
       const fs::path file = write(dir / (std::string(object) + "-" + key + ".json"), scene.dump());
       INFO(object << "." << key);
-      CHECK_NOTHROW(cli::read_scene(file.string()));
+      CHECK_NOTHROW(scene::read_scene(file.string()));
     }
   // And a field the schema does not have is refused.
   const fs::path typo = write(dir / "typo.json", R"({"tessera_scene": 1, "asset": "a.obj", "camera": {"fav": 40}})");
-  CHECK_THROWS_WITH(cli::read_scene(typo.string()), Catch::Contains("\"camera.fav\": not a scene field"));
+  CHECK_THROWS_WITH(scene::read_scene(typo.string()), Catch::Contains("\"camera.fav\": not a scene field"));
 }
 
 TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, no output", "[scene][cli]") {
@@ -224,7 +224,7 @@ TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, 
 
 }  // namespace tessera
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 TEST_CASE("configure_scene redoes only what the settings change, and draws as a fresh scene", "[scene][issue32]") {
   RenderSettings s;
@@ -264,4 +264,4 @@ TEST_CASE("configure_scene redoes only what the settings change, and draws as a 
   CHECK(bytes(*p) == bytes(*prepare_scene(c)));
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

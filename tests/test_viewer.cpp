@@ -18,7 +18,9 @@
 #include "tools/viewer/viewer_session.h"
 #include "tools/viewer/viewer_settings.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
+
+using namespace scene;
 namespace {
 
 namespace fs = std::filesystem;
@@ -396,4 +398,4 @@ TEST_CASE("tessera view: bad ports and addresses, and --scene with settings, fai
   for (const auto* r : {&port, &bind, &bad, &scene}) CHECK(std::count(r->err.begin(), r->err.end(), '\n') == 1);
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer

@@ -8,7 +8,7 @@
 
 #include "pipeline/simd8.h"
 
-namespace tessera::scenes {
+namespace tessera::render {
 
 TorusScene make_torus_scene(int width, int height) {
   constexpr int M = kTorusColumns, N = kTorusRows, T = kTorusTextureSize;
@@ -258,4 +258,4 @@ TorusDraw make_torus_draw(const TorusScene& scene, float factor, ts::Partitionin
   return d;
 }
 
-}  // namespace tessera::scenes
+}  // namespace tessera::render

@@ -19,7 +19,7 @@
 #include "pipeline/simd4.h"
 #include "pipeline/texture.h"
 
-namespace tessera::scenes {
+namespace tessera::render {
 
 inline constexpr int kTorusColumns = 64;  // around the main axis (i, u)
 inline constexpr int kTorusRows = 32;     // around the tube (j, v)
@@ -118,4 +118,4 @@ using TorusDraw = PatchDraw<glm::vec3, PassThroughVS, UniformFactorHS, Displaced
 // The draw call of the scene at one factor and partitioning.
 TorusDraw make_torus_draw(const TorusScene& scene, float factor, ts::Partitioning partitioning, int width, int height);
 
-}  // namespace tessera::scenes
+}  // namespace tessera::render

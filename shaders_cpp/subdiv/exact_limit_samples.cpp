@@ -49,7 +49,7 @@ std::vector<ExactLimitSample> exact_limit_samples(const Cage& cage, const std::v
   if (refine_level < 1 || refine_level > 8)
     throw std::invalid_argument("exact_limit_samples: refine level " + std::to_string(refine_level) +
                                 " is outside 1..8");
-  auto refiner = osd_detail::build_osd_refiner(cage);
+  auto refiner = subdiv::build_osd_refiner(cage);
   osd::Far::TopologyRefiner::UniformOptions uniform(refine_level);
   uniform.fullTopologyInLastLevel = true;  // PrimvarRefiner::Limit needs the last level's full topology
   refiner->RefineUniform(uniform);

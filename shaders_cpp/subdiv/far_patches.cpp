@@ -15,7 +15,7 @@
 #include "shaders_cpp/subdiv/osd_refiner.h"
 #include "shaders_cpp/subdiv/single_crease_basis.h"
 
-namespace tessera::osd_detail {
+namespace tessera::subdiv {
 
 namespace far = osd::Far;
 
@@ -243,4 +243,4 @@ std::size_t FarPatches::memory_bytes() const {
          m.first_ptex_face.capacity() * sizeof(int) + stencils;
 }
 
-}  // namespace tessera::osd_detail
+}  // namespace tessera::subdiv

@@ -39,7 +39,7 @@
 #include "shaders_cpp/cage/topology.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 
-namespace tessera::osd_detail {
+namespace tessera::subdiv {
 
 // The faces whose Bfr surface 3.5.0 would build from uninitialized memory (see above): a corner
 // is an interior vertex of valence 2, another corner lies on the boundary, and a corner has a tagged
@@ -70,4 +70,4 @@ class FarPatches {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace tessera::osd_detail
+}  // namespace tessera::subdiv

@@ -21,7 +21,7 @@ struct LimitStencils::Impl {
 
 LimitStencils::LimitStencils(const Cage& cage) : impl_(std::make_unique<Impl>()) {
   std::vector<int> far_faces;
-  impl_->refiner = osd_detail::build_osd_refiner(cage, &far_faces);
+  impl_->refiner = subdiv::build_osd_refiner(cage, &far_faces);
   osd::Bfr::SurfaceFactory::Options options;
   // Bfr's cache of irregular patch trees stays on: a face's surface is built for its face points and
   // again for each of its edges and corners (without the cache catmark_car's quads loaded in 0.45 s, with

@@ -75,7 +75,7 @@ struct LimitSurface::Impl {
   std::vector<Surface> surfaces;  // per face; invalid without a surface or when by_far
   // Faces evaluated through Far instead of Bfr (far_patches.h: OpenSubdiv 3.5.0's Bfr fails on them).
   std::vector<char> by_far;
-  std::unique_ptr<osd_detail::FarPatches> far;
+  std::unique_ptr<subdiv::FarPatches> far;
   std::vector<std::size_t> pp_offset;
   std::vector<double> patch_points;
 
@@ -146,7 +146,7 @@ struct LimitSurface::Impl {
   // the normalized sub-face square into it is affine, so its Jacobian comes from three conversions.
   Raw raw(int f, int k, double s, double t) const {
     if (by_far[std::size_t(f)]) {
-      const osd_detail::FarPatches::Point q = far->evaluate(f, k, s, t);
+      const subdiv::FarPatches::Point q = far->evaluate(f, k, s, t);
       return {q.p, q.ds, q.dt};
     }
     const Surface& surf = surfaces[std::size_t(f)];
@@ -317,13 +317,13 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
   m->level = level;
   m->adaptive = adaptive;
   m->left_handed = cage.tags.left_handed;
-  m->label = osd_detail::cage_label(cage);
+  m->label = subdiv::cage_label(cage);
   std::vector<int> far_faces;
   if (adaptive) {
     // validate_cage and OpenSubdiv's limits are checked as the patches' refiner is built.
-    m->far = std::make_unique<osd_detail::FarPatches>(cage, level, std::vector<int>{}, true);
+    m->far = std::make_unique<subdiv::FarPatches>(cage, level, std::vector<int>{}, true);
   } else {
-    m->refiner = osd_detail::build_osd_refiner(cage, &far_faces);  // validate_cage, then OpenSubdiv's limits
+    m->refiner = subdiv::build_osd_refiner(cage, &far_faces);  // validate_cage, then OpenSubdiv's limits
     osd::Bfr::SurfaceFactory::Options options;
     options.SetApproxLevelSmooth(level).SetApproxLevelSharp(level);
     m->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*m->refiner, options);
@@ -346,7 +346,7 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
     for (int f = 0; f < nf; ++f) m->by_far[std::size_t(f)] = m->far->has_patches(f);
   } else {
     if (!far_faces.empty()) {
-      m->far = std::make_unique<osd_detail::FarPatches>(cage, level, far_faces);
+      m->far = std::make_unique<subdiv::FarPatches>(cage, level, far_faces);
       for (int f : far_faces) m->by_far[std::size_t(f)] = 1;
     }
     // Bfr's surfaces and their patch points, for every other face.

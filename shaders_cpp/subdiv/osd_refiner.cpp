@@ -20,7 +20,7 @@
 #include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 
-namespace tessera::osd_detail {
+namespace tessera::subdiv {
 
 using osd::Far::TopologyDescriptor;
 using osd::Far::TopologyRefiner;
@@ -128,4 +128,4 @@ std::unique_ptr<TopologyRefiner> build_osd_refiner(const Cage& cage, std::vector
   return refiner;
 }
 
-}  // namespace tessera::osd_detail
+}  // namespace tessera::subdiv

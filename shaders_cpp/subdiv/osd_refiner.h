@@ -16,7 +16,7 @@
 
 #include "shaders_cpp/cage/cage.h"
 
-namespace tessera::osd_detail {
+namespace tessera::subdiv {
 
 namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 
@@ -37,4 +37,4 @@ std::unique_ptr<osd::Far::TopologyRefiner> build_osd_refiner(const Cage& cage, s
 // Cage name for messages ("cage" when empty).
 std::string cage_label(const Cage& cage);
 
-}  // namespace tessera::osd_detail
+}  // namespace tessera::subdiv

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace tessera::osd_detail {
+namespace tessera::subdiv {
 
 void cubic_bspline_basis(double x, double w[4], double dw[4]) {
   const double y = 1.0 - x, x2 = x * x;
@@ -98,4 +98,4 @@ RegularCurves single_crease_curves(int edge, double sharpness, double s, double 
   return r;
 }
 
-}  // namespace tessera::osd_detail
+}  // namespace tessera::subdiv

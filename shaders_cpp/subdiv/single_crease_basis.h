@@ -26,7 +26,7 @@
 //   sums the 16 points row by row instead of by 16 weights.
 #pragma once
 
-namespace tessera::osd_detail {
+namespace tessera::subdiv {
 
 void cubic_bspline_basis(double x, double w[4], double dw[4]);
 void crease_curve_basis(double x, double sharpness, double w[4], double dw[4]);
@@ -36,4 +36,4 @@ struct RegularCurves {
 RegularCurves regular_patch_curves(int boundary, double s, double t);
 RegularCurves single_crease_curves(int edge, double sharpness, double s, double t);
 
-}  // namespace tessera::osd_detail
+}  // namespace tessera::subdiv

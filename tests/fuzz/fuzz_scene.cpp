@@ -19,10 +19,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
   }
   try {
-    const tessera::cli::RenderSettings s = tessera::cli::read_scene(path);
-    (void)tessera::cli::scene_json(s, "");
-  } catch (const tessera::cli::UsageError&) {
-  } catch (const tessera::cli::InputError&) {
+    const tessera::scene::RenderSettings s = tessera::scene::read_scene(path);
+    (void)tessera::scene::scene_json(s, "");
+  } catch (const tessera::scene::UsageError&) {
+  } catch (const tessera::scene::InputError&) {
   }
   return 0;
 }

@@ -22,6 +22,9 @@
 #include "tools/scene/model_options.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct AnalyzeOptions {

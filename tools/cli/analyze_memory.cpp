@@ -22,6 +22,10 @@
 extern char** environ;
 
 namespace tessera::cli {
+
+using namespace scene;
+using namespace measure;
+
 namespace {
 
 std::vector<int> parse_levels(const std::string& text) {

@@ -42,7 +42,7 @@ struct MemoryAnalysis {
   MemoryOptions options;
   std::string map_description;  // "monsterfrog.dds 512x512 (channel A)" or the assumption made without one
   int texel_bytes = 0;          // as used
-  MemoryTable table;
+  measure::MemoryTable table;
   std::vector<MeasuredMemory> measured;  // per level, with --measure
   std::uint64_t base_rss_bytes = 0;      // with --measure: peak RSS of a tessera that draws nothing
 };

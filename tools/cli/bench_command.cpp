@@ -13,6 +13,9 @@
 #include "tools/scene/json_output.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct BenchOptions {

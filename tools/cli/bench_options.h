@@ -32,11 +32,11 @@ struct BenchDeviceOptions {
   // Checks the values (UsageError naming the option) and sets them on `o`.
   void apply(DeviceOptions& o) const {
     if (tile_size < 8 || tile_size > 1024 || tile_size % 2 != 0)
-      throw UsageError("--tile-size: " + std::to_string(tile_size) + " is not an even size in 8..1024");
+      throw scene::UsageError("--tile-size: " + std::to_string(tile_size) + " is not an even size in 8..1024");
     if (chunks_in_flight < 0 || chunks_in_flight > 4096)
-      throw UsageError("--chunks-in-flight: " + std::to_string(chunks_in_flight) + " is not in 0..4096");
+      throw scene::UsageError("--chunks-in-flight: " + std::to_string(chunks_in_flight) + " is not in 0..4096");
     if (rounds_in_flight != 0 && (rounds_in_flight < 2 || rounds_in_flight > 64))
-      throw UsageError("--rounds-in-flight: " + std::to_string(rounds_in_flight) + " is not 0 or in 2..64");
+      throw scene::UsageError("--rounds-in-flight: " + std::to_string(rounds_in_flight) + " is not 0 or in 2..64");
     o.tile_size = tile_size;
     o.chunks_in_flight = chunks_in_flight;
     o.rounds_in_flight = rounds_in_flight;
@@ -69,7 +69,7 @@ TraceSummary trace_frame(Device& device, const Frame& frame, const std::string& 
     device.set_trace(&trace);
     frame();
   }
-  write_trace_file(trace, label, path);
+  scene::write_trace_file(trace, label, path);
   return trace.summary();
 }
 

@@ -36,6 +36,9 @@
 #include "tools/scene/scene_render.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct ScalingOptions {
@@ -109,15 +112,15 @@ int run_bench_scaling(const ScalingOptions& o, const CLI::App& cmd) {
   // frog are one draw into the run's cleared target (`draw`); a scene file's frame is render_scene's.
   std::function<DrawReport(Device&, Targets&)> frame;
   std::function<DrawResult(Device&, Framebuffer&)> draw;
-  std::optional<scenes::TorusScene> torus;
+  std::optional<render::TorusScene> torus;
   std::unique_ptr<PreparedScene> subd;
   RenderSettings settings = o.s;
   if (o.scene == "torus") {
     settings.msaa = msaa_option(settings.msaa);
     const int w = settings.camera.width, h = settings.camera.height;
     log_info("building the torus scene");
-    torus = scenes::make_torus_scene(w, h);
-    draw = [&, d = scenes::make_torus_draw(*torus, settings.factor, ts::Partitioning::integer, w, h)](
+    torus = render::make_torus_scene(w, h);
+    draw = [&, d = render::make_torus_draw(*torus, settings.factor, ts::Partitioning::integer, w, h)](
                Device& device, Framebuffer& fb) { return device.draw(d, fb); };
   } else if (o.scene == "frog") {
     subd = prepare_bench_scene(settings);  // checks --msaa and the rest

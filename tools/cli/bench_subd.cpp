@@ -18,6 +18,9 @@
 #include "tools/scene/view_options.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct BenchSubdOptions {

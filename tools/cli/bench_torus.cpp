@@ -26,6 +26,9 @@
 #include "tools/verify/oracle.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct TorusOptions {
@@ -123,8 +126,8 @@ int run_bench_torus(const TorusOptions& o) {
   // (ResolveSubresource: colour only), into a target made once (as a swap chain's).
   auto resolved = o.msaa > 1 ? Framebuffer::create(w, h, ColorFormat::rgba8_unorm, &error) : std::nullopt;
   log_info("building the torus scene");
-  const scenes::TorusScene scene = scenes::make_torus_scene(w, h);
-  const auto draw = scenes::make_torus_draw(scene, o.factor, partitioning, w, h);
+  const render::TorusScene scene = render::make_torus_scene(w, h);
+  const auto draw = render::make_torus_draw(scene, o.factor, partitioning, w, h);
 
   const auto median_of = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());

@@ -13,6 +13,10 @@
 #include "tools/viewer/viewer_session.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+using namespace viewer;
+
 namespace {
 
 struct BenchViewOptions {

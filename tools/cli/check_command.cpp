@@ -15,6 +15,9 @@
 #include "tools/scene/common.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 namespace fs = std::filesystem;

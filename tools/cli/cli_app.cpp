@@ -9,6 +9,8 @@
 
 namespace tessera::cli {
 
+using namespace scene;
+
 std::string version_line() { return std::string("tessera 0.1.0 (") + kBuildIsa + ")"; }
 
 namespace {

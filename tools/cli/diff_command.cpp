@@ -13,6 +13,9 @@
 #include "tools/verify/image_diff.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct DiffOptions {

@@ -11,6 +11,9 @@
 #include "tools/scene/common.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct MakeCageOptions {

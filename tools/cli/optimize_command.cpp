@@ -12,6 +12,9 @@
 #include "tools/scene/model_options.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct OptimizeCli {

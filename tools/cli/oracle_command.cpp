@@ -10,6 +10,9 @@
 #include "tools/verify/oracle.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct OracleOptions {

@@ -9,6 +9,9 @@
 #include "tools/scene/common.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 constexpr int kSupersample = 3;

@@ -9,6 +9,8 @@
 
 namespace tessera::cli {
 
+using namespace scene;
+
 namespace {
 constexpr double kQuietSeconds = 0.5;    // shorter work shows nothing
 constexpr double kTerminalPeriod = 0.1;  // bar redraws

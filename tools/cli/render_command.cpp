@@ -21,6 +21,9 @@
 #include "tools/scene/view_options.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct RenderOptions {

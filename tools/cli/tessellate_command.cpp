@@ -22,6 +22,9 @@
 #include "tools/verify/weld_check.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+
 namespace {
 
 struct TessellateOptions {

@@ -16,6 +16,10 @@
 #include "tools/viewer/viewer_server.h"
 
 namespace tessera::cli {
+
+using namespace scene;
+using namespace viewer;
+
 namespace {
 
 struct ViewOptions {

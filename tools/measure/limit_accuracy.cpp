@@ -11,7 +11,7 @@
 
 #include "shaders_cpp/subdiv/exact_limit_samples.h"
 
-namespace tessera {
+namespace tessera::measure {
 
 LimitAccuracy measure_limit_accuracy(const Cage& cage, const LimitSurface& surface, int refine_level) {
   std::vector<bool> faces(std::size_t(cage.face_count()), false);
@@ -62,4 +62,4 @@ LimitAccuracy compare_limit_surfaces(const LimitSurface& a, const LimitSurface& 
   return acc;
 }
 
-}  // namespace tessera
+}  // namespace tessera::measure

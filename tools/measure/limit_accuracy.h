@@ -21,7 +21,7 @@
 #include "shaders_cpp/cage/cage.h"
 #include "shaders_cpp/subdiv/limit_surface.h"
 
-namespace tessera {
+namespace tessera::measure {
 
 struct LimitAccuracy {
   std::size_t samples = 0;
@@ -37,4 +37,4 @@ LimitAccuracy measure_limit_accuracy(const Cage& cage, const LimitSurface& surfa
 
 LimitAccuracy compare_limit_surfaces(const LimitSurface& a, const LimitSurface& b, int rate = 37);
 
-}  // namespace tessera
+}  // namespace tessera::measure

@@ -10,7 +10,7 @@
 
 #include "tessellator/tessellator.h"
 
-namespace tessera {
+namespace tessera::measure {
 namespace {
 
 // Triangles and interior points of one patch tessellated with every factor `level` (integer).
@@ -143,4 +143,4 @@ MemoryTable memory_table(const Cage& cage, const Topology& topology, const SubdP
   return table;
 }
 
-}  // namespace tessera
+}  // namespace tessera::measure

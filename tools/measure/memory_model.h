@@ -37,7 +37,7 @@
 #include "shaders_cpp/subdiv/subd_patches.h"
 #include "shaders_cpp/cage/topology.h"
 
-namespace tessera {
+namespace tessera::measure {
 
 // A displacement map's size as stored (mip level 0).
 struct MapSize {
@@ -85,4 +85,4 @@ struct MemoryTable {
 MemoryTable memory_table(const Cage& cage, const Topology& topology, const SubdPatches& patches,
                          const MemoryModelOptions& options);
 
-}  // namespace tessera
+}  // namespace tessera::measure

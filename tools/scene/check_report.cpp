@@ -6,7 +6,7 @@
 
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -191,4 +191,4 @@ std::string metric_text(double v) {
   return b;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -9,7 +9,7 @@
 
 #include "tools/scene/json_output.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // `summary`: {"suite", "suite_path", "cases": [...], "counts": {...}, "seconds"}; writes the three files
 // into `dir` (atomically, each).
@@ -21,4 +21,4 @@ std::string metric_text(double v);
 // Counts of each status in `cases`.
 Json count_statuses(const Json& cases);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

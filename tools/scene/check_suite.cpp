@@ -15,7 +15,7 @@
 #include "tools/scene/scene_render.h"
 #include "tools/verify/weld_check.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -356,4 +356,4 @@ void record_golden_scene(const Suite& suite, const SuiteCase& c, const CaseResul
   write_text_atomically(path, digest.dump(2) + "\n");
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

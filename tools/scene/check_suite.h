@@ -23,7 +23,7 @@
 #include "tools/scene/scene_file.h"
 #include "tools/verify/image_diff.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 struct SuiteCase {
   std::string name, scene;  // scene: resolved path
@@ -88,4 +88,4 @@ void bless_case(const Suite& suite, const SuiteCase& c, const CaseResult& r, con
 // Adds the case's scene to a golden digest that has none, leaving the golden's image and values.
 void record_golden_scene(const Suite& suite, const SuiteCase& c, const CaseResult& r);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -16,7 +16,7 @@
 #include <fstream>
 #include <iostream>
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 int g_verbosity = 0;  // set once by main before any command runs
 }
@@ -204,4 +204,4 @@ std::optional<std::pair<std::string, std::string>> unconverted_option(const std:
   return std::pair{m[1].str(), value};
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

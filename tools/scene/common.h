@@ -15,7 +15,7 @@
 #include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/lod/subd_factors.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // The instruction set this build was compiled for (TESSERA_ISA in CMakeLists.txt): benchmark reports
 // name it, since timings depend on it (the images do not).
@@ -110,4 +110,4 @@ std::pair<int, int> parse_resolution(const std::string& text);
 // Device options for --threads N (0 = all hardware threads; 0..1024, else UsageError).
 DeviceOptions device_options(int threads);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

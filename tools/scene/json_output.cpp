@@ -6,7 +6,7 @@
 
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 // The shortest text that reads back to the same number, without nlohmann's ".0" on integral values
@@ -104,4 +104,4 @@ Json to_json(const verify::WeldReport& w) {
           {"degenerate_triangles", w.degenerate_triangles}};
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

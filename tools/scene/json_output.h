@@ -18,7 +18,7 @@
 #include "pipeline/statistics.h"
 #include "tools/verify/weld_check.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 using Json = nlohmann::ordered_json;
 using FloatJson =
@@ -41,4 +41,4 @@ Json to_json(const StageTimes& t);
 Json to_json(const MemoryStats& m);
 Json to_json(const verify::WeldReport& w);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

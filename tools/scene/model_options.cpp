@@ -12,7 +12,7 @@
 #include "shaders_cpp/gltf/gltf_cage.h"
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 void add_scheme_options(CLI::App& cmd, RenderSettings& s) {
   add_setting_option(
@@ -234,4 +234,4 @@ UpAxisAdvice up_axis_advice(const std::string& path, const Cage& cage) {
   return {h.axis, base(h.axis) + ", " + base(3 - h.axis)};
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -14,7 +14,7 @@
 #include "tessellator/tessellator.h"
 #include "tools/scene/render_settings.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // --scheme, --factor, --vary-factors, --factors-per-edge, --partitioning and --threads, read into `s`.
 void add_scheme_options(CLI::App& cmd, RenderSettings& s);
@@ -56,4 +56,4 @@ void add_displacement_options(CLI::App& cmd, DisplacementSettings& d);
 // values into UsageError.
 std::optional<Displacement> displacement_option(const DisplacementSettings& d, const SubdModel& model);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -8,7 +8,7 @@
 #include "pipeline/sample_pattern.h"
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 constexpr std::array<std::pair<ViewKind, const char*>, 14> kViews = {{
@@ -149,4 +149,4 @@ std::string vec3_text(glm::vec3 v) { return float_text(v.x) + "," + float_text(v
 
 std::string resolution_text(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

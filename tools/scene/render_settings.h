@@ -29,7 +29,7 @@
 #include "shaders_cpp/subdiv/subd_patches.h"
 #include "tessellator/tessellator.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // The debug views of `tessera render --view` (render_views.h draws them).
 enum class ViewKind : std::uint8_t {
@@ -164,4 +164,4 @@ CLI::Option* add_setting_option(CLI::App& cmd, const std::string& name, T& targe
       name, [&target, read](const std::string& text) { target = read(text); }, help);
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

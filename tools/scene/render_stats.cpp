@@ -5,7 +5,7 @@
 
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 Json factors_json(const std::array<float, 4>& edge, int edges, const std::array<float, 2>& inside, int insides) {
@@ -134,4 +134,4 @@ void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, con
   stats["patches"] = rows;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

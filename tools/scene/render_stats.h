@@ -10,7 +10,7 @@
 #include "tools/scene/json_output.h"
 #include "tools/scene/render_views.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // The row --stats writes for a patch: domain, id (its index in the group), face, kind, type,
 // combination, raw and processed factors, segments, triangles, screen size, cull reason.
@@ -20,4 +20,4 @@ Json patch_row(const PatchInfo& p, std::size_t id);
 void add_patch_statistics(Json& stats, Device& device, const ViewInputs& in, const PatchTables& tables,
                           const LodResult& lod);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -10,7 +10,7 @@
 #include "tools/scene/common.h"
 #include "tools/verify/weld_check.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 std::string fixed(float x, int digits) {
@@ -347,4 +347,4 @@ const PatchInfo* picked_patch(const PatchTables& tables, std::uint32_t code, std
   return &rows[i];
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

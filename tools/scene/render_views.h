@@ -11,7 +11,7 @@
 #include "tools/scene/render_settings.h"
 #include "tools/scene/view_options.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 struct ViewInputs {
   const SubdModel& model;
@@ -51,4 +51,4 @@ DrawResult render_pick_buffer(Device& device, ViewKind kind, const ViewInputs& i
 // The patch row a pick code names, or nothing for 0 or a code no row has.
 const PatchInfo* picked_patch(const PatchTables& tables, std::uint32_t code, std::size_t* index = nullptr);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -12,7 +12,7 @@
 #include "tools/scene/common.h"
 #include "tools/scene/render_views.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 void add_model_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_default) {
   add_scheme_options(cmd, s);
@@ -304,4 +304,4 @@ Json scene_json(const RenderSettings& s, const std::string& dir) {
   return j;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -19,7 +19,7 @@
 #include "tools/scene/render_settings.h"
 #include "tools/scene/view_options.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // Registers every setting of `s` but the cage as `tessera render`'s options, bound to `s`: scheme and
 // factors, camera, LOD and culling (--cull defaulting to `cull_default`), --view, --msaa,
@@ -38,4 +38,4 @@ Json scene_json(const RenderSettings& s, const std::string& dir);
 // docs/scene.schema.json, compiled in.
 extern const char* const kSceneSchema;
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -5,7 +5,7 @@
 #include "tools/scene/json_output.h"
 #include "tools/scene/view_legend.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 ViewInputs PreparedScene::inputs() const {
   return ViewInputs{model,
@@ -202,4 +202,4 @@ void write_scene_image(const SceneImage& image, const ImageTarget& target) {
   }
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

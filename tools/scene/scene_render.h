@@ -12,7 +12,7 @@
 #include "tools/scene/render_views.h"
 #include "tools/scene/scene_file.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // The settings, loaded and checked (UsageError for bad values, InputError for unreadable files).
 // Not movable: `inputs` refers to its members.
@@ -78,4 +78,4 @@ Json scene_summary(const std::string& path, const PreparedScene& scene, const Sc
 // field of render's --json and --stats and of bench's --json; null for the other schemes.
 Json adaptive_patches_json(const SubdModel& model);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -4,7 +4,7 @@
 
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 Json trace_event_json(const DrawTrace& trace, const std::string& label) {
   Json events = Json::array();
@@ -52,4 +52,4 @@ std::string summary_line(const TraceSummary& s) {
   return line;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -8,7 +8,7 @@
 #include "pipeline/draw_trace.h"
 #include "tools/scene/json_output.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // The trace as Chrome trace event JSON; `label` names the process row (the scene, its thread count).
 Json trace_event_json(const DrawTrace& trace, const std::string& label);
@@ -20,4 +20,4 @@ Json to_json(const TraceSummary& s);
 // One line: wall, busy share, and the wall time before the first tile and after the last chunk.
 std::string summary_line(const TraceSummary& s);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

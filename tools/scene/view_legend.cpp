@@ -7,7 +7,7 @@
 #include "shaders_cpp/image_io/image_file.h"
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 namespace {
 
 // Draws on RGBA float pixels, text in `font` (DejaVu Sans, shipped with tessera: a font found on the
@@ -164,4 +164,4 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageT
     throw InputError(e);
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -13,7 +13,7 @@
 #include "pipeline/framebuffer.h"
 #include "shaders_cpp/image_io/image_file.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 struct Legend {
   std::string title;
@@ -31,4 +31,4 @@ struct Legend {
 // missing or cannot draw (a legend is never written without its text) or the image cannot be written.
 void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageTarget& target);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

@@ -7,7 +7,7 @@
 #include "shaders_cpp/render/surface_framing.h"
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 namespace {
 // An optional vector option: "x,y,z", or empty for "not given".
@@ -159,4 +159,4 @@ LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, con
   return r;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

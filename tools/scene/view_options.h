@@ -15,7 +15,7 @@
 #include "shaders_cpp/render/subd_render.h"
 #include "tools/scene/render_settings.h"
 
-namespace tessera::cli {
+namespace tessera::scene {
 
 // --resolution, --camera-position, --camera-target, --fov, --camera-up, read into `c`.
 void add_camera_options(CLI::App& cmd, CameraSettings& c);
@@ -56,4 +56,4 @@ struct LodResult {
 LodResult apply_lod_options(const LodCullSettings& l, const ViewSetup& view, const SubdModel& model,
                             Displacement* displacement, SubdFactors& factors, PatchCull& cull);
 
-}  // namespace tessera::cli
+}  // namespace tessera::scene

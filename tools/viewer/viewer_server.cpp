@@ -9,7 +9,10 @@
 
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
+
+using namespace scene;
+
 namespace {
 
 // One line of text/plain with `status`, for every error a request can get.
@@ -191,4 +194,4 @@ bool ViewerServer::serve() { return impl_->http.listen_after_bind(); }
 
 void ViewerServer::stop() { impl_->http.stop(); }
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer

@@ -20,7 +20,7 @@
 
 #include "tools/viewer/viewer_session.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
 
 class ViewerServer {
  public:
@@ -45,4 +45,4 @@ extern const char* const kViewerPageHtml;
 extern const char* const kViewerPageJs;
 extern const char* const kViewerPageCss;
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer

@@ -8,7 +8,10 @@
 #include "tools/scene/common.h"
 #include "tools/scene/render_stats.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
+
+using namespace scene;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -167,4 +170,4 @@ Json ViewerSession::command(const RenderSettings& s) const {
   return {{"command", shell_words(line)}, {"arguments", words}, {"scene", scene_json(s, "")}};
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer

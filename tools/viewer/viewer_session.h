@@ -27,14 +27,14 @@
 #include "tools/scene/scene_render.h"
 #include "tools/viewer/viewer_settings.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
 
 enum class FrameFormat : std::uint8_t { png, jpeg };
 
 struct ViewerFrame {
   std::string bytes;         // the encoded image
   std::string content_type;  // image/png or image/jpeg
-  Json summary;              // as `render --json` prints it (times and memory included)
+  scene::Json summary;              // as `render --json` prints it (times and memory included)
   // Where the frame's time went (seconds): configuring the kept scene for the settings (pose, view,
   // LOD, culling), drawing it (render_scene: target, draw, resolve), and encoding the image.
   double configure_s = 0.0, render_s = 0.0, encode_s = 0.0;
@@ -45,37 +45,37 @@ class ViewerSession {
   static constexpr std::size_t kKeptScenes = 3;
 
   // Loads the asset of `base` (its errors as `tessera render` gives them).
-  explicit ViewerSession(RenderSettings base);
+  explicit ViewerSession(scene::RenderSettings base);
   ViewerSession(const ViewerSession&) = delete;
   ViewerSession& operator=(const ViewerSession&) = delete;
 
-  const RenderSettings& base() const { return base_; }
+  const scene::RenderSettings& base() const { return base_; }
   // The asset and what the page needs to build its controls: names, counts, animations and their time
   // ranges, the bounding box, the framing camera, the views, the schemes that draw it (and those that
   // refuse it, with why) and the starting settings.
-  Json info();
+  scene::Json info();
 
   // `wanted`, when given, is asked once the session's turn comes: a frame nobody wants any more (a
   // newer camera arrived while it waited) is not drawn, and nothing is returned.
-  std::optional<ViewerFrame> frame(const RenderSettings& s, FrameFormat format,
+  std::optional<ViewerFrame> frame(const scene::RenderSettings& s, FrameFormat format,
                                    const std::function<bool()>& wanted = {});
   // The patch under pixel (x, y) of frame(s) (x right, y down from the top-left): its --stats row
   // (render_stats.h) with the combination's text, or {"patch": null} over the background. The id
   // buffer is kept: further picks with the same settings read it without drawing.
-  Json pick(const RenderSettings& s, int x, int y);
+  scene::Json pick(const scene::RenderSettings& s, int x, int y);
   // The settings of `frames` views turned about the up axis around `s`'s camera (render --orbit's
   // turntable), from the kept scene: no second load of the asset.
-  std::vector<RenderSettings> turntable(const RenderSettings& s, int frames);
+  std::vector<scene::RenderSettings> turntable(const scene::RenderSettings& s, int frames);
   // The reproducing command (as words and as one shell line) and the scene file of `s`.
-  Json command(const RenderSettings& s) const;
+  scene::Json command(const scene::RenderSettings& s) const;
 
  private:
-  PreparedScene& scene_for(const RenderSettings& s);
+  scene::PreparedScene& scene_for(const scene::RenderSettings& s);
 
-  RenderSettings base_;
+  scene::RenderSettings base_;
   std::mutex mutex_;
   Device device_;
-  std::list<std::unique_ptr<PreparedScene>> scenes_;  // most recently used first
+  std::list<std::unique_ptr<scene::PreparedScene>> scenes_;  // most recently used first
   // The last pick's id buffer and patch tables, kept for further clicks on the same frame.
   struct PickBuffer {
     std::string key;  // the settings' scene JSON
@@ -86,4 +86,4 @@ class ViewerSession {
   std::optional<Framebuffer> spare_;  // the last frame's target, drawn into again at the same size
 };
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer

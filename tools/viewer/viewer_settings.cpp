@@ -7,7 +7,10 @@
 
 #include "tools/scene/common.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
+
+using namespace scene;
+
 namespace {
 
 // The settings a request may set, with `tessera render`'s own options bound to `s`.
@@ -230,4 +233,4 @@ std::string shell_words(const std::vector<std::string>& words) {
   return line;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer

@@ -22,7 +22,7 @@
 
 #include "tools/scene/scene_file.h"
 
-namespace tessera::cli {
+namespace tessera::viewer {
 
 struct RequestError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -39,13 +39,13 @@ bool is_request_parameter(const std::string& name);
 inline constexpr int kMaxViewerSide = 8192;
 inline constexpr long long kMaxViewerPixels = 4096LL * 4096LL;
 
-RenderSettings settings_from_query(const RenderSettings& base, const QueryParams& query);
+scene::RenderSettings settings_from_query(const scene::RenderSettings& base, const QueryParams& query);
 
 // Each settable setting's value in `s`, as a request would write it (defaults included).
-Json settings_json(const RenderSettings& s);
+scene::Json settings_json(const scene::RenderSettings& s);
 
-std::vector<std::string> render_arguments(const RenderSettings& s, const std::string& output);
+std::vector<std::string> render_arguments(const scene::RenderSettings& s, const std::string& output);
 // The words as one POSIX shell command line (each quoted where the shell would split or expand it).
 std::string shell_words(const std::vector<std::string>& words);
 
-}  // namespace tessera::cli
+}  // namespace tessera::viewer
