@@ -11,14 +11,11 @@ Device::Device(DeviceOptions options) : options_(options) {
   options_.chunk_primitives = std::max<std::size_t>(options_.chunk_primitives, 64);
   options_.window_patches = std::max(options_.window_patches, 1);
   // Enough chunks per round, and rounds at once, that every thread has chunks to produce while earlier
-  // rounds rasterize and a round's slowest chunks finish (measured on 16 threads, torus factor 64:
-  // 2 x threads in 2 rounds 66.5 ms, 4 x threads in 3 rounds 55.6-60.9 ms; docs/performance.md).
+  // rounds rasterize and a round's slowest chunks finish (docs/performance.md has the measurements).
   if (options_.chunks_in_flight <= 0) options_.chunks_in_flight = std::max(4, 4 * threads_);
   // On two threads a third round gains no overlap, and its chunks (4 MB more at 2 x 4096 primitives)
-  // push the records setup writes out of cache before they are rasterized: 2 cores, torus F16
-  // 34.9-35.6 -> 31.5-32.7 ms (setup 23-26 -> 17-21 ms of thread time), frog F16 -3 %, torus F64 and
-  // MSAA 4x within 2 %; the lent Xeon on 2 threads (medians of 8 rounds): torus F16 -3 %, MSAA 4x -7 %,
-  // 8x unchanged. From four threads up two rounds were as fast or slower (docs/performance.md).
+  // push the records setup writes out of cache before they are rasterized; from four threads up the
+  // third round pays for itself (docs/performance.md).
   if (options_.rounds_in_flight <= 0) options_.rounds_in_flight = threads_ <= 2 ? 2 : 3;
   options_.rounds_in_flight = std::max(options_.rounds_in_flight, 2);
   // oneTBB caps its workers at the hardware concurrency and says so on stderr when an arena asks for

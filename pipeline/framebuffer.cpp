@@ -118,9 +118,8 @@ void Framebuffer::clear_rows(int y0, int y1, glm::vec4 c, float d) {
 }
 
 void Framebuffer::clear_by_tiles(glm::vec4 color, float depth, int tile_size) {
-  if (tile_size < 8 || tile_size > 1024 || (tile_size & 1))
-    throw std::logic_error("Framebuffer::clear_by_tiles: tile size " + std::to_string(tile_size) +
-                           " is not even and in 8..1024");
+  TESSERA_CHECK(tile_size >= 8 && tile_size <= 1024 && tile_size % 2 == 0, "Framebuffer::clear_by_tiles: tile size",
+                tile_size, "is not even and in 8..1024");
   PendingClear p;
   p.value = stored_clear(color, depth);
   p.tile_size = tile_size;

@@ -15,7 +15,7 @@
 //
 // Contract: sizes are validated on creation (1..16384 per side, D3D11's largest render target). A
 // target is memory only: image files are written by shaders_cpp/image_io/image_file.h. Whole-buffer
-// readers (color_bytes, depth_values) refuse a target with a clear pending, by std::logic_error (a
+// readers (color_bytes, depth_values) refuse a target with a clear pending, by a failed TESSERA_CHECK (a
 // caller's mistake); the per-pixel forms expect no pending clear on their pixel (inside a tile the
 // rasterizer prepared, or after finish_clear).
 #pragma once
@@ -32,6 +32,7 @@
 #include <glm/glm.hpp>
 
 #include "pipeline/simd4.h"
+#include "tessellator/check.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -317,7 +318,7 @@ class Framebuffer {
   // target.
   void resolve_block(Framebuffer& out, int x0, int x1, int y0, int y1, ResolvedPlanes planes) const;
   void expect_no_pending_clear(const char* reader) const {
-    if (pending_) throw std::logic_error(std::string("Framebuffer::") + reader + " with a clear pending");
+    TESSERA_CHECK(!pending_, "Framebuffer::", reader, "with a clear pending");
   }
 
   struct PendingClear {

@@ -271,8 +271,8 @@ class TileSchedule {
     __builtin_ia32_pause();
 #endif
   }
-  // About 10-50 microseconds of pause instructions: on the lent Xeon at 16 threads 0, 4,000 and 40,000
-  // spins were within the noise of each other (torus F16, frog F16).
+  // About 10-50 microseconds of pause instructions before a worker sleeps: long enough to catch work
+  // that appears within a round, short enough not to hold a core (docs/performance.md).
   static constexpr int kSpins = 2000;
 
   void work() {

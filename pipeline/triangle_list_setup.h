@@ -94,6 +94,8 @@ struct VertexFieldSpan {
 // [3t + 2] (each below vertex_count) and primitive id first_id + t * id_step. The chunk gets what
 // calling setup_triangle on each triangle in order gives it: the same records, bin entries and
 // statistics.
+// Kept whole: one pass over a group of eight triangles whose transposed vertex fields and lane masks
+// stay in registers from the vertex loads to the record stores; each stage reads most of them.
 template <std::size_t N>
 void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>* vertices,
                          [[maybe_unused]] std::size_t vertex_count, const std::uint32_t* indices, std::size_t count,

@@ -13,7 +13,7 @@
 //   points and indices. A pattern is a pure function of ProcessedFactors, which is hashable, so a
 //   caller can cache patterns (two patches whose processed factors are equal tessellate the same).
 //
-// Conventions (D3D11; see ARCHITECTURE.md for pictures)
+// Conventions (D3D11's, in the reference's names)
 // - Quad edges in SV_TessFactor order: Ueq0 (the edge where u == 0), Veq0, Ueq1, Veq1; inside
 //   factors U then V. Tri edges: Ueq0, Veq0, Weq0; one inside factor. Isolines: density (number
 //   of lines, always integer-partitioned) then detail (segments along each line).

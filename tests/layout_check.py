@@ -13,13 +13,21 @@
 6. a file opens only its folder's namespaces (NAMESPACES): the tessellator `tessera::ts`, the pipeline
    and the shaders' shared vocabulary `tessera`, a shaders room's own names `tessera::<room>`, each
    tools room its own (`tessera::scene`, `tessera::viewer`, `tessera::cli`, ...); any of them may
-   hold a `detail` namespace.
+   hold a `detail` namespace,
+7. no function in shaders_cpp/, tools/scene/ or tools/viewer/ is over 150 lines (function_lengths.py counts them); in
+   pipeline/ a longer one (a SIMD kernel) says why in the comment above it, with the words "kept whole",
+8. ARCHITECTURE.md is at most 150 lines.
 
 Usage: layout_check.py SOURCE_DIR. Prints each violation as FILE:LINE: message; exit 1 if any.
 """
 import os
 import re
 import sys
+
+import function_lengths
+
+MAX_FUNCTION_LINES = 150
+MAX_ARCHITECTURE_LINES = 150
 
 # folder -> folders whose headers it may include (itself always)
 SHADERS = ["tessellator", "pipeline", "shaders_cpp/image_io", "shaders_cpp/cage", "shaders_cpp/animation",
@@ -52,7 +60,7 @@ ALLOWED = {
 # folder -> the namespaces its files may open (and their ::detail). A shaders room declares the
 # vocabulary the rooms share in `tessera` and the names only it uses in `tessera::<room>`.
 NAMESPACES = {
-    "tessellator": ["tessera::ts", "tessera::ts::hlsl"],
+    "tessellator": ["tessera::ts", "tessera::ts::hlsl", "tessera"],  # tessera: check.h, used by every layer
     "pipeline": ["tessera", "tessera::simd"],
     "tools/verify": ["tessera::verify", "tessera::oracle"],
     "tools/measure": ["tessera::measure"],
@@ -131,6 +139,21 @@ def main():
                 if m and m.group(1) not in allowed:
                     errors.append(f"{folder}/{name}:{number}: namespace {m.group(1)} is not {folder}'s "
                                   f"({', '.join(names) or 'none'})")
+    for folder in ["shaders_cpp", "tools/scene", "tools/viewer", "pipeline"]:
+        for path in function_lengths.sources([os.path.join(root, folder)]):
+            lines = None
+            for name, first, last in function_lengths.functions(path):
+                if last - first + 1 <= MAX_FUNCTION_LINES:
+                    continue
+                if folder == "pipeline":
+                    lines = lines or open(path, encoding="utf-8").read().split("\n")
+                    if "kept whole" in "\n".join(lines[max(0, first - 16):first - 1]).lower():
+                        continue
+                rel = os.path.relpath(path, root)
+                errors.append(f"{rel}:{first}: {name} is {last - first + 1} lines (at most {MAX_FUNCTION_LINES})")
+    architecture = open(os.path.join(root, "ARCHITECTURE.md"), encoding="utf-8").read().count("\n")
+    if architecture > MAX_ARCHITECTURE_LINES:
+        errors.append(f"ARCHITECTURE.md: {architecture} lines (at most {MAX_ARCHITECTURE_LINES})")
     # Test case names ctest cannot carry: catch_discover_tests reads a leading '-' as an option, and a
     # ';' splits the name (CMake's list separator), so ctest runs a spec matching nothing.
     case = re.compile(r'TEST_CASE\(\s*"([^"]*)"')

@@ -1,4 +1,4 @@
-"""tessera check's report.html in a real browser (issue 36): headless Chromium, driven by Selenium, opens
+"""tessera check's report.html in a real browser: headless Chromium, driven by Selenium, opens
 the report of a failed case and checks what a reviewer uses: the wipe slider uncovers the golden, the flip
 button (and the f key) swaps new and golden in place, a click shows an image at 1:1, the full-size links
 reach the images, the changed scene field is listed, and the metrics are rounded. Builds its own

@@ -1,4 +1,4 @@
-// The adaptive scheme (issue 34, item 1): feature-adaptive patches through Far, single-crease patches
+// The adaptive scheme: feature-adaptive patches through Far, single-crease patches
 // evaluated here (single_crease_basis.h), Gregory end caps; exact on regular and single-crease
 // regions, converging to the limit as the isolation level rises, watertight to the bit.
 #include <catch2/catch.hpp>
@@ -64,7 +64,7 @@ double max_distance(const LimitSurface& a, const LimitSurface& b, int n) {
 
 }  // namespace
 
-TEST_CASE("adaptive: the crease curve is the subdivision it stands for", "[adaptive][issue34]") {
+TEST_CASE("adaptive: the crease curve is the subdivision it stands for", "[adaptive]") {
   const double q[4] = {0.3, -1.1, 2.0, 0.7};
   for (const double sharpness : {0.0, 0.4, 1.0, 1.5, 2.0, 2.8, 5.7}) {
     INFO("sharpness " << sharpness);
@@ -96,7 +96,7 @@ TEST_CASE("adaptive: the crease curve is the subdivision it stands for", "[adapt
 }
 
 TEST_CASE("adaptive: exact on regular and single-crease regions, converging with the isolation level",
-          "[adaptive][issue34]") {
+          "[adaptive]") {
   // catmark_single_crease: a regular grid with creases of sharpness 0.2 .. 5.7 and infinite; at level 6
   // no sharpness is capped, and every patch is regular, boundary or single-crease except at its corners.
   const Cage single = load_obj_cage(osd_shape("catmark_single_crease"));
@@ -124,7 +124,7 @@ TEST_CASE("adaptive: exact on regular and single-crease regions, converging with
   }
 }
 
-TEST_CASE("adaptive: derivatives are those of the surface, on n-gons too", "[adaptive][issue34]") {
+TEST_CASE("adaptive: derivatives are those of the surface, on n-gons too", "[adaptive]") {
   // Central differences of the position against the reported du, dv: on a pentagon's sub-patches (the
   // derivative's scale there is the sub-patch's own, as Bfr's) and across single-crease patches.
   for (const char* name : {"catmark_nonquads", "catmark_single_crease"}) {
@@ -148,7 +148,7 @@ TEST_CASE("adaptive: derivatives are those of the surface, on n-gons too", "[ada
   }
 }
 
-TEST_CASE("adaptive: isolation levels outside 1..10 are refused", "[adaptive][issue34]") {
+TEST_CASE("adaptive: isolation levels outside 1..10 are refused", "[adaptive]") {
   const Cage cage = load_obj_cage(osd_shape("catmark_cube"));
   CHECK_THROWS_AS(LimitSurface::create_adaptive(cage, 0), std::invalid_argument);
   CHECK_THROWS_AS(LimitSurface::create_adaptive(cage, kMaxIsolation + 1), std::invalid_argument);

@@ -179,7 +179,7 @@ TEST_CASE("Bad suites: one line naming the file and the field", "[check][cli]") 
   CHECK(test::run_cli("check --shard 3/2 " + (dir / "missing.json").string()).exit_code == 2);
 }
 
-TEST_CASE("check: what a scheme leaves out of a case's cage is in its report", "[check][cli][issue34]") {
+TEST_CASE("check: what a scheme leaves out of a case's cage is in its report", "[check][cli]") {
   // A creased cube under pn: the case's warning line reaches summary.json and report.html.
   const fs::path dir = test::cli_temp_dir() / "check-warnings";
   fs::remove_all(dir);

@@ -393,7 +393,7 @@ TEST_CASE("tessera tessellate, render and accuracy take --scheme pn, and gregory
   }
 }
 
-TEST_CASE("gregory draws a cage of pentagons from the CLI: watertight, close to the exact limit", "[cli][issue34]") {
+TEST_CASE("gregory draws a cage of pentagons from the CLI: watertight, close to the exact limit", "[cli]") {
   // The dodecahedron: twelve pentagons, each a fan of five Gregory triangles (measured 5.7e-3 of the
   // diagonal, mean normal error 0.7 degrees; flat: 9.6e-2, 22.5 degrees).
   const std::string cage = data("ngon-cages/dodecahedron.obj");
@@ -683,7 +683,7 @@ nlohmann::json shape_accuracy(const std::string& shape, const std::string& args 
 
 }  // namespace
 
-TEST_CASE("creases: a tag on no edge is left out with a warning naming its line", "[cli][issue34]") {
+TEST_CASE("creases: a tag on no edge is left out with a warning naming its line", "[cli]") {
   const fs::path cage = test::cli_temp_dir() / "crease-on-no-edge.obj";
   std::ofstream(cage) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 1 10\nt crease 2/1/0 0 2 5\n";
   const auto r = run_cli("analyze " + cage.string() + " --json");
@@ -698,7 +698,7 @@ TEST_CASE("creases: a tag on no edge is left out with a warning naming its line"
   CHECK(exact.err.find(":7: crease 0 2 names no edge") != std::string::npos);
 }
 
-TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json and --stats", "[cli][issue34]") {
+TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json and --stats", "[cli]") {
   const std::string cage = data("osd-shapes/catmark_cube_creases1.obj");
   const fs::path dir = test::cli_temp_dir();
   const std::string stats = (dir / "creases-stats.json").string(), png = (dir / "creases.png").string();
@@ -735,7 +735,7 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
         std::string::npos);
 }
 
-TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sharpness is said", "[cli][issue34]") {
+TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sharpness is said", "[cli]") {
   const fs::path dir = test::cli_temp_dir();
   const std::string png = (dir / "adaptive.png").string(), cage = data("osd-shapes/catmark_single_crease.obj");
   // catmark_single_crease has creases of sharpness 5.7 and 5: level 4 draws them as 4 and says so.
@@ -772,7 +772,7 @@ TEST_CASE("adaptive: --isolation is read everywhere --scheme is, and a capped sh
   CHECK(json_of(accuracy.out)["max_relative"].get<double>() < 1e-6);
 }
 
-TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by every curved scheme", "[cli][issue34]") {
+TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by every curved scheme", "[cli]") {
   const fs::path dir = test::cli_temp_dir();
   const std::string cage = (dir / "sphere40.obj").string();
   REQUIRE(run_cli("make-cage sphere --pole-valence 40 --bands 6 -o " + cage).exit_code == 0);
@@ -816,10 +816,11 @@ TEST_CASE("make-cage sphere: closed cages with poles of any valence, drawn by ev
 }
 
 TEST_CASE("make-cage sphere --polar: polar patches smooth a triangle fan's pole and stay nearer the limit",
-          "[cli][issue34]") {
-  // Measured with the Gregory triangles (before polar patches), factor 29: valence 6 largest curvature
-  // 10.1 per diagonal, mean curvature error 0.227, rms distance 1.22e-3; valence 8 8.57, 0.236,
-  // 1.90e-3. Polar: 6.8, 0.142, 1.01e-3 and 6.7, 0.176, 1.64e-3 (the limit's own: 7.4 and 8.1).
+          "[cli]") {
+  // The bounds sit between the polar patches (factor 29: valence 6 largest curvature 6.8 per diagonal,
+  // mean curvature error 0.142, rms distance 1.01e-3; valence 8 6.7, 0.176, 1.64e-3; the limit's own
+  // curvature 7.4 and 8.1) and the Gregory triangles a pole gets without --polar (10.1, 0.227, 1.22e-3;
+  // 8.57, 0.236, 1.90e-3), so a pole drawn without them fails.
   const fs::path dir = test::cli_temp_dir();
   for (const auto& [n, curvature, error, rms] : {std::tuple{6, 8.0, 0.19, 1.15e-3}, std::tuple{8, 7.5, 0.2, 1.8e-3}}) {
     const std::string cage = (dir / ("polar" + std::to_string(n) + ".obj")).string();
@@ -841,7 +842,7 @@ TEST_CASE("make-cage sphere --polar: polar patches smooth a triangle fan's pole 
 }
 
 TEST_CASE("creases: a semi-sharp crease line takes the mean of the two sides' normals in acc, gregory, bspline",
-          "[cli][issue34]") {
+          "[cli]") {
   // The exact limit of a crease of finite sharpness is smooth on the line itself and creased a band of
   // width 2^-s away: each side's own normal there was up to 45 degrees off (mean 18.3 degrees on the cube
   // of sharpness-5 creases). Points on the line now take the mean of both patches' normals.
@@ -858,7 +859,7 @@ TEST_CASE("creases: a semi-sharp crease line takes the mean of the two sides' no
   CHECK(shape_accuracy("catmark_cube_creases2")["mean_normal_degrees"].get<double>() < 1.0);
 }
 
-TEST_CASE("creases: gregory, bspline and acc fit a creased face's patch to the exact limit", "[cli][issue34]") {
+TEST_CASE("creases: gregory, bspline and acc fit a creased face's patch to the exact limit", "[cli]") {
   // A triangle or quad with a tagged corner takes its edge and face points from a least-squares fit to
   // the exact limit (limit_fit.h) instead of the blend of the smooth and cut-open rings. Before (max
   // distance, fraction of the diagonal): cube_corner4 8.3e-2, cube_creases0 4.9e-2, cubes_infsharp
@@ -893,7 +894,7 @@ TEST_CASE("creases: gregory, bspline and acc fit a creased face's patch to the e
   CHECK(shape_accuracy("catmark_helmet", " --scheme acc")["mean_normal_degrees"].get<double>() < 1.5);
 }
 
-TEST_CASE("creases: gregory, bspline and acc are within 2e-2 and 3 degrees on every creased shape", "[cli][issue34]") {
+TEST_CASE("creases: gregory, bspline and acc are within 2e-2 and 3 degrees on every creased shape", "[cli]") {
   // Issue 34's goal for the per-face schemes: on creased cages, the range they reach on smooth ones (the
   // cube: 9.2e-3 of the diagonal, mean normal error 2.2 degrees). Every OpenSubdiv shape here with a crease
   // or corner tag; the worst before the fitted faces' smooth edges took the limit's normal and only
@@ -926,7 +927,7 @@ TEST_CASE("creases: gregory, bspline and acc are within 2e-2 and 3 degrees on ev
   CHECK(shapes >= 36);
 }
 
-TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli][issue34]") {
+TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli]") {
   const auto r = run_cli("analyze " + data("osd-shapes/catmark_cube_creases1.obj") + " --json");
   REQUIRE(r.exit_code == 0);
   const auto tags = json_of(r.out)["tags"];
@@ -941,7 +942,7 @@ TEST_CASE("analyze lists creases, corners and holes with their sharpness", "[cli
 }
 
 TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit, and near the exact limit",
-          "[cli][issue34]") {
+          "[cli]") {
   // The per-face schemes cut the corner rings at creases of sharpness >= 1 and blend semi-sharp ones
   // (subd_patches.cpp): both faces of a crease build its boundary points from the same rings, so the
   // tessellation welds on exact bits under uniform and varied factors.

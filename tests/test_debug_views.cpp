@@ -97,7 +97,7 @@ void check_framed(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("The cage view colours creased edges and corners by sharpness", "[views][cli][issue34]") {
+TEST_CASE("The cage view colours creased edges and corners by sharpness", "[views][cli]") {
   // catmark_cube_creases2 (infinitely sharp and semi-sharp creases) against the same cage without its
   // tags: only the tagged one has red (infinite) edges, and its legend says what the colours mean.
   const fs::path dir = test::cli_temp_dir();
@@ -354,7 +354,7 @@ TEST_CASE("View, LOD and cull options: bad values are one-line usage errors", "[
   CHECK_FALSE(fs::exists(test::cli_temp_dir() / "bad.png"));
 }
 
-TEST_CASE("Automatic framing fits the posed surface, whole and centred, in every orbit view", "[views][cli][issue36]") {
+TEST_CASE("Automatic framing fits the posed surface, whole and centred, in every orbit view", "[views][cli]") {
   // A tall piece (the bishop, +z up) in a wide image, seen from three sides; a glTF skin at t = 0 and a
   // morph (which used to be a small blob at the bottom): each whole, with a margin, filling the image
   // in its tighter direction. The frog is the control the old framing already held.
@@ -389,7 +389,7 @@ TEST_CASE("Automatic framing fits the posed surface, whole and centred, in every
   CHECK(bytes_of(dir / "again.png") == bytes_of(dir / "bishop.png"));
 }
 
-TEST_CASE("render and analyze say which axis a cage's shape suggests is up", "[views][cli][issue36]") {
+TEST_CASE("render and analyze say which axis a cage's shape suggests is up", "[views][cli]") {
   // The bishop stands on a flat base at its lowest z: +z. The frog's lowest y holds its belly: +y, and
   // render says nothing. A glTF asset is +y by definition.
   const fs::path dir = test::cli_temp_dir() / "up-hint";
@@ -418,7 +418,7 @@ TEST_CASE("render and analyze say which axis a cage's shape suggests is up", "[v
 
 TEST_CASE(
     "Two-sided drawing draws an open sheet seen from behind, lit, and changes next to nothing on a closed surface",
-    "[views][cli][issue36]") {
+    "[views][cli]") {
   // catmark_edgeonly's sheets seen from above show their inner side: one-sided, nothing is drawn and
   // render warns; two-sided, the sheets are drawn with their normals turned to the viewer (lit clay, not
   // the dark ambient of a normal facing away), and the warning is gone.

@@ -658,7 +658,7 @@ TEST_CASE("glTF: eight influences through JOINTS_1 and WEIGHTS_1 skin as the sum
 namespace tessera {
 
 TEST_CASE("SimpleMorph at t = 1.5 under gregory has no dark sliver: corners with one face get a normal",
-          "[gltf][cli][issue36]") {
+          "[gltf][cli]") {
   // The morph poses the triangle (0,0,0), (1,0,0), (1,2,0) at t = 1.5. Each corner is a vertex with one
   // face, whose two patch edges leave along the one boundary tangent: the derivatives there are
   // parallel and their cross product was round-off, pointing away at the right angle's corner (a

@@ -652,7 +652,7 @@ TEST_CASE("limit surface measurements", "[.][limit-bench]") {
   }
 }
 
-TEST_CASE("limit surface: Far patches agree with Bfr where both work", "[limit][issue34]") {
+TEST_CASE("limit surface: Far patches agree with Bfr where both work", "[limit]") {
   // far_patches.h evaluates the faces Bfr 3.5.0 fails on; on cages where Bfr works, the same faces
   // through Far give the same surface to within the end caps' difference at the isolation level.
   for (const char* name :
@@ -677,7 +677,7 @@ TEST_CASE("limit surface: Far patches agree with Bfr where both work", "[limit][
   }
 }
 
-TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided", "[limit][issue34]") {
+TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided", "[limit]") {
   // catmark_val2_interior: faces with a valence-2 interior corner, a boundary corner and creases,
   // which Bfr 3.5.0 builds from uninitialized memory (a crash in most runs). Far evaluates them.
   const Cage cage = load_obj_cage(osd_shape("catmark_val2_interior"));
@@ -709,7 +709,7 @@ TEST_CASE("limit surface: OpenSubdiv 3.5.0's valence-2 crease crash is avoided",
 }
 
 TEST_CASE("limit surface: a pose moves only the points, to the bits of a surface built from the posed cage",
-          "[limit][issue34]") {
+          "[limit]") {
   // Bfr faces, Far faces (catmark_val2_interior's, where Bfr 3.5.0 fails) and the adaptive method: a
   // surface built from the rest cage and reposed must evaluate to the bits of one built from the moved
   // cage, at owned points (cage vertices and edges) and inside.
@@ -745,7 +745,7 @@ TEST_CASE("limit surface: a pose moves only the points, to the bits of a surface
 
 namespace tessera {
 
-TEST_CASE("semi-sharp vertices: the locally refined limit position equals OpenSubdiv's", "[limit][issue34]") {
+TEST_CASE("semi-sharp vertices: the locally refined limit position equals OpenSubdiv's", "[limit]") {
   // semi_sharp_limit_position refines a vertex's 1-ring until its tags relax and applies the smooth
   // mask; OpenSubdiv (Bfr) evaluates the same limit at the face corner. Corner tags of sharpness 0.7,
   // 1.4, 2.8, 3; two creases of 2 meeting; three creases of 5 (a corner rule that relaxes); the mixed

@@ -150,7 +150,7 @@ TEST_CASE("memory_table on the monster frog: the mesh grows as the square of the
   CHECK(m.levels[0].mesh_triangles == 1292u * 128u);
 }
 
-TEST_CASE("memory_table counts the precomputed patches' rows and pre-pass points", "[memory][issue34]") {
+TEST_CASE("memory_table counts the precomputed patches' rows and pre-pass points", "[memory]") {
   // A sphere with valence-20 poles: its 40 pole quads have 1-rings of 46 points, precomputed; the patch
   // data holds their rows over the ring and the pre-pass's 20 points per patch besides the tables.
   const Cage c = sphere_cage(20, 4, 1.0f);

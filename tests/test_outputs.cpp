@@ -1,4 +1,4 @@
-// Hostile command lines (issue 21's list): a command writes all of its outputs or none, never over one
+// Hostile command lines: a command writes all of its outputs or none, never over one
 // of its inputs, never two outputs on one path, never to "-"; empty values and unknown commands are
 // named; a failed watertight check says so on stderr even with -q.
 #include <algorithm>
@@ -103,7 +103,7 @@ TEST_CASE("Empty values, unknown commands and quiet failures are named", "[cli][
 }
 
 TEST_CASE("Misspelt commands, options and names get the closest one and the command's own help",
-          "[cli][outputs][issue36]") {
+          "[cli][outputs]") {
   auto r = test::run_cli("render " + kCube + " --samples 4 -o x.png");
   CHECK(r.exit_code == 2);
   one_line(r, "tessera render: unknown option --samples; did you mean --msaa? (see tessera render --help)");

@@ -1,4 +1,4 @@
-// Reference renders (issue 22): byte-stable output files, the camera's up vector and turntables,
+// Reference renders: byte-stable output files, the camera's up vector and turntables,
 // the bounding box analyze reports, render --json, progress on stderr.
 #include <algorithm>
 #include <cmath>
@@ -74,7 +74,7 @@ std::size_t foreground_pixels(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("Every output file is the same bytes for the same input on 1 and 3 threads", "[cli][outputs][issue22]") {
+TEST_CASE("Every output file is the same bytes for the same input on 1 and 3 threads", "[cli][outputs]") {
   const fs::path dir = temp_dir("stable");
   const std::string common =
       " --factor 6 --resolution 200x120 --displacement " + kMap + " --displacement-channel A --displacement-scale 0.5";
@@ -113,7 +113,7 @@ TEST_CASE("Every output file is the same bytes for the same input on 1 and 3 thr
   CHECK(test::slurp(dir / "d1.exr") == test::slurp(dir / "d2.exr"));
 }
 
-TEST_CASE("render --json: the summary scripts read, with times and memory", "[cli][issue22]") {
+TEST_CASE("render --json: the summary scripts read, with times and memory", "[cli]") {
   const fs::path dir = temp_dir("json");
   const auto r = run_ok("-q render " + kFrog + " --factor 4 --resolution 160x90 --json -o " + (dir / "a.png").string());
   const auto j = nlohmann::json::parse(r.out);
@@ -130,7 +130,7 @@ TEST_CASE("render --json: the summary scripts read, with times and memory", "[cl
 }
 
 TEST_CASE("Camera up vector (--camera-up): z-up views, a reversed up turns the image over, degenerate ups are refused",
-          "[cli][camera][issue22]") {
+          "[cli][camera]") {
   const fs::path dir = temp_dir("up");
   const std::string cam = " --factor 4 --resolution 160x120 --camera-position 40,20,60 --camera-target 0,3,0 -o ";
   run_ok("-q render " + kFrog + cam + (dir / "y.png").string());
@@ -163,7 +163,7 @@ TEST_CASE("Camera up vector (--camera-up): z-up views, a reversed up turns the i
   }
 }
 
-TEST_CASE("render --orbit N: a turntable from one load, each view the render of its camera", "[cli][camera][issue22]") {
+TEST_CASE("render --orbit N: a turntable from one load, each view the render of its camera", "[cli][camera]") {
   const fs::path dir = temp_dir("orbit");
   const std::string common =
       " --factor 4 --resolution 160x90 --displacement " + kMap + " --displacement-channel A --displacement-scale 0.5";
@@ -198,7 +198,7 @@ TEST_CASE("render --orbit N: a turntable from one load, each view the render of 
   CHECK_FALSE(fs::exists(dir / "w.png"));
 }
 
-TEST_CASE("analyze reports the control points' bounding box", "[cli][issue22]") {
+TEST_CASE("analyze reports the control points' bounding box", "[cli]") {
   const auto r = run_ok("analyze " + kFrog + " --json");
   const auto j = nlohmann::json::parse(r.out);
   const Cage cage = load_obj_cage(kFrog);
@@ -213,7 +213,7 @@ TEST_CASE("analyze reports the control points' bounding box", "[cli][issue22]") 
   CHECK(text.out.find("bounding box = (") != std::string::npos);
 }
 
-TEST_CASE("Progress and -v on stderr, nothing with -q", "[cli][issue22]") {
+TEST_CASE("Progress and -v on stderr, nothing with -q", "[cli]") {
   const fs::path dir = temp_dir("progress");
   const std::string args = " render " + kFrog + " --factor 8 --resolution 160x90 -o " + (dir / "p.png").string();
   auto r = run_ok("-v" + args);

@@ -226,7 +226,7 @@ TEST_CASE("Bad scenes: one line naming the file and the field, a non-zero exit, 
 
 namespace tessera::scene {
 
-TEST_CASE("configure_scene redoes only what the settings change, and draws as a fresh scene", "[scene][issue32]") {
+TEST_CASE("configure_scene redoes only what the settings change, and draws as a fresh scene", "[scene]") {
   RenderSettings s;
   s.cage = kFrog;
   s.lod.mode = LodMode::screen;

@@ -1,4 +1,4 @@
-// Shading across UV seams (issue 22): in a render of the displaced frog, the colour step between two
+// Shading across UV seams: in a render of the displaced frog, the colour step between two
 // neighbouring pixels of two faces that meet on a UV seam is measured against the step between pixels
 // of two faces that meet on an ordinary edge. A seam the asset does not have shows as a larger step.
 // Measured in levels of 255, as the mean excess of the step across an edge over the steps beside it:
@@ -128,7 +128,7 @@ TEST_CASE("Shading seams: the step across a UV seam is within 2 levels of an ord
     REQUIRE(after.seam_pairs > 500);
     REQUIRE(after.ordinary_pairs > 5000);
     CHECK(after.seam - after.ordinary <= 2.0);
-    // The same bound fails on the renderer of before (the seam lines of issue 22).
+    // The bound fails where seams are shaded from texels of neither side (UvSeams::raw).
     CHECK(before.seam - before.ordinary > 2.0);
     CHECK(after.seam <= 0.5 * before.seam);
   }

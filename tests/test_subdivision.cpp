@@ -270,7 +270,7 @@ TEST_CASE("Subdivision schemes are watertight on closed cages at integer and fra
     }
 }
 
-TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, watertight to the bit", "[subd][issue34]") {
+TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, watertight to the bit", "[subd]") {
   // Poles of valence 24: a pole quad's 1-ring has 54 points, more than an IA patch's 32. Those 48 faces
   // are precomputed; the faces around them are ordinary patches, and the edges between the two kinds
   // must weld on exact bits.
@@ -565,7 +565,7 @@ Cage pentagon_among_fans() {
 }
 
 TEST_CASE("gregory draws an n-gon as a fan of Gregory triangles: exact centre, watertight, close to the limit",
-          "[subd][issue34]") {
+          "[subd]") {
   // The fan's centre corner is the exact limit at the face's centre (one Catmull-Clark step, then the
   // all-quad masks), to float round-off.
   for (const Cage& cage : {hexagonal_prism(), pentagon_among_fans()}) {
@@ -656,7 +656,8 @@ TEST_CASE("gregory draws an n-gon as a fan of Gregory triangles: exact centre, w
         });
     REQUIRE(n > 0);
     INFO(name << " max " << max_d / exact.bounding_box_diagonal() << " mean angle " << angle / double(n));
-    // Measured 4.1e-3 / 1.4 degrees and 1.5e-2 / 1.9 degrees (with twist-free face points 2.1 and 3.0).
+    // The shapes give 4.1e-3 / 1.4 degrees and 1.5e-2 / 1.9 degrees; twist-free face points would give
+    // 2.1 and 3.0 degrees, over the bound.
     CHECK(max_d / exact.bounding_box_diagonal() < 2e-2);
     CHECK(angle / double(n) < 0.045);  // radians, 2.6 degrees
   }
@@ -879,7 +880,7 @@ TEST_CASE("Exact draws only the faces OpenSubdiv gives a surface: boundary faces
   CHECK(r.degenerate_triangles == 0);
 }
 
-TEST_CASE("limit fit: on regular faces the fitted Gregory points are the B-spline patch's", "[subd][issue34]") {
+TEST_CASE("limit fit: on regular faces the fitted Gregory points are the B-spline patch's", "[subd]") {
   // A least-squares fit to the limit reproduces it where a bicubic can: the torus's faces are all
   // regular, so the fitted edge and face points must be the masks' (the B-spline patch's Bezier points)
   // to round-off, as stencils, weight for weight. A fit that sampled the wrong place, mixed up the
@@ -915,7 +916,7 @@ TEST_CASE("limit fit: on regular faces the fitted Gregory points are the B-splin
     }
 }
 
-TEST_CASE("polar triangles: a bicubic with a collapsed row, its edges the Gregory triangle's bits", "[subd][issue34]") {
+TEST_CASE("polar triangles: a bicubic with a collapsed row, its edges the Gregory triangle's bits", "[subd]") {
   // Random points in the 15 slots: on the three edges the polar patch is the Gregory triangle's cubic,
   // bit for bit (what its neighbours compute); inside it is the bicubic b(s, t), s = v / (u + v),
   // t = u + v, and its derivatives the chain rule's (checked against central differences).
@@ -953,7 +954,7 @@ TEST_CASE("polar triangles: a bicubic with a collapsed row, its edges the Gregor
 }
 
 TEST_CASE("polar configurations: gregory and bspline draw their triangles as polar patches, watertight to the bit",
-          "[subd][issue34]") {
+          "[subd]") {
   // A latitude-longitude sphere: valence 5 stays Gregory triangles (kPolarMinValence), 8 and 32 (a
   // 1-ring of over 32 points: precomputed) become polar; an all-quad pole has no triangles.
   auto polar_count = [](const SubdModel& m) {

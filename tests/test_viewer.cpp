@@ -1,4 +1,4 @@
-// tessera view (issue 23): settings from requests, frames that equal `tessera render`'s bytes,
+// tessera view: settings from requests, frames that equal `tessera render`'s bytes,
 // picking against an independent id buffer, and the HTTP API's answers to good and bad requests.
 // The page itself is tested in headless Chromium (viewer_browser_test.py).
 #include <httplib.h>
@@ -66,7 +66,7 @@ struct ServedSession {
 }  // namespace
 
 TEST_CASE("viewer settings: requests name render's options, paths, repeats and absurd sizes are refused",
-          "[viewer][issue23]") {
+          "[viewer]") {
   const RenderSettings base = frog(false);
   const RenderSettings s = settings_from_query(base, {{"factor", "12.5"},
                                                       {"view", "factors"},
@@ -126,7 +126,7 @@ TEST_CASE("viewer settings: requests name render's options, paths, repeats and a
   CHECK(shell_words({"a b", "it's", "plain-1,2"}) == "'a b' 'it'\\''s' plain-1,2");
 }
 
-TEST_CASE("viewer frames are the bytes tessera render writes, as settings change back and forth", "[viewer][issue23]") {
+TEST_CASE("viewer frames are the bytes tessera render writes, as settings change back and forth", "[viewer]") {
   // One session through changes that reconfigure a kept scene (camera, LOD with a displacement's
   // trilinear sampling, view) and that load another (scheme, displacement scale): each frame equals a
   // fresh `tessera render` of the reproducing command.
@@ -161,7 +161,7 @@ TEST_CASE("viewer frames are the bytes tessera render writes, as settings change
   CHECK(jpeg->bytes.substr(0, 2) == "\xff\xd8");
 }
 
-TEST_CASE("a kept scene keeps its factors file's table: a camera change reads no file", "[viewer][issue32]") {
+TEST_CASE("a kept scene keeps its factors file's table: a camera change reads no file", "[viewer]") {
   // The frog's first face's first edge at factor 3, the rest at --factor.
   const fs::path file = test::cli_temp_dir() / "viewer-factors.txt";
   const Cage cage = load_obj_cage(test::data("sdk-cages/monsterfrog_mapped_00.obj"));
@@ -181,7 +181,7 @@ TEST_CASE("a kept scene keeps its factors file's table: a camera change reads no
   CHECK(f->bytes == rendered(moved, "viewer-factors-file.png"));
 }
 
-TEST_CASE("viewer info lists every scheme the Scheme enum has", "[viewer][issue32]") {
+TEST_CASE("viewer info lists every scheme the Scheme enum has", "[viewer]") {
   ViewerSession session(frog(false));
   const Json info = session.info();
   std::vector<std::string> names;
@@ -191,7 +191,7 @@ TEST_CASE("viewer info lists every scheme the Scheme enum has", "[viewer][issue3
   CHECK(names.front() == "flat");
 }
 
-TEST_CASE("viewer frames of an animated glTF follow the time setting", "[viewer][issue23]") {
+TEST_CASE("viewer frames of an animated glTF follow the time setting", "[viewer]") {
   RenderSettings s;
   s.cage = test::data("gltf-cages/frog-skinned.gltf");
   s.lod.cull = PatchCullMode::all;
@@ -209,7 +209,7 @@ TEST_CASE("viewer frames of an animated glTF follow the time setting", "[viewer]
   CHECK(a->bytes == rendered(later, "viewer-time.png"));
 }
 
-TEST_CASE("viewer picks name the patch an independent id buffer has under the pixel", "[viewer][issue23]") {
+TEST_CASE("viewer picks name the patch an independent id buffer has under the pixel", "[viewer]") {
   // The test's own id buffer: the displaced draw with a pixel shader that writes SV_PrimitiveID + 1.
   const RenderSettings base = frog(true);
   ViewerSession session(base);
@@ -273,7 +273,7 @@ TEST_CASE("viewer picks name the patch an independent id buffer has under the pi
 }
 
 TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad requests, 404 elsewhere",
-          "[viewer][issue23]") {
+          "[viewer]") {
   ServedSession served(frog(false));
   httplib::Client& client = served.client;
   const auto get = [&](const std::string& path) {
@@ -366,7 +366,7 @@ TEST_CASE("viewer: settings the asset refuses are a one-line 422 with the CLI's 
   CHECK(info["schemes_refused"]["pn"].get<std::string>().find("cannot be displaced") != std::string::npos);
 }
 
-TEST_CASE("viewer info leaves out the schemes an n-gon cage refuses", "[viewer][issue36]") {
+TEST_CASE("viewer info leaves out the schemes an n-gon cage refuses", "[viewer]") {
   // The dodecahedron's pentagons: acc takes quads only and pn triangles and quads only.
   RenderSettings s;
   s.cage = test::data("ngon-cages/dodecahedron.obj");
@@ -380,7 +380,7 @@ TEST_CASE("viewer info leaves out the schemes an n-gon cage refuses", "[viewer][
 }
 
 TEST_CASE("tessera view: bad ports and addresses, and --scene with settings, fail in one line",
-          "[viewer][cli][issue23]") {
+          "[viewer][cli]") {
   const std::string cage = test::data("sdk-cages/monsterfrog_mapped_00.obj");
   const test::CliResult port = test::run_cli("view " + cage + " --port 70000");
   CHECK(port.exit_code == 2);

@@ -1,4 +1,4 @@
-"""tessera view in a real browser (issue 23): headless Chromium, driven by Selenium, loads the page a real
+"""tessera view in a real browser: headless Chromium, driven by Selenium, loads the page a real
 `tessera view` serves, drags to orbit, changes the view mode, clicks a patch, and checks that the frame
 changed, that the pick names the patch the server's id buffer has under that pixel, and that the command
 the page shows gives the same bytes as the frame on screen. Starts and stops its own server (127.0.0.1,

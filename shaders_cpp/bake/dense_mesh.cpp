@@ -45,8 +45,7 @@ class PlyReader {
       if (!(in_ >> token)) fail(where, "the file ends early");
       char* end = nullptr;
       const double x = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0')
-        fail(where, "'" + token.substr(0, 32) + (token.size() > 32 ? "...'" : "'") + " is not a number");
+      if (end == token.c_str() || *end != '\0') not_a_number(where, token);
       return x;
     }
     const int n = type_size(type);
@@ -74,6 +73,12 @@ class PlyReader {
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw BakeError(name_ + ": " + where + ": " + what);
   }
+  // Out of line: inlined into the readers, GCC 12 warns falsely (-Wrestrict) on the concatenation.
+  [[noreturn, gnu::noinline]] void not_a_number(const std::string& where, const std::string& token) const {
+    std::string quoted = token.substr(0, 32);
+    if (token.size() > 32) quoted += "...";
+    fail(where, "'" + quoted + "' is not a number");
+  }
 
  private:
   std::istream& in_;
@@ -81,13 +86,15 @@ class PlyReader {
   std::string name_;
 };
 
-DenseMesh read_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BakeError(path + ": cannot open the file");
-  const std::uintmax_t file_size = fs::file_size(path);
+struct PlyHeader {
+  PlyFormat format = PlyFormat::ascii;
+  std::vector<PlyElement> elements;
+};
+
+// The header after the 'ply' line: the format, each element's count (at most the file's size) and
+// properties. BakeError naming the line for anything else.
+PlyHeader read_ply_header(std::istream& in, const std::string& path, std::uintmax_t file_size) {
   std::string line;
-  std::getline(in, line);
-  if (line != "ply" && line != "ply\r") throw BakeError(path + ": line 1: not a PLY file (no 'ply' magic)");
   PlyFormat format = PlyFormat::ascii;
   bool have_format = false;
   std::vector<PlyElement> elements;
@@ -139,106 +146,132 @@ DenseMesh read_ply(const std::string& path) {
     }
   }
   if (!have_format) throw BakeError(path + ": the header has no format line");
-  PlyReader r(in, format, path);
+  return {format, std::move(elements)};
+}
+
+// The vertex element: positions, and the (face, u, v) parameterization when all three are present.
+void read_ply_vertices(PlyReader& r, const PlyElement& e, const std::string& path, DenseMesh& m) {
+  int ix = -1, iy = -1, iz = -1, iface = -1, iu = -1, iv = -1;
+  for (std::size_t k = 0; k < e.properties.size(); ++k) {
+    const std::string& n = e.properties[k].name;
+    int* slot = n == "x"      ? &ix
+                : n == "y"    ? &iy
+                : n == "z"    ? &iz
+                : n == "face" ? &iface
+                : n == "u"    ? &iu
+                : n == "v"    ? &iv
+                              : nullptr;
+    if (slot && !e.properties[k].list()) *slot = int(k);
+  }
+  if (ix < 0 || iy < 0 || iz < 0) throw BakeError(path + ": the vertex element has no x, y and z");
+  const bool param = iface >= 0 && iu >= 0 && iv >= 0;
+  m.positions.resize(e.count);
+  if (param) m.face.resize(e.count), m.face_uv.resize(e.count);
+  std::vector<double> values(e.properties.size());
+  for (std::uint64_t i = 0; i < e.count; ++i) {
+    const std::string where = "vertex " + std::to_string(i);
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const PlyProperty& p = e.properties[k];
+      if (p.list()) {
+        const double n = r.read(p.count_type, where);
+        if (!(n >= 0 && n < 256)) r.fail(where, "a list of " + std::to_string(n) + " values");
+        for (int j = 0; j < int(n); ++j) r.read(p.type, where);
+      } else {
+        values[k] = r.read(p.type, where);
+      }
+    }
+    const glm::vec3 pos(float(values[std::size_t(ix)]), float(values[std::size_t(iy)]),
+                        float(values[std::size_t(iz)]));
+    if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(pos.z))
+      r.fail(where, "a position that is not finite");
+    m.positions[i] = pos;
+    if (param) {
+      const double f = values[std::size_t(iface)];
+      if (!(f >= 0 && f < 2147483647.0) || f != std::floor(f))
+        r.fail(where, "face " + std::to_string(f) + " is not a face index");
+      const glm::vec2 uv(float(values[std::size_t(iu)]), float(values[std::size_t(iv)]));
+      if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
+        r.fail(where, "(u, v) outside the face's [0, 1] domain");
+      m.face[i] = std::int32_t(f), m.face_uv[i] = uv;
+    }
+  }
+}
+
+// The face element's vertex_indices, as a triangle fan per polygon.
+void read_ply_faces(PlyReader& r, const PlyElement& e, const std::string& path, DenseMesh& m) {
+  int idx = -1;
+  for (std::size_t k = 0; k < e.properties.size(); ++k)
+    if (e.properties[k].list() &&
+        (e.properties[k].name == "vertex_indices" || e.properties[k].name == "vertex_index"))
+      idx = int(k);
+  if (idx < 0) throw BakeError(path + ": the face element has no vertex_indices list");
+  std::vector<std::uint32_t> poly;
+  for (std::uint64_t i = 0; i < e.count; ++i) {
+    const std::string where = "face " + std::to_string(i);
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const PlyProperty& p = e.properties[k];
+      if (!p.list()) {
+        r.read(p.type, where);
+        continue;
+      }
+      const double n = r.read(p.count_type, where);
+      if (!(n >= 0 && n < 65536)) r.fail(where, "a list of " + std::to_string(n) + " values");
+      poly.clear();
+      for (int j = 0; j < int(n); ++j) {
+        const double x = r.read(p.type, where);
+        if (int(k) == idx) {
+          if (!(x >= 0 && x < double(m.positions.size())) || x != std::floor(x))
+            r.fail(where, "vertex index " + std::to_string(x) + " is not one of the " +
+                              std::to_string(m.positions.size()) +
+                              " vertices (elements are read in order: vertices first)");
+          poly.push_back(std::uint32_t(x));
+        }
+      }
+      if (int(k) == idx) {
+        if (poly.size() < 3) r.fail(where, "fewer than 3 vertices");
+        for (std::size_t j = 1; j + 1 < poly.size(); ++j)
+          m.triangles.insert(m.triangles.end(), {poly[0], poly[j], poly[j + 1]});
+      }
+    }
+  }
+}
+
+// Any other element: read and dropped.
+void skip_ply_element(PlyReader& r, const PlyElement& e) {
+  for (std::uint64_t i = 0; i < e.count; ++i)
+    for (const PlyProperty& p : e.properties) {
+      const std::string where = e.name + " " + std::to_string(i);
+      if (p.list()) {
+        const double n = r.read(p.count_type, where);
+        if (!(n >= 0 && n < 65536)) r.fail(where, "a list of " + std::to_string(n) + " values");
+        for (int j = 0; j < int(n); ++j) r.read(p.type, where);
+      } else {
+        r.read(p.type, where);
+      }
+    }
+}
+
+DenseMesh read_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BakeError(path + ": cannot open the file");
+  const std::uintmax_t file_size = fs::file_size(path);
+  std::string line;
+  std::getline(in, line);
+  if (line != "ply" && line != "ply\r") throw BakeError(path + ": line 1: not a PLY file (no 'ply' magic)");
+  const PlyHeader header = read_ply_header(in, path, file_size);
+  PlyReader r(in, header.format, path);
   DenseMesh m;
   m.name = path;
   bool have_vertices = false, have_faces = false;
-  for (const PlyElement& e : elements) {
+  for (const PlyElement& e : header.elements) {
     if (e.name == "vertex") {
       have_vertices = true;
-      int ix = -1, iy = -1, iz = -1, iface = -1, iu = -1, iv = -1;
-      for (std::size_t k = 0; k < e.properties.size(); ++k) {
-        const std::string& n = e.properties[k].name;
-        int* slot = n == "x"      ? &ix
-                    : n == "y"    ? &iy
-                    : n == "z"    ? &iz
-                    : n == "face" ? &iface
-                    : n == "u"    ? &iu
-                    : n == "v"    ? &iv
-                                  : nullptr;
-        if (slot && !e.properties[k].list()) *slot = int(k);
-      }
-      if (ix < 0 || iy < 0 || iz < 0) throw BakeError(path + ": the vertex element has no x, y and z");
-      const bool param = iface >= 0 && iu >= 0 && iv >= 0;
-      m.positions.resize(e.count);
-      if (param) m.face.resize(e.count), m.face_uv.resize(e.count);
-      std::vector<double> values(e.properties.size());
-      for (std::uint64_t i = 0; i < e.count; ++i) {
-        const std::string where = "vertex " + std::to_string(i);
-        for (std::size_t k = 0; k < e.properties.size(); ++k) {
-          const PlyProperty& p = e.properties[k];
-          if (p.list()) {
-            const double n = r.read(p.count_type, where);
-            if (!(n >= 0 && n < 256)) r.fail(where, "a list of " + std::to_string(n) + " values");
-            for (int j = 0; j < int(n); ++j) r.read(p.type, where);
-          } else {
-            values[k] = r.read(p.type, where);
-          }
-        }
-        const glm::vec3 pos(float(values[std::size_t(ix)]), float(values[std::size_t(iy)]),
-                            float(values[std::size_t(iz)]));
-        if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(pos.z))
-          r.fail(where, "a position that is not finite");
-        m.positions[i] = pos;
-        if (param) {
-          const double f = values[std::size_t(iface)];
-          if (!(f >= 0 && f < 2147483647.0) || f != std::floor(f))
-            r.fail(where, "face " + std::to_string(f) + " is not a face index");
-          const glm::vec2 uv(float(values[std::size_t(iu)]), float(values[std::size_t(iv)]));
-          if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f))
-            r.fail(where, "(u, v) outside the face's [0, 1] domain");
-          m.face[i] = std::int32_t(f), m.face_uv[i] = uv;
-        }
-      }
+      read_ply_vertices(r, e, path, m);
     } else if (e.name == "face") {
       have_faces = true;
-      int idx = -1;
-      for (std::size_t k = 0; k < e.properties.size(); ++k)
-        if (e.properties[k].list() &&
-            (e.properties[k].name == "vertex_indices" || e.properties[k].name == "vertex_index"))
-          idx = int(k);
-      if (idx < 0) throw BakeError(path + ": the face element has no vertex_indices list");
-      std::vector<std::uint32_t> poly;
-      for (std::uint64_t i = 0; i < e.count; ++i) {
-        const std::string where = "face " + std::to_string(i);
-        for (std::size_t k = 0; k < e.properties.size(); ++k) {
-          const PlyProperty& p = e.properties[k];
-          if (!p.list()) {
-            r.read(p.type, where);
-            continue;
-          }
-          const double n = r.read(p.count_type, where);
-          if (!(n >= 0 && n < 65536)) r.fail(where, "a list of " + std::to_string(n) + " values");
-          poly.clear();
-          for (int j = 0; j < int(n); ++j) {
-            const double x = r.read(p.type, where);
-            if (int(k) == idx) {
-              if (!(x >= 0 && x < double(m.positions.size())) || x != std::floor(x))
-                r.fail(where, "vertex index " + std::to_string(x) + " is not one of the " +
-                                  std::to_string(m.positions.size()) +
-                                  " vertices (elements are read in order: vertices first)");
-              poly.push_back(std::uint32_t(x));
-            }
-          }
-          if (int(k) == idx) {
-            if (poly.size() < 3) r.fail(where, "fewer than 3 vertices");
-            for (std::size_t j = 1; j + 1 < poly.size(); ++j)
-              m.triangles.insert(m.triangles.end(), {poly[0], poly[j], poly[j + 1]});
-          }
-        }
-      }
+      read_ply_faces(r, e, path, m);
     } else {
-      for (std::uint64_t i = 0; i < e.count; ++i)
-        for (const PlyProperty& p : e.properties) {
-          const std::string where = e.name + " " + std::to_string(i);
-          if (p.list()) {
-            const double n = r.read(p.count_type, where);
-            if (!(n >= 0 && n < 65536)) r.fail(where, "a list of " + std::to_string(n) + " values");
-            for (int j = 0; j < int(n); ++j) r.read(p.type, where);
-          } else {
-            r.read(p.type, where);
-          }
-        }
+      skip_ply_element(r, e);
     }
   }
   if (!have_vertices || !have_faces || m.triangles.empty())

@@ -23,56 +23,70 @@ std::string join(const std::vector<int>& xs) {
   return s;
 }
 
+[[noreturn]] void fail(const std::string& name, const std::string& what) { throw CageError(name + ": " + what); }
+
 }  // namespace
 
 Topology::Topology(const Cage& cage) {
-  const std::string& name = cage.name;
-  auto fail = [&](const std::string& what) { throw CageError(name + ": " + what); };
-  const int nv = cage.vertex_count(), nf = cage.face_count();
-  if (cage.face_offsets.size() != cage.face_sizes.size()) fail("face_offsets and face_sizes differ in length");
+  if (cage.face_offsets.size() != cage.face_sizes.size())
+    fail(cage.name, "face_offsets and face_sizes differ in length");
+  read_faces(cage);
+  const EdgeIndex edge_of = build_edges(cage);
+  build_rings(cage.name, cage.vertex_count());
+  read_tags(cage, edge_of);
+}
 
-  // Faces: sizes, offsets, vertex range, repeated vertices (a per-vertex stamp of the last face seen).
+// Faces: sizes, offsets, vertex range, repeated vertices (a per-vertex stamp of the last face seen), holes.
+void Topology::read_faces(const Cage& cage) {
+  const int nv = cage.vertex_count(), nf = cage.face_count();
   face_sizes_ = cage.face_sizes;
   face_offsets_ = cage.face_offsets;
   std::vector<int> stamp(std::size_t(nv), -1);
   int expected_offset = 0;
   for (int f = 0; f < nf; ++f) {
     const int n = face_sizes_[f];
-    if (n < 3) fail("face " + std::to_string(f) + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+    if (n < 3)
+      fail(cage.name, "face " + std::to_string(f) + " has " + std::to_string(n) +
+                          " vertices; a face needs at least 3");
     if (face_offsets_[f] != expected_offset ||
         std::size_t(expected_offset) + std::size_t(n) > cage.face_vertices.size())
-      fail("face " + std::to_string(f) + " has an offset that does not follow the previous face");
+      fail(cage.name, "face " + std::to_string(f) + " has an offset that does not follow the previous face");
     expected_offset += n;
     for (int k = 0; k < n; ++k) {
       const int v = cage.face_vertex(f, k);
       if (v < 0 || v >= nv)
-        fail("face " + std::to_string(f) + " has vertex " + std::to_string(v) + " (0-based), but the cage has " +
-             std::to_string(nv) + " vertices");
+        fail(cage.name, "face " + std::to_string(f) + " has vertex " + std::to_string(v) +
+                            " (0-based), but the cage has " + std::to_string(nv) + " vertices");
       if (stamp[v] == f)
-        fail("face " + std::to_string(f) + " is degenerate: it uses vertex " + std::to_string(v) + " (0-based) twice");
+        fail(cage.name, "face " + std::to_string(f) + " is degenerate: it uses vertex " + std::to_string(v) +
+                            " (0-based) twice");
       stamp[v] = f;
     }
   }
-  if (std::size_t(expected_offset) != cage.face_vertices.size()) fail("face_vertices has entries that no face uses");
+  if (std::size_t(expected_offset) != cage.face_vertices.size())
+    fail(cage.name, "face_vertices has entries that no face uses");
   if (cage.has_uvs() && cage.face_uvs.size() != cage.face_vertices.size())
-    fail("face_uvs does not have one entry per face corner");
+    fail(cage.name, "face_uvs does not have one entry per face corner");
 
   hole_.assign(std::size_t(nf), 0);
   for (int f : cage.tags.holes) {
     if (f < 0 || f >= nf)
-      fail("hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces");
+      fail(cage.name, "hole names face " + std::to_string(f) + ", but the cage has " + std::to_string(nf) + " faces");
     hole_[f] = 1;
   }
+}
 
-  // Half-edges and edges.
-  const int nh = expected_offset;
+// Half-edges and edges: each undirected vertex pair once; non-manifold edges are refused first (they
+// also look like orientation errors), then two half-edges running the same way.
+Topology::EdgeIndex Topology::build_edges(const Cage& cage) {
+  const int nf = cage.face_count(), nh = int(cage.face_vertices.size());
   origin_.assign(cage.face_vertices.begin(), cage.face_vertices.end());
   face_.resize(std::size_t(nh));
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < face_sizes_[f]; ++k) face_[face_offsets_[f] + k] = f;
   edge_.assign(std::size_t(nh), -1);
   twin_.assign(std::size_t(nh), -1);
-  std::unordered_map<std::uint64_t, int> edge_of;
+  EdgeIndex edge_of;
   edge_of.reserve(std::size_t(nh));
   std::vector<int> uses;  // per edge: half-edges on it (beyond 2 means non-manifold)
   for (int h = 0; h < nh; ++h) {
@@ -87,29 +101,32 @@ Topology::Topology(const Cage& cage) {
       ++uses[e];
     }
   }
-  // Non-manifold edges first (they also look like orientation errors), then orientation.
   for (int e = 0; e < edge_count(); ++e)
     if (uses[e] > 2) {
       std::vector<int> faces;
       for (int h = 0; h < nh; ++h)
         if (edge_[h] == e) faces.push_back(face_[h]);
       const int h0 = edge_half_edges_[e][0];
-      fail("non-manifold edge between vertices " + std::to_string(origin_[h0]) + " and " +
-           std::to_string(destination(h0)) + " (0-based): used by " + std::to_string(uses[e]) + " faces (" +
-           join(faces) + "); an edge may have at most two");
+      fail(cage.name, "non-manifold edge between vertices " + std::to_string(origin_[h0]) + " and " +
+                          std::to_string(destination(h0)) + " (0-based): used by " + std::to_string(uses[e]) +
+                          " faces (" + join(faces) + "); an edge may have at most two");
     }
   for (int e = 0; e < edge_count(); ++e) {
     const auto [h0, h1] = edge_half_edges_[e];
     if (h1 < 0) continue;
     if (origin_[h0] == origin_[h1])
-      fail("faces " + std::to_string(face_[h0]) + " and " + std::to_string(face_[h1]) +
-           " both use the edge from vertex " + std::to_string(origin_[h0]) + " to " + std::to_string(destination(h0)) +
-           " (0-based) in the same direction (inconsistent orientation)");
+      fail(cage.name, "faces " + std::to_string(face_[h0]) + " and " + std::to_string(face_[h1]) +
+                          " both use the edge from vertex " + std::to_string(origin_[h0]) + " to " +
+                          std::to_string(destination(h0)) + " (0-based) in the same direction (inconsistent orientation)");
     twin_[h0] = h1;
     twin_[h1] = h0;
   }
+  return edge_of;
+}
 
-  // Rings: outgoing half-edges grouped by vertex (CSR), then each fan walked counter-clockwise.
+// Rings: outgoing half-edges grouped by vertex (CSR), then each fan walked counter-clockwise.
+void Topology::build_rings(const std::string& name, int nv) {
+  const int nh = int(origin_.size());
   ring_offsets_.assign(std::size_t(nv) + 1, 0);
   for (int h = 0; h < nh; ++h) ++ring_offsets_[origin_[h] + 1];
   for (int v = 0; v < nv; ++v) ring_offsets_[v + 1] += ring_offsets_[v];
@@ -141,8 +158,8 @@ Topology::Topology(const Cage& cage) {
       if (h == start) break;
     }
     if (boundary_starts > 1 || walked != count)
-      fail("non-manifold vertex " + std::to_string(v) + " (0-based): its " + std::to_string(count) +
-           " faces form more than one fan");
+      fail(name, "non-manifold vertex " + std::to_string(v) + " (0-based): its " + std::to_string(count) +
+                     " faces form more than one fan");
     boundary_[v] = boundary_starts == 1;
     valence_[v] = count + (boundary_starts == 1 ? 1 : 0);
   }
@@ -150,18 +167,22 @@ Topology::Topology(const Cage& cage) {
     warnings_.push_back(name + ": " + std::to_string(isolated_.size()) +
                         " isolated vertices (used by no face; ignored), first " + std::to_string(isolated_.front()) +
                         " (0-based)");
+}
 
-  // Sharpness from the tags.
+// Sharpness from the tags; a crease on two vertices that share no edge is left out with a warning.
+void Topology::read_tags(const Cage& cage, const EdgeIndex& edge_of) {
+  const int nv = cage.vertex_count();
   corner_sharpness_.assign(std::size_t(nv), 0.0f);
   edge_sharpness_.assign(std::size_t(edge_count()), 0.0f);
   sharp_at_.assign(std::size_t(nv), 0);
   auto check_sharpness = [&](float s, const std::string& what) {
-    if (!std::isfinite(s) || s < 0) fail(what + " has sharpness " + std::to_string(s) + "; it must be finite and >= 0");
+    if (!std::isfinite(s) || s < 0)
+      fail(cage.name, what + " has sharpness " + std::to_string(s) + "; it must be finite and >= 0");
   };
   for (const Corner& c : cage.tags.corners) {
     if (c.vertex < 0 || c.vertex >= nv)
-      fail("corner names vertex " + std::to_string(c.vertex) + ", but the cage has " + std::to_string(nv) +
-           " vertices");
+      fail(cage.name, "corner names vertex " + std::to_string(c.vertex) + ", but the cage has " +
+                          std::to_string(nv) + " vertices");
     check_sharpness(c.sharpness, "corner at vertex " + std::to_string(c.vertex));
     corner_sharpness_[c.vertex] = c.sharpness;
     if (c.sharpness > 0) sharp_at_[c.vertex] = 1;
@@ -170,8 +191,8 @@ Topology::Topology(const Cage& cage) {
   std::string first_missing;
   for (const Crease& c : cage.tags.creases) {
     if (c.v0 < 0 || c.v0 >= nv || c.v1 < 0 || c.v1 >= nv)
-      fail("crease names vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) + ", but the cage has " +
-           std::to_string(nv) + " vertices");
+      fail(cage.name, "crease names vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) +
+                          ", but the cage has " + std::to_string(nv) + " vertices");
     check_sharpness(c.sharpness, "crease " + std::to_string(c.v0) + "-" + std::to_string(c.v1));
     const auto it = edge_of.find(edge_key(c.v0, c.v1));
     if (c.v0 == c.v1 || it == edge_of.end()) {
@@ -182,7 +203,7 @@ Topology::Topology(const Cage& cage) {
     if (c.sharpness > 0) sharp_at_[c.v0] = sharp_at_[c.v1] = 1;
   }
   if (missing)
-    warnings_.push_back(name + ": " + std::to_string(missing) +
+    warnings_.push_back(cage.name + ": " + std::to_string(missing) +
                         " creases name two vertices that share no edge (ignored), first " + first_missing);
 }
 

@@ -49,6 +49,12 @@ glm::vec3 adaptive_patch_color(AdaptivePatchKind kind, int level) {
 
 namespace {
 
+// A screen-space gradient's length floor: a pixel where the domain does not vary (a degenerate patch
+// corner) gets a finite, huge scale instead of a division by zero.
+constexpr float kMinGradientLength = 1e-12f;
+// The height view's divisor floor: a flat surface maps to the middle colour.
+constexpr float kMinHeightRange = 1e-20f;
+
 float gradient_length(const PixelInput<kDebugAttributes>& in, std::size_t a) {
   const float x = in.ddx(a), y = in.ddy(a);
   return std::sqrt(x * x + y * y);
@@ -78,9 +84,9 @@ int region_of(const PatchInfo& p, float u, float v, float w) {
 
 std::array<float, 4> domain_edge_pixels(const PixelInput<kDebugAttributes>& in, bool tri) {
   const auto& a = in.attributes;
-  const float gu = std::max(gradient_length(in, 3), 1e-12f), gv = std::max(gradient_length(in, 4), 1e-12f);
+  const float gu = std::max(gradient_length(in, 3), kMinGradientLength), gv = std::max(gradient_length(in, 4), kMinGradientLength);
   if (tri) {
-    const float gw = std::max(gradient_length(in, 5), 1e-12f);
+    const float gw = std::max(gradient_length(in, 5), kMinGradientLength);
     return {a[3] / gu, a[4] / gv, a[5] / gw, INFINITY};
   }
   return {a[3] / gu, a[4] / gv, (1.0f - a[3]) / gu, (1.0f - a[4]) / gv};
@@ -124,8 +130,8 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
         float su = float(p.inside_segments[0]), sv = float(p.tri ? p.inside_segments[0] : p.inside_segments[1]);
         if (!p.tri && (region == 0 || region == 2)) sv = float(p.edge_segments[std::size_t(region)]);
         if (!p.tri && (region == 1 || region == 3)) su = float(p.edge_segments[std::size_t(region)]);
-        const float pu = 1.0f / (su * std::max(gradient_length(in, 3), 1e-12f));
-        const float pv = 1.0f / (sv * std::max(gradient_length(in, 4), 1e-12f));
+        const float pu = 1.0f / (su * std::max(gradient_length(in, 3), kMinGradientLength));
+        const float pv = 1.0f / (sv * std::max(gradient_length(in, 4), kMinGradientLength));
         c = shade(diverging_color(density_position(std::sqrt(pu * pv) / edge_pixels)));
       }
       break;
@@ -142,9 +148,9 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
         const float cells = std::ldexp(1.0f, f.level);
         const float fu = a[7] * cells, fv = a[8] * cells;
         const float du =
-            std::min(fu - std::floor(fu), std::ceil(fu) - fu) / (cells * std::max(gradient_length(in, 7), 1e-12f));
+            std::min(fu - std::floor(fu), std::ceil(fu) - fu) / (cells * std::max(gradient_length(in, 7), kMinGradientLength));
         const float dv =
-            std::min(fv - std::floor(fv), std::ceil(fv) - fv) / (cells * std::max(gradient_length(in, 8), 1e-12f));
+            std::min(fv - std::floor(fv), std::ceil(fv) - fv) / (cells * std::max(gradient_length(in, 8), kMinGradientLength));
         c = glm::mix(c, glm::vec3(0.1f, 0.1f, 0.14f), 0.5f * line_coverage(std::min(du, dv), 1.0f));
       }
       break;
@@ -185,7 +191,7 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
                                                     glm::vec2(in.ddy(9), in.ddy(10)));
         hgt = height_scale * texel.x + height_bias;
       }
-      c = shade(diverging_color(0.5f + 0.5f * hgt / std::max(height_range, 1e-20f)));
+      c = shade(diverging_color(0.5f + 0.5f * hgt / std::max(height_range, kMinHeightRange)));
       break;
     }
     case DebugView::pick: c = glm::vec3(0.0f); break;  // (returned above)

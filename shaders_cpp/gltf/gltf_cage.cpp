@@ -245,6 +245,21 @@ class InstanceBuilder {
   int gltf_vertices = 0;
 
  private:
+  // A primitive's vertices welded on exact bits: the cage vertex of each, and whether it was the first
+  // occurrence (whose skin weights and morph deltas the cage vertex takes).
+  struct Welded {
+    std::size_t n = 0;
+    std::vector<int> cage_vertex;
+    std::vector<bool> first;
+  };
+  // add_primitive's stages, in order; each fails through the reader, naming `where`.
+  Welded weld(const std::vector<float>& positions);
+  bool add_uvs(const tinygltf::Primitive& prim, const std::string& where, bool want_uvs, std::size_t n);
+  void add_skin(const tinygltf::Primitive& prim, const std::string& where, const Welded& v);
+  void add_targets(const tinygltf::Primitive& prim, const std::string& where, const Welded& v);
+  // uv_base: the primitive's first entry in cage.uvs, -1 without texture coordinates.
+  void add_faces(const tinygltf::Primitive& prim, const std::string& where, const Welded& v, int uv_base);
+
   const Reader& r_;
   const tinygltf::Model& m_;
   Cage& cage_;
@@ -253,25 +268,34 @@ class InstanceBuilder {
   std::unordered_map<WeldKey, int, WeldHash> weld_;
 };
 
+int attribute(const tinygltf::Primitive& prim, const char* name) {
+  const auto it = prim.attributes.find(name);
+  return it == prim.attributes.end() ? -1 : it->second;
+}
+
 void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
   const tinygltf::Mesh& gm = m_.meshes[std::size_t(mesh)];
   const tinygltf::Primitive& prim = gm.primitives[std::size_t(p)];
   const std::string where = named("mesh", mesh, gm.name) + " primitive " + std::to_string(p);
-  const auto attr = [&](const char* name) {
-    const auto it = prim.attributes.find(name);
-    return it == prim.attributes.end() ? -1 : it->second;
-  };
-  const int pos_acc = attr("POSITION");
+  const int pos_acc = attribute(prim, "POSITION");
   if (pos_acc < 0) r_.fail(where, "has no POSITION");
   if (r_.component_type(pos_acc, where) != TINYGLTF_COMPONENT_TYPE_FLOAT)
     r_.fail(where, "POSITION is not float (quantized positions are not read)");
   const std::vector<float> pos = r_.read_floats(pos_acc, 3, where, "POSITION");
-  const std::size_t n = pos.size() / 3;
-  gltf_vertices += int(n);
+  gltf_vertices += int(pos.size() / 3);
+  const Welded v = weld(pos);
+  const int uv_base = int(cage_.uvs.size());
+  const bool uvs = add_uvs(prim, where, want_uvs, v.n);
+  add_skin(prim, where, v);
+  add_targets(prim, where, v);
+  add_faces(prim, where, v, uvs ? uv_base : -1);
+}
 
-  // Welding on exact bits, within this instance, first occurrence first.
-  std::vector<int> cage_vertex(n);
-  std::vector<bool> first(n, false);
+InstanceBuilder::Welded InstanceBuilder::weld(const std::vector<float>& pos) {
+  const std::size_t n = pos.size() / 3;
+  Welded w{n, std::vector<int>(n), std::vector<bool>(n, false)};
+  std::vector<int>& cage_vertex = w.cage_vertex;
+  std::vector<bool>& first = w.first;
   for (std::size_t i = 0; i < n; ++i) {
     WeldKey k{{std::bit_cast<std::uint32_t>(pos[3 * i]), std::bit_cast<std::uint32_t>(pos[3 * i + 1]),
                std::bit_cast<std::uint32_t>(pos[3 * i + 2])}};
@@ -286,19 +310,28 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
     }
     cage_vertex[i] = it->second;
   }
+  return w;
+}
 
+bool InstanceBuilder::add_uvs(const tinygltf::Primitive& prim, const std::string& where, bool want_uvs,
+                              std::size_t n) {
   // Texture coordinates: one per glTF vertex, indexed per corner.
-  const int uv_acc = attr("TEXCOORD_0");
+  const int uv_acc = attribute(prim, "TEXCOORD_0");
   if ((uv_acc >= 0) != want_uvs)
     r_.fail(where, want_uvs ? "has no TEXCOORD_0 while the cage's other primitives have it"
                             : "has TEXCOORD_0 while the cage's first primitive has none");
-  const int uv_base = int(cage_.uvs.size());
   if (uv_acc >= 0) {
     if (r_.count(uv_acc, where) != n) r_.fail(where, "TEXCOORD_0 and POSITION have different counts");
     const std::vector<float> uv = r_.read_floats(uv_acc, 2, where, "TEXCOORD_0");
     for (std::size_t i = 0; i < n; ++i) cage_.uvs.push_back({uv[2 * i], uv[2 * i + 1]});
   }
+  return uv_acc >= 0;
+}
 
+void InstanceBuilder::add_skin(const tinygltf::Primitive& prim, const std::string& where, const Welded& welded) {
+  const std::size_t n = welded.n;
+  const std::vector<int>& cage_vertex = welded.cage_vertex;
+  const std::vector<bool>& first = welded.first;
   // Skin influences.
   const RigInstance& inst = rig_.instances[std::size_t(instance_)];
   if (inst.skin >= 0) {
@@ -310,7 +343,8 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
     std::vector<double> joints(n * 8, 0.0), weights(n * 8, 0.0);
     bool any = false;
     for (int set = 0; set < 2; ++set) {
-      const int ja = attr(set == 0 ? "JOINTS_0" : "JOINTS_1"), wa = attr(set == 0 ? "WEIGHTS_0" : "WEIGHTS_1");
+      const int ja = attribute(prim, set == 0 ? "JOINTS_0" : "JOINTS_1");
+      const int wa = attribute(prim, set == 0 ? "WEIGHTS_0" : "WEIGHTS_1");
       if ((ja < 0) != (wa < 0))
         r_.fail(where,
                 "has JOINTS_" + std::to_string(set) + " without WEIGHTS_" + std::to_string(set) + " or the reverse");
@@ -360,7 +394,10 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
     rig_.joints.resize(rig_.bind_positions.size(), {});
     rig_.weights.resize(rig_.bind_positions.size(), {});
   }
+}
 
+void InstanceBuilder::add_targets(const tinygltf::Primitive& prim, const std::string& where, const Welded& v) {
+  const RigInstance& inst = rig_.instances[std::size_t(instance_)];
   // Morph targets' position deltas.
   if (int(prim.targets.size()) != inst.target_count)
     r_.fail(where, "has " + std::to_string(prim.targets.size()) + " morph targets, the mesh's first primitive " +
@@ -370,13 +407,17 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
     deltas.resize(rig_.bind_positions.size(), glm::vec3(0.0f));
     const auto it = prim.targets[std::size_t(t)].find("POSITION");
     if (it == prim.targets[std::size_t(t)].end()) continue;
-    if (r_.count(it->second, where) != n)
+    if (r_.count(it->second, where) != v.n)
       r_.fail(where, "morph target " + std::to_string(t) + " and POSITION have different counts");
     const std::vector<float> d = r_.read_floats(it->second, 3, where, "target " + std::to_string(t) + " POSITION");
-    for (std::size_t i = 0; i < n; ++i)
-      if (first[i]) deltas[std::size_t(cage_vertex[i])] = {d[3 * i], d[3 * i + 1], d[3 * i + 2]};
+    for (std::size_t i = 0; i < v.n; ++i)
+      if (v.first[i]) deltas[std::size_t(v.cage_vertex[i])] = {d[3 * i], d[3 * i + 1], d[3 * i + 2]};
   }
+}
 
+void InstanceBuilder::add_faces(const tinygltf::Primitive& prim, const std::string& where, const Welded& v,
+                                int uv_base) {
+  const std::size_t n = v.n;
   // Triangles, then polygons.
   if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) return;  // the caller warned
   std::vector<std::uint32_t> index;
@@ -424,8 +465,8 @@ void InstanceBuilder::add_primitive(int mesh, int p, bool want_uvs) {
     cage_.face_offsets.push_back(int(cage_.face_vertices.size()));
     cage_.face_sizes.push_back(int(poly.size()));
     for (const std::uint32_t i : poly) {
-      cage_.face_vertices.push_back(cage_vertex[i]);
-      if (uv_acc >= 0) cage_.face_uvs.push_back(uv_base + int(i));
+      cage_.face_vertices.push_back(v.cage_vertex[i]);
+      if (uv_base >= 0) cage_.face_uvs.push_back(uv_base + int(i));
     }
   }
 }

@@ -90,9 +90,10 @@ struct LodModel {
   bool displaced = false;
 };
 // Fills factors.per_edge from the LOD (nothing for uniform) and `cull` from the cull mode, with the
-// displacement's bound in every LOD sphere and cull bound; returns the LOD's settings. Displaced patches carry no orientation claim, so they get no back-patch test. (Under a
-// view-dependent LOD the displacement's sampling LOD moves with the camera: the caller blends its mip
-// levels, Displacement::trilinear, so the surface does not pop between levels.)
+// displacement's bound in every LOD sphere and cull bound; returns the LOD's settings. Displaced
+// patches carry no orientation claim, so they get no back-patch test. (Under a view-dependent LOD
+// the displacement's sampling LOD moves with the camera: the caller blends its mip levels,
+// Displacement::trilinear, so the surface does not pop between levels.)
 // FactorSettingError for values out of range, or a view-dependent LOD with per-edge or varied factors.
 LodSettings apply_lod(const LodRequest& r, const LodView& view, const LodModel& model, SubdFactors& factors,
                       PatchCull& cull);

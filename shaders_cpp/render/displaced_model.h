@@ -38,9 +38,9 @@ struct DisplacementOptions {
   DisplacementSpace space = DisplacementSpace::tangent;  // vector maps only
   std::string normal_map = "auto";
   bool flip_v = true;  // OBJ UVs have v up: flipped for the texture (glTF cages are not); watertight_uv.h
-  // Seams (issue 22): the displacement map padded beyond and on its charts' borders (chart_padding.h),
-  // shading from each patch's own chart, and normals blended across UV seams (DisplacedPS). Off: the
-  // map as the file holds it, and the shading of before (the seam test's "before").
+  // Seams: the displacement map padded beyond and on its charts' borders (chart_padding.h), shading
+  // from each patch's own chart, and normals blended across UV seams (DisplacedPS). Off: the map as the
+  // file holds it, each seam point shaded from its sampling chart (the seam test's reference).
   bool pad_charts = true;
   bool own_chart_shading = true;
   bool seam_blending = true;

@@ -15,7 +15,7 @@
 // - the normal (and the tangent frame) is the owner frame's, evaluated at the owner's parameter from
 //   control vectors both patches computed from the same stencils (`exact` uses the limit surface's own
 //   normals, which it already evaluates by owner; only its tangent comes from the frame);
-// - the LOD is a function of shared data only (the rule, also in ARCHITECTURE.md):
+// - the LOD is a function of shared data only (the rule, also in shaders_cpp/displacement/README.md):
 //     edge point:    log2(texel length of the owner's UV edge / that edge's factor);
 //     vertex point:  the same for the vertex owner's outgoing edge;
 //     interior:      log2(max(Lu / inside_u, Lv / inside_v)), Lu and Lv the longer texel length of
@@ -143,7 +143,7 @@ struct DisplacedHS {
 //
 // Why two: on a UV seam the owner's UV lies in the other face's chart. Interpolated across a triangle
 // whose other vertices lie in this patch's chart, it would sweep the texture between the two charts and
-// shade the row of triangles along every seam from texels of neither (the seam lines of issue 22). So
+// shade the row of triangles along every seam from texels of neither (visible seam lines). So
 // where the owner's chart is not this patch's (the non-owner side of a seam edge, a seam vertex owned
 // by another chart), shading takes the patch's own UV and its own derivatives; everywhere else it takes
 // exactly the sampling data, whose bits both sides of an ordinary edge share.
@@ -393,7 +393,7 @@ struct DisplacedDS {
     nn.store(nn_lanes);
     scale.store(scale_lanes);
     for (std::size_t k = 0; k < count; ++k)
-      if (scale_lanes[k] > 0.0f && nn_lanes[k] <= 1e-10f * scale_lanes[k]) return false;
+      if (scale_lanes[k] > 0.0f && nn_lanes[k] <= kParallelDerivatives * scale_lanes[k]) return false;
     const F8 len = simd::sqrt(nn);
     std::array<float, 8> nx_unit, ny_unit, nz_unit, len_lanes;
     (nx / len).store(nx_unit);

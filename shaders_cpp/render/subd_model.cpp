@@ -13,6 +13,7 @@
 #include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/subdiv/control_point_prepass.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
+#include "tessellator/check.h"
 
 namespace tessera {
 namespace {
@@ -156,7 +157,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
 }
 
 void set_pose(SubdModel& m, RigPose pose) {
-  if (!m.rig) throw std::logic_error("set_pose: the model of " + m.cage.name + " has no rig");
+  TESSERA_CHECK(m.rig, "set_pose: the model of", m.cage.name, "has no rig");
   m.posed_positions = pose_positions(*m.rig, pose);
   m.pose = std::move(pose);
   // The passes before the draw see the surface the vertex shader will output: normals and ring boxes

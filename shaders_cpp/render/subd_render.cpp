@@ -24,11 +24,14 @@ glm::vec3 default_view_direction(glm::vec3 up) {
   return glm::vec3(glm::normalize(r));
 }
 
+// The smallest bounding radius a camera frames: a cage of one point still gets a finite view.
+constexpr float kMinFramedRadius = 1e-6f;
+
 SubdCamera look_at(std::span<const glm::vec3> bounds, int width, int height, float fov_degrees, glm::vec3 eye,
                    glm::vec3 target, glm::vec3 up) {
   const Box3 box = bounding_box(bounds);
   const glm::vec3 centre = box.centre();
-  const float radius = std::max(1e-6f, 0.5f * glm::length(box.hi - box.lo));
+  const float radius = std::max(kMinFramedRadius, 0.5f * glm::length(box.hi - box.lo));
   SubdCamera c;
   c.eye = eye;
   c.target = target;
@@ -46,7 +49,7 @@ SubdCamera frame_cage(const Cage& cage, int width, int height, float fov_degrees
                       std::optional<glm::vec3> target, glm::vec3 up) {
   const Box3 box = bounding_box(cage.positions);
   const glm::vec3 centre = box.centre();
-  const float radius = std::max(1e-6f, 0.5f * glm::length(box.hi - box.lo));
+  const float radius = std::max(kMinFramedRadius, 0.5f * glm::length(box.hi - box.lo));
   const float aspect = float(width) / float(height);
   const float fov = glm::radians(fov_degrees);
   const float fit = std::min(fov, 2.0f * std::atan(std::tan(0.5f * fov) * aspect));

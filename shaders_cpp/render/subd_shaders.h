@@ -38,6 +38,10 @@
 
 namespace tessera {
 
+// |du x dv|^2 at or below this fraction of |du|^2 |dv|^2 (an angle under about 1e-5 radians): the two
+// derivatives are parallel to round-off, and the normal is taken a step into the patch instead.
+inline constexpr float kParallelDerivatives = 1e-10f;
+
 struct SubdVertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f};  // pn only
@@ -502,7 +506,7 @@ struct SubdDS {
       // anyone's: the normal is taken a step into the patch, where the surface's tangent plane is
       // spanned (the limit of the normal there). Such a corner belongs to one patch only.
       const float scale = glm::dot(p.du, p.du) * glm::dot(p.dv, p.dv);
-      if (scale > 0.0f && glm::dot(n, n) <= 1e-10f * scale) {
+      if (scale > 0.0f && glm::dot(n, n) <= kParallelDerivatives * scale) {
         constexpr float step = 1.0f / 1024.0f;
         DomainLocation inner = loc;
         if (triangles) {

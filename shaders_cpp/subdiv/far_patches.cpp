@@ -14,6 +14,7 @@
 
 #include "shaders_cpp/subdiv/osd_refiner.h"
 #include "shaders_cpp/subdiv/single_crease_basis.h"
+#include "tessellator/check.h"
 
 namespace tessera::subdiv {
 
@@ -83,11 +84,9 @@ struct FarPatches::Impl {
 
   const far::PatchTable::PatchHandle& find(int face, int k, double s, double t) const {
     const int first = face >= 0 && face < int(sizes.size()) ? first_ptex_face[std::size_t(face)] : -1;
-    if (first < 0) throw std::logic_error("FarPatches: face " + std::to_string(face) + " has no patches");
+    TESSERA_CHECK(first >= 0, "FarPatches: face", face, "has no patches");
     const far::PatchTable::PatchHandle* h = map->FindPatch(first + (sizes[std::size_t(face)] == 4 ? 0 : k), s, t);
-    if (!h)
-      throw std::logic_error("FarPatches: no patch at face " + std::to_string(face) + " (" + std::to_string(s) + ", " +
-                             std::to_string(t) + ")");
+    TESSERA_CHECK(h, "FarPatches: no patch at face", face, "s", s, "t", t);
     return *h;
   }
   // A regular patch's single crease (0: none). Far keeps a sharpness for end caps too; they ignore it.
@@ -146,9 +145,8 @@ FarPatches::~FarPatches() = default;
 
 void FarPatches::repose(std::span<const glm::vec3> positions) {
   Impl& m = *impl_;
-  if (positions.size() != std::size_t(m.refiner->GetLevel(0).GetNumVertices()))
-    throw std::logic_error("FarPatches::repose: " + std::to_string(positions.size()) + " positions for " +
-                           std::to_string(m.refiner->GetLevel(0).GetNumVertices()) + " vertices");
+  TESSERA_CHECK_EQ(positions.size(), std::size_t(m.refiner->GetLevel(0).GetNumVertices()),
+                   "FarPatches::repose: one position per cage vertex");
   if (!m.stencils) m.make_stencils();
   m.place(positions);
 }

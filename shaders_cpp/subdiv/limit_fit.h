@@ -18,10 +18,8 @@
 //   the two patches on such an edge toward the limit's tangent plane.
 // - fit_inward_derivative: the limit's derivative across an edge, for the normal on a semi-sharp
 //   crease line, where the limit is smooth but a patch's own derivative is not.
-// Measured (gregory against the exact limit, OpenSubdiv's creased shapes): largest distance
-// catmark_cube_corner4 8.3e-2 -> 1.4e-2 of the diagonal, catmark_cube_creases0 4.9e-2 -> 1.2e-2,
-// catmark_hole_test2 4.0e-2 -> 1.5e-3, catmark_pyramid_creases2 (triangles) 1.4e-2 -> 4.4e-3; the README
-// has the whole table.
+// How close the fitted patches come to the exact limit on OpenSubdiv's creased shapes: README.md here,
+// "Creased faces fitted to the limit".
 //
 // Contract: triangles and quads, in the patch domains (a quad's is Bfr's own parameterization, corner 0
 // at (0, 0), 1 at (1, 0), 2 at (1, 1), 3 at (0, 1); a triangle is mapped into Bfr's three quad sub-faces

@@ -27,6 +27,7 @@
 
 #include "shaders_cpp/subdiv/far_patches.h"
 #include "shaders_cpp/subdiv/osd_refiner.h"
+#include "tessellator/check.h"
 
 namespace tessera {
 
@@ -385,9 +386,7 @@ LimitSurface LimitSurface::build(const Cage& cage, int level, bool adaptive) {
 
 void LimitSurface::repose(std::span<const glm::vec3> positions) {
   Impl& m = *impl_;
-  if (positions.size() != m.vertex_limit.size())
-    throw std::logic_error("LimitSurface::repose: " + std::to_string(positions.size()) + " positions for a cage of " +
-                           std::to_string(m.vertex_limit.size()) + " vertices");
+  TESSERA_CHECK_EQ(positions.size(), m.vertex_limit.size(), "LimitSurface::repose: one position per cage vertex");
   if (m.far) m.far->repose(positions);
   if (!m.adaptive) m.place_bfr_points(positions);
   m.place_shared();
@@ -535,7 +534,7 @@ SurfacePoint LimitSurface::evaluate_fan(int face, int triangle, float u, float v
 }
 
 LimitSurface::PatchFacts LimitSurface::patch_at_face_frame(int face, int sub, float u, float v) const {
-  if (!impl_->adaptive) throw std::logic_error("LimitSurface::patch_at_face_frame: not the adaptive method");
+  TESSERA_CHECK(impl_->adaptive, "LimitSurface::patch_at_face_frame: the adaptive method only");
   if (!has_surface(face)) bad_query("face " + std::to_string(face) + " has no surface");
   const int n = impl_->sizes[std::size_t(face)];
   const double du = std::clamp(double(u), 0.0, 1.0), dv = std::clamp(double(v), 0.0, 1.0);
@@ -549,7 +548,7 @@ LimitSurface::PatchFacts LimitSurface::patch_at_face_frame(int face, int sub, fl
 }
 
 LimitSurface::PatchCounts LimitSurface::patch_counts() const {
-  if (!impl_->adaptive) throw std::logic_error("LimitSurface::patch_counts: not the adaptive method");
+  TESSERA_CHECK(impl_->adaptive, "LimitSurface::patch_counts: the adaptive method only");
   return impl_->far->counts();
 }
 

@@ -92,7 +92,7 @@ class LimitSurface {
   // Bfr represents the surface exactly (B-spline patches) except within 2^-level (in face
   // parameter) of extraordinary vertices and semi-sharp features, where it closes with Gregory
   // patches. At 10, OpenSubdiv's maximum, every point farther than 1/1024 from such a vertex is
-  // exact to double round-off; closer points carry a small error (measured in ARCHITECTURE.md,
+  // exact to double round-off; closer points carry a small error (measured in README.md here,
   // "Exact limit surface").
   static constexpr int kDefaultApproxLevel = 10;
   static constexpr int kMaxApproxLevel = 10;  // OpenSubdiv 3.5 crashes above 10
@@ -109,7 +109,7 @@ class LimitSurface {
   // what depends on the points is recomputed (Bfr's patch points, Far's points through its kept
   // stencils, each vertex's owned limit, the bounds), so a pose costs a fraction of create() and gives
   // the bits a surface created from the moved cage would. The same CageErrors as create() for a limit
-  // that is not finite; std::logic_error for a wrong count.
+  // that is not finite; a failed TESSERA_CHECK for a wrong count.
   void repose(std::span<const glm::vec3> positions);
 
   LimitSurface(LimitSurface&&) noexcept;
@@ -125,7 +125,7 @@ class LimitSurface {
   int approx_level() const;
   bool adaptive() const;
 
-  // The adaptive method only (std::logic_error otherwise): the patch evaluate() uses at a point given as
+  // The adaptive method only (a failed TESSERA_CHECK otherwise): the patch evaluate() uses at a point given as
   // the domain shader's face frame (a quad's (u,v), a triangle's barycentric (u,v), or fan triangle
   // `sub` of a larger face; coordinates clamped to [0,1]), and the patch table's counts.
   struct PatchFacts {

@@ -9,9 +9,14 @@
 #include "shaders_cpp/render/displaced_render.h"
 #include "tools/scene/common.h"
 #include "tools/verify/weld_check.h"
+#include "tessellator/check.h"
 
 namespace tessera::scene {
 namespace {
+
+// The depth slack of the cage's lines over the surface they lie on (in NDC depth): enough that a line
+// on a crease the surface passes through is not hidden by it, small against the model's depth range.
+constexpr float kCageDepthSlack = 1e-5f;
 
 std::string fixed(float x, int digits) {
   char buf[32];
@@ -93,8 +98,8 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
     if (t.corner_sharpness(v) > 0.0f) corners.push_back(positions[std::size_t(v)]);
   // The cage lies off the surface; where the surface hides it, it is drawn faintly.
   for (const Kind& k : kinds) draw_lines(fb, vp, k.lines, OverlayStyle{k.color, 1.0f, 0.25f, false, 0.0f});
-  for (const Kind& k : kinds) draw_lines(fb, vp, k.lines, OverlayStyle{k.color, k.width, 0.9f, true, 1e-5f});
-  OverlayStyle visible{kinds[0].color, 4.0f, 0.9f, true, 1e-5f};
+  for (const Kind& k : kinds) draw_lines(fb, vp, k.lines, OverlayStyle{k.color, k.width, 0.9f, true, kCageDepthSlack});
+  OverlayStyle visible{kinds[0].color, 4.0f, 0.9f, true, kCageDepthSlack};
   draw_points(fb, vp, positions, visible);
   visible.color = kinds[3].color;
   visible.width = 7.0f;
@@ -304,8 +309,7 @@ ViewOutput render_view(Device& device, ViewKind kind, const ViewInputs& in, cons
       draw_cracks_view(device, in, fb, out);
     return out;
   }
-  if (given == nullptr)
-    throw std::logic_error("render_view: --view " + std::string(to_string(kind)) + " needs the patch tables");
+  TESSERA_CHECK(given != nullptr, "render_view: --view", to_string(kind), "needs the patch tables");
   DebugRender r = debug_view_setup(kind, in, *given, out);
   // The culled view draws what the view culled, from outside, with the view's frustum.
   PatchCull cull = in.cull;
