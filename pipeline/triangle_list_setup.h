@@ -86,6 +86,117 @@ struct VertexFieldSpan {
                 offsetof(V, clip_code) > kBegin && kFields >= 8);
 };
 
+// a <= b in each 32-bit lane (all ones or zero).
+[[gnu::always_inline]] inline __m256i cmple(__m256i a, __m256i b) {
+  return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1));
+}
+
+// The low 16 bits of `lo` and of `hi` in one lane each (an edge's dx or dy fits in 16 bits exactly).
+[[gnu::always_inline]] inline __m256i pack16(__m256i lo, __m256i hi) {
+  return _mm256_or_si256(_mm256_and_si256(lo, _mm256_set1_epi32(0xFFFF)), _mm256_slli_epi32(hi, 16));
+}
+
+// The fields x..finite of the vertices of eight triangles (indices: 24, three per triangle), loaded
+// eight at a time and transposed so that block[v][b][i] holds field 8b + i (VertexFieldSpan::start) of
+// vertex slot v in each lane: 48 loads and six 8x8 transposes instead of 30 gathers, which cost several
+// times as much per element. The last block of eight ends at the span's end and may overlap the one
+// before.
+template <class V>
+[[gnu::always_inline]] inline void load_vertex_fields(const char* base, const std::uint32_t* indices,
+                                                      __m256i (&block)[3][VertexFieldSpan<V>::kBlocks][8]) {
+  using VF = VertexFieldSpan<V>;
+  for (std::size_t v = 0; v < 3; ++v) {
+    const char* at[8];
+    for (std::size_t k = 0; k < 8; ++k) at[k] = base + std::size_t(indices[3 * k + v]) * sizeof(V) + VF::kBegin;
+    for (std::size_t b = 0; b < VF::kBlocks; ++b) {
+      for (std::size_t k = 0; k < 8; ++k)
+        block[v][b][k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at[k] + 4 * VF::start(b)));
+      transpose8x8(block[v][b]);
+    }
+  }
+}
+
+// The covered centres of each lane's pixel box when it is at most 4x4 (ScreenPrimitive::box_coverage),
+// as setup_snapped_triangle's coverage bits (0 in lanes with larger boxes). Lanes of small boxes with
+// no covered centre leave `keep`. Inlined into setup_triangle_list, whose registers it shares.
+[[gnu::always_inline]] inline __m256i small_box_coverage(const __m256i (&dx)[3], const __m256i (&dy)[3],
+                                                         const __m256i (&ref)[3], __m256i min_x, __m256i max_x,
+                                                         __m256i min_y, __m256i max_y, __m256i& keep) {
+  const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
+  const __m256i three = _mm256_set1_epi32(kSmallBoxPixels - 1);
+  const __m256i width_less_one = _mm256_sub_epi32(max_x, min_x), height_less_one = _mm256_sub_epi32(max_y, min_y);
+  const __m256i small_box = _mm256_and_si256(cmple(width_less_one, three), cmple(height_less_one, three));
+  if (_mm256_testz_si256(small_box, keep)) return zero;
+  __m256i step_x[3], step_y[3], row[3];
+  for (int i = 0; i < 3; ++i) {
+    step_x[i] = _mm256_slli_epi32(_mm256_sub_epi32(zero, dy[i]), kSubpixelBits);
+    step_y[i] = _mm256_slli_epi32(dx[i], kSubpixelBits);
+    row[i] = ref[i];
+  }
+  __m256i found = zero;
+  for (int py = 0; py < kSmallBoxPixels; ++py) {
+    __m256i e[3] = {row[0], row[1], row[2]};
+    for (int px = 0; px < kSmallBoxPixels; ++px) {
+      const __m256i any_negative = _mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31);
+      found = _mm256_or_si256(found, _mm256_andnot_si256(any_negative, _mm256_set1_epi32(int(1u << (px + 8 * py)))));
+      for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], step_x[i]);
+    }
+    for (int i = 0; i < 3; ++i) row[i] = _mm256_add_epi32(row[i], step_y[i]);
+  }
+  // setup_snapped_triangle's column and row masks; srlv gives 0 for the counts of larger boxes.
+  const __m256i columns = _mm256_mullo_epi32(
+      _mm256_sub_epi32(_mm256_sllv_epi32(_mm256_set1_epi32(2), width_less_one), _mm256_set1_epi32(1)),
+      _mm256_set1_epi32(0x01010101));
+  const __m256i rows = _mm256_srlv_epi32(ones, _mm256_slli_epi32(_mm256_sub_epi32(three, height_less_one), 3));
+  const __m256i coverage = _mm256_and_si256(_mm256_and_si256(found, small_box), _mm256_and_si256(columns, rows));
+  keep = _mm256_andnot_si256(_mm256_and_si256(small_box, _mm256_cmpeq_epi32(coverage, zero)), keep);
+  return coverage;
+}
+
+// Stores the kept lanes' records (fields `f`, TriangleRecordLayout L) to consecutive new slots of the
+// chunk and bins each by its pixel box, in lane order; one-tile lanes straight from the lanes.
+// Each lane's record is written whole: the other lanes go to the slot after the kept ones (storage past
+// primitive_count, overwritten later). Blocks are stored last first: the last block's 32 bytes may run
+// past the record into the next slot's first field, which the first block then writes. The caller
+// leaves room for the eight slots, a spare one and that overrun.
+template <class L, std::size_t N>
+[[gnu::always_inline]] inline void store_and_bin(const TileGrid& g, ChunkBuffer<N>& chunk, __m256i (&f)[L::kBlocks * 8],
+                                                 unsigned kept, __m256i min_x, __m256i max_x, __m256i min_y,
+                                                 __m256i max_y) {
+  const __m128i shift = _mm_cvtsi32_si128(g.shift);
+  const auto tile_of = [&](__m256i p) {  // TileGrid::tile_of in each lane
+    return _mm256_srl_epi32(_mm256_mullo_epi32(p, _mm256_set1_epi32(int(g.reciprocal))), shift);
+  };
+  const __m256i tx0 = tile_of(min_x), tx1 = tile_of(max_x), ty0 = tile_of(min_y), ty1 = tile_of(max_y);
+  const std::size_t first = chunk.primitive_count, kept_count = std::size_t(std::popcount(kept));
+  char* slot[8];
+  for (unsigned k = 0; k < 8; ++k) {
+    const bool kept_k = (kept >> k) & 1u;
+    const std::size_t index = kept_k ? first + std::size_t(std::popcount(kept & ((1u << k) - 1u))) : first + kept_count;
+    slot[k] = reinterpret_cast<char*>(&chunk.primitives[index]);
+  }
+  for (std::size_t b = L::kBlocks; b-- > 0;) {
+    __m256i r[8];
+    for (int k = 0; k < 8; ++k) r[k] = f[8 * b + std::size_t(k)];
+    transpose8x8(r);
+    for (int k = 0; k < 8; ++k) _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot[k] + 32 * b), r[k]);
+  }
+  chunk.primitive_count = first + kept_count;
+  alignas(32) std::int32_t tiles[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(tiles),
+                     _mm256_add_epi32(_mm256_mullo_epi32(ty0, _mm256_set1_epi32(g.columns)), tx0));
+  const unsigned one_tile = unsigned(_mm256_movemask_ps(
+      _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpeq_epi32(tx0, tx1), _mm256_cmpeq_epi32(ty0, ty1)))));
+  std::uint32_t index = std::uint32_t(first);
+  for (unsigned rest = kept; rest != 0; rest &= rest - 1, ++index) {
+    const int k = std::countr_zero(rest);
+    if ((one_tile >> k) & 1u)
+      chunk.entries.emplace_back(std::uint32_t(tiles[k]), index);
+    else
+      bin_primitive(g, chunk, index);
+  }
+}
+
 #endif
 
 }  // namespace detail
@@ -94,8 +205,8 @@ struct VertexFieldSpan {
 // [3t + 2] (each below vertex_count) and primitive id first_id + t * id_step. The chunk gets what
 // calling setup_triangle on each triangle in order gives it: the same records, bin entries and
 // statistics.
-// Kept whole: one pass over a group of eight triangles whose transposed vertex fields and lane masks
-// stay in registers from the vertex loads to the record stores; each stage reads most of them.
+// The loads, the small-box coverage and the record stores are always-inline helpers: the group's
+// transposed vertex fields and lane masks stay in registers from the vertex loads to the stores.
 template <std::size_t N>
 void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const SetupVertex<N>* vertices,
                          [[maybe_unused]] std::size_t vertex_count, const std::uint32_t* indices, std::size_t count,
@@ -118,33 +229,16 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
   const __m256i reach_min_x = _mm256_set1_epi32(16 * reach.min_x), reach_max_x = _mm256_set1_epi32(16 * reach.max_x);
   const __m256i reach_min_y = _mm256_set1_epi32(16 * reach.min_y), reach_max_y = _mm256_set1_epi32(16 * reach.max_y);
   const char* const base = reinterpret_cast<const char*>(vertices);
-  // A vertex's fields from x to finite, 4 bytes each (`finite` read with the padding after it), are
-  // loaded eight at a time for the group's 24 vertices and transposed, so that each field is one vector
-  // per vertex slot: 48 loads and six 8x8 transposes instead of 30 gathers, which cost several times as
-  // much per element. The last block of eight ends at the span's end and may overlap the one before.
+  // A vertex's fields from x to finite, 4 bytes each (`finite` read with the padding after it), one
+  // vector per field and vertex slot (load_vertex_fields).
   using VF = detail::VertexFieldSpan<V>;
   const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
   const __m256i id_lanes =
       _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(int(id_step)));
-  const __m128i tile_shift = _mm_cvtsi32_si128(c.tiles.shift);
-  const auto tile_of = [&](__m256i p) {  // TileGrid::tile_of in each lane
-    return _mm256_srl_epi32(_mm256_mullo_epi32(p, _mm256_set1_epi32(int(c.tiles.reciprocal))), tile_shift);
-  };
   constexpr std::size_t kSlack = 10;  // eight lanes' slots, a spare slot, and the last block's overrun
-  const auto cmple = [](__m256i a, __m256i b) {
-    return _mm256_xor_si256(_mm256_cmpgt_epi32(a, b), _mm256_set1_epi32(-1));
-  };
   for (; lanes && t + 8 <= count; t += 8) {
     __m256i block[3][VF::kBlocks][8];
-    for (std::size_t v = 0; v < 3; ++v) {
-      const char* at[8];
-      for (std::size_t k = 0; k < 8; ++k) at[k] = base + std::size_t(indices[3 * (t + k) + v]) * sizeof(V) + VF::kBegin;
-      for (std::size_t b = 0; b < VF::kBlocks; ++b) {
-        for (std::size_t k = 0; k < 8; ++k)
-          block[v][b][k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at[k] + 4 * VF::start(b)));
-        detail::transpose8x8(block[v][b]);
-      }
-    }
+    detail::load_vertex_fields<V>(base, indices + 3 * t, block);
     const auto field = [&](std::size_t v, std::size_t offset) {
       const std::size_t i = (offset - VF::kBegin) / 4, b = VF::block_of(i);
       return block[v][b][i - VF::start(b)];
@@ -197,7 +291,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
         detail::clipped_pixel_box(c, I8(_mm256_sub_epi32(lx, reach_max_x)), I8(_mm256_sub_epi32(hx, reach_min_x)),
                                   I8(_mm256_sub_epi32(ly, reach_max_y)), I8(_mm256_sub_epi32(hy, reach_min_y)));
     const __m256i min_x = box.min_x.v, max_x = box.max_x.v, min_y = box.min_y.v, max_y = box.max_y.v;
-    keep = _mm256_and_si256(keep, _mm256_and_si256(cmple(min_x, max_x), cmple(min_y, max_y)));
+    keep = _mm256_and_si256(keep, _mm256_and_si256(detail::cmple(min_x, max_x), detail::cmple(min_y, max_y)));
     if (_mm256_testz_si256(keep, keep)) continue;
     // Stored with positive area: vertices 1 and 2 swap places in lanes with negative area.
     const __m256i x1 = _mm256_blendv_epi8(xd, xb, positive), x2 = _mm256_blendv_epi8(xb, xd, positive);
@@ -213,38 +307,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       const detail::Edge32<I8> e = detail::edge32(ex[i], ey[i], ex[j], ey[j], cx, cy);
       dx[i] = e.dx.v, dy[i] = e.dy.v, ref[i] = e.ref.v;
     }
-    // The covered centres of a box of at most 4x4 (ScreenPrimitive::box_coverage): each centre tested in
-    // all lanes; other lanes' results are masked off.
-    const __m256i three = _mm256_set1_epi32(kSmallBoxPixels - 1);
-    const __m256i width_less_one = _mm256_sub_epi32(max_x, min_x), height_less_one = _mm256_sub_epi32(max_y, min_y);
-    const __m256i small_box = _mm256_and_si256(cmple(width_less_one, three), cmple(height_less_one, three));
-    __m256i coverage = zero;
-    if (!multisampled && !_mm256_testz_si256(small_box, keep)) {
-      __m256i step_x[3], step_y[3], row[3];
-      for (int i = 0; i < 3; ++i) {
-        step_x[i] = _mm256_slli_epi32(_mm256_sub_epi32(zero, dy[i]), kSubpixelBits);
-        step_y[i] = _mm256_slli_epi32(dx[i], kSubpixelBits);
-        row[i] = ref[i];
-      }
-      __m256i found = zero;
-      for (int py = 0; py < kSmallBoxPixels; ++py) {
-        __m256i e[3] = {row[0], row[1], row[2]};
-        for (int px = 0; px < kSmallBoxPixels; ++px) {
-          const __m256i any_negative = _mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31);
-          found =
-              _mm256_or_si256(found, _mm256_andnot_si256(any_negative, _mm256_set1_epi32(int(1u << (px + 8 * py)))));
-          for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], step_x[i]);
-        }
-        for (int i = 0; i < 3; ++i) row[i] = _mm256_add_epi32(row[i], step_y[i]);
-      }
-      // setup_snapped_triangle's column and row masks; srlv gives 0 for the counts of larger boxes.
-      const __m256i columns = _mm256_mullo_epi32(
-          _mm256_sub_epi32(_mm256_sllv_epi32(_mm256_set1_epi32(2), width_less_one), _mm256_set1_epi32(1)),
-          _mm256_set1_epi32(0x01010101));
-      const __m256i rows = _mm256_srlv_epi32(ones, _mm256_slli_epi32(_mm256_sub_epi32(three, height_less_one), 3));
-      coverage = _mm256_and_si256(_mm256_and_si256(found, small_box), _mm256_and_si256(columns, rows));
-      keep = _mm256_andnot_si256(_mm256_and_si256(small_box, _mm256_cmpeq_epi32(coverage, zero)), keep);
-    }
+    const __m256i coverage = multisampled ? zero : detail::small_box_coverage(dx, dy, ref, min_x, max_x, min_y, max_y, keep);
     const unsigned kept = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(keep)));
     if (kept == 0) continue;
     // Plane equations from the snapped positions, in pixels (setup_snapped_triangle's expressions).
@@ -277,12 +340,8 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
       f[L::kOrigin + 1] = _mm256_castps_si256(pixels(y0));
     }
     // The edges as setup_snapped_triangle stores them: dx and dy in 16 bits (exact), [3] repeating [2].
-    const __m256i low16 = _mm256_set1_epi32(0xFFFF);
-    const auto pack16 = [&](__m256i lo, __m256i hi) {
-      return _mm256_or_si256(_mm256_and_si256(lo, low16), _mm256_slli_epi32(hi, 16));
-    };
-    f[L::kEdgeDx] = pack16(dx[0], dx[1]), f[L::kEdgeDx + 1] = pack16(dx[2], dx[2]);
-    f[L::kEdgeDy] = pack16(dy[0], dy[1]), f[L::kEdgeDy + 1] = pack16(dy[2], dy[2]);
+    f[L::kEdgeDx] = detail::pack16(dx[0], dx[1]), f[L::kEdgeDx + 1] = detail::pack16(dx[2], dx[2]);
+    f[L::kEdgeDy] = detail::pack16(dy[0], dy[1]), f[L::kEdgeDy + 1] = detail::pack16(dy[2], dy[2]);
     for (int i = 0; i < 3; ++i) f[L::kEdgeRef + std::size_t(i)] = ref[i];
     f[L::kBox] = min_x, f[L::kBox + 1] = min_y, f[L::kBox + 2] = max_x, f[L::kBox + 3] = max_y;
     f[L::kPrimitiveId] = _mm256_add_epi32(_mm256_set1_epi32(int(first_id + std::uint32_t(t) * id_step)), id_lanes);
@@ -290,41 +349,7 @@ void setup_triangle_list(const SetupContext& c, ChunkBuffer<N>& chunk, const Set
     f[L::kFlags] = _mm256_or_si256(_mm256_and_si256(front, _mm256_set1_epi32(1 << 8)), _mm256_set1_epi32(1 << 16));
     f[L::kCoverage] = coverage;
     for (std::size_t k = L::kFields; k < L::kBlocks * 8; ++k) f[k] = zero;
-    // Each lane's record whole: kept lanes to consecutive new slots, the others to the slot after them
-    // (storage past primitive_count, overwritten later). Blocks are stored last first: the last block's
-    // 32 bytes may run past the record into the next slot's first field, which the first block then
-    // writes. The storage has room for the eight slots, the spare one and that overrun (kSlack).
-    const std::size_t first = chunk.primitive_count, kept_count = std::size_t(std::popcount(kept));
-    char* slot[8];
-    for (unsigned k = 0; k < 8; ++k) {
-      const bool kept_k = (kept >> k) & 1u;
-      const std::size_t index =
-          kept_k ? first + std::size_t(std::popcount(kept & ((1u << k) - 1u))) : first + kept_count;
-      slot[k] = reinterpret_cast<char*>(&chunk.primitives[index]);
-    }
-    for (std::size_t b = L::kBlocks; b-- > 0;) {
-      __m256i r[8];
-      for (int k = 0; k < 8; ++k) r[k] = f[8 * b + std::size_t(k)];
-      detail::transpose8x8(r);
-      for (int k = 0; k < 8; ++k) _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot[k] + 32 * b), r[k]);
-    }
-    chunk.primitive_count = first + kept_count;
-    // bin_primitive for each kept lane, in lane order; one-tile lanes straight from the lanes.
-    const TileGrid& g = c.tiles;
-    const __m256i tx0 = tile_of(min_x), tx1 = tile_of(max_x), ty0 = tile_of(min_y), ty1 = tile_of(max_y);
-    alignas(32) std::int32_t tiles[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(tiles),
-                       _mm256_add_epi32(_mm256_mullo_epi32(ty0, _mm256_set1_epi32(g.columns)), tx0));
-    const unsigned one_tile = unsigned(_mm256_movemask_ps(
-        _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpeq_epi32(tx0, tx1), _mm256_cmpeq_epi32(ty0, ty1)))));
-    std::uint32_t index = std::uint32_t(first);
-    for (unsigned rest = kept; rest != 0; rest &= rest - 1, ++index) {
-      const int k = std::countr_zero(rest);
-      if ((one_tile >> k) & 1u)
-        chunk.entries.emplace_back(std::uint32_t(tiles[k]), index);
-      else
-        detail::bin_primitive(c.tiles, chunk, index);
-    }
+    detail::store_and_bin<L>(c.tiles, chunk, f, kept, min_x, max_x, min_y, max_y);
   }
 #endif
   for (; t < count; ++t) one_by_one(t);
