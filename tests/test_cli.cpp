@@ -959,18 +959,24 @@ TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit,
       }
     }
   // An open grid with Chaikin creases: the per-face schemes leave exactly the border open, as exact does
-  // (the blended corners of Chaikin crease vertices differed between faces: 108 open edges against 62).
-  auto open_edges = [](const std::string& err) {
-    const auto at = err.find("not watertight (");
-    return at == std::string::npos ? -1 : std::stoi(err.substr(at + 16));
+  // (the blended corners of Chaikin crease vertices must be the same bits from every face).
+  auto weld_of = [](const std::string& scheme_and_grid) {
+    const auto r = run_cli("-q tessellate " + scheme_and_grid + " --json");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return nlohmann::json::parse(r.out)["watertight"];
   };
   const std::string grid = data("osd-shapes/catmark_chaikin2.obj") +
                            " --factor 5 --vary-factors 0.7 --partitioning fractional_odd --check-watertight";
-  const int border = open_edges(run_cli("-q tessellate " + grid + " --scheme exact").err);
-  CHECK(border > 0);
+  const auto exact = weld_of(grid + " --scheme exact");
+  CHECK(exact["crack_edges"] == 0);
+  CHECK(exact["border_edges"].get<int>() > 0);
+  CHECK(exact["open_edges"] == exact["border_edges"]);
   for (const char* scheme : {"gregory", "bspline"}) {
     INFO(scheme);
-    CHECK(open_edges(run_cli("-q tessellate " + grid + " --scheme " + scheme).err) == border);
+    const auto w = weld_of(grid + " --scheme " + scheme);
+    CHECK(w["crack_edges"] == 0);
+    CHECK(w["border_edges"] == exact["border_edges"]);
   }
   // Displaced (the frog's map over the cage's UVs): the owner frames and UVs keep creased edges closed.
   const std::string map =

@@ -160,7 +160,8 @@ TEST_CASE("The crack view does not count the borders of culled patches as cracks
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
-  CHECK(j["open_edges"] == 0);
+  CHECK(j["cracks"]["crack_edges"] == 0);
+  CHECK(j["cracks"]["border_edges"] == 0);
   CHECK(j["patches_culled"].get<int>() > 100);
   // Views of two passes count the surface once: wire-on-shaded reports shaded's triangles.
   std::uint64_t triangles[2] = {0, 0};
@@ -182,11 +183,13 @@ TEST_CASE("The crack view does not count the borders of culled patches as cracks
   const auto front = run_cli("render " + kFrog + " --resolution 160x90 -o " + (dir / "front.png").string());
   REQUIRE(front.exit_code == 0);
   CHECK(front.err.find("faces away") == std::string::npos);
-  // The negative control: an open cage has open edges in the same view, culled or not.
+  // An open cage has border edges in the same view, and no cracks: its boundary is where it ends.
   const auto open = run_cli("render " + test::data("osd-shapes/catmark_edgeonly.obj") +
                             " --view cracks --json --resolution 320x180 -o " + (dir / "open.png").string());
   REQUIRE(open.exit_code == 0);
-  CHECK(nlohmann::json::parse(open.out)["open_edges"].get<int>() > 0);
+  const auto cracks = nlohmann::json::parse(open.out)["cracks"];
+  CHECK(cracks["border_edges"].get<int>() > 0);
+  CHECK(cracks["crack_edges"] == 0);
 }
 
 TEST_CASE("Legends are drawn with the font tessera ships, and never without their text", "[views][cli]") {
@@ -295,13 +298,80 @@ TEST_CASE("The crack finder returns exactly the open and non-manifold edges", "[
   auto edges = w.bad_edges();
   REQUIRE(edges.size() == 4);
   for (const auto& e : edges) {
-    CHECK_FALSE(e.nonmanifold);
+    CHECK(e.kind == verify::WeldEdgeKind::crack);
     const bool diagonal = (e.a == b && e.b == c) || (e.a == c && e.b == b);
     CHECK_FALSE(diagonal);
   }
   w.add_triangle(b, c, glm::vec3(0.5f, 0.5f, 1.0f));  // b-c used a second time the same way
   edges = w.bad_edges();
-  CHECK(std::count_if(edges.begin(), edges.end(), [](const verify::WeldEdge& e) { return e.nonmanifold; }) == 1);
+  CHECK(std::count_if(edges.begin(), edges.end(), [](const verify::WeldEdge& e) { return e.kind == verify::WeldEdgeKind::nonmanifold; }) == 1);
+}
+
+TEST_CASE("An open edge on a curve one patch drew is a border, on a curve two drew or on none a crack", "[views]") {
+  // Two triangles meeting along the curve x = 0 (key 7), each with an outer edge on curve 1 or 2.
+  const glm::vec3 a(0, 0, 0), b(0, 1, 0), c(1, 0, 0), d(-1, 0, 0);
+  const auto weld = [&](bool shared_drawn_twice, bool crack) {
+    verify::WeldChecker w;
+    w.add_triangle(a, c, b);
+    // The second triangle's copy of b is a float step away when `crack`: the shared edge opens.
+    const glm::vec3 b2 = crack ? glm::vec3(0, std::nextafter(1.0f, 2.0f), 0) : b;
+    w.add_triangle(a, b2, d);
+    for (const glm::vec3& p : {a, b, b2}) w.add_curve_point(p, 7);
+    for (const glm::vec3& p : {a, c}) w.add_curve_point(p, 1);
+    for (const glm::vec3& p : {a, d}) w.add_curve_point(p, 2);
+    w.add_curve_use(1), w.add_curve_use(2), w.add_curve_use(7);
+    if (shared_drawn_twice) w.add_curve_use(7);
+    return w;
+  };
+  // Closed along the shared curve: a-c and a-d are border (one patch each); b-c and b-d lie on no curve.
+  verify::WeldReport r = weld(true, false).report();
+  CHECK(r.open_edges == 4);
+  CHECK(r.border_edges == 2);
+  CHECK(r.crack_edges == 2);
+  // The shared curve opened: both copies of it are cracks, for two patches drew that curve ...
+  r = weld(true, true).report();
+  CHECK(r.crack_edges == 4);
+  CHECK(r.border_edges == 2);
+  CHECK_FALSE(r.watertight());
+  // ... and border when only one patch drew it (the other's neighbour culled, or a hole).
+  r = weld(false, true).report();
+  CHECK(r.crack_edges == 2);
+  CHECK(r.border_edges == 4);
+  const auto edges = weld(false, true).bad_edges();
+  CHECK(std::count_if(edges.begin(), edges.end(),
+                      [](const verify::WeldEdge& e) { return e.kind == verify::WeldEdgeKind::border; }) == 4);
+}
+
+TEST_CASE("An open cage is watertight with its boundary as border: the pawn, a hole, a culled neighbour",
+          "[views][cli]") {
+  const auto weld_of = [](const std::string& args) {
+    const auto r = run_cli("-q tessellate " + args + " --check-watertight --json");
+    INFO(args << ": " << r.err);
+    REQUIRE(r.exit_code == 0);
+    return nlohmann::json::parse(r.out)["watertight"];
+  };
+  // The pawn is open at its base: 24 boundary cage edges, factor 8 segments each.
+  for (const char* scheme : {"gregory", "exact", "adaptive", "bspline"}) {
+    INFO(scheme);
+    const auto w = weld_of(test::data("osd-shapes/catmark_pawn.obj") + " --factor 8 --scheme " + scheme);
+    CHECK(w["watertight"] == true);
+    CHECK(w["closed_manifold"] == false);
+    CHECK(w["crack_edges"] == 0);
+    CHECK(w["border_edges"] == 24 * 8);
+  }
+  // A hole (OpenSubdiv's hole tag) and an open sheet with creases: borders only.
+  for (const char* shape : {"catmark_hole_test1", "catmark_chaikin2", "catmark_gregory_test6"}) {
+    INFO(shape);
+    const auto w = weld_of(test::data(std::string("osd-shapes/") + shape + ".obj") + " --factor 3");
+    CHECK(w["crack_edges"] == 0);
+    CHECK(w["border_edges"].get<int>() > 0);
+  }
+  // A camera inside the frog culls patches; their neighbours' edges are border, never cracks.
+  const auto culled = weld_of(kFrog + " --cull frustum --camera-position 20,5,12 --camera-target -3,-2.5,2");
+  CHECK(culled["crack_edges"] == 0);
+  CHECK(culled["border_edges"].get<int>() > 0);
+  const auto whole = weld_of(kFrog + " --cull none");
+  CHECK(whole["closed_manifold"] == true);
 }
 
 TEST_CASE("Overlay lines draw where they project, and stay hidden behind the depth buffer", "[views]") {

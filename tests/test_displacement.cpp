@@ -323,14 +323,14 @@ TEST_CASE("Without ownership the displaced frog cracks: per-face UVs at the seam
     DisplacementOptions o = noise_options();
     o.ownership = UvOwnership::per_face;
     const auto naive_uv = weld_displaced(m, make_displacement(m, o), 3.0f, 1.0f, ts::Partitioning::integer);
-    INFO(to_string(s) << ": per-face UVs give " << naive_uv.boundary_edges << " open edges");
-    CHECK(naive_uv.boundary_edges > 0);
+    INFO(to_string(s) << ": per-face UVs give " << naive_uv.open_edges << " open edges");
+    CHECK(naive_uv.open_edges > 0);
     if (s == Scheme::exact) continue;  // the limit surface's normals are owned already
     o = noise_options();
     o.shared_normals = false;
     const auto own_normals = weld_displaced(m, make_displacement(m, o), 3.0f, 1.0f, ts::Partitioning::integer);
-    INFO(to_string(s) << ": per-patch normals give " << own_normals.boundary_edges << " open edges");
-    CHECK(own_normals.boundary_edges > 0);
+    INFO(to_string(s) << ": per-patch normals give " << own_normals.open_edges << " open edges");
+    CHECK(own_normals.open_edges > 0);
   }
 }
 

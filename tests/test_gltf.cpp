@@ -233,7 +233,7 @@ TEST_CASE("glTF: OBJ and glTF inputs of one cage render and tessellate to the sa
   CHECK(out.cage.face_count() == 1292 * 18);  // factor 3: 18 triangles per quad
   const auto w = run_cli("tessellate " + (dir / "g.glb").string() + " --scheme flat --factor 1 --check-watertight");
   CHECK(w.exit_code == 0);
-  CHECK(w.out.find(" 0 open edges") != std::string::npos);
+  CHECK(w.out.find(" 0 crack edges") != std::string::npos);
 }
 
 TEST_CASE("glTF: skins and morph targets pose the cage as their closed forms say", "[gltf]") {
@@ -329,7 +329,7 @@ TEST_CASE("glTF: the skinned, displaced frog is watertight in every pose, the sa
                              " --factor 5 --partitioning fractional_odd --check-watertight" + maps);
       INFO(t << " " << scheme << ": " << r.out << r.err);
       CHECK(r.exit_code == 0);
-      CHECK(r.out.find(" 0 open edges, 0 non-manifold edges") != std::string::npos);
+      CHECK(r.out.find(" 0 crack edges, 0 non-manifold edges") != std::string::npos);
     }
   const auto m = run_cli("tessellate " + kMorph +
                          " --time 0.7 --lod screen --camera-position 10,30,60 "

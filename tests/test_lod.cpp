@@ -100,7 +100,7 @@ TEST_CASE("Screen LOD keeps the frog watertight on exact bits: every scheme, par
         f.per_edge = edge_lod_factors(m.positions(), *m.topology, screen_lod(eye, 16.0f));
         const auto r = weld([&](auto&& sink) { return stream_subd(device, m, f, p, sink); });
         CHECK(r.closed_manifold());
-        CHECK(r.boundary_edges == 0);
+        CHECK(r.open_edges == 0);
         CHECK(r.nonmanifold_edges == 0);
       }
   }

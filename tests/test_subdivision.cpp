@@ -313,7 +313,7 @@ TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, water
   for (const char* cage : {"osd-shapes/catmark_pole64.obj", "osd-shapes/catmark_bishop.obj"}) {
     const verify::WeldReport border =
         weld(load_subd_model(data(cage), Scheme::exact), 2.6f, 1.3f, ts::Partitioning::fractional_even);
-    REQUIRE(border.boundary_edges > 0);
+    REQUIRE(border.open_edges > 0);
     for (Scheme s : {Scheme::bspline, Scheme::gregory}) {
       INFO(cage << " " << to_string(s));
       const SubdModel m = load_subd_model(data(cage), s);
@@ -321,7 +321,7 @@ TEST_CASE("Faces beside high-valence vertices: the control-point pre-pass, water
       const verify::WeldReport r = weld(m, 2.6f, 1.3f, ts::Partitioning::fractional_even);
       CHECK(r.nonmanifold_edges == 0);
       CHECK(r.degenerate_triangles == 0);
-      CHECK(r.boundary_edges == border.boundary_edges);
+      CHECK(r.open_edges == border.open_edges);
     }
   }
 }
@@ -627,7 +627,7 @@ TEST_CASE("gregory draws an n-gon as a fan of Gregory triangles: exact centre, w
     CHECK(fans.precomputed != before);
     const verify::WeldReport posed = weld(fans, 3.0f, 1.0f, ts::Partitioning::fractional_odd);
     CHECK(posed.nonmanifold_edges == 0);
-    CHECK(posed.boundary_edges == rest.boundary_edges);
+    CHECK(posed.open_edges == rest.open_edges);
   }
   // Close to the limit: the fan's domain mapped into the face's sub-patches as the exact scheme maps it
   // (fan_location); relative to the bounding-box diagonal.
@@ -685,7 +685,7 @@ TEST_CASE("On open cages with n-gons the only open edges are the cage's boundary
         }
       REQUIRE(expected > 0);
       const verify::WeldReport r = weld(m, f, ts::Partitioning::integer);
-      CHECK(r.boundary_edges == expected);
+      CHECK(r.open_edges == expected);
       CHECK(r.nonmanifold_edges == 0);
       CHECK(r.degenerate_triangles == 0);
     }
@@ -699,7 +699,7 @@ TEST_CASE("On an open cage the only open edges are the cage's boundary, factor s
     REQUIRE(boundary > 0);
     const auto r = weld(m, 5.0f, 0.0f, ts::Partitioning::integer);
     INFO(to_string(s));
-    CHECK(r.boundary_edges == std::uint64_t(5 * boundary));
+    CHECK(r.open_edges == std::uint64_t(5 * boundary));
     CHECK(r.nonmanifold_edges == 0);
   }
 }
@@ -718,7 +718,7 @@ TEST_CASE("The weld check sees a crack: one vertex moved by one ulp opens its ed
   CHECK(ok.report().closed_manifold());
   const auto r = cracked.report();
   CHECK_FALSE(r.closed_manifold());
-  CHECK(r.boundary_edges == 4);
+  CHECK(r.open_edges == 4);
 }
 
 TEST_CASE("Regular faces are the B-spline patch: bspline, acc and gregory match the exact limit on the torus",
@@ -875,7 +875,7 @@ TEST_CASE("Exact draws only the faces OpenSubdiv gives a surface: boundary faces
     region_boundary += (drawn[std::size_t(t.face(h0))] > 0) != (h1 >= 0 && drawn[std::size_t(t.face(h1))] > 0);
   }
   const auto r = weld(m, 3.0f, 0.0f, ts::Partitioning::integer);
-  CHECK(r.boundary_edges == std::uint64_t(3 * region_boundary));
+  CHECK(r.open_edges == std::uint64_t(3 * region_boundary));
   CHECK(r.nonmanifold_edges == 0);
   CHECK(r.degenerate_triangles == 0);
 }

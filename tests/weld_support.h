@@ -24,7 +24,7 @@ inline constexpr std::array<VaryingFactors, 3> kVaryingFactors = {
 // Welded on exact bits, every edge is used twice, once each way, and no triangle collapsed.
 inline void check_watertight(const verify::WeldReport& r) {
   CHECK(r.closed_manifold());
-  CHECK(r.boundary_edges == 0);
+  CHECK(r.open_edges == 0);
   CHECK(r.nonmanifold_edges == 0);
   CHECK(r.degenerate_triangles == 0);
 }

@@ -244,7 +244,9 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
     add_patch_statistics(s, device, scene->inputs(), *image.tables, scene->lod);
     if (Json a = adaptive_patches_json(scene->model); !a.is_null()) s["adaptive"] = a;
     if (kind == ViewKind::cracks)
-      s["cracks"] = {{"open_edges", out.open_edges}, {"nonmanifold_edges", out.nonmanifold_edges}};
+      s["cracks"] = {{"crack_edges", out.crack_edges},
+                     {"border_edges", out.border_edges},
+                     {"nonmanifold_edges", out.nonmanifold_edges}};
     write_text_atomically(o.stats, json_text(s) + "\n");
   }
   if (o.json) {
@@ -258,7 +260,9 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
             << to_string(kind) << ", " << total.statistics.CInvocations << " triangles, " << total.patches_culled
             << " patches culled, " << total.patches_back_culled << " facing away, " << total.statistics.PSInvocations
             << " pixels shaded";
-  if (kind == ViewKind::cracks) std::cout << ", " << out.open_edges << " open edges";
+  if (kind == ViewKind::cracks)
+    std::cout << ", " << out.crack_edges << " crack edges, " << out.nonmanifold_edges << " non-manifold, "
+              << out.border_edges << " border edges";
   std::cout << "\n";
   return kExitOk;
 }

@@ -10,8 +10,8 @@
 //               "checks": ["watertight", "triangles", "factors_hash", "ds_hash"]}]}
 // The geometry checks trace a change to its stage: `factors_hash` (the hull shader's factors, every
 // patch's raw SV_TessFactor bits), `ds_hash` (the domain shader's output stream: positions and normals
-// bits, in draw order), `triangles`, `watertight` (open and non-manifold edges after welding on exact
-// bits, which must stay what the golden has: zero for a closed asset).
+// bits, in draw order), `triangles`, `watertight` (after welding on exact bits, no crack and no
+// non-manifold edge; the surface's own border is not a crack: surface_weld.h).
 #pragma once
 
 #include <cstdint>
@@ -42,7 +42,7 @@ Suite read_suite(const std::string& path);
 
 // What the geometry checks compare.
 struct GeometryDigest {
-  std::uint64_t triangles = 0, open_edges = 0, nonmanifold_edges = 0;
+  std::uint64_t triangles = 0, crack_edges = 0, border_edges = 0, nonmanifold_edges = 0;
   std::string factors_hash, ds_hash;  // 16 hex digits (FNV-1a 64)
   Json json() const;
 };

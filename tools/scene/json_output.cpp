@@ -95,11 +95,14 @@ Json to_json(const MemoryStats& m) {
 }
 
 Json to_json(const verify::WeldReport& w) {
-  return {{"closed_manifold", w.closed_manifold()},
+  return {{"watertight", w.watertight()},
+          {"closed_manifold", w.closed_manifold()},
           {"triangles", w.triangles},
           {"welded_vertices", w.welded_vertices},
           {"edges", w.edges},
-          {"open_edges", w.boundary_edges},
+          {"open_edges", w.open_edges},
+          {"border_edges", w.border_edges},
+          {"crack_edges", w.crack_edges},
           {"nonmanifold_edges", w.nonmanifold_edges},
           {"degenerate_triangles", w.degenerate_triangles}};
 }

@@ -8,6 +8,7 @@
 #include "shaders_cpp/debug/overlay.h"
 #include "shaders_cpp/render/displaced_render.h"
 #include "tools/scene/common.h"
+#include "tools/scene/surface_weld.h"
 #include "tools/verify/weld_check.h"
 #include "tessellator/check.h"
 
@@ -115,35 +116,41 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
                            std::to_string(corners.size()) + " sharp corners (red dots)");
 }
 
-// The tessellation welded on exact bits over the shaded surface (drawn already); open and non-manifold
-// edges drawn thick. Welded with culling off: a culled patch draws nothing, so the borders of the
-// patches beside it would be open edges, though nothing is missing there. Every edge factor is a
-// function of its cage edge alone (the LOD does not depend on the cull), so the visible patches have
-// the same triangles either way, and the culled ones are checked too.
+// The tessellation welded on exact bits over the shaded surface (drawn already); cracks and non-manifold
+// edges drawn thick, the surface's own border thin in a quiet colour (surface_weld.h). Welded with
+// culling off, so the culled patches are checked too: every edge factor is a function of its cage edge
+// alone (the LOD does not depend on the cull), so the visible patches have the same triangles either
+// way.
 void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, ViewOutput& out) {
   verify::WeldChecker weld;
   PatchCull all = in.cull;
   all.frustum.enabled = false;
   const DrawResult s = stream_surface(device, in.model, in.displacement, in.factors, all, in.partitioning,
-                                      [&](const auto& p, const PatchGroup&) { verify::add_patch_triangles(weld, p); });
+                                      [&](const auto& p, const PatchGroup& g) { add_surface_patch(weld, p, g); });
   if (!s.ok()) {
     out.result = s;
     return;
   }
-  std::vector<OverlayLine> open, nonmanifold;
-  for (const verify::WeldEdge& e : weld.bad_edges()) (e.nonmanifold ? nonmanifold : open).push_back({e.a, e.b});
-  out.open_edges = open.size(), out.nonmanifold_edges = nonmanifold.size();
+  std::vector<OverlayLine> cracks, border, nonmanifold;
+  for (const verify::WeldEdge& e : weld.bad_edges())
+    (e.kind == verify::WeldEdgeKind::crack    ? cracks
+     : e.kind == verify::WeldEdgeKind::border ? border
+                                              : nonmanifold)
+        .push_back({e.a, e.b});
+  out.crack_edges = cracks.size(), out.border_edges = border.size(), out.nonmanifold_edges = nonmanifold.size();
   const glm::mat4& vp = in.view.camera.view_projection;
-  draw_lines(fb, vp, open, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
+  draw_lines(fb, vp, border, OverlayStyle{glm::vec3(0.35f, 0.55f, 0.75f), 1.5f, 1.0f, false, 0.0f});
+  draw_lines(fb, vp, cracks, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
   draw_lines(fb, vp, nonmanifold, OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
   const verify::WeldReport r = weld.report();
   out.legend.title = "cracks: the tessellation welded on exact float bits";
   out.legend.lines = {
       std::to_string(r.triangles) + " triangles, " + std::to_string(r.welded_vertices) + " welded vertices",
-      std::to_string(out.open_edges) + " open edges (red), " + std::to_string(out.nonmanifold_edges) +
-          " non-manifold (orange): " + (r.closed_manifold() ? "watertight" : "NOT watertight")};
-  if (in.cull.frustum.enabled)
-    out.legend.lines.push_back("welded with culling off: culled patches' borders are not cracks");
+      std::to_string(out.crack_edges) + " cracks (red), " + std::to_string(out.nonmanifold_edges) +
+          " non-manifold (orange): " + (r.watertight() ? "watertight" : "NOT watertight")};
+  if (out.border_edges > 0)
+    out.legend.lines.push_back(std::to_string(out.border_edges) + " border edges (blue): where the surface ends");
+  if (in.cull.frustum.enabled) out.legend.lines.push_back("welded with culling off: culled patches are checked too");
 }
 
 void factors_legend(const ViewInputs& in, const PatchTables& tables, Legend& legend) {

@@ -31,7 +31,7 @@ struct ViewOutput {
   DrawResult result;
   Legend legend;
   bool has_legend = false;
-  std::uint64_t open_edges = 0, nonmanifold_edges = 0;  // cracks
+  std::uint64_t crack_edges = 0, border_edges = 0, nonmanifold_edges = 0;  // cracks
 };
 
 // The patch tables of the inputs' draw, measured from the view camera.

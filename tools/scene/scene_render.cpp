@@ -174,7 +174,10 @@ Json scene_summary(const std::string& path, const PreparedScene& scene, const Sc
       {"statistics", to_json(total.statistics)},
       {"times", to_json(total.times)},
       {"memory", to_json(total.memory)}};
-  if (scene.settings.view == ViewKind::cracks) j["open_edges"] = image.out.open_edges;
+  if (scene.settings.view == ViewKind::cracks)
+    j["cracks"] = {{"crack_edges", image.out.crack_edges},
+                   {"border_edges", image.out.border_edges},
+                   {"nonmanifold_edges", image.out.nonmanifold_edges}};
   if (Json a = adaptive_patches_json(scene.model); !a.is_null()) j["adaptive"] = a;
   j["warnings"] = scene.model.cage.warnings;  // what the loader and the scheme left out, one line each
   return j;
