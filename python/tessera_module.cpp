@@ -9,11 +9,14 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "shaders_cpp/animation/animation_sampler.h"
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/gltf/gltf_cage.h"
+#include "shaders_cpp/image_io/image_codec.h"
+#include "tessellator/check.h"
 #include "tools/scene/check_report.h"
 #include "tools/scene/check_suite.h"
 #include "tools/scene/common.h"
@@ -26,12 +29,58 @@ using namespace tessera::scene;
 
 namespace {
 
+// A Python value (str, number, bool, list, dict, None) as JSON, through Python's own encoder.
+Json json_of(const py::handle& value) {
+  const std::string text = py::module_::import("json").attr("dumps")(value).cast<std::string>();
+  return Json::parse(text);
+}
+
+// The settings of a render call: `source` is a scene file (.json), a scene object (a dict), or an
+// asset (an OBJ or glTF cage); `settings` (scene fields by name, as keywords) replace its fields.
+// Relative paths in a scene file are from its folder, elsewhere from the working directory.
+RenderSettings settings_of(const py::object& source, const py::kwargs& settings) {
+  Json root;
+  std::string where = "render()", dir;
+  if (py::isinstance<py::dict>(source)) {
+    root = json_of(source);
+  } else {
+    const std::string path = py::str(source).cast<std::string>();
+    if (std::filesystem::path(path).extension() == ".json") {
+      if (settings.empty()) return read_scene(path);
+      root = scene_json(read_scene(path), std::filesystem::path(path).parent_path().string());
+      where = path, dir = std::filesystem::path(path).parent_path().string();
+    } else {
+      root = Json{{"tessera_scene", 1}, {"asset", path}};
+    }
+  }
+  for (const auto& [key, value] : settings) root[key.cast<std::string>()] = json_of(value);
+  return scene_settings(root, where, dir);
+}
+
 // The scene's image, drawn with `threads` workers (0: all; the bytes are the same for any count).
-SceneImage render_scene_file(const std::string& scene, int threads, std::unique_ptr<PreparedScene>& prepared) {
+SceneImage render_settings(const RenderSettings& s, int threads, std::unique_ptr<PreparedScene>& prepared) {
   if (threads < 0) throw UsageError("threads: " + std::to_string(threads) + " is not >= 0");
-  prepared = prepare_scene(read_scene(scene));
+  prepared = prepare_scene(s);
   Device device(device_options(threads));
   return render_scene(device, *prepared, false);
+}
+
+// The image `tessera render` writes as PNG (the legend of a debug view included), decoded to RGBA8.
+std::vector<std::uint8_t> png_pixels(const SceneImage& image, int& width, int& height) {
+  std::string png;
+  write_scene_image(image, {"render.png", &png});
+  std::vector<std::uint8_t> pixels;
+  const ReadFailure failed = image_codec().read(
+      ImageSource{"render.png",
+                  std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(png.data()), png.size()), ".png"},
+      PixelType::u8, [&](const ImageHeader& h) -> void* {
+        TESSERA_CHECK_EQ(h.channels, 4);
+        width = h.width, height = h.height;
+        pixels.resize(std::size_t(h.width) * std::size_t(h.height) * 4);
+        return pixels.data();
+      });
+  TESSERA_CHECK(!failed, failed.message);
+  return pixels;
 }
 
 py::dict diff_dict(const verify::DiffReport& r) {
@@ -104,32 +153,36 @@ PYBIND11_MODULE(_tessera, m) {
 
   m.def(
       "render",
-      [](const std::string& scene, int threads) {
-        std::unique_ptr<PreparedScene> prepared;
-        SceneImage image;
+      [](const py::object& source, int threads, const py::kwargs& settings) {
+        const RenderSettings s = settings_of(source, settings);
+        std::vector<std::uint8_t> pixels;
+        int width = 0, height = 0;
         {
           py::gil_scoped_release unlocked;
-          image = render_scene_file(scene, threads, prepared);
+          std::unique_ptr<PreparedScene> prepared;
+          const SceneImage image = render_settings(s, threads, prepared);
+          pixels = png_pixels(image, width, height);
         }
-        const Framebuffer& fb = *image.fb;
-        py::array_t<std::uint8_t> out({py::ssize_t(fb.height()), py::ssize_t(fb.width()), py::ssize_t(4)});
-        const std::vector<std::uint8_t>& bytes = fb.color_bytes();
-        std::copy(bytes.begin(), bytes.end(), out.mutable_data());
+        py::array_t<std::uint8_t> out({py::ssize_t(height), py::ssize_t(width), py::ssize_t(4)});
+        std::copy(pixels.begin(), pixels.end(), out.mutable_data());
         return out;
       },
-      py::arg("scene"), py::arg("threads") = 0,
-      "Renders a scene file; the image as an H x W x 4 uint8 array (RGBA, the view without its legend).");
+      py::arg("source"), py::arg("threads") = 0,
+      "Renders a scene file (.json), a scene dict, or an asset (OBJ, glTF), with scene fields as keywords "
+      "(scheme='exact', factor=4, view='factors', resolution=[640, 480], camera={...}); the image `tessera "
+      "render` writes as PNG (a debug view's legend included) as an H x W x 4 uint8 array (RGBA).");
 
   m.def(
       "render_to_file",
-      [](const std::string& scene, const std::string& output, int threads) {
+      [](const py::object& source, const std::string& output, int threads, const py::kwargs& settings) {
+        const RenderSettings s = settings_of(source, settings);
         py::gil_scoped_release unlocked;
         std::unique_ptr<PreparedScene> prepared;
-        const SceneImage image = render_scene_file(scene, threads, prepared);
+        const SceneImage image = render_settings(s, threads, prepared);
         write_scene_image(image, {output});
       },
-      py::arg("scene"), py::arg("output"), py::arg("threads") = 0,
-      "Renders a scene file to an image file, as `tessera render --scene SCENE -o OUTPUT` does.");
+      py::arg("source"), py::arg("output"), py::arg("threads") = 0,
+      "Renders as render() does, to an image file, as `tessera render --scene SCENE -o OUTPUT` does.");
 
   m.def(
       "diff",

@@ -1,12 +1,14 @@
 #!/usr/bin/python3
-"""The `tessera` Python package: render() gives the bytes `tessera render --scene` writes (as an
-H x W x 4 array), diff() gives idiff's verdict, load_cage() the cage, and errors arrive as
+"""The `tessera` Python package: render() gives the image `tessera render` writes (as an H x W x 4
+array, from a scene file, a scene dict or an asset with scene fields as keywords), diff() gives idiff's verdict, load_cage() the cage, and errors arrive as
 tessera.InputError / tessera.UsageError. Usage: python_test.py TESSERA_BIN SOURCE_DIR.
 """
 import os
+import struct
 import subprocess
 import sys
 import tempfile
+import zlib
 
 import numpy
 
@@ -37,6 +39,38 @@ with tempfile.TemporaryDirectory() as tmp:
     other = os.path.join(SOURCE, "golden", "suites", "views", "frog-pn-factors.png")
     d = tessera.diff(cli, other)
     check(d["verdict"] == "failure" and d["exit_code"] == 2 and d["over_fail"] > 0, "diff: a failure with counts")
+    # The array is the image the CLI writes, legend and all: the PNG decoded (by OpenImageIO's reader,
+    # through idiff-compatible diff, whose exact mode compares the decoded pixels).
+    arr_png = os.path.join(tmp, "array.png")
+    def write_png(path, a):
+        h, w, _ = a.shape
+        raw = b"".join(b"\x00" + a[y].tobytes() for y in range(h))
+        chunk = lambda t, d: struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xFFFFFFFF)
+        with open(path, "wb") as f:
+            f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+                    + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+    write_png(arr_png, image)
+    check(tessera.diff(cli, arr_png, exact=True)["identical"], "render(): the CLI's image, pixel for pixel")
+    # An asset with scene fields as keywords: the CLI's image for the same options, a debug view's legend
+    # included.
+    shape = os.path.join(SOURCE, "tests", "data", "osd-shapes", "catmark_pawn.obj")
+    kw = os.path.join(tmp, "kw.png")
+    subprocess.run([TESSERA, "-q", "render", shape, "--view", "factors", "--factor", "3", "--resolution", "160x120",
+                    "-o", kw], check=True, capture_output=True)
+    a = tessera.render(shape, view="factors", factor=3, resolution=[160, 120])
+    write_png(arr_png, a)
+    check(a.shape == (120, 160, 4) and tessera.diff(kw, arr_png, exact=True)["identical"],
+          "render(asset, view=..., factor=..., resolution=...): the CLI's image with its legend")
+    b = tessera.render({"tessera_scene": 1, "asset": shape, "view": "factors", "factor": 3, "resolution": [160, 120]})
+    check(numpy.array_equal(a, b), "render(dict): the same image as keywords")
+    c = tessera.render(scene, resolution=[160, 90])
+    check(c.shape == (90, 160, 4), "a scene file with a keyword over one of its fields")
+    try:
+        tessera.render(shape, shceme="exact")
+        check(False, "a misspelt keyword raises")
+    except tessera.InputError as e:
+        check("shceme" in str(e), "a misspelt keyword: InputError naming it")
     cage = tessera.load_cage(os.path.join(SOURCE, "tests", "data", "sdk-cages", "cube.obj"))
     check(cage["positions"].shape == (8, 3) and len(cage["face_sizes"]) == 6, "load_cage: the cube's 8 vertices, 6 faces")
     try:

@@ -703,7 +703,7 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
   const fs::path dir = test::cli_temp_dir();
   const std::string stats = (dir / "creases-stats.json").string(), png = (dir / "creases.png").string();
   const auto fast =
-      run_cli("render " + cage + " --scheme pn --resolution 32x32 --json --stats " + stats + " -o " + png);
+      run_cli("render " + cage + " --scheme pn --camera-up 0,0,1 --resolution 32x32 --json --stats " + stats + " -o " + png);
   REQUIRE(fast.exit_code == 0);
   const std::string said = "--scheme pn draws the cage's 12 creased edges (12 semi-sharp) smooth";
   CHECK(fast.err.find(said) != std::string::npos);
@@ -724,7 +724,7 @@ TEST_CASE("creases: a scheme that draws tags smooth says so, in the log, --json 
       run_cli("-q render " + data("osd-shapes/catmark_inf_crease0.obj") + " --resolution 32x32 --json -o " + png);
   CHECK(json_of(infsharp.out)["warnings"].empty());
   // The exact scheme honours them: nothing to say.
-  const auto exact = run_cli("render " + cage + " --scheme exact --resolution 32x32 --json -o " + png);
+  const auto exact = run_cli("render " + cage + " --scheme exact --camera-up 0,0,1 --resolution 32x32 --json -o " + png);
   REQUIRE(exact.exit_code == 0);
   CHECK(json_of(exact.out)["warnings"].empty());
   CHECK(exact.err.empty());

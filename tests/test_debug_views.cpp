@@ -174,10 +174,10 @@ TEST_CASE("The crack view does not count the borders of culled patches as cracks
   }
   CHECK(triangles[0] > 0);
   CHECK(triangles[1] == triangles[0]);
-  // An open sheet seen from behind (catmark_edgeonly from the default camera) is named on stderr; the
+  // An open sheet seen from behind (catmark_edgeonly from above) is named on stderr; the
   // frog, a closed surface, is not.
-  const auto back = run_cli("render " + test::data("osd-shapes/catmark_edgeonly.obj") + " --resolution 160x90 -o " +
-                            (dir / "back.png").string());
+  const auto back = run_cli("render " + test::data("osd-shapes/catmark_edgeonly.obj") +
+                            " --camera-position 0.3,6,1 --resolution 160x90 -o " + (dir / "back.png").string());
   REQUIRE(back.exit_code == 0);
   CHECK(back.err.find("faces away from the camera") != std::string::npos);
   const auto front = run_cli("render " + kFrog + " --resolution 160x90 -o " + (dir / "front.png").string());
@@ -474,16 +474,27 @@ TEST_CASE("render and analyze say which axis a cage's shape suggests is up", "[v
   CHECK(nlohmann::json::parse(
             run_cli("analyze " + test::data("gltf-samples/SimpleSkin.gltf") + " --json").out)["up"]["reason"] ==
         "glTF is +y up");
-  const auto r = run_cli("-v render " + bishop + " --resolution 64x36 -o " + (dir / "b.png").string());
+  // The hint is used, and said in one line; the image is the one an explicit +z up gives, and
+  // --print-scene writes that up into the scene.
+  const auto r = run_cli("render " + bishop + " --resolution 64x36 -o " + (dir / "b.png").string());
   REQUIRE(r.exit_code == 0);
-  CHECK(r.err.find("looks +z up") != std::string::npos);
-  CHECK(r.err.find("--camera-up 0,0,1") != std::string::npos);
-  // Given an up, no hint.
-  const auto given =
-      run_cli("-v render " + bishop + " --camera-up 0,0,1 --resolution 64x36 -o " + (dir / "c.png").string());
-  CHECK(given.err.find("looks +z up") == std::string::npos);
-  const auto frog = run_cli("-v render " + kFrog + " --resolution 64x36 -o " + (dir / "f.png").string());
-  CHECK(frog.err.find("looks +z up") == std::string::npos);
+  CHECK(r.err.find("seen +z up, as its shape suggests") != std::string::npos);
+  CHECK(r.err.find("--camera-up 0,1,0 for +y") != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  const auto given = run_cli("render " + bishop + " --camera-up 0,0,1 --resolution 64x36 -o " + (dir / "c.png").string());
+  CHECK(given.err.find("seen +z up") == std::string::npos);
+  CHECK(bytes_of(dir / "b.png") == bytes_of(dir / "c.png"));
+  const auto y_up = run_cli("render " + bishop + " --camera-up 0,1,0 --resolution 64x36 -o " + (dir / "y.png").string());
+  REQUIRE(y_up.exit_code == 0);
+  CHECK(bytes_of(dir / "b.png") != bytes_of(dir / "y.png"));
+  const auto scene = nlohmann::json::parse(run_cli("-q render " + bishop + " --print-scene -").out);
+  CHECK(scene["camera"]["up"] == nlohmann::json::array({0.0, 0.0, 1.0}));
+  const auto frog = run_cli("render " + kFrog + " --resolution 64x36 -o " + (dir / "f.png").string());
+  CHECK(frog.err.find("seen +z up") == std::string::npos);
+  // glTF is +y up by definition: never turned.
+  const auto gltf = run_cli("render " + test::data("gltf-cages/cube.gltf") + " --resolution 64x36 -o " +
+                            (dir / "g.png").string());
+  CHECK(gltf.err.find("seen +z up") == std::string::npos);
 }
 
 TEST_CASE(

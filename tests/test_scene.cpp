@@ -234,6 +234,7 @@ TEST_CASE("configure_scene redoes only what the settings change, and draws as a 
   s.camera.width = 160;
   s.camera.height = 90;
   s.threads = 2;
+  s.view = ViewKind::density;  // a view with a legend: framing keeps its band (view_legend.h)
   const std::unique_ptr<PreparedScene> p = prepare_scene(s);
   REQUIRE(p->factors.per_edge);
   const auto* table = p->factors.per_edge.get();

@@ -147,7 +147,7 @@ TEST_CASE("Topology invariants hold on every valid cage and the non-manifold one
     ++valid;
   }
   CHECK(invalid == int(kInvalid.size()));
-  CHECK(valid == 126 - int(kInvalid.size()));  // 118 OpenSubdiv shapes + 8 SDK cages
+  CHECK(valid == 129 - int(kInvalid.size()));  // 121 OpenSubdiv shapes + 8 SDK cages
 }
 
 TEST_CASE("Topology: Euler characteristic of closed and open cages", "[topology]") {

@@ -2,7 +2,8 @@
 suite cases -- the same functions the `tessera` CLI runs, so the bytes are the CLI's.
 
     import tessera
-    image = tessera.render("scene.json")            # H x W x 4 uint8 (RGBA)
+    image = tessera.render("scene.json")            # H x W x 4 uint8 (RGBA): the PNG the CLI writes
+    image = tessera.render("cage.obj", scheme="exact", view="factors", resolution=[640, 480])
     tessera.render_to_file("scene.json", "out.png")  # as `tessera render --scene scene.json -o out.png`
     tessera.diff("a.png", "b.png", fail=0.004)       # idiff 2.4's verdict and metrics, as a dict
     cage = tessera.load_cage("cage.obj")             # positions, face_sizes, face_vertices (OBJ or glTF;

@@ -665,6 +665,34 @@ GltfCage load_gltf_cage(const std::string& path, const GltfSelection& selection)
   return parse_gltf_cage(bytes, path, selection);
 }
 
+// tinygltf's and the JSON parser's error text, short enough for one line: a data URI's payload (often
+// megabytes of base64) becomes its length, the parser's "last read" echo of the input is dropped, and
+// what is left is capped.
+static std::string loader_message(const std::string& raw) {
+  std::string s;
+  for (std::size_t i = 0; i < raw.size();) {
+    if (raw.compare(i, 5, "data:") == 0) {
+      const std::size_t comma = raw.find(',', i);
+      const std::size_t media_end = raw.find_first_of(";,", i);
+      if (comma != std::string::npos && comma - i < 128) {
+        std::size_t end = comma + 1;
+        while (end < raw.size() && (std::isalnum(static_cast<unsigned char>(raw[end])) || raw[end] == '+' ||
+                                    raw[end] == '/' || raw[end] == '='))
+          ++end;
+        s += raw.substr(i, media_end - i) + " URI of " + std::to_string(end - comma - 1) + " base64 characters";
+        i = end;
+        continue;
+      }
+    }
+    s += raw[i++];
+  }
+  if (const std::size_t echo = s.find("; last read: "); echo != std::string::npos) s.erase(echo);
+  s = one_line_message(s);
+  constexpr std::size_t kMax = 200;
+  if (s.size() > kMax) s = s.substr(0, kMax) + " ...";
+  return s;
+}
+
 GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string& path, const GltfSelection& selection) {
   if (bytes.size() > kMaxGltfFileBytes) throw CageError(path + ": more than a glTF reader takes (2 GiB)");
   tinygltf::TinyGLTF loader;
@@ -677,8 +705,7 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), length, base)
              : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length, base);
-  if (!ok)
-    throw CageError(path + ": not a readable glTF 2.0 file (" + one_line_message(err.empty() ? warn : err) + ")");
+  if (!ok) throw CageError(path + ": not a readable glTF 2.0 file (" + loader_message(err.empty() ? warn : err) + ")");
   const Reader r(path, m);
   for (const std::string& e : m.extensionsRequired)
     if (e != "FB_ngon_encoding" && e != "KHR_materials_displacement")

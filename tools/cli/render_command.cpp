@@ -68,7 +68,7 @@ int render_sequence(const RenderOptions& o, bool orbit) {
   const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
   if (!orbit && !scene->model.rig)
     throw UsageError("--frames: " + o.s.cage + " is not animated (no skin, morph target or animation)");
-  const ViewSetup base = orbit ? orbit_base(o.s.camera, scene->model, scene->view, count) : scene->view;
+  const ViewSetup base = orbit ? orbit_base(scene->settings.camera, scene->model, scene->view, count) : scene->view;
   if (orbit && !o.s.camera.eye) view_scene(*scene, base);
   Device device(device_options(o.s.threads));
   std::vector<std::string> partial;
@@ -87,7 +87,7 @@ int render_sequence(const RenderOptions& o, bool orbit) {
       // view (orbit view 0 is the base view itself).
       if (i > 0) {
         if (orbit)
-          view_scene(*scene, orbit_view(o.s.camera, scene->model, base, i, count));
+          view_scene(*scene, orbit_view(scene->settings.camera, scene->model, base, i, count));
         else
           pose_scene(*scene, time);
       }
@@ -206,12 +206,6 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   log_debug(describe_scene(*scene) + ", prepared in " +
             float_text(float(std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count())) +
             " s");
-  if (!o.s.camera.up) {
-    const UpAxisAdvice up = up_axis_advice(o.s.cage, scene->model.cage);
-    if (up.axis == 2)
-      log_debug("hint: " + o.s.cage + " looks +z up (" + up.reason +
-                "); give --camera-up 0,0,1 if it lies on its side");
-  }
   Progress progress("render", "patches", 0);
   Device device(device_options(o.s.threads));
   device.set_progress([&](std::size_t done, std::size_t total) { progress.update(done, total); });

@@ -52,7 +52,8 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
   }
   auto map = std::make_shared<std::unordered_map<std::int64_t, float>>();
   std::string line;
-  int number = 0;
+  int number = 0, outside = 0;
+  constexpr int kNamedOutside = 3;  // lines named one by one; the rest counted
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line[0] == '#') continue;
@@ -68,9 +69,22 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
     if (!edges.count(key))
       throw InputError(where + ": " + std::to_string(a) + " " + std::to_string(b) + " is not an edge of " + cage.name +
                        " (" + std::to_string(cage.vertex_count()) + " vertices; indices count from 0, OBJ's from 1)");
-    // D3D11 rules apply to the value (NaN or <= 0 culls the patch, > 64 clamps): passed through as is.
+    // D3D11's rules apply to the value (<= 0 culls the patches on the edge, > 64 clamps to 64): such
+    // values pass through, named once each. A value that is not finite is refused: in a file it is a
+    // mistake far more often than a test of the cull, which 0 asks for plainly.
+    if (!std::isfinite(*x))
+      throw InputError(where + ": factor '" + value +
+                       "' is not finite (D3D11 culls the patches on an edge whose factor is NaN; give 0 to cull them)");
+    const bool culls = *x <= 0.0f, clamps = *x > 64.0f;
+    if ((culls || clamps) && ++outside <= kNamedOutside)
+      log_info("warning: " + where + ": factor " + value +
+               (culls ? " <= 0: D3D11 culls the patches on this edge (their neighbours' edges become border)"
+                      : " > 64: D3D11 clamps it to 64"));
     (*map)[key] = *x;
   }
+  if (outside > kNamedOutside)
+    log_info("warning: " + file + ": " + std::to_string(outside - kNamedOutside) +
+             " more factors <= 0 (culled) or > 64 (clamped)");
   f.per_edge = std::move(map);
   return f;
 }

@@ -43,7 +43,8 @@ namespace fs = std::filesystem;
 // Reads one scene's fields, naming the file and the field in every error.
 class SceneReader {
  public:
-  explicit SceneReader(std::string path) : path_(std::move(path)), dir_(fs::path(path_).parent_path()) {}
+  // Errors name `where` (the scene file); relative paths are from `dir`.
+  SceneReader(std::string where, fs::path dir) : path_(std::move(where)), dir_(std::move(dir)) {}
 
   [[noreturn]] void fail(const std::string& field, const std::string& message) const {
     throw InputError(path_ + ": \"" + field + "\": " + message);
@@ -131,7 +132,11 @@ RenderSettings read_scene(const std::string& path) {
     throw InputError(path + ": not a JSON scene (" + (colon == std::string::npos ? what : what.substr(colon + 2)) +
                      ")");
   }
-  const SceneReader r(path);
+  return scene_settings(root, path, fs::path(path).parent_path().string());
+}
+
+RenderSettings scene_settings(const Json& root, const std::string& where, const std::string& dir) {
+  const SceneReader r(where, dir);
   r.only(root, "",
          {"tessera_scene",    "asset", "scheme",    "isolation",    "partitioning", "factor",     "vary_factors",
           "factors_per_edge", "lod",   "cull",      "displacement", "camera",       "resolution", "view",

@@ -33,6 +33,9 @@ void add_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_d
 void add_model_settings_options(CLI::App& cmd, RenderSettings& s, PatchCullMode cull_default);
 
 RenderSettings read_scene(const std::string& path);
+// The settings of a scene object (a scene file's JSON): errors name `where`, relative paths are from
+// `dir`. read_scene reads a file through it.
+RenderSettings scene_settings(const Json& root, const std::string& where, const std::string& dir);
 Json scene_json(const RenderSettings& s, const std::string& dir);
 
 // docs/scene.schema.json, compiled in.

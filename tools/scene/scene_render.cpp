@@ -3,6 +3,7 @@
 #include "shaders_cpp/image_io/image_file.h"
 #include "tools/scene/common.h"
 #include "tools/scene/json_output.h"
+#include "tools/scene/model_options.h"
 #include "tools/scene/view_legend.h"
 
 namespace tessera::scene {
@@ -25,6 +26,10 @@ std::unique_ptr<PreparedScene> load_scene(const RenderSettings& s) {
   p->model = load_model(s.cage, s.scheme, s.asset, s.isolation);
   p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
   p->displacement = displacement_option(s.displacement, p->model);
+  if (const UpAxisAdvice up = up_axis_advice(s.cage, p->model.cage); up.axis == 2) {
+    p->suggested_up = glm::vec3(0.0f, 0.0f, 1.0f);
+    p->suggested_up_reason = up.reason;
+  }
   return p;
 }
 }  // namespace
@@ -38,6 +43,7 @@ std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
 std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s) {
   s.cage = cage_or_shipped_frog(s.cage);
   auto p = load_scene(s);
+  if (!s.camera.up) s.camera.up = p->suggested_up;
   // A benchmark's camera must not move when framing improves, or its times stop being comparable
   // across versions: without --camera-position it is the one the benchmarks were first measured
   // with (80 % of the rest cage's bounding sphere, frame_cage).
@@ -51,8 +57,11 @@ std::unique_ptr<PreparedScene> prepare_bench_scene(RenderSettings s) {
   return p;
 }
 
-void configure_scene(PreparedScene& p, const RenderSettings& s) {
+void configure_scene(PreparedScene& p, const RenderSettings& given) {
+  RenderSettings s = given;
+  if (!s.camera.up) s.camera.up = p.suggested_up;
   msaa_option(s.msaa);
+  (void)device_options(s.threads);  // refused here, before the scene says anything
   // The pose first, and only when it changes (the exact scheme rebuilds its limit surface per pose):
   // a model is posed from its rig alone, so the result does not depend on the pose it had.
   // settings.asset always names the model's pose, even when a later step of this call throws.
@@ -67,12 +76,13 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
                          p.settings.factors_file == s.factors_file;
   const bool same_view = same_base && p.derived_from && p.derived_from->camera == s.camera &&
                          p.derived_from->lod == s.lod && p.derived_from->asset == s.asset &&
-                         p.derived_from->two_sided == s.two_sided;
+                         p.derived_from->two_sided == s.two_sided &&
+                         legend_band(p.derived_from->view, s.camera.height) == legend_band(s.view, s.camera.height);
   // Before the LOD: back-patch culling follows the rasterizer's cull mode.
   p.model.two_sided = s.two_sided;
   if (!same_view) {
     SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
-    ViewSetup view = view_option(s.camera, p.model);
+    ViewSetup view = view_option(s.camera, p.model, legend_band(s.view, s.camera.height));
     SubdFactors factors = base;
     PatchCull cull;
     LodResult lod =
@@ -83,6 +93,9 @@ void configure_scene(PreparedScene& p, const RenderSettings& s) {
     p.view = view;
     p.lod = std::move(lod);
   }
+  // Said once, when the scene first draws (a bad setting's error stays the only line).
+  if (!p.configured && !given.camera.up && p.suggested_up)
+    log_info(s.cage + ": seen +z up, as its shape suggests (" + p.suggested_up_reason + "); --camera-up 0,1,0 for +y");
   p.settings = s;
   p.configured = true;
   p.derived_from = s;

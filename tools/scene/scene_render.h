@@ -25,6 +25,10 @@ struct PreparedScene {
   SubdFactors factors;
   PatchCull cull;
   LodResult lod;
+  // The up direction the asset's shape settles where the settings give none: +z for an OBJ cage whose
+  // shape says so (up_axis_hint.h), else none (+y). configure_scene applies it.
+  std::optional<glm::vec3> suggested_up;
+  std::string suggested_up_reason;  // the shape's evidence, in words
   bool configured = false;  // configure_scene has succeeded once: base_factors hold settings' factors
   // The settings `view`, `factors` and `lod` were last computed from by configure_scene; pose_scene
   // and view_scene, which compute them from other inputs, clear it.

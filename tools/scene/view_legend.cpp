@@ -1,10 +1,13 @@
 #include "tools/scene/view_legend.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
 #include "shaders_cpp/image_io/image_file.h"
+#include "shaders_cpp/render/surface_framing.h"
 #include "tools/scene/common.h"
 
 namespace tessera::scene {
@@ -63,9 +66,9 @@ std::vector<std::string> wrap(const std::string& text, std::size_t chars) {
 
 // The legend's text size and its lines as drawn. The size follows the image height (h / 40, 11 to 40
 // pixels; readable at 1280x720). A legend whose longest line does not fit across the image, or whose
-// panel would cover more than half of it, gets a smaller size (down to 7 pixels) and its lines
-// wrapped to the width, so a small image (a suite's 320x180) keeps its text whole and most of its
-// picture.
+// panel with its margins would be taller than the band framing keeps for it (kMaxBottomBand of the
+// height), gets a smaller size (down to 7 pixels) and its lines wrapped to the width, so a small image
+// (a suite's 320x180) keeps its text whole and most of its picture.
 struct LegendLayout {
   int text_size = 11;
   int text_w = 0;  // the longest line's width
@@ -94,7 +97,7 @@ LegendLayout layout_legend(const Legend& legend, int w, int h) {
     const int pad = l.text_size * 2 / 3, line = l.text_size * 5 / 4;
     std::size_t rows = l.title.size() + l.lines.size() + std::size_t(extra_rows);
     for (const auto& sw : l.swatches) rows += sw.second.size();
-    return l.text_w + 4 * pad <= w && int(rows) * line + 3 * pad <= h / 2;
+    return l.text_w + 4 * pad <= w && float(int(rows) * line + 4 * pad) <= kMaxBottomBand * float(h);
   };
   const std::size_t unwrapped = std::string::npos;
   const int first = std::clamp(h / 40, 11, 40);
@@ -109,7 +112,36 @@ LegendLayout layout_legend(const Legend& legend, int w, int h) {
   return l;  // the smallest size, wrapped: taller than half the image, but whole
 }
 
+// Where the legend's panel goes: the first corner (lower left, lower right, upper left, upper right)
+// where it covers no surface (a pixel whose depth is not the clear's 1.0), else the corner where it
+// covers the fewest such pixels.
+std::pair<int, int> legend_corner(const Framebuffer& fb, int panel_w, int panel_h, int pad) {
+  const int w = fb.width(), h = fb.height();
+  const std::array<std::pair<int, int>, 4> corners{{{pad, h - pad - panel_h},
+                                                     {w - pad - panel_w, h - pad - panel_h},
+                                                     {pad, pad},
+                                                     {w - pad - panel_w, pad}}};
+  std::pair<int, int> best = corners[0];
+  std::int64_t fewest = -1;
+  for (const auto& [x0, y0] : corners) {
+    std::int64_t covered = 0;
+    for (int y = std::max(0, y0); y < std::min(h, y0 + panel_h); ++y)
+      for (int x = std::max(0, x0); x < std::min(w, x0 + panel_w); ++x) covered += fb.depth(x, y) < 1.0f ? 1 : 0;
+    if (covered == 0) return {x0, y0};
+    if (fewest < 0 || covered < fewest) fewest = covered, best = {x0, y0};
+  }
+  return best;
+}
+
 }  // namespace
+
+float legend_band(ViewKind kind, int height) {
+  if (kind == ViewKind::shaded || kind == ViewKind::wireframe || kind == ViewKind::wire_on_shaded || height <= 0)
+    return 0.0f;
+  constexpr int kRows = 5;
+  const int text_size = std::clamp(height / 40, 11, 40), line = text_size * 5 / 4, pad = text_size * 2 / 3;
+  return std::min(kMaxBottomBand, float(kRows * line + 4 * pad) / float(height));
+}
 
 void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageTarget& target) {
   const int w = fb.width(), h = fb.height();
@@ -132,7 +164,7 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageT
   const int panel_w = std::min(
       w - 2 * pad, std::max(legend.ramp.empty() ? 0 : bar_w + 2 * pad + 2 * text_size, lay.text_w + 2 * pad));
   const int panel_h = rows * line + 2 * pad;
-  const int x0 = pad, y0 = h - pad - panel_h;
+  const auto [x0, y0] = legend_corner(fb, panel_w, panel_h, pad);
   paint.fill(x0, y0, x0 + panel_w, y0 + panel_h, glm::vec3(1.0f), 0.82f);
   int y = y0 + pad + text_size - line;
   for (const std::string& s : lay.title) paint.text(x0 + pad, y += line, s, text_size, AX::left);

@@ -1,4 +1,5 @@
-// The legend of a debug view: a panel in the image's lower-left corner with a title, lines of text,
+// The legend of a debug view: a panel in a corner of the image (the lower left, unless the surface is
+// there: legend_corner in view_legend.cpp) with a title, lines of text,
 // and a colour bar with tick labels or a list of colour swatches. Text is drawn by the image codec
 // (OpenImageIO's render_text) in DejaVu Sans at a size that follows the image height (readable at 1280x720),
 // smaller and wrapped where the legend would not fit.
@@ -12,6 +13,7 @@
 
 #include "pipeline/framebuffer.h"
 #include "shaders_cpp/image_io/image_file.h"
+#include "tools/scene/render_settings.h"
 
 namespace tessera::scene {
 
@@ -24,6 +26,12 @@ struct Legend {
   // Or swatches: a colour and what it means.
   std::vector<std::pair<glm::vec3, std::string>> swatches;
 };
+
+// The fraction of an image `height` pixels tall that automatic framing keeps clear at the bottom for
+// the legend of view `kind` (none for the views without one): a legend of five rows at the size
+// write_with_legend draws it, with its margins, at most kMaxBottomBand. A taller legend, or a camera
+// placed by hand, may still meet the surface; the legend then takes the corner where it covers least.
+float legend_band(ViewKind kind, int height);
 
 // Writes the framebuffer's colour with the legend drawn over it to `target` (a file, atomically, or
 // memory). The text is drawn in the font shipped with tessera (share/tessera/DejaVuSans.ttf); on a

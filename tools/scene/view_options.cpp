@@ -62,7 +62,7 @@ void check_camera_orientation(const SubdCamera& camera, const CameraSettings& c)
                      "), which leaves its orientation undefined; move it off that axis or give --camera-up");
 }
 
-ViewSetup view_option(const CameraSettings& c, const SubdModel& model) {
+ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bottom_band) {
   ViewSetup v = view_frame(c);
   if (c.eye && c.target && glm::length(*c.eye - *c.target) <= 0.0f)
     throw UsageError("camera position and target coincide");
@@ -75,7 +75,8 @@ ViewSetup view_option(const CameraSettings& c, const SubdModel& model) {
   } else {
     const std::vector<glm::vec3> points = surface_points(model);
     v.camera =
-        fit_camera(points, posed, v.width, v.height, v.fov, default_view_direction(unit_up(c)), c.target, unit_up(c));
+        fit_camera(points, posed, v.width, v.height, v.fov, framing_direction(model, unit_up(c)), c.target, unit_up(c),
+                   kFrameFill, bottom_band);
   }
   check_camera_orientation(v.camera, c);
   return v;

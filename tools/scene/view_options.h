@@ -30,7 +30,9 @@ struct ViewSetup {
   float fov = 35.0f;  // degrees
   SubdCamera camera;
 };
-ViewSetup view_option(const CameraSettings& c, const SubdModel& model);
+// `bottom_band`: the fraction of the image height automatic framing keeps clear at the bottom, for a
+// legend (legend_band); a given camera position ignores it.
+ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bottom_band = 0.0f);
 // --camera-up as a unit vector (+y when not given).
 glm::vec3 unit_up(const CameraSettings& c);
 // The same with the camera's position and target given (a path of cameras).

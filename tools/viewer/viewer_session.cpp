@@ -46,9 +46,9 @@ std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, in
   std::lock_guard lock(mutex_);
   PreparedScene& p = scene_for(s);
   std::vector<RenderSettings> out;
-  const ViewSetup base = orbit_base(s.camera, p.model, p.view, frames);
+  const ViewSetup base = orbit_base(p.settings.camera, p.model, p.view, frames);
   for (int i = 0; i < frames; ++i) {
-    const ViewSetup v = orbit_view(s.camera, p.model, base, i, frames);
+    const ViewSetup v = orbit_view(p.settings.camera, p.model, base, i, frames);
     RenderSettings t = s;
     t.camera.eye = v.camera.eye;
     t.camera.target = v.camera.target;
