@@ -53,6 +53,11 @@ oiiotool "$tmp/original.png" "$tmp/baked.png" --mosaic:pad=4 2x1 --resize 1204x4
 oiiotool "$tmp/d8.png" "$tmp/n8.png" "$tmp/ao8.png" --mosaic:pad=2 3x1 --resize 1204x400 --ch R,G,B,A=1.0 -o "$tmp/bottom.png"
 oiiotool "$tmp/top.png" "$tmp/bottom.png" --mosaic:pad=4 1x2 -d uint8 -o "$out/bake.png"
 rm -r "$tmp"
+# docs/assets.md: an open cage's border in the cracks view, a legend beside a z-up asset, an open sheet.
+shapes="$root/tests/data/osd-shapes"
+"$bin" -q render "$shapes/catmark_hole_test1.obj" --view cracks --resolution 640x480 -o "$out/assets-hole-cracks.png" >/dev/null
+"$bin" -q render "$shapes/catmark_pawn.obj" --view factors --resolution 640x480 -o "$out/assets-pawn-factors.png" >/dev/null
+"$bin" -q render "$shapes/catmark_gregory_test6.obj" --resolution 640x480 -o "$out/assets-open-sheet.png" >/dev/null
 # tessera view's page after the browser test's orbit, view change and pick (needs chromium).
 /usr/bin/python3 "$root/tests/viewer_browser_test.py" "$bin" "$root" --screenshot "$out/viewer.png" >/dev/null
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2

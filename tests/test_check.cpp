@@ -117,6 +117,54 @@ TEST_CASE("A changed scene fails with a diff and leaves the golden, --update rew
   CHECK(fs::exists(dir / "suite/views/frog-pn-factors.png"));
 }
 
+TEST_CASE("A suite runs wherever it is copied: --collect-assets, and a missing asset named in one line",
+          "[check][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "check-move";
+  fs::remove_all(dir);
+  const fs::path home = dir / "a" / "suite";
+  fs::create_directories(home / "scenes");
+  const std::string scene = (home / "scenes" / "pyramid.json").string();
+  REQUIRE(test::run_cli("-q render " + test::data("osd-shapes/catmark_pyramid.obj") +
+                        " --resolution 160x120 --view factors --print-scene " + scene)
+              .exit_code == 0);
+  std::ofstream(home / "suite.json")
+      << R"({"tessera_suite": 1, "name": "moved", "golden": "golden", "cases": [{"name": "pyramid", )"
+      << R"("scene": "scenes/pyramid.json", "compare": "exact", "checks": ["watertight"]}]})";
+  const std::string suite = (home / "suite.json").string();
+  REQUIRE(test::run_cli("-q check --update " + suite + " -o " + (dir / "r0").string()).exit_code == 0);
+  // Moved one folder deeper, the scene's relative path to the asset no longer holds: one line names it.
+  const fs::path away = dir / "b" / "c" / "suite";
+  fs::create_directories(away.parent_path());
+  fs::copy(home, away, fs::copy_options::recursive);
+  const auto lost = test::run_cli("check " + (away / "suite.json").string() + " -o " + (dir / "r1").string());
+  CHECK(lost.exit_code == 1);
+  CHECK(lost.err.find("catmark_pyramid.obj does not exist, nor ") != std::string::npos);
+  CHECK(lost.err.find("--collect-assets") != std::string::npos);
+  // Collected, the suite carries its assets, and runs from anywhere with the same goldens.
+  const auto collect = test::run_cli("check " + suite + " --collect-assets");
+  INFO(collect.err);
+  REQUIRE(collect.exit_code == 0);
+  CHECK(fs::exists(home / "assets" / "catmark_pyramid.obj"));
+  fs::remove_all(away);
+  fs::copy(home, away, fs::copy_options::recursive);
+  const auto moved = test::run_cli("check " + (away / "suite.json").string() + " -o " + (dir / "r2").string());
+  INFO(moved.err);
+  CHECK(moved.exit_code == 0);
+  // A suite whose scenes were left as they were, with the assets folder copied beside it, runs too.
+  fs::remove_all(away);
+  fs::copy(home, away, fs::copy_options::recursive);
+  std::ofstream(away / "scenes" / "pyramid.json") << test::run_cli("-q render " + test::data("osd-shapes/catmark_pyramid.obj") +
+                                                                 " --resolution 160x120 --view factors --print-scene -").out;
+  std::string text;
+  {
+    std::ifstream in(away / "scenes" / "pyramid.json");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text = std::regex_replace(text, std::regex(R"("asset": "[^"]*")"), R"("asset": "/nowhere/catmark_pyramid.obj")");
+  std::ofstream(away / "scenes" / "pyramid.json") << text;
+  CHECK(test::run_cli("check " + (away / "suite.json").string() + " -o " + (dir / "r3").string()).exit_code == 0);
+}
+
 TEST_CASE("Shards merge into the single run's report", "[check][cli]") {
   const fs::path dir = test::cli_temp_dir() / "check-shards";
   fs::remove_all(dir);

@@ -617,6 +617,26 @@ TEST_CASE("tessera tessellate --factors-per-edge sets one cage edge's factor on 
   const auto bad = run_cli("tessellate " + cube + " --factors-per-edge " + factors.string() + " --check-watertight");
   CHECK(bad.exit_code == 1);
   CHECK(bad.err.find("factors.txt:1:") != std::string::npos);
+  // Not finite: refused, naming the line and what D3D11 would do.
+  for (const char* value : {"nan", "inf", "-inf"}) {
+    std::ofstream(factors) << "0 1 3\n1 3 " << value << "\n";
+    const auto r = run_cli("-q tessellate " + cube + " --factors-per-edge " + factors.string() + " --check-watertight");
+    INFO(value << ": " << r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("factors.txt:2: factor '" + std::string(value) + "' is not finite (D3D11 culls") !=
+          std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  // Outside D3D11's range: accepted as D3D11 takes it, each named (a cull's neighbours' edges are border).
+  std::ofstream(factors) << "0 1 1e30\n1 3 0\n";
+  const auto odd = run_cli("tessellate " + cube + " --factors-per-edge " + factors.string() + " --check-watertight --json");
+  INFO(odd.err);
+  CHECK(odd.exit_code == 0);
+  CHECK(odd.err.find("factors.txt:1: factor 1e30 > 64: D3D11 clamps it to 64") != std::string::npos);
+  CHECK(odd.err.find("factors.txt:2: factor 0 <= 0: D3D11 culls the patches on this edge") != std::string::npos);
+  const auto w = nlohmann::json::parse(odd.out)["watertight"];
+  CHECK(w["crack_edges"] == 0);
+  CHECK(w["border_edges"].get<int>() > 0);
 }
 
 TEST_CASE("tessera make-cage and analyze --memory: the talk's table, measured renders, one-line errors",

@@ -198,6 +198,13 @@ TEST_CASE("Legends are drawn with the font tessera ships, and never without thei
   const fs::path with = dir / "with.png";
   REQUIRE(run_cli("render " + kFrog + " --view factors" + kCamera + " -o " + with.string()).exit_code == 0);
   CHECK(pixels_near(with, glm::vec3(0.06f, 0.06f, 0.08f)) > 100);  // the text's ink
+  // An image too small for the legend at its smallest size is refused in one line, nothing written.
+  const fs::path tiny = dir / "tiny.png";
+  const auto small = run_cli("render " + kFrog + " --view factors --resolution 16x16 -o " + tiny.string());
+  CHECK(small.exit_code == 1);
+  CHECK(small.err.find("16x16 is too small for the legend") != std::string::npos);
+  CHECK(std::count(small.err.begin(), small.err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(tiny));
   // The binaries alone, without the share/tessera/ beside them: the legend cannot be drawn, so the view
   // fails in one line naming the font and writes nothing; a view without a legend still renders.
   const fs::path bin = dir / "bare" / "bin";
@@ -372,6 +379,21 @@ TEST_CASE("An open cage is watertight with its boundary as border: the pawn, a h
   CHECK(culled["border_edges"].get<int>() > 0);
   const auto whole = weld_of(kFrog + " --cull none");
   CHECK(whole["closed_manifold"] == true);
+}
+
+TEST_CASE("An open sheet is framed from its front: seen, not edge-on or from behind", "[views][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "sheet-framing";
+  fs::create_directories(dir);
+  for (const char* shape : {"catmark_gregory_test6", "catmark_val2_interior", "catmark_edgeonly"}) {
+    const auto r = run_cli("-q render " + test::data(std::string("osd-shapes/") + shape + ".obj") +
+                           " --scheme exact --resolution 160x120 --json -o " + (dir / (std::string(shape) + ".png")).string());
+    INFO(shape << ": " << r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    // Most of the framed image is surface, lit from the front: no patch proven to face away.
+    CHECK(j["pixels_shaded"].get<int>() > 160 * 120 / 4);
+    CHECK(j["patches_facing_away"] == 0);
+  }
 }
 
 TEST_CASE("Overlay lines draw where they project, and stay hidden behind the depth buffer", "[views]") {

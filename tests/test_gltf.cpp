@@ -191,6 +191,32 @@ TEST_CASE("glTF: the frog cage reads back to the OBJ's vertices, faces and UVs, 
   CHECK(p.cage.face_vertices == po.face_vertices);
 }
 
+TEST_CASE("glTF: a damaged file is refused in one short line naming it, without its base64", "[gltf][cli]") {
+  const fs::path dir = test::cli_temp_dir() / "gltf-damaged";
+  fs::create_directories(dir);
+  std::string text;
+  {
+    std::ifstream in(kFrog, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // Cut in the middle of the buffer's data URI (the file ends there), and a URI cut short in valid JSON.
+  const fs::path cut = dir / "cut.gltf", short_uri = dir / "short.gltf";
+  std::ofstream(cut, std::ios::binary) << text.substr(0, text.size() / 2);
+  nlohmann::json j = nlohmann::json::parse(text);
+  const std::string uri = j["buffers"][0]["uri"].get<std::string>();
+  j["buffers"][0]["uri"] = uri.substr(0, uri.size() / 2);
+  std::ofstream(short_uri) << j.dump();
+  for (const fs::path& f : {cut, short_uri}) {
+    const auto r = run_cli("render " + f.string() + " --resolution 32x32 -o " + (dir / "x.png").string());
+    INFO(r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find(f.string() + ": not a readable glTF 2.0 file (") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.size() < 300);
+    CHECK(r.err.find("base64,") == std::string::npos);  // the payload is not quoted
+  }
+}
+
 TEST_CASE("glTF: a triangle mesh without FB_ngon_encoding is a triangle cage, welded on exact bits", "[gltf]") {
   // Khronos' Box: 24 vertices (split by normals), 12 triangles, under a rotating node.
   const GltfCage box = load_gltf_cage(data("gltf-samples/Box.gltf"));

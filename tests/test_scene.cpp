@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <catch2/catch.hpp>
+#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -12,6 +13,7 @@
 #include "tools/scene/common.h"
 #include "tools/scene/scene_file.h"
 #include "tools/scene/scene_render.h"
+#include "tools/scene/view_legend.h"
 
 namespace tessera {
 namespace {
@@ -263,6 +265,48 @@ TEST_CASE("configure_scene redoes only what the settings change, and draws as a 
   configure_scene(*p, c);
   CHECK(p->factors.per_edge.get() != orbit_table);
   CHECK(bytes(*p) == bytes(*prepare_scene(c)));
+}
+
+TEST_CASE("A legend takes the first corner where it covers no surface, and keeps the lower left when free",
+          "[scene][views]") {
+  const fs::path dir = test::cli_temp_dir() / "legend-corner";
+  fs::create_directories(dir);
+  const glm::vec4 background(0.8f, 0.8f, 0.8f, 1.0f), surface(0.2f, 0.4f, 0.6f, 1.0f);  // exact in 8 bits
+  Legend legend;
+  legend.title = "a legend";
+  legend.lines = {"one line of text"};
+  // Returns the pixels of the written image, RGBA8, and the surface's pixels untouched or not.
+  const auto draw = [&](int surface_from_row, const std::string& name) {
+    std::string error;
+    std::optional<Framebuffer> fb = Framebuffer::create(320, 240, ColorFormat::rgba8_unorm, &error);
+    REQUIRE(fb);
+    fb->clear(background, 1.0f);
+    for (int y = surface_from_row; y < 240; ++y)
+      for (int x = 0; x < 320; ++x) fb->set_color(x, y, surface), fb->set_depth(x, y, 0.5f);
+    const std::string path = (dir / name).string();
+    write_with_legend(*fb, legend, {path});
+    auto in = OIIO::ImageInput::open(path);
+    REQUIRE(in);
+    std::vector<std::uint8_t> px(320 * 240 * 4);
+    REQUIRE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
+    return px;
+  };
+  const auto changed = [](const std::vector<std::uint8_t>& px, int y0, int y1, glm::vec4 was) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < 320; ++x)
+        for (int c = 0; c < 3; ++c)
+          n += px[(std::size_t(y) * 320 + std::size_t(x)) * 4 + std::size_t(c)] != std::uint8_t(was[c] * 255.0f + 0.5f);
+    return n;
+  };
+  // The surface covers the lower half: the legend goes to the top, the surface keeps every pixel.
+  const auto low = draw(120, "low.png");
+  CHECK(changed(low, 120, 240, surface) == 0);
+  CHECK(changed(low, 0, 120, background) > 0);
+  // No surface at all: the lower left, where a legend has always been.
+  const auto none = draw(240, "none.png");
+  CHECK(changed(none, 0, 120, background) == 0);
+  CHECK(changed(none, 120, 240, background) > 0);
 }
 
 }  // namespace tessera::scene

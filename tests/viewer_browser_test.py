@@ -109,6 +109,22 @@ def main():
         with open(out, "rb") as f:
             again = f.read()
         check(again == shown, "running the page's command gives the frame's bytes")
+        # The address keeps the settings of the frame on screen, and a link restores them.
+        wait.until(lambda d: "view=patch-type" in d.execute_script("return location.search"))
+        link = driver.execute_script("return location.href")
+        check("camera-position=" in link, f"the address holds the frame's settings ({link})")
+        driver.get(url + "?factor=3&view=factors")
+        frame = driver.find_element(By.ID, "frame")
+        linked = ready_with(lambda q: "factor=3" in q and "view=factors" in q)
+        check(Select(driver.find_element(By.ID, "view")).first_selected_option.get_attribute("value") == "factors"
+              and driver.find_element(By.ID, "factor").get_attribute("value") == "3",
+              f"a link's settings are the page's: view and factor ({linked})")
+        wait.until(lambda d: "--factor 3" in d.find_element(By.ID, "command").text)
+        words = shlex.split(driver.find_element(By.ID, "command").text)
+        expected = os.path.join(work, "linked.png")
+        subprocess.run([binary] + words[1:-1] + [expected, "-q"], check=True)
+        with open(expected, "rb") as f:
+            check(f.read() == shown_bytes(), "the linked frame is the command's render of those settings")
         if screenshot:
             driver.save_screenshot(screenshot)
         print(f"first frame {first_query!r}, views {view_query!r}")

@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 struct CheckOptions {
   std::string suite, report = "check-report", shard;
   std::vector<std::string> merge;
-  bool update = false, json = false;
+  bool update = false, json = false, collect_assets = false;
   int threads = -1;  // -1: each scene file's own (its default: all cores)
 };
 
@@ -113,6 +113,10 @@ int run_check(const CheckOptions& o) {
     return run_merge(o);
   }
   if (o.suite.empty()) throw UsageError("give a SUITE file (or --merge DIR...)");
+  if (o.collect_assets) {
+    for (const std::string& line : collect_suite_assets(read_suite(o.suite))) log_info(line);
+    return kExitOk;
+  }
   if (o.threads < -1 || o.threads > 4096) throw UsageError("--threads: expected 0..4096 (0: all cores)");
   int shard = 1, shards = 1;
   if (!o.shard.empty()) {
@@ -177,6 +181,9 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_option("-o,--report", o->report, "the report directory")->capture_default_str();
   cmd->add_flag("--update", o->update,
                 "write the goldens of failed and new cases from this run (also TESSERA_UPDATE_GOLDEN=1); says which");
+  cmd->add_flag("--collect-assets", o->collect_assets,
+                "copy the files the suite's scenes name into assets/ beside the suite and point the scenes there, "
+                "so the suite runs wherever it is copied");
   cmd->add_option("--shard", o->shard, "I/N: run only cases I, I+N, I+2N, ... (1-based), for spreading a suite");
   cmd->add_option("--merge", o->merge, "join the report directories of shards into -o")->expected(1, -1);
   cmd->add_flag("--json", o->json, "print the summary as JSON");

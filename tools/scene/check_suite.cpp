@@ -33,6 +33,13 @@ void add_float(ts::Fnv1a& h, float x) { h.add(std::bit_cast<std::uint32_t>(x), 4
   throw InputError(path + ": \"" + field + "\": " + message);
 }
 
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
 Json read_json_file(const std::string& path, const char* what) {
   std::ifstream in(path, std::ios::binary);
   if (!in || fs::is_directory(path)) throw InputError(path + ": cannot read the " + std::string(what));
@@ -85,11 +92,92 @@ GeometryDigest digest_of(Device& device, const PreparedScene& scene, const Scene
   return d;
 }
 
+// A file a scene names, as the scene resolves it, else the file of that name in the suite's assets
+// folder (a suite copied without the tree its scenes came from); InputError naming both when neither
+// exists.
+std::string suite_asset(const Suite& suite, const SuiteCase& c, const std::string& path, const char* field) {
+  if (path.empty() || fs::exists(path)) return path;
+  const fs::path copy = fs::path(suite_assets_dir(suite)) / fs::path(path).filename();
+  if (fs::exists(copy)) return copy.lexically_normal().string();
+  throw InputError(c.scene + ": \"" + field + "\": " + path + " does not exist, nor " + copy.string() +
+                   " (tessera check --collect-assets copies a suite's assets into it)");
+}
+
 std::string case_command(const SuiteCase& c, const std::string& out) {
   return "tessera render --scene " + fs::absolute(c.scene).lexically_normal().string() + " -o " + out;
 }
 
 }  // namespace
+
+std::string suite_assets_dir(const Suite& suite) {
+  return (fs::absolute(fs::path(suite.path)).parent_path() / "assets").lexically_normal().string();
+}
+
+RenderSettings suite_scene(const Suite& suite, const SuiteCase& c) {
+  RenderSettings s = read_scene(c.scene);
+  s.cage = suite_asset(suite, c, s.cage, "asset");
+  s.factors_file = suite_asset(suite, c, s.factors_file, "factors_per_edge");
+  if (s.displacement.map != "none") s.displacement.map = suite_asset(suite, c, s.displacement.map, "displacement.map");
+  const std::string& n = s.displacement.normal_map;
+  if (n != "auto" && n != "derived") s.displacement.normal_map = suite_asset(suite, c, n, "displacement.normal_map");
+  return s;
+}
+
+namespace {
+// Copies `from` into the assets folder as `name` (a glTF's own relative URIs keep their folders below
+// it); a different file already there under that name is an InputError naming both.
+void copy_asset(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  if (fs::exists(to)) {
+    if (fs::equivalent(from, to, ec)) return;
+    if (file_bytes(from) != file_bytes(to))
+      throw InputError(to.string() + ": holds another file of that name than " + from.string());
+    return;
+  }
+  fs::create_directories(to.parent_path(), ec);
+  fs::copy_file(from, to, ec);
+  if (ec) throw InputError(to.string() + ": cannot write (" + ec.message() + ")");
+}
+
+// The files a .gltf names by relative URI (buffers and images), as written in it.
+std::vector<std::string> gltf_relative_uris(const std::string& path) {
+  std::vector<std::string> out;
+  if (fs::path(path).extension() != ".gltf") return out;
+  const Json root = read_json_file(path, "glTF file");
+  for (const char* list : {"buffers", "images"})
+    if (root.contains(list) && root[list].is_array())
+      for (const Json& item : root[list])
+        if (item.is_object() && item.contains("uri") && item["uri"].is_string()) {
+          const std::string uri = item["uri"].get<std::string>();
+          if (uri.rfind("data:", 0) != 0 && uri.find("://") == std::string::npos && !fs::path(uri).is_absolute())
+            out.push_back(uri);
+        }
+  return out;
+}
+}  // namespace
+
+std::vector<std::string> collect_suite_assets(const Suite& suite) {
+  const fs::path assets = suite_assets_dir(suite);
+  std::vector<std::string> said;
+  for (const SuiteCase& c : suite.cases) {
+    RenderSettings s = suite_scene(suite, c);
+    int copied = 0;
+    const auto collect = [&](std::string& path) {
+      if (path.empty() || path == "none" || path == "auto" || path == "derived") return;
+      const fs::path from = fs::absolute(path).lexically_normal(), to = assets / from.filename();
+      copy_asset(from, to);
+      for (const std::string& uri : gltf_relative_uris(from.string()))
+        copy_asset((from.parent_path() / uri).lexically_normal(), (assets / uri).lexically_normal());
+      path = to.string();
+      ++copied;
+    };
+    collect(s.cage), collect(s.factors_file), collect(s.displacement.map), collect(s.displacement.normal_map);
+    write_text_atomically(c.scene, scene_json(s, fs::path(c.scene).parent_path().string()).dump(2) + "\n");
+    said.push_back(c.name + ": " + std::to_string(copied) + " file(s) in " + assets.string() + ", " + c.scene +
+                   " points there");
+  }
+  return said;
+}
 
 const char* to_string(CaseStatus s) {
   switch (s) {
@@ -260,7 +348,7 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
   const std::string new_path = (fs::path(report_dir) / r.new_image).string();
   r.command = case_command(c, c.name + ".png");
   try {
-    const RenderSettings settings = read_scene(c.scene);
+    const RenderSettings settings = suite_scene(suite, c);
     r.scene = scene_json(settings, suite.golden_dir);
     const std::string digest_path = golden_digest_path(suite, c);
     Json golden;

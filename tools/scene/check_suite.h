@@ -40,6 +40,19 @@ struct Suite {
 // InputError (one line: file and field) for a bad suite; case names are unique and file-name safe.
 Suite read_suite(const std::string& path);
 
+// The folder beside the suite file where a self-contained suite keeps the files its scenes name:
+// `assets/`.
+std::string suite_assets_dir(const Suite& suite);
+// Case `c`'s scene settings. A file the scene names (asset, factors file, displacement and normal
+// maps) that does not exist where the scene says is taken from the suite's assets folder by its file
+// name, so a suite copied elsewhere with its assets runs; neither there: InputError naming both.
+RenderSettings suite_scene(const Suite& suite, const SuiteCase& c);
+// Makes the suite self-contained: copies every file its scenes name (a .gltf with the buffers and
+// images it names) into suite_assets_dir and rewrites each scene file to name the copies, relative to
+// the scene. One line per case saying what it did; InputError when a file is missing or a different
+// file of the same name is already there.
+std::vector<std::string> collect_suite_assets(const Suite& suite);
+
 // What the geometry checks compare.
 struct GeometryDigest {
   std::uint64_t triangles = 0, crack_edges = 0, border_edges = 0, nonmanifold_edges = 0;

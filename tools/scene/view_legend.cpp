@@ -164,6 +164,12 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageT
   const int panel_w = std::min(
       w - 2 * pad, std::max(legend.ramp.empty() ? 0 : bar_w + 2 * pad + 2 * text_size, lay.text_w + 2 * pad));
   const int panel_h = rows * line + 2 * pad;
+  // Text drawn past the image's edge is not drawn whole (and OpenImageIO's text renderer asserts on
+  // some such positions): an image too small for the legend even at its smallest size is refused.
+  if (panel_w + 2 * pad > w || panel_h + 2 * pad > h || lay.text_w + 2 * pad > panel_w)
+    throw InputError(target.path + ": " + std::to_string(w) + "x" + std::to_string(h) + " is too small for the legend \"" +
+                     legend.title + "\" (about " + std::to_string(lay.text_w + 4 * pad) + "x" +
+                     std::to_string(panel_h + 2 * pad) + " at the least); render larger, or --view shaded");
   const auto [x0, y0] = legend_corner(fb, panel_w, panel_h, pad);
   paint.fill(x0, y0, x0 + panel_w, y0 + panel_h, glm::vec3(1.0f), 0.82f);
   int y = y0 + pad + text_size - line;

@@ -87,6 +87,7 @@ async function pump() {
         await frame.decode().catch(() => {});
         shownQuery = job.query;
         frame.dataset.query = job.query;
+        history.replaceState(null, '', job.query ? '?' + job.query : location.pathname);
         if (!pending) frame.dataset.state = 'ready';
         showCommand();
       }
@@ -277,6 +278,35 @@ function hookMouse() {
   });
 }
 
+// The page's address holds the settings of the full frame on screen (those that differ from the
+// server's, as in /api/frame), so a debugging session is a link: opening it restores them. A value
+// the server refuses is shown as the frame's error.
+function applyAddress() {
+  const q = new URLSearchParams(location.search);
+  for (const id of controlIds) {
+    if (!q.has(id)) continue;
+    const el = $(id), v = q.get(id);
+    if (el.tagName === 'SELECT' && ![...el.options].some((o) => o.value === v))
+      el.append(Object.assign(document.createElement('option'), {textContent: v, value: v}));
+    el.value = v;
+  }
+  const v3 = (text) => text.split(',').map(Number);
+  if (q.has('camera-position') && q.has('camera-target')) {
+    startCamera();
+    camera.eye = v3(q.get('camera-position'));
+    camera.target = v3(q.get('camera-target'));
+    cameraMoved = true;
+  }
+  if (q.has('dicing-camera-position')) {
+    $('freeze').checked = true;
+    $('freeze').dataset.eye = q.get('dicing-camera-position');
+  }
+  if (q.has('time')) {
+    $('time').value = q.get('time');
+    $('time-text').textContent = Number($('time').value).toFixed(2) + ' s';
+  }
+}
+
 function fillSelect(el, values, current) {
   el.replaceChildren(...values.map((v) => Object.assign(document.createElement('option'), {textContent: v, value: v})));
   el.value = current;
@@ -311,6 +341,8 @@ async function start() {
   }
   $('time').value = s.time;
   $('time-text').textContent = Number(s.time).toFixed(2) + ' s';
+  applyAddress();
+  isolationRow();
   for (const id of controlIds) $(id).addEventListener('change', () => want(false));
   $('time').addEventListener('input', () => { $('time-text').textContent = Number($('time').value).toFixed(2) + ' s'; want(true); });
   $('time').addEventListener('change', () => want(false));
