@@ -12,6 +12,7 @@
 #include <map>
 #include <unordered_map>
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "shaders_cpp/animation/rig_pose.h"
@@ -668,6 +669,33 @@ GltfCage load_gltf_cage(const std::string& path, const GltfSelection& selection)
 // tinygltf's and the JSON parser's error text, short enough for one line: a data URI's payload (often
 // megabytes of base64) becomes its length, the parser's "last read" echo of the input is dropped, and
 // what is left is capped.
+// A .gltf whose JSON parses but a buffer's or image's base64 data URI does not decode: CageError naming
+// that element and what is wrong with its payload (its length, not its text). Returns when none is.
+static void damaged_data_uris(std::span<const std::uint8_t> bytes, const std::string& path) {
+  const nlohmann::json root =
+      nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, /*allow_exceptions=*/false);
+  if (root.is_discarded() || !root.is_object()) return;
+  for (const char* list : {"buffers", "images"}) {
+    if (!root.contains(list) || !root[list].is_array()) continue;
+    for (std::size_t i = 0; i < root[list].size(); ++i) {
+      const nlohmann::json& item = root[list][i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string& uri = item["uri"].get_ref<const std::string&>();
+      const std::size_t comma = uri.find(',');
+      if (uri.rfind("data:", 0) != 0 || comma == std::string::npos || uri.find(";base64", 0) > comma) continue;
+      const std::size_t n = uri.size() - comma - 1;
+      const bool alphabet = std::all_of(uri.begin() + std::ptrdiff_t(comma) + 1, uri.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/' || c == '=';
+      });
+      if (alphabet && n % 4 == 0) continue;
+      throw CageError(path + ": " + list + "[" + std::to_string(i) + "]: its base64 data URI " +
+                      (alphabet ? "is cut short (" + std::to_string(n) + " characters, not a multiple of 4)"
+                                : "holds characters outside base64") +
+                      ": the file is damaged or truncated");
+    }
+  }
+}
+
 static std::string loader_message(const std::string& raw) {
   std::string s;
   for (std::size_t i = 0; i < raw.size();) {
@@ -705,7 +733,10 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), length, base)
              : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length, base);
-  if (!ok) throw CageError(path + ": not a readable glTF 2.0 file (" + loader_message(err.empty() ? warn : err) + ")");
+  if (!ok) {
+    if (!binary) damaged_data_uris(bytes, path);
+    throw CageError(path + ": not a readable glTF 2.0 file (" + loader_message(err.empty() ? warn : err) + ")");
+  }
   const Reader r(path, m);
   for (const std::string& e : m.extensionsRequired)
     if (e != "FB_ngon_encoding" && e != "KHR_materials_displacement")
