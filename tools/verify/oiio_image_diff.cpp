@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imagecache.h>
 
 #include "shaders_cpp/image_io/atomic_file.h"
 #include "shaders_cpp/image_io/oiio_attributes.h"
@@ -21,6 +22,10 @@ struct DecodedPair {
 };
 
 bool read_float(const std::string& path, OIIO::ImageBuf& img, std::string& error) {
+  // ImageBuf reads through OpenImageIO's shared ImageCache, which keys files by name and notices a
+  // rewrite only by its modification time: a file written again within that time's resolution (the
+  // same path diffed twice in one process, as Python or a viewer session does) would be read stale.
+  OIIO::ImageCache::create(/*shared=*/true)->invalidate(OIIO::ustring(path));
   img.reset(path);
   if (img.read(0, 0, /*force=*/true, OIIO::TypeFloat)) return true;
   std::string message = img.geterror();
