@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds everything and runs the test suite through ctest, then builds the suite again with ASan +
-# UBSan (at -O1) in BUILD_DIR-asan and runs it there (CI runs exactly this; its times are in the README,
+# UBSan (at -O1) in BUILD_DIR-asan and runs it there (CI runs exactly this; its times are in docs/guide.md,
 # "Two commands"). TESSERA_ASAN=0 skips the sanitizer part (a quick local run); TSan is scripts/tsan.sh.
 #   scripts/test.sh [BUILD_DIR]     (default build/)
 set -euo pipefail
