@@ -399,16 +399,14 @@ CaseResult run_case(const Suite& suite, const SuiteCase& c, const std::string& r
           }
           continue;
         }
-        for (const std::string& key : {k}) {
-          const bool known = golden.is_object() && golden.contains(key);
-          const bool same = known && golden[key] == now[key];
-          r.checks[key] = {{"golden", known ? golden[key] : Json(nullptr)}, {"new", now[key]}, {"pass", same}};
-          if (!known) {
-            is_new = true;
-            problems.push_back(key + ": no golden value");
-          } else if (!same) {
-            problems.push_back(key + ": " + now[key].dump() + ", golden " + golden[key].dump());
-          }
+        const bool known = golden.is_object() && golden.contains(k);
+        const bool same = known && golden[k] == now[k];
+        r.checks[k] = {{"golden", known ? golden[k] : Json(nullptr)}, {"new", now[k]}, {"pass", same}};
+        if (!known) {
+          is_new = true;
+          problems.push_back(k + ": no golden value");
+        } else if (!same) {
+          problems.push_back(k + ": " + now[k].dump() + ", golden " + golden[k].dump());
         }
       }
     }

@@ -64,6 +64,12 @@ std::vector<std::string> wrap(const std::string& text, std::size_t chars) {
   return out;
 }
 
+// The legend's text size at an image height (h / 40, 11 to 40 pixels; readable at 1280x720), before
+// any shrinking to fit, and the row height and padding that follow from a text size.
+int first_text_size(int height) { return std::clamp(height / 40, 11, 40); }
+int row_height(int text_size) { return text_size * 5 / 4; }
+int padding(int text_size) { return text_size * 2 / 3; }
+
 // The legend's text size and its lines as drawn. The size follows the image height (h / 40, 11 to 40
 // pixels; readable at 1280x720). A legend whose longest line does not fit across the image, or whose
 // panel with its margins would be taller than the band framing keeps for it (kMaxBottomBand of the
@@ -94,17 +100,17 @@ LegendLayout layout_legend(const Legend& legend, int w, int h) {
     return l;
   };
   const auto fits = [&](const LegendLayout& l) {
-    const int pad = l.text_size * 2 / 3, line = l.text_size * 5 / 4;
+    const int pad = padding(l.text_size), line = row_height(l.text_size);
     std::size_t rows = l.title.size() + l.lines.size() + std::size_t(extra_rows);
     for (const auto& sw : l.swatches) rows += sw.second.size();
     return l.text_w + 4 * pad <= w && float(int(rows) * line + 4 * pad) <= kMaxBottomBand * float(h);
   };
   const std::size_t unwrapped = std::string::npos;
-  const int first = std::clamp(h / 40, 11, 40);
+  const int first = first_text_size(h);
   LegendLayout l = lay_out(first, unwrapped);
   if (fits(l)) return l;  // as every legend was drawn before sizes were fitted
   for (int size = first; size >= 7; --size) {
-    const int pad = size * 2 / 3;
+    const int pad = padding(size);
     const std::size_t chars = std::size_t(std::max(8, int(float(w - 4 * pad) / (float(size) * 0.56f))));
     l = lay_out(size, chars);
     if (fits(l)) return l;
@@ -139,7 +145,7 @@ float legend_band(ViewKind kind, int height) {
   if (kind == ViewKind::shaded || kind == ViewKind::wireframe || kind == ViewKind::wire_on_shaded || height <= 0)
     return 0.0f;
   constexpr int kRows = 5;
-  const int text_size = std::clamp(height / 40, 11, 40), line = text_size * 5 / 4, pad = text_size * 2 / 3;
+  const int text_size = first_text_size(height), line = row_height(text_size), pad = padding(text_size);
   return std::min(kMaxBottomBand, float(kRows * line + 4 * pad) / float(height));
 }
 
@@ -156,7 +162,7 @@ void write_with_legend(const Framebuffer& fb, const Legend& legend, const ImageT
                 shared_data_file("DejaVuSans.ttf", "--view shaded, which has no legend")};
   using AX = TextAlignX;
   const LegendLayout lay = layout_legend(legend, w, h);
-  const int text_size = lay.text_size, line = text_size * 5 / 4, pad = text_size * 2 / 3;
+  const int text_size = lay.text_size, line = row_height(text_size), pad = padding(text_size);
   const int bar_w = std::min(w - 6 * pad, text_size * 22), bar_h = text_size;
   int rows = int(lay.title.size() + lay.lines.size());
   for (const auto& sw : lay.swatches) rows += int(sw.second.size());
