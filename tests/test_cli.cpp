@@ -281,12 +281,40 @@ TEST_CASE("tessera analyze: a missing or broken cage is one line and exit 1", "[
   auto r = run_cli("analyze /nonexistent/frog.obj");
   CHECK(r.exit_code == 1);
   CHECK(r.err == "tessera analyze: /nonexistent/frog.obj: cannot open the file\n");
-  r = run_cli("analyze " + data("osd-shapes/catmark_fan.obj") + " --json");
+  const fs::path broken = temp_dir() / "broken.obj";
+  std::ofstream(broken) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  r = run_cli("analyze " + broken.string() + " --json");
   CHECK(r.exit_code == 1);
   CHECK(lines(r.err) == 1);
-  CHECK(r.err.find("catmark_fan.obj: non-manifold edge between vertices 8 and 9") != std::string::npos);
+  CHECK(r.err.find("broken.obj:4:") != std::string::npos);
   r = run_cli("analyze");
   CHECK(r.exit_code == 2);
+}
+
+TEST_CASE("tessera analyze names each non-manifold place and the cage loads", "[cli][cage]") {
+  const auto r = run_cli("analyze " + data("osd-shapes/catmark_fan.obj") + " --json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["non_manifold"].size() == 9);
+  CHECK(j["vertex_copies"] == 10);
+  CHECK(j["non_manifold"][1] == "non-manifold edge between vertices 8 and 9 (0-based): 3 faces (1, 6, 10); drawn infinitely sharp");
+  REQUIRE(j["warnings"].size() == 1);  // one warning for all nine places
+  CHECK(j["warnings"][0].get<std::string>().find("9 non-manifold places drawn by OpenSubdiv's rules") != std::string::npos);
+}
+
+TEST_CASE("tessera tessellate: a non-manifold cage is watertight, its own non-manifold edges named", "[cli][cage]") {
+  for (const std::string scheme : {"gregory", "exact"})
+    for (const std::string shape : {"catmark_fan", "catmark_nonman_edge100"}) {
+      INFO(scheme << " " << shape);
+      const auto r = run_cli("tessellate " + data("osd-shapes/" + shape + ".obj") + " --scheme " + scheme +
+                             " --factor 3 --check-watertight --json");
+      CHECK(r.exit_code == 0);
+      const auto w = nlohmann::json::parse(r.out)["watertight"];
+      CHECK(w["watertight"] == true);
+      CHECK(w["crack_edges"] == 0);
+      CHECK(w["nonmanifold_edges"] == 0);
+      CHECK(w["cage_nonmanifold_edges"].get<int>() > 0);
+    }
 }
 
 TEST_CASE("tessera tessellate writes a PLY with one vertex per domain point and checks watertightness", "[cli]") {

@@ -349,6 +349,30 @@ TEST_CASE("An open edge on a curve one patch drew is a border, on a curve two dr
                       [](const verify::WeldEdge& e) { return e.kind == verify::WeldEdgeKind::border; }) == 4);
 }
 
+TEST_CASE("Three triangles on one edge of a fin are the cage's own, on any other curve non-manifold", "[views]") {
+  // Three fins of a book hinged on a-b (curve 5), each drawn by one patch.
+  const glm::vec3 a(0, 0, 0), b(0, 1, 0);
+  const auto weld = [&](bool fin, int patches) {
+    verify::WeldChecker w;
+    for (const glm::vec3& tip : {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1)}) w.add_triangle(a, b, tip);
+    w.add_curve_point(a, 5), w.add_curve_point(b, 5);
+    for (int i = 0; i < patches; ++i) w.add_curve_use(5);
+    if (fin) w.add_fin(5), w.add_fin(5);
+    return w.report();
+  };
+  verify::WeldReport r = weld(true, 3);
+  CHECK(r.cage_nonmanifold_edges == 1);
+  CHECK(r.nonmanifold_edges == 0);
+  CHECK(r.crack_edges == 6);  // the fins' outer edges lie on no curve here
+  CHECK(r.summary().find("1 non-manifold edges of the cage's own") != std::string::npos);
+  r = weld(false, 3);  // not a fin: a fault
+  CHECK(r.nonmanifold_edges == 1);
+  CHECK(r.cage_nonmanifold_edges == 0);
+  r = weld(true, 2);  // more triangles than the patches that drew the fin
+  CHECK(r.nonmanifold_edges == 1);
+  CHECK(r.cage_nonmanifold_edges == 0);
+}
+
 TEST_CASE("An open cage is watertight with its boundary as border: the pawn, a hole, a culled neighbour",
           "[views][cli]") {
   const auto weld_of = [](const std::string& args) {

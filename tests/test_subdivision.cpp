@@ -825,7 +825,6 @@ TEST_CASE("Faces a scheme cannot take give one line naming the face", "[subd]") 
     CHECK(m.find("quads only") != std::string::npos);
     CHECK(m.find('\n') == std::string::npos);
   }
-  CHECK_THROWS_AS(load_subd_model(data("osd-shapes/catmark_nonman_edges.obj"), Scheme::gregory), CageError);
   // Pentagons: pn takes triangles and quads only, acc quads only.
   for (Scheme s : {Scheme::acc, Scheme::pn}) {
     INFO(to_string(s));

@@ -92,6 +92,17 @@ struct CageRig {
   std::vector<std::string> target_names;
 
   bool skinned() const { return !joints.empty(); }
+  // Appends, for each cage vertex from vertices() on, a copy of the per-vertex data of vertex
+  // `source[v]` (the cage's Cage::vertex_source after a non-manifold split), so the copies move with it.
+  void copy_vertices(const std::vector<int>& source) {
+    for (std::size_t v = bind_positions.size(); v < source.size(); ++v) {
+      const std::size_t s = std::size_t(source[v]);
+      bind_positions.push_back(bind_positions[s]);
+      vertex_instance.push_back(vertex_instance[s]);
+      if (!joints.empty()) joints.push_back(joints[s]), weights.push_back(weights[s]);
+      for (auto& d : target_deltas) d.push_back(d[s]);
+    }
+  }
   int target_count() const { return static_cast<int>(target_deltas.size()); }
 };
 

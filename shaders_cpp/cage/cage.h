@@ -70,12 +70,18 @@ struct Cage {
   // model's scheme leaves out (make_subd_model: creases and corners drawn smooth). Not errors: the
   // cage is usable.
   std::vector<std::string> warnings;
+  // Set by split_non_manifold (non_manifold.h) when the file's cage is not manifold: per vertex, the
+  // vertex of the file it copies (empty: every vertex is the file's own), and each non-manifold place.
+  std::vector<int> vertex_source;
+  std::vector<std::string> non_manifold;
 
   int vertex_count() const { return static_cast<int>(positions.size()); }
   int face_count() const { return static_cast<int>(face_sizes.size()); }
   bool has_uvs() const { return !face_uvs.empty(); }
   // Vertex k (0 <= k < face_sizes[f]) of face f.
   int face_vertex(int f, int k) const { return face_vertices[face_offsets[f] + k]; }
+  // The file's vertex that vertex v is (itself unless the cage was split).
+  int source_vertex(int v) const { return vertex_source.empty() ? v : vertex_source[std::size_t(v)]; }
 };
 
 }  // namespace tessera

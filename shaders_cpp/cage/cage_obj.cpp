@@ -2,6 +2,7 @@
 // range checks deferred to the end for what may legally be written before it is defined (tags usually
 // follow the faces they name; some exporters refer to vertices written later).
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/cage/non_manifold.h"
 
 #include <algorithm>
 #include <charconv>
@@ -353,7 +354,11 @@ class ObjParser {
 
 }  // namespace
 
-Cage parse_obj_cage(std::string_view text, std::string name) { return ObjParser(text, std::move(name)).run(); }
+Cage parse_obj_cage(std::string_view text, std::string name) {
+  Cage cage = ObjParser(text, std::move(name)).run();
+  split_non_manifold(cage);
+  return cage;
+}
 
 Cage load_obj_cage(const std::string& path) {
   std::error_code ec;

@@ -25,7 +25,9 @@
 // index 1400, but the cage has 1308 vertices". Checked: malformed or non-finite numbers, index 0 or out of
 // range (faces, UVs, tag vertices and faces), faces with fewer than 3 corners, faces with texture
 // coordinates mixed with faces without, tags with the wrong number of arguments, an empty cage (no faces).
-// Topology (repeated vertices, non-manifold edges, orientation) is checked by Topology (topology.h).
+// Non-manifold places (edges of three or more faces or used twice the same way, faces repeating a vertex,
+// vertices of several fans) are split as OpenSubdiv draws them (non_manifold.h), so the cage returned is
+// manifold; what is left (such as a face naming one vertex twice within one fan) Topology refuses.
 //
 // Cost: one pass over the text, O(size of the file).
 #pragma once

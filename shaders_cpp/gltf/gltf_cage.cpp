@@ -1,4 +1,5 @@
 #include "shaders_cpp/gltf/gltf_cage.h"
+#include "shaders_cpp/cage/non_manifold.h"
 
 #include <algorithm>
 #include <array>
@@ -841,6 +842,8 @@ GltfCage parse_gltf_cage(std::span<const std::uint8_t> bytes, const std::string&
         !std::isfinite(cage.positions[v].z))
       throw CageError(path + ": vertex " + std::to_string(v) +
                       " is not finite in the rest pose (node transforms overflow)");
+  // Non-manifold places split as OpenSubdiv draws them; the copies move with the vertices they copy.
+  if (!split_non_manifold(cage).empty()) rig->copy_vertices(cage.vertex_source);
   const bool moves = !rig->skins.empty() || rig->target_count() > 0 || !rig->animations.empty();
   if (moves) out.rig = std::move(rig);
   return out;

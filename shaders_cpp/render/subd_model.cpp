@@ -1,4 +1,5 @@
 #include "shaders_cpp/render/subd_model.h"
+#include "shaders_cpp/cage/boundary_rule.h"
 
 #include <algorithm>
 #include <cmath>
@@ -152,6 +153,11 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
     auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
     for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
     m.ring_boxes = face_ring_boxes(m.cage.positions, *m.topology);
+  } else if (m.cage.tags.boundary == BoundaryInterpolation::none) {
+    // The per-face schemes honour `none` as OpenSubdiv does: those boundary faces draw nothing.
+    const std::vector<bool> none = faces_without_surface(m.cage, *m.topology);
+    auto has_surface = [&](const SubdPatch& p) { return !none[std::size_t(p.face)]; };
+    for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
   }
   return m;
 }

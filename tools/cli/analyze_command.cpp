@@ -215,6 +215,23 @@ void tags_section(Report& r, const CageAnalysis& a) {
   if (lines.size() > kListed) r.line("- ... " + std::to_string(lines.size() - kListed) + " more (--json lists all)");
 }
 
+// Non-manifold places, each drawn by OpenSubdiv's rules (shaders_cpp/cage/non_manifold.h); vertex indices
+// are the file's.
+void non_manifold_section(Report& r, const CageAnalysis& a) {
+  const Cage& c = a.cage;
+  constexpr std::size_t kListed = 20;
+  r.json()["non_manifold"] = c.non_manifold;
+  int copies = 0;  // vertices added by the split
+  for (int v = 0; v < c.vertex_count(); ++v) copies += c.source_vertex(v) != v;
+  r.json()["vertex_copies"] = copies;
+  if (c.non_manifold.empty()) return;
+  r.line("");
+  r.line("Non-manifold places (drawn as OpenSubdiv draws them; " + std::to_string(copies) + " vertex copies):");
+  for (std::size_t i = 0; i < std::min(c.non_manifold.size(), kListed); ++i) r.line("- " + c.non_manifold[i]);
+  if (c.non_manifold.size() > kListed)
+    r.line("- ... " + std::to_string(c.non_manifold.size() - kListed) + " more (--json lists all)");
+}
+
 void memory_section(Report& r, const CageAnalysis& a) {
   if (!a.memory) return;
   r.line("");
@@ -225,7 +242,8 @@ void memory_section(Report& r, const CageAnalysis& a) {
 }
 
 using Section = void (*)(Report&, const CageAnalysis&);
-constexpr Section kSections[] = {cage_section, patch_section, tags_section, memory_section, warnings_section};
+constexpr Section kSections[] = {cage_section,   patch_section,  tags_section, non_manifold_section,
+                                 memory_section, warnings_section};
 
 int run_analyze(const AnalyzeOptions& o) {
   if (!o.memory.enabled && !(o.memory == MemoryOptions{}))

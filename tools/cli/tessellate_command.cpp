@@ -73,6 +73,7 @@ int run_tessellate(const TessellateOptions& o) {
 
   Device device(device_options(o.s.threads));
   verify::WeldChecker weld;
+  const scene::WeldCurves curves = scene::weld_curves(model.cage, *model.topology);
   std::uint64_t vertices = 0, triangles = 0;
   DrawResult result;
   std::string vbuf, fbuf;  // one patch's vertex and face records
@@ -98,7 +99,7 @@ int run_tessellate(const TessellateOptions& o) {
           PlyStreamWriter::put_triangle(fbuf, std::int32_t(base + p.indices[i]), std::int32_t(base + p.indices[i + 1]),
                                         std::int32_t(base + p.indices[i + 2]));
       }
-      if (o.check) add_surface_patch(weld, p, g);
+      if (o.check) add_surface_patch(weld, p, g, curves);
       if (ply) ply->append(vbuf, p.points.size(), fbuf, faces);
       triangles += faces;
       vertices += p.points.size();

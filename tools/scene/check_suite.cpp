@@ -64,6 +64,7 @@ float threshold(const Json& c, const char* key, float fallback, const std::strin
 GeometryDigest digest_of(Device& device, const PreparedScene& scene, const SceneImage& image) {
   GeometryDigest d;
   verify::WeldChecker weld;
+  const WeldCurves curves = weld_curves(scene.model.cage, *scene.model.topology);
   ts::Fnv1a ds;
   const auto sink = [&](const auto& out, const PatchGroup& g) {
     ds.add(out.patch_id, 4);
@@ -73,7 +74,7 @@ GeometryDigest digest_of(Device& device, const PreparedScene& scene, const Scene
     }
     for (const std::uint32_t i : out.indices) ds.add(i, 4);
     d.triangles += out.indices.size() / 3;
-    add_surface_patch(weld, out, g);
+    add_surface_patch(weld, out, g, curves);
   };
   const DrawResult r = stream_surface(device, scene.model, scene.displacement ? &*scene.displacement : nullptr,
                                       scene.factors, scene.cull, scene.settings.partitioning, sink);

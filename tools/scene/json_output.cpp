@@ -104,6 +104,7 @@ Json to_json(const verify::WeldReport& w) {
           {"border_edges", w.border_edges},
           {"crack_edges", w.crack_edges},
           {"nonmanifold_edges", w.nonmanifold_edges},
+          {"cage_nonmanifold_edges", w.cage_nonmanifold_edges},
           {"degenerate_triangles", w.degenerate_triangles}};
 }
 

@@ -48,7 +48,8 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
   for (int face = 0; face < cage.face_count(); ++face) {
     const int n = cage.face_sizes[std::size_t(face)];
     for (int k = 0; k < n; ++k)
-      edges.insert(cage_edge_key(cage.face_vertex(face, k), cage.face_vertex(face, (k + 1) % n)));
+      edges.insert(cage_edge_key(cage.source_vertex(cage.face_vertex(face, k)),
+                                 cage.source_vertex(cage.face_vertex(face, (k + 1) % n))));
   }
   auto map = std::make_shared<std::unordered_map<std::int64_t, float>>();
   std::string line;
@@ -81,6 +82,17 @@ SubdFactors factors_option(float factor, float vary, const std::string& file, co
                (culls ? " <= 0: D3D11 culls the patches on this edge (their neighbours' edges become border)"
                       : " > 64: D3D11 clamps it to 64"));
     (*map)[key] = *x;
+  }
+  // The file names the file's vertices; a non-manifold cage's split copies of an edge take its factor.
+  for (int face = 0; face < cage.face_count() && !cage.vertex_source.empty(); ++face) {
+    const int n = cage.face_sizes[std::size_t(face)];
+    for (int k = 0; k < n; ++k) {
+      const int a = cage.face_vertex(face, k), b = cage.face_vertex(face, (k + 1) % n);
+      const auto it = map->find(cage_edge_key(cage.source_vertex(a), cage.source_vertex(b)));
+      if (it == map->end()) continue;
+      const float value = it->second;  // read before the insertion may rehash
+      (*map)[cage_edge_key(a, b)] = value;
+    }
   }
   if (outside > kNamedOutside)
     log_info("warning: " + file + ": " + std::to_string(outside - kNamedOutside) +

@@ -123,23 +123,27 @@ void draw_cage_view(const ViewInputs& in, Framebuffer& fb, Legend& legend) {
 // way.
 void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, ViewOutput& out) {
   verify::WeldChecker weld;
+  const WeldCurves curves = weld_curves(in.model.cage, *in.model.topology);
   PatchCull all = in.cull;
   all.frustum.enabled = false;
   const DrawResult s = stream_surface(device, in.model, in.displacement, in.factors, all, in.partitioning,
-                                      [&](const auto& p, const PatchGroup& g) { add_surface_patch(weld, p, g); });
+                                      [&](const auto& p, const PatchGroup& g) { add_surface_patch(weld, p, g, curves); });
   if (!s.ok()) {
     out.result = s;
     return;
   }
   std::vector<OverlayLine> cracks, border, nonmanifold;
+  std::vector<OverlayLine> fins;  // the cage's own non-manifold edges
   for (const verify::WeldEdge& e : weld.bad_edges())
-    (e.kind == verify::WeldEdgeKind::crack    ? cracks
-     : e.kind == verify::WeldEdgeKind::border ? border
-                                              : nonmanifold)
+    (e.kind == verify::WeldEdgeKind::crack              ? cracks
+     : e.kind == verify::WeldEdgeKind::border           ? border
+     : e.kind == verify::WeldEdgeKind::cage_nonmanifold ? fins
+                                                        : nonmanifold)
         .push_back({e.a, e.b});
   out.crack_edges = cracks.size(), out.border_edges = border.size(), out.nonmanifold_edges = nonmanifold.size();
   const glm::mat4& vp = in.view.camera.view_projection;
   draw_lines(fb, vp, border, OverlayStyle{glm::vec3(0.35f, 0.55f, 0.75f), 1.5f, 1.0f, false, 0.0f});
+  draw_lines(fb, vp, fins, OverlayStyle{glm::vec3(0.55f, 0.35f, 0.75f), 1.5f, 1.0f, false, 0.0f});
   draw_lines(fb, vp, cracks, OverlayStyle{glm::vec3(0.9f, 0.05f, 0.05f), 3.0f, 1.0f, false, 0.0f});
   draw_lines(fb, vp, nonmanifold, OverlayStyle{glm::vec3(0.95f, 0.5f, 0.0f), 3.0f, 1.0f, false, 0.0f});
   const verify::WeldReport r = weld.report();
@@ -150,6 +154,8 @@ void draw_cracks_view(Device& device, const ViewInputs& in, Framebuffer& fb, Vie
           " non-manifold (orange): " + (r.watertight() ? "watertight" : "NOT watertight")};
   if (out.border_edges > 0)
     out.legend.lines.push_back(std::to_string(out.border_edges) + " border edges (blue): where the surface ends");
+  if (!fins.empty())
+    out.legend.lines.push_back(std::to_string(fins.size()) + " non-manifold edges of the cage (violet): its own fins");
   if (in.cull.frustum.enabled) out.legend.lines.push_back("welded with culling off: culled patches are checked too");
 }
 

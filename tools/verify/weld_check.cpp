@@ -38,6 +38,11 @@ void WeldChecker::add_curve_point(const glm::vec3& p, std::int64_t curve) { curv
 
 void WeldChecker::add_curve_use(std::int64_t curve) { ++curve_uses_[curve]; }
 
+void WeldChecker::add_fin(std::int64_t curve) {
+  const auto at = std::lower_bound(fins_.begin(), fins_.end(), curve);
+  if (at == fins_.end() || *at != curve) fins_.insert(at, curve);
+}
+
 template <class Visit>
 void WeldChecker::classify(Visit&& visit) const {
   std::vector<std::pair<std::uint32_t, std::int64_t>> on(curve_points_);
@@ -61,6 +66,18 @@ void WeldChecker::classify(Visit&& visit) const {
         }
     return false;
   };
+  // Both ends on one fin that at least `triangles` patches drew: one of the cage's non-manifold edges.
+  const auto on_fin = [&](std::uint32_t a, std::uint32_t b, std::uint32_t triangles) {
+    const auto [a0, a1] = curves_of(a);
+    const auto [b0, b1] = curves_of(b);
+    for (auto i = a0; i != a1; ++i)
+      for (auto j = b0; j != b1; ++j)
+        if (i->second == j->second && std::binary_search(fins_.begin(), fins_.end(), i->second)) {
+          const auto uses = curve_uses_.find(i->second);
+          if (uses != curve_uses_.end() && uses->second >= triangles) return true;
+        }
+    return false;
+  };
   for (const auto& [key, uses] : directed_) {
     const std::uint32_t a = std::uint32_t(key >> 32), b = std::uint32_t(key);
     const auto it = directed_.find(std::uint64_t(b) << 32 | a);
@@ -68,7 +85,8 @@ void WeldChecker::classify(Visit&& visit) const {
     // Each undirected edge once, from its smaller end (or from the only direction present).
     if (back != 0 && a > b) continue;
     if (uses > 1 || back > 1)
-      visit(key, std::optional<WeldEdgeKind>(WeldEdgeKind::nonmanifold));
+      visit(key, std::optional<WeldEdgeKind>(on_fin(a, b, uses + back) ? WeldEdgeKind::cage_nonmanifold
+                                                                       : WeldEdgeKind::nonmanifold));
     else if (back == 0)
       visit(key, std::optional<WeldEdgeKind>(on_border(a, b) ? WeldEdgeKind::border : WeldEdgeKind::crack));
     else
@@ -84,8 +102,8 @@ WeldReport WeldChecker::report() const {
   classify([&](std::uint64_t, std::optional<WeldEdgeKind> kind) {
     ++r.edges;
     if (!kind) return;
-    if (*kind == WeldEdgeKind::nonmanifold) {
-      ++r.nonmanifold_edges;
+    if (*kind == WeldEdgeKind::nonmanifold || *kind == WeldEdgeKind::cage_nonmanifold) {
+      ++(*kind == WeldEdgeKind::nonmanifold ? r.nonmanifold_edges : r.cage_nonmanifold_edges);
       return;
     }
     ++r.open_edges;
@@ -110,8 +128,9 @@ std::string WeldReport::summary() const {
   std::ostringstream s;
   s << (watertight() ? "watertight" : "NOT watertight") << ": " << triangles << " triangles, " << welded_vertices
     << " welded vertices, " << edges << " edges, " << crack_edges << " crack edges, " << nonmanifold_edges
-    << " non-manifold edges, " << border_edges << " border edges (the surface's own), " << degenerate_triangles
-    << " degenerate triangles";
+    << " non-manifold edges, " << border_edges << " border edges (the surface's own), ";
+  if (cage_nonmanifold_edges > 0) s << cage_nonmanifold_edges << " non-manifold edges of the cage's own, ";
+  s << degenerate_triangles << " degenerate triangles";
   return s.str();
 }
 

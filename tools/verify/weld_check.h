@@ -4,7 +4,9 @@
 // the edge of a patch whose neighbour draws nothing) it is where the surface ends; anywhere else it is a
 // crack. The caller names the border: the points that lie on each domain curve its patches share (a cage
 // edge) and how many patches drew that curve; an open edge whose two ends lie on one curve drawn by
-// fewer than two patches is a border edge. Without that information every open edge is a crack.
+// fewer than two patches is a border edge. Without that information every open edge is a crack. A curve
+// the caller names a fin (a non-manifold edge of the cage, drawn by every face on it) may carry edges of
+// more than two triangles: up to the patches that drew it, they are the cage's own, not a fault.
 #pragma once
 
 #include <array>
@@ -26,6 +28,7 @@ struct WeldReport {
   std::uint64_t border_edges = 0;       // open, on the surface's own border
   std::uint64_t crack_edges = 0;        // open anywhere else
   std::uint64_t nonmanifold_edges = 0;  // used by more than two triangles, or twice the same way
+  std::uint64_t cage_nonmanifold_edges = 0;  // such edges along a fin: the cage's own (not counted above)
   // No cracks and no non-manifold edges: the surface may still have a border.
   bool watertight() const { return crack_edges == 0 && nonmanifold_edges == 0 && triangles > 0; }
   // Watertight with no border either: a closed, consistently oriented 2-manifold.
@@ -35,7 +38,7 @@ struct WeldReport {
 };
 
 // An edge the weld found open (used once) or non-manifold, by its welded end points.
-enum class WeldEdgeKind { crack, border, nonmanifold };
+enum class WeldEdgeKind { crack, border, nonmanifold, cage_nonmanifold };
 struct WeldEdge {
   glm::vec3 a{0.0f}, b{0.0f};
   WeldEdgeKind kind = WeldEdgeKind::crack;
@@ -48,6 +51,8 @@ class WeldChecker {
   void add_curve_point(const glm::vec3& p, std::int64_t curve);
   // One more patch drew `curve`.
   void add_curve_use(std::int64_t curve);
+  // `curve` is a fin: a non-manifold edge of the cage (idempotent).
+  void add_fin(std::int64_t curve);
   WeldReport report() const;
   // The edges report() counts as open or non-manifold, in welded-vertex order (deterministic).
   std::vector<WeldEdge> bad_edges() const;
@@ -62,6 +67,7 @@ class WeldChecker {
   std::uint64_t triangles_ = 0, degenerate_ = 0;
   std::vector<std::pair<std::uint32_t, std::int64_t>> curve_points_;  // (welded id, curve)
   std::unordered_map<std::int64_t, std::uint32_t> curve_uses_;
+  std::vector<std::int64_t> fins_;  // sorted, unique
   // Each undirected edge's kind (open, border or not), by its directed key; calls `visit(key, kind)`.
   template <class Visit>
   void classify(Visit&& visit) const;
