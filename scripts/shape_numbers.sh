@@ -6,7 +6,7 @@
 # parallel, one process per core; the times are per process, so compare them within one run only.
 # Slow (minutes): a script, not a test. Markdown on stdout; with --json FILE, every number as JSON.
 #
-#   scripts/shape_numbers.sh [BUILD_DIR] [--json FILE] [--schemes "gregory acc ..."]
+#   scripts/shape_numbers.sh [BUILD_DIR] [--json FILE] [--schemes "gregory,adaptive --isolation 6,..."]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build
@@ -15,22 +15,24 @@ exec /usr/bin/python3 - "$build/bin/tessera" "$root" "$@" <<'PY'
 import concurrent.futures, glob, json, os, subprocess, sys, tempfile
 bin, root, args = sys.argv[1], sys.argv[2], sys.argv[3:]
 out_json = args[args.index("--json") + 1] if "--json" in args else None
-schemes = (args[args.index("--schemes") + 1] if "--schemes" in args else "gregory acc bspline adaptive exact").split()
+schemes = (args[args.index("--schemes") + 1] if "--schemes" in args else "gregory,acc,bspline,adaptive,exact").split(",")
 shapes = sorted(glob.glob(os.path.join(root, "tests/data/osd-shapes/catmark_*.obj")))
 
-def run(argv):
+def run(argv, parse=True):
     r = subprocess.run([bin, "-q"] + argv, capture_output=True, text=True)
-    return (json.loads(r.stdout) if r.stdout.strip() else {}) if r.returncode == 0 else {"error": r.stderr.strip()}
+    if r.returncode != 0:
+        return {"error": r.stderr.strip()}
+    return json.loads(r.stdout) if parse else {}
 
 def measure(shape, scheme):
-    a = run(["accuracy", shape, "--json", "--scheme", scheme])
+    a = run(["accuracy", shape, "--json", "--scheme"] + scheme.split())
     if "error" in a:
         return {"error": a["error"]}
     with tempfile.TemporaryDirectory() as d:
         stats = os.path.join(d, "s.json")
-        run(["tessellate", shape, "--scheme", scheme, "--factor", "4", "--stats", stats])
+        run(["tessellate", shape, "--scheme"] + scheme.split() + ["--factor", "4", "--stats", stats], parse=False)
         patches = json.load(open(stats))["totals"]["patches"] if os.path.exists(stats) else None
-    b = run(["bench", "frog", "--cage", shape, "--scheme", scheme, "--frames", "3", "--factor", "8",
+    b = run(["bench", "frog", "--cage", shape, "--scheme"] + scheme.split() + ["--frames", "3", "--factor", "8",
              "--threads", "1", "--resolution", "640x360", "--json"])
     return {"max_relative": a["max_relative"], "folded_samples": a["folded_samples"],
             "mean_normal_degrees": a["mean_normal_degrees"], "max_normal_degrees_defined": a["max_normal_degrees_defined"],

@@ -146,6 +146,15 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   m.precomputed = precompute_control_points(m.patches, m.cage.positions);
   if (uses_limit_surface(scheme)) {
+    int pole = 0;  // the vertex of highest valence
+    for (int v = 1; v < m.topology->vertex_count(); ++v)
+      if (m.topology->valence(v) > m.topology->valence(pole)) pole = v;
+    if (m.topology->vertex_count() > 0 && m.topology->valence(pole) > kCostlyExactValence)
+      m.cage.warnings.push_back(m.cage.name + ": vertex " + std::to_string(pole) + " has valence " +
+                                std::to_string(m.topology->valence(pole)) + "; --scheme " + to_string(scheme) +
+                                " builds the surface around it in about " +
+                                float_text(float(std::round(exact_build_seconds(m.topology->valence(pole)) * 10.0) / 10.0)) +
+                                " s (the cost grows as valence^2.4; gregory draws it at once)");
     m.limit = std::make_unique<LimitSurface>(
         scheme == Scheme::adaptive ? LimitSurface::create_adaptive(m.cage, isolation) : LimitSurface::create(m.cage));
     // Faces OpenSubdiv gives no surface besides holes: boundary faces under `t interpolateboundary`

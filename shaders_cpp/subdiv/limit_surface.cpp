@@ -187,12 +187,17 @@ struct LimitSurface::Impl {
 
   // Normal at (s,t); where du x dv vanishes (degenerate cage geometry), the normal of a point a
   // hair towards the sub-patch centre, which is the limit of the normal along that path.
+  // At a corner of a Far patch (adaptive, and the faces Bfr cannot take) the derivatives can also turn
+  // over (a smooth corner on a concave boundary, where they are nearly parallel): there the nearby
+  // normal wins when the two disagree.
   glm::dvec3 normal_at(int f, int k, double s, double t, const Raw& r) const {
     glm::dvec3 n = normal_of(r.ds, r.dt);
-    if (n == glm::dvec3(0.0)) {
+    const bool far_corner = by_far[std::size_t(f)] && (s == 0.0 || s == 1.0) && (t == 0.0 || t == 1.0);
+    if (n == glm::dvec3(0.0) || far_corner) {
       const double h = 1.0 / 65536.0;
       const Raw r2 = raw(f, k, s + (0.5 - s) * h, t + (0.5 - t) * h);
-      n = normal_of(r2.ds, r2.dt);
+      const glm::dvec3 near = normal_of(r2.ds, r2.dt);
+      if (n == glm::dvec3(0.0) || glm::dot(n, near) < 0.0) n = near;
     }
     return n;
   }

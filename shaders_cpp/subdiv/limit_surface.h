@@ -48,6 +48,8 @@
 //   valence); both throw a one-line CageError.
 #pragma once
 
+#include <cmath>
+
 #include <glm/vec3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/ext/vector_double3.hpp>
@@ -72,20 +74,25 @@ struct ReferenceSample {
   glm::dvec3 normal{0.0};
 };
 
-// The largest vertex valence the exact surface takes (OpenSubdiv's own limit is far higher, but its
-// cost around a vertex grows as about valence^2.4; at 128 a cage's surface builds in about 0.2 s).
-inline constexpr int kMaxExactValence = 128;
+// Above this valence the exact surface is costly to build: OpenSubdiv's work around a vertex grows as
+// about valence^2.4 (128: about 0.2 s; 360: 2.5 s; 800: 18 s). Any valence OpenSubdiv takes is drawn;
+// make_subd_model warns with the estimate (exact_build_seconds) above this one.
+inline constexpr int kCostlyExactValence = 128;
+// The estimated seconds to build the exact surface around one vertex of valence `valence`.
+inline double exact_build_seconds(int valence) { return 0.2 * std::pow(double(valence) / 128.0, 2.4); }
 
 // The adaptive method's patch at a point (patch_at), for the patch-type view and statistics.
 enum class AdaptivePatchKind : std::uint8_t { regular, boundary, single_crease, end_cap };
 inline constexpr int kAdaptivePatchKinds = 4;
 const char* to_string(AdaptivePatchKind k);
 
-// The isolation levels the adaptive method takes (Far's maximum is 10) and its default: at 4 every
-// creased OpenSubdiv shape is within 6.5e-3 of the diagonal of the exact limit, at 6 within 5.2e-4
-// (README, "Choosing a scheme"); 4 loads the frog in a third of 6's time and memory.
+// The isolation levels the adaptive method takes (Far's maximum is 10) and its default, chosen for
+// accuracy: at 7 every OpenSubdiv shape is as close to the exact limit as gregory draws it or closer
+// (at 4, six creased shapes were farther: cube_creases1 6.5e-3 of the diagonal against 2.3e-3), the
+// worst within 5.2e-4. The cost is patches and memory near features (the frog: 23,456 patches, 4.5 MB
+// against 13,520 and 2.8 MB at 4), not frame time. scripts/shape_numbers.sh measures it.
 inline constexpr int kMaxIsolation = 10;
-inline constexpr int kDefaultIsolation = 4;
+inline constexpr int kDefaultIsolation = 7;
 
 class LimitSurface {
  public:
@@ -97,8 +104,8 @@ class LimitSurface {
   static constexpr int kDefaultApproxLevel = 10;
   static constexpr int kMaxApproxLevel = 10;  // OpenSubdiv 3.5 crashes above 10
 
-  // Throws CageError (one line) for cages that fail validate_cage or exceed OpenSubdiv's limits or
-  // kMaxExactValence, or whose limit is not finite; std::invalid_argument for a level outside
+  // Throws CageError (one line) for cages that fail validate_cage or exceed OpenSubdiv's limits, or
+  // whose limit is not finite; std::invalid_argument for a level outside
   // 1..kMaxApproxLevel.
   static LimitSurface create(const Cage& cage, int approx_level = kDefaultApproxLevel);
   // The adaptive method at `isolation` (1..kMaxIsolation; std::invalid_argument outside); the same

@@ -62,15 +62,11 @@ void check_osd_limits(const Cage& cage, const Topology& topology) {
     if (topology.face_size(f) > max_face)
       throw CageError(name + ": face " + std::to_string(f) + " has " + std::to_string(topology.face_size(f)) +
                       " vertices; OpenSubdiv takes at most " + std::to_string(max_face));
-  // Bfr's work on the faces around a vertex grows as about valence^2.4 (valence 400: 3.4 s, 800: 18 s,
-  // 2000: 307 s and 2.8 GB for the exact scheme on one vertex): Tessera's own limit keeps the work
-  // bounded by what a cage can justify (kMaxExactValence: about 0.2 s).
-  const int limit = std::min(max_valence, kMaxExactValence);
+  // Any valence OpenSubdiv takes; the cost above kCostlyExactValence is make_subd_model's warning.
   for (int v = 0; v < topology.vertex_count(); ++v)
-    if (topology.valence(v) > limit)
+    if (topology.valence(v) > max_valence)
       throw CageError(name + ": vertex " + std::to_string(v) + " has valence " + std::to_string(topology.valence(v)) +
-                      "; the exact limit surface takes at most " + std::to_string(limit) +
-                      " (its cost grows as valence^2.4)");
+                      "; OpenSubdiv takes at most " + std::to_string(max_valence));
 }
 
 }  // namespace
