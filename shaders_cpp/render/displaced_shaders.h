@@ -393,7 +393,7 @@ struct DisplacedDS {
     nn.store(nn_lanes);
     scale.store(scale_lanes);
     for (std::size_t k = 0; k < count; ++k)
-      if (scale_lanes[k] > 0.0f && nn_lanes[k] <= kParallelDerivatives * scale_lanes[k]) return false;
+      if (nn_lanes[k] <= kParallelDerivatives * scale_lanes[k]) return false;
     const F8 len = simd::sqrt(nn);
     std::array<float, 8> nx_unit, ny_unit, nz_unit, len_lanes;
     (nx / len).store(nx_unit);

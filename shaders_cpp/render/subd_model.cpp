@@ -12,6 +12,7 @@
 #include "shaders_cpp/cage/cage_obj.h"
 #include "shaders_cpp/cage/corner_ring.h"
 #include "shaders_cpp/cage/one_line.h"
+#include "shaders_cpp/render/strayed_faces.h"
 #include "shaders_cpp/subdiv/control_point_prepass.h"
 #include "shaders_cpp/subdiv/pn_patch.h"
 #include "tessellator/check.h"
@@ -145,6 +146,11 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   m.precomputed = precompute_control_points(m.patches, m.cage.positions);
+  // Faces whose masks' patch folds or strays from the limit are fitted to it (strayed_faces.h).
+  if (const StrayedFaces strayed = find_strayed_faces(m); strayed.count() > 0) {
+    m.patches = build_patches(m.cage, *m.topology, scheme, strayed.faces);
+    m.precomputed = precompute_control_points(m.patches, m.cage.positions);
+  }
   if (uses_limit_surface(scheme)) {
     int pole = 0;  // the vertex of highest valence
     for (int v = 1; v < m.topology->vertex_count(); ++v)

@@ -504,9 +504,10 @@ struct SubdDS {
       // Where the two derivatives are parallel (a patch corner at a vertex with one face, whose two
       // edges leave along the one boundary tangent), their cross product is round-off and its sign is
       // anyone's: the normal is taken a step into the patch, where the surface's tangent plane is
-      // spanned (the limit of the normal there). Such a corner belongs to one patch only.
+      // spanned (the limit of the normal there). Such a corner belongs to one patch only. The same holds
+      // where a derivative vanishes: along a collapsed edge (a face that repeats a vertex) or at a pole.
       const float scale = glm::dot(p.du, p.du) * glm::dot(p.dv, p.dv);
-      if (scale > 0.0f && glm::dot(n, n) <= kParallelDerivatives * scale) {
+      if (glm::dot(n, n) <= kParallelDerivatives * scale) {
         constexpr float step = 1.0f / 1024.0f;
         DomainLocation inner = loc;
         if (triangles) {
@@ -522,10 +523,16 @@ struct SubdDS {
       }
       // At a fitted face's corner, the limit's own normal (SubdPatch::limit_corners); then, on a semi-sharp
       // crease line, the mean with the neighbours' normals.
+      // The limit's derivatives are parallel at a vertex of valence 2 (its two edges leave along one
+      // line): then the patch's own normal, a step inside, stands.
       const int k = patch.limit_corners != 0 ? patch_corner(loc) : -1;
-      const glm::vec3 corner_n = k >= 0 && (patch.limit_corners & (1u << k))
-                                     ? glm::cross(cp[std::size_t(2 * k)].dv, cp[std::size_t(2 * k + 1)].dv)
-                                     : glm::vec3(0.0f);
+      glm::vec3 corner_n(0.0f);
+      if (k >= 0 && (patch.limit_corners & (1u << k))) {
+        const glm::vec3 &a = cp[std::size_t(2 * k)].dv, &b = cp[std::size_t(2 * k + 1)].dv;
+        corner_n = glm::cross(a, b);
+        if (glm::dot(corner_n, corner_n) <= kParallelDerivatives * (glm::dot(a, a) * glm::dot(b, b)))
+          corner_n = glm::vec3(0.0f);
+      }
       if (glm::dot(corner_n, corner_n) > 0.0f)
         n = corner_n;
       else if (patch.averaged_edges != 0)

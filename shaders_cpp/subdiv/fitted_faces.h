@@ -25,6 +25,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "shaders_cpp/cage/cage.h"
@@ -40,10 +41,12 @@ inline constexpr double kNegligibleFitWeight = 1e-9;
 
 class FittedFaces {
  public:
-  FittedFaces(const Cage& cage, const Topology& t, Scheme scheme);
+  // `refit`: untagged faces fitted too (build_patches), every edge of theirs with them.
+  FittedFaces(const Cage& cage, const Topology& t, Scheme scheme, std::span<const char> refit = {});
 
   // Whether any face is fitted: without one, every call below leaves the rows as they are.
   bool any() const { return limit_ != nullptr; }
+  int refit_count() const { return refit_count_; }
   const LimitStencils& limit() const { return *limit_; }
   bool fitted(int face) const { return fitted_[std::size_t(face)] != 0; }
   // The fitted faces and the triangles and quads beside a fitted edge.
@@ -70,6 +73,7 @@ class FittedFaces {
   const Topology& t_;
   std::unique_ptr<LimitStencils> limit_;
   std::vector<char> fitted_, fit_points_;
+  int refit_count_ = 0;
   std::map<std::int64_t, int> edge_owner_;  // edge key -> the lowest fitted face on it
   std::map<int, std::optional<Stencil>> corners_;
   std::map<std::int64_t, FittedEdge> edges_;

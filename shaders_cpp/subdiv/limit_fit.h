@@ -70,7 +70,12 @@ std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int
 // a triangle's barycentric (u, v)): their cross product is the limit's one-sided normal there, which a
 // fitted patch's corner does not reproduce where the limit bends within a fraction of the face (a cusp,
 // a corner tag's pull).
-std::optional<std::array<Stencil, 2>> limit_corner_derivatives(const LimitStencils& limit, int face, int k);
+// With `inward`, a step of kInwardStep toward the face's centre: at an interior vertex of valence 2 the
+// limit's two derivatives are parallel (its two edges leave along one line), and the normal is the
+// limit of the normal approaching the vertex from inside the face.
+inline constexpr double kInwardStep = 1.0 / 1024.0;
+std::optional<std::array<Stencil, 2>> limit_corner_derivatives(const LimitStencils& limit, int face, int k,
+                                                               bool inward = false);
 
 struct EdgePoints {
   Stencil near_a, near_b;  // the Bezier points beside the edge's vertex a and vertex b

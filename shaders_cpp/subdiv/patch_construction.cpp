@@ -131,8 +131,9 @@ void add_creased(PatchContext& ctx, const FaceFrame& face, PatchGroup& group, Pa
   if (ctx.fitted.any() && ctx.fitted.fitted(face.f)) {
     std::vector<Stencil> rows;
     for (int k = 0; k < face.n; ++k) {
-      std::optional<std::array<Stencil, 2>> d =
-          limit_corner_derivatives(ctx.fitted.limit(), face.f, (k + face.rot) % face.n);
+      const int v = face.corner(k);
+      std::optional<std::array<Stencil, 2>> d = limit_corner_derivatives(
+          ctx.fitted.limit(), face.f, (k + face.rot) % face.n, !ctx.t.is_boundary_vertex(v) && ctx.t.valence(v) == 2);
       if (d) corners = std::uint8_t(corners | (1u << k));
       rows.push_back(d ? (*d)[0] : Stencil{}), rows.push_back(d ? (*d)[1] : Stencil{});
     }

@@ -97,7 +97,7 @@ void build_face(subdiv::PatchContext& ctx, const subdiv::FaceFrame& face) {
 
 }  // namespace
 
-SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
+SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, std::span<const char> refit) {
   SubdPatches out;
   out.scheme = scheme;
   out.quads.domain = ts::Domain::quad;
@@ -111,7 +111,8 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme) {
   // The triangles of polar configurations (polar_patch.h), gregory's and bspline's: per face, its pole.
   const std::vector<int> pole =
       scheme == Scheme::gregory || scheme == Scheme::bspline ? polar_poles(t) : std::vector<int>{};
-  subdiv::FittedFaces fitted(cage, t, scheme);
+  subdiv::FittedFaces fitted(cage, t, scheme, refit);
+  out.refit_faces = fitted.refit_count();
   subdiv::NeighbourRows neighbours(cage, t, semi_sharp);
   subdiv::PatchAssembler assembler(cage, out);
   subdiv::PatchContext ctx{cage, t, scheme, out, assembler, semi_sharp, fitted, neighbours};

@@ -30,6 +30,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -142,10 +143,15 @@ struct SubdPatches {
   std::vector<PrecomputedPatch> precomputed;  // in the order of their rows (SubdPatch::precomputed)
   int precomputed_rows = 0;                   // the pre-pass's point count
   int fallback_faces = 0;
+  int refit_faces = 0;  // untagged faces fitted to the limit because their masks' patch strays (`refit`)
   int holes = 0;  // faces that draw nothing: hole tags (and, for exact, faces without a limit surface)
 };
 
-SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme);
+// `refit`, when not empty (one entry per face): faces whose masks' patch strays from the limit (a fold, a
+// valence-2 vertex, a cusp; the model finds them, subd_model.h), fitted to the limit under gregory,
+// bspline and acc as a tagged face is: its edges and face points (fitted_faces.h).
+SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme,
+                          std::span<const char> refit = {});
 
 // Whether build_patches fits face f to the exact limit (limit_fit.h): under gregory, bspline and acc
 // (which draws it as that Gregory patch, its face points coinciding), a triangle or quad, not a hole,

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "shaders_cpp/render/subd_model.h"
 #include "tools/measure/scheme_accuracy.h"
@@ -62,11 +63,14 @@ int run_accuracy(const AccuracyOptions& o) {
                     {"max_normal_degrees_defined", a.max_normal_degrees_defined},
                     {"undefined_normal_samples", a.undefined_normal_samples},
                     {"folded_samples", a.folded_samples},
+                    {"folded_faces", a.folded_faces},
+                    {"farthest_face", a.farthest_face},
                     {"max_curvature_error", a.max_curvature_error},
                     {"mean_curvature_error", a.mean_curvature_error},
                     {"max_curvature_scheme", a.max_curvature_scheme},
                     {"max_curvature_limit", a.max_curvature_limit},
-                    {"fallback_faces", model.patches.fallback_faces}};
+                    {"fallback_faces", model.patches.fallback_faces},
+                    {"refit_faces", model.patches.refit_faces}};
     std::cout << json_text(j) << "\n";
   } else {
     char line[512];
@@ -81,6 +85,12 @@ int run_accuracy(const AccuracyOptions& o) {
                   (unsigned long long)a.folded_samples, a.max_curvature_error, a.mean_curvature_error,
                   a.max_curvature_scheme, a.max_curvature_limit);
     std::cout << line;
+    if (!a.folded_faces.empty()) {
+      std::string faces;
+      for (std::size_t i = 0; i < a.folded_faces.size() && i < 16; ++i) faces += " " + std::to_string(a.folded_faces[i]);
+      if (a.folded_faces.size() > 16) faces += " ...";
+      std::cout << o.s.cage << ": " << a.folded_faces.size() << " faces with folded samples:" << faces << "\n";
+    }
   }
   return kExitOk;
 }

@@ -36,6 +36,8 @@ SchemeAccuracy measure_scheme_accuracy(Device& device, const SubdModel& model, c
   double max_d = 0, sum_d2 = 0, max_angle = 0, sum_angle = 0, max_k = 0, sum_k = 0, max_ks = 0, max_kl = 0;
   double max_angle_defined = 0;
   std::uint64_t samples = 0, edges = 0, folded = 0, undefined = 0;
+  std::vector<int> folded_faces;
+  int farthest_face = -1;
   // One patch's points and unit normals, the scheme's and the limit's, for the curvature along its edges.
   std::vector<glm::dvec3> scheme_p, scheme_n, limit_p, limit_n;
   auto curvature = [](const glm::dvec3& p0, const glm::dvec3& n0, const glm::dvec3& p1, const glm::dvec3& n1) {
@@ -73,7 +75,7 @@ SchemeAccuracy measure_scheme_accuracy(Device& device, const SubdModel& model, c
             owned = glm::dvec3(reference.evaluate(patch.face, patch.sub, s.u, s.v).normal);
           }
           const double d = glm::length(glm::dvec3(s.position) - pos);
-          max_d = std::max(max_d, d);
+          if (d > max_d || farthest_face < 0) max_d = std::max(max_d, d), farthest_face = patch.face;
           sum_d2 += d * d;
           const glm::dvec3 sn = glm::normalize(glm::dvec3(s.normal));
           scheme_p.push_back(glm::dvec3(s.position)), scheme_n.push_back(sn);
@@ -89,7 +91,7 @@ SchemeAccuracy measure_scheme_accuracy(Device& device, const SubdModel& model, c
                                limit_normal_defined(reference, patch.face, sub, ss, st, nrm);
           if (!defined) ++undefined;
           if (defined && std::isfinite(angle)) max_angle_defined = std::max(max_angle_defined, angle);
-          if (defined && !(angle <= kFoldDegrees)) ++folded;
+          if (defined && !(angle <= kFoldDegrees)) ++folded, folded_faces.push_back(patch.face);
           ++samples;
         }
         for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3)
@@ -117,6 +119,9 @@ SchemeAccuracy measure_scheme_accuracy(Device& device, const SubdModel& model, c
   a.max_normal_degrees = max_angle, a.mean_normal_degrees = samples ? sum_angle / double(samples) : 0.0;
   a.max_normal_degrees_defined = max_angle_defined;
   a.undefined_normal_samples = undefined, a.folded_samples = folded;
+  std::sort(folded_faces.begin(), folded_faces.end());
+  folded_faces.erase(std::unique(folded_faces.begin(), folded_faces.end()), folded_faces.end());
+  a.folded_faces = std::move(folded_faces), a.farthest_face = farthest_face;
   a.max_curvature_error = max_k * diagonal, a.mean_curvature_error = edges ? sum_k / double(edges) * diagonal : 0.0;
   a.max_curvature_scheme = max_ks * diagonal, a.max_curvature_limit = max_kl * diagonal;
   return a;

@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "shaders_cpp/render/subd_model.h"
 
@@ -34,6 +35,8 @@ struct SchemeAccuracy {
   double max_normal_degrees = 0.0, mean_normal_degrees = 0.0;
   double max_normal_degrees_defined = 0.0;  // over the samples whose limit normal is defined
   std::uint64_t undefined_normal_samples = 0, folded_samples = 0;
+  std::vector<int> folded_faces;  // the cage faces with a folded sample, ascending
+  int farthest_face = -1;         // the cage face of the largest distance
   // Per diagonal (see above).
   double max_curvature_error = 0.0, mean_curvature_error = 0.0, max_curvature_scheme = 0.0, max_curvature_limit = 0.0;
   std::string error;  // the draw's, when it failed (nothing else is set then)
