@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 #include <optional>
 
 #include "shaders_cpp/subdiv/limit_fit.h"
@@ -76,9 +75,6 @@ StrayedFaces find_strayed_faces(const SubdModel& m) {
     for (const SubdPatch& p : g->patches) any = any || candidate(p);
   if (!any) return out;
 
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : cage.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double diagonal = cage.positions.empty() ? 0.0 : glm::length(glm::dvec3(hi) - glm::dvec3(lo));
   const LimitStencils limit(cage);
   out.faces.assign(std::size_t(cage.face_count()), 0);
   const SubdFactors factors;
@@ -106,27 +102,21 @@ StrayedFaces find_strayed_faces(const SubdModel& m) {
       ds.samples(SubdPatchConstants{}, cp, at, std::uint32_t(id), samples);
       // The corners' limit a step inside the face (kInwardStep, as a fitted corner takes it at a vertex of
       // valence 2, where the limit's derivatives at the vertex are parallel).
-      const double centre = tri ? 1.0 / 3.0 : 0.5;
+      const int n = tri ? 3 : 4;
       for (std::size_t i = 0; i < at.size(); ++i) {
         uv[i] = {double(samples[i].u), double(samples[i].v)};
-        if (i < (tri ? 3u : 4u))
-          for (double& x : uv[i]) x += (centre - x) * kInwardStep;
+        if (i < std::size_t(n)) uv[i] = step_inward(n, uv[i]);
       }
       std::vector<Stencil> du, dv;
-      const std::optional<std::vector<Stencil>> pos = limit.at(patch.face, uv, &du, &dv);
-      if (!pos) continue;
-      ++out.checked;
+      if (!limit.at(patch.face, uv, &du, &dv)) continue;
       bool folded = false;
-      for (std::size_t i = 0; i < at.size(); ++i) {
-        const glm::dvec3 lp = sum((*pos)[i], cage.positions);
+      for (std::size_t i = 0; i < at.size() && !folded; ++i) {
         const glm::dvec3 ld = sum(du[i], cage.positions), le = sum(dv[i], cage.positions);
         const glm::dvec3 ln = flip * glm::cross(ld, le);
-        const glm::dvec3 sp(samples[i].position), sn(samples[i].normal);
-        if (i >= (tri ? 3u : 4u)) out.largest_distance = std::max(out.largest_distance, glm::length(sp - lp) / diagonal);
         const double defined = kDefinedNormal * glm::length(ld) * glm::length(le);
-        folded = folded || (glm::length(ln) > defined && glm::dot(ln, sn) < 0.0);
+        folded = glm::length(ln) > defined && glm::dot(ln, glm::dvec3(samples[i].normal)) < 0.0;
       }
-      if (folded) ++out.folded, out.faces[std::size_t(patch.face)] = 1;
+      if (folded) out.faces[std::size_t(patch.face)] = 1;
     }
   }
   return out;

@@ -146,7 +146,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   m.precomputed = precompute_control_points(m.patches, m.cage.positions);
-  // Faces whose masks' patch folds or strays from the limit are fitted to it (strayed_faces.h).
+  // Faces whose masks' patch folds are fitted to the limit (strayed_faces.h).
   if (const StrayedFaces strayed = find_strayed_faces(m); strayed.count() > 0) {
     m.patches = build_patches(m.cage, *m.topology, scheme, strayed.faces);
     m.precomputed = precompute_control_points(m.patches, m.cage.positions);

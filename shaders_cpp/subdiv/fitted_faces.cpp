@@ -38,11 +38,12 @@ FittedFaces::FittedFaces(const Cage& cage, const Topology& t, Scheme scheme, std
     : cage_(cage), t_(t), fitted_(std::size_t(t.face_count()), 0) {
   for (int f = 0; f < t.face_count(); ++f) {
     const int m = t.face_size(f);
+    const bool tagged = fits_limit(cage, t, scheme, f);
     const bool forced = !refit.empty() && refit[std::size_t(f)] && !t.is_hole(f) && (m == 3 || m == 4) &&
                         (scheme == Scheme::gregory || scheme == Scheme::bspline || scheme == Scheme::acc);
-    if (!forced && !fits_limit(cage, t, scheme, f)) continue;
+    if (!forced && !tagged) continue;
     fitted_[std::size_t(f)] = 1;
-    refit_count_ += forced && !fits_limit(cage, t, scheme, f);
+    refit_count_ += forced && !tagged;
     for (int k = 0; k < m; ++k) {
       const int a = cage.face_vertex(f, k), b = cage.face_vertex(f, (k + 1) % m);
       if (forced || t.has_sharpness_at(a) || t.has_sharpness_at(b) || t.is_boundary_vertex(a) ||

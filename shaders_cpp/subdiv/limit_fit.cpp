@@ -279,14 +279,16 @@ std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int
   return std::move((*l)[0]);
 }
 
+std::array<double, 2> step_inward(int n, std::array<double, 2> uv) {
+  const double centre = n == 3 ? 1.0 / 3.0 : 0.5;
+  for (double& x : uv) x += (centre - x) * kInwardStep;
+  return uv;
+}
+
 std::optional<std::array<Stencil, 2>> limit_corner_derivatives(const LimitStencils& limit, int face, int k,
                                                                bool inward) {
   const int n = limit.face_size(face);
-  std::array<std::array<double, 2>, 1> uv = {corner_uv(n, k)};
-  if (inward) {  // a step toward the face's centre (1/3, 1/3) or (1/2, 1/2)
-    const double centre = n == 3 ? 1.0 / 3.0 : 0.5;
-    for (double& x : uv[0]) x += (centre - x) * kInwardStep;
-  }
+  const std::array<std::array<double, 2>, 1> uv = {inward ? step_inward(n, corner_uv(n, k)) : corner_uv(n, k)};
   std::vector<Stencil> du, dv;
   if (!limit.at(face, uv, &du, &dv)) return std::nullopt;
   return std::array<Stencil, 2>{std::move(du[0]), std::move(dv[0])};

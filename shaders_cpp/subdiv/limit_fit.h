@@ -74,6 +74,9 @@ std::optional<Stencil> limit_at_corner(const LimitStencils& limit, int face, int
 // limit's two derivatives are parallel (its two edges leave along one line), and the normal is the
 // limit of the normal approaching the vertex from inside the face.
 inline constexpr double kInwardStep = 1.0 / 1024.0;
+// Domain point `uv` of a face of `n` sides moved kInwardStep of the way to the face's centre ((1/3, 1/3)
+// for a triangle's barycentrics, (1/2, 1/2) for a quad).
+std::array<double, 2> step_inward(int n, std::array<double, 2> uv);
 std::optional<std::array<Stencil, 2>> limit_corner_derivatives(const LimitStencils& limit, int face, int k,
                                                                bool inward = false);
 

@@ -143,12 +143,12 @@ struct SubdPatches {
   std::vector<PrecomputedPatch> precomputed;  // in the order of their rows (SubdPatch::precomputed)
   int precomputed_rows = 0;                   // the pre-pass's point count
   int fallback_faces = 0;
-  int refit_faces = 0;  // untagged faces fitted to the limit because their masks' patch strays (`refit`)
+  int refit_faces = 0;  // untagged faces fitted to the limit because their masks' patch folds (`refit`)
   int holes = 0;  // faces that draw nothing: hole tags (and, for exact, faces without a limit surface)
 };
 
-// `refit`, when not empty (one entry per face): faces whose masks' patch strays from the limit (a fold, a
-// valence-2 vertex, a cusp; the model finds them, subd_model.h), fitted to the limit under gregory,
+// `refit`, when not empty (one entry per face): faces whose masks' patch folds (beside a
+// valence-2 vertex, a cusp; strayed_faces.h finds them), fitted to the limit under gregory,
 // bspline and acc as a tagged face is: its edges and face points (fitted_faces.h).
 SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme,
                           std::span<const char> refit = {});
