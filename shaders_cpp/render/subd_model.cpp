@@ -2,6 +2,7 @@
 #include "shaders_cpp/cage/boundary_rule.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -19,6 +20,20 @@
 
 namespace tessera {
 namespace {
+
+// Seconds since the last lap (or construction).
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 // Removes the patches of faces `keep` rejects, with their IA indices; returns how many went.
 template <class Keep>
@@ -140,17 +155,22 @@ std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t
 
 SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   SubdModel m;
+  Stopwatch clock;
   m.cage = std::move(cage);
   m.topology = std::make_unique<Topology>(m.cage);
+  m.times.topology_s = clock.lap();
   m.patches = build_patches(m.cage, *m.topology, scheme);
   if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
+  m.times.patches_s = clock.lap();
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   m.precomputed = precompute_control_points(m.patches, m.cage.positions);
+  m.times.precompute_s = clock.lap();
   // Faces whose masks' patch folds are fitted to the limit (strayed_faces.h).
   if (const StrayedFaces strayed = find_strayed_faces(m); strayed.count() > 0) {
     m.patches = build_patches(m.cage, *m.topology, scheme, strayed.faces);
     m.precomputed = precompute_control_points(m.patches, m.cage.positions);
   }
+  m.times.fold_check_s = clock.lap();
   if (uses_limit_surface(scheme)) {
     int pole = 0;  // the vertex of highest valence
     for (int v = 1; v < m.topology->vertex_count(); ++v)
@@ -168,6 +188,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
     auto has_surface = [&](const SubdPatch& p) { return m.limit->has_surface(p.face); };
     for (PatchGroup* g : {&m.patches.quads, &m.patches.tris}) m.patches.holes += remove_patches(*g, has_surface);
     m.ring_boxes = face_ring_boxes(m.cage.positions, *m.topology);
+    m.times.limit_s = clock.lap();
   } else if (m.cage.tags.boundary == BoundaryInterpolation::none) {
     // The per-face schemes honour `none` as OpenSubdiv does: those boundary faces draw nothing.
     const std::vector<bool> none = faces_without_surface(m.cage, *m.topology);
@@ -198,9 +219,18 @@ Cage load_cage(const std::string& path, const GltfSelection& selection) {
 }
 
 SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection, int isolation) {
-  if (!is_gltf_path(path)) return make_subd_model(load_obj_cage(path), scheme, isolation);
+  Stopwatch clock;
+  if (!is_gltf_path(path)) {
+    Cage cage = load_obj_cage(path);
+    const double read_s = clock.lap();
+    SubdModel m = make_subd_model(std::move(cage), scheme, isolation);
+    m.times.read_s = read_s;
+    return m;
+  }
   GltfCage g = load_gltf_cage(path, selection);
+  const double read_s = clock.lap();
   SubdModel m = make_subd_model(std::move(g.cage), scheme, isolation);
+  m.times.read_s = read_s;
   m.rig = std::move(g.rig);
   m.material = std::move(g.maps);
   return m;

@@ -22,6 +22,16 @@
 
 namespace tessera {
 
+// Where a model's preparation spent its time (steady clock, seconds): for `bench load` and -v.
+struct PrepareTimes {
+  double read_s = 0;        // the file to a Cage (load_subd_model only)
+  double topology_s = 0;    // half-edges, rings, tags
+  double patches_s = 0;     // build_patches: per face its patch, per topology combination its table
+  double fold_check_s = 0;  // find_strayed_faces, and the rebuild when a face folds
+  double precompute_s = 0;  // the control-point pre-pass and per-vertex normals
+  double limit_s = 0;       // exact and adaptive: the limit surface
+};
+
 struct SubdModel {
   Cage cage;  // the rest pose
   std::unique_ptr<Topology> topology;
@@ -40,6 +50,7 @@ struct SubdModel {
   // Drawn from both sides (--two-sided): a draw setting kept with the model because every pass derives
   // its rasterizer state and pixel shaders' FaceSides from the model (subd_render.h).
   bool two_sided = false;
+  PrepareTimes times;
 
   // The control points as the vertex shader outputs them (the posed cage, or the cage).
   const std::vector<glm::vec3>& positions() const { return pose ? posed_positions : cage.positions; }

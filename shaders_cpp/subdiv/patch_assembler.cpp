@@ -4,8 +4,23 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
+
+#include "tessellator/check.h"
 
 namespace tessera::subdiv {
+namespace {
+
+// The patch's summation order: its IA patch's positions by ascending cage vertex index.
+void set_order(SubdPatch& p, const std::vector<int>& ia) {
+  std::array<std::uint8_t, kMaxPatchControlPoints> order{};
+  std::iota(order.begin(), order.begin() + std::ptrdiff_t(ia.size()), std::uint8_t(0));
+  std::sort(order.begin(), order.begin() + std::ptrdiff_t(ia.size()),
+            [&](std::uint8_t a, std::uint8_t b) { return ia[a] < ia[b]; });
+  for (std::size_t i = 0; i < ia.size(); ++i) p.order[i] = order[i];
+}
+
+}  // namespace
 
 SubdPatch& PatchAssembler::add(PatchGroup& group, int face, int sub, PatchKind kind, const std::vector<int>& ring,
                                const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges,
@@ -54,16 +69,43 @@ SubdPatch& PatchAssembler::add(PatchGroup& group, int face, int sub, PatchKind k
   // Patches evaluated without control points (exact) need no table. A precomputed patch's table
   // (over its whole ring) still names its topology combination and row count.
   p.table = stencils.empty() ? -1 : intern(std::move(table));
-  std::vector<int> order(ia.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return ia[std::size_t(a)] < ia[std::size_t(b)]; });
-  for (std::size_t i = 0; i < order.size(); ++i) p.order[i] = std::uint8_t(order[i]);
+  set_order(p, ia);
   p.edge_keys = edges;
   p.rotation = std::uint8_t(rotation);
+  if (into_ >= 0) {
+    const std::size_t slot = std::size_t(std::exchange(into_, -1));
+    TESSERA_CHECK(groups_[slot] == &group, "PatchAssembler::add_into: slot", slot, "of another group");
+    rings_[slot] = ia;
+    return group.patches[index_[slot]] = p;
+  }
   group.patches.push_back(p);
   rings_.push_back(ia);
   groups_.push_back(&group);
+  index_.push_back(group.patches.size() - 1);
   return group.patches.back();
+}
+
+int PatchAssembler::reserve(PatchGroup& group) {
+  group.patches.emplace_back();
+  rings_.emplace_back();
+  groups_.push_back(&group);
+  index_.push_back(group.patches.size() - 1);
+  return int(rings_.size() - 1);
+}
+
+void PatchAssembler::place(int slot, int face, PatchKind kind, std::vector<int> ring, int table,
+                           const std::array<EdgeFactorKey, 4>& edges, int rotation) {
+  const std::size_t s = std::size_t(slot);
+  SubdPatch& p = groups_[s]->patches[index_[s]];
+  p = SubdPatch{};
+  p.face = face;
+  p.kind = kind;
+  p.ring_size = int(ring.size());
+  p.table = table;
+  set_order(p, ring);
+  p.edge_keys = edges;
+  p.rotation = std::uint8_t(rotation);
+  rings_[s] = std::move(ring);
 }
 
 void PatchAssembler::finish() {

@@ -8,8 +8,11 @@
 // - Tables are interned by their weights, row count and ring size: equal tables share an index.
 // - A patch's `order` lists its IA patch's positions by ascending cage vertex index (stencil.h: the
 //   hull shader sums in that order, so shared points come out bit-identical).
-// - finish() once, after the last add(): it fills both groups' index buffers, each patch's ring padded
-//   with its first vertex to the group's largest ring.
+// - reserve() holds a patch's place in face order for a patch whose table is already known (a face of
+//   a topology combination built before); place() fills it later, from any thread (one slot per call,
+//   nothing else written), and add_into() fills it with a full construction instead (one thread).
+// - finish() once, after the last add() and every reserved slot filled: it fills both groups' index
+//   buffers, each patch's ring padded with its first vertex to the group's largest ring.
 // - A stencil reaching outside the ring, or a ring over 32 points that cannot be precomputed, is a
 //   construction's bug: a CageError naming the face (bad data never gets here).
 #pragma once
@@ -37,6 +40,17 @@ class PatchAssembler {
                  const std::vector<Stencil>& stencils, const std::array<EdgeFactorKey, 4>& edges, int rotation = 0,
                  int corners = 0);
 
+  // A place for one patch in `group`, after those added so far; returns its slot for place() or
+  // add_into().
+  int reserve(PatchGroup& group);
+  // Slot `slot` becomes the patch of `face` over `ring` with stencil table `table` (an index returned
+  // in an earlier patch's `table`): what add() makes of the same ring and of stencils whose table that
+  // is, without building them. Safe to call concurrently for different slots.
+  void place(int slot, int face, PatchKind kind, std::vector<int> ring, int table,
+             const std::array<EdgeFactorKey, 4>& edges, int rotation);
+  // The next add() fills slot `slot` instead of appending.
+  void add_into(int slot) { into_ = slot; }
+
   // Fills each group's index buffer once every patch is known (the control point count is the
   // group's largest ring).
   void finish();
@@ -47,8 +61,10 @@ class PatchAssembler {
   const Cage& cage_;
   SubdPatches& out_;
   std::map<std::string, int> interned_;
-  std::vector<std::vector<int>> rings_;
-  std::vector<PatchGroup*> groups_;
+  std::vector<std::vector<int>> rings_;  // per slot: its IA patch
+  std::vector<PatchGroup*> groups_;      // per slot: its group
+  std::vector<std::size_t> index_;       // per slot: its patch's index in its group
+  int into_ = -1;                        // add_into()'s slot, until the next add()
 };
 
 }  // namespace tessera::subdiv

@@ -2,8 +2,12 @@
 // one file each).
 #include "shaders_cpp/subdiv/subd_patches.h"
 
+#include <algorithm>
 #include <optional>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "shaders_cpp/cage/topology_combinations.h"
 #include "shaders_cpp/subdiv/crease_cross_rows.h"
@@ -97,14 +101,76 @@ void build_face(subdiv::PatchContext& ctx, const subdiv::FaceFrame& face) {
 
 }  // namespace
 
+namespace {
+
+// A face whose patch depends on its topology combination alone (topology_combinations.h): a triangle or
+// quad of a stencil scheme, not at a pole, with no tag at a corner and, where faces are fitted, neither
+// fitted nor beside a fitted face or edge. Such faces of one combination, read from their canonical
+// corner and reaching the same ring structure (SharedRing), have the same stencils: one table.
+bool shared_by_combination(const subdiv::PatchContext& ctx, const subdiv::FaceFrame& face) {
+  if (!is_stencil_scheme(ctx.scheme) || face.n < 3 || face.n > 4 || face.polar >= 0 || face.creased) return false;
+  if (!ctx.fitted.any()) return true;
+  if (ctx.fitted.fitted(face.f) || ctx.fitted.fits_face_points(face.f)) return false;
+  for (int k = 0; k < face.n; ++k) {
+    const int h = ctx.t.face_offset(face.f) + k, twin = ctx.t.twin(h);
+    if (twin >= 0 && ctx.fitted.fitted(ctx.t.face(twin))) return false;
+    if (ctx.fitted.is_fitted_edge(cage_edge_key(face.corner(k), face.corner(k + 1)))) return false;
+  }
+  return true;
+}
+
+// The IA patch of a face shared_by_combination (gather_ring's), and where each vertex the traversal
+// reaches landed in it. Faces of one combination reach their vertices in the same traversal; with the
+// same landing places, their rings have the same structure, global coincidences (a vertex reached from
+// two corners, as round a small cage) included, so the stencils over them give one table.
+struct SharedRing {
+  std::vector<int> ring;
+  std::vector<std::uint8_t> landed;
+};
+template <std::size_t N>
+SharedRing shared_ring(const std::array<CornerRing, N>& rings) {
+  SharedRing out;
+  out.ring.reserve(kMaxPatchControlPoints + 8);
+  out.landed.reserve(64);
+  auto push = [&](int v) {
+    const auto it = std::find(out.ring.begin(), out.ring.end(), v);
+    out.landed.push_back(std::uint8_t(std::min<std::ptrdiff_t>(it - out.ring.begin(), 255)));
+    if (it == out.ring.end()) out.ring.push_back(v);
+  };
+  for (const CornerRing& r : rings) push(r.center);
+  for (const CornerRing& r : rings)
+    for (int j = 0; j < r.valence(); ++j) {
+      push(r.edges[std::size_t(j)]);
+      if (j < r.face_count())
+        for (const int v : r.face_others[std::size_t(j)]) push(v);
+    }
+  return out;
+}
+SharedRing shared_ring(const subdiv::PatchContext& ctx, const subdiv::FaceFrame& face) {
+  return face.n == 4 ? shared_ring(subdiv::face_rings<4>(ctx, face).whole)
+                     : shared_ring(subdiv::face_rings<3>(ctx, face).whole);
+}
+
+// What a combination's first face made: its table and kind, its ring's structure, and whether bspline
+// counts it as a fallback face.
+struct SharedPatch {
+  int table = -1;
+  PatchKind kind = PatchKind::gregory;
+  std::vector<std::uint8_t> landed;
+  bool fallback = false;
+};
+
+}  // namespace
+
 SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, std::span<const char> refit) {
   SubdPatches out;
   out.scheme = scheme;
   out.quads.domain = ts::Domain::quad;
   out.tris.domain = ts::Domain::tri;
   const bool stencil_scheme = is_stencil_scheme(scheme);
-  const std::vector<int> rotation =
-      stencil_scheme ? analyze_combinations(t).face_rotation : std::vector<int>(std::size_t(t.face_count()), 0);
+  TopologyCombinations combinations;
+  if (stencil_scheme) combinations = analyze_combinations(t);
+  const std::vector<int>& rotation = combinations.face_rotation;
   std::vector<std::optional<Stencil>> semi_sharp(static_cast<std::size_t>(stencil_scheme ? t.vertex_count() : 0));
   for (std::size_t v = 0; v < semi_sharp.size(); ++v)
     if (t.has_sharpness_at(int(v))) semi_sharp[v] = semi_sharp_limit_position(cage, t, int(v));
@@ -116,12 +182,60 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
   subdiv::NeighbourRows neighbours(cage, t, semi_sharp);
   subdiv::PatchAssembler assembler(cage, out);
   subdiv::PatchContext ctx{cage, t, scheme, out, assembler, semi_sharp, fitted, neighbours};
+  // In face order, each face's patches are built, or, when its combination's patch is known, its place
+  // is reserved and filled below, in parallel: per face only its ring is gathered.
+  std::vector<std::optional<SharedPatch>> shared(combinations.combinations.size());
+  struct Deferred {
+    subdiv::FaceFrame face;
+    int slot;
+    const SharedPatch* patch;
+  };
+  std::vector<Deferred> deferred;
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
       continue;
     }
-    build_face(ctx, face_frame(cage, t, f, pole.empty() ? -1 : pole[std::size_t(f)], rotation[std::size_t(f)]));
+    const subdiv::FaceFrame face = face_frame(cage, t, f, pole.empty() ? -1 : pole[std::size_t(f)],
+                                              stencil_scheme ? rotation[std::size_t(f)] : 0);
+    const bool sharable = shared_by_combination(ctx, face);
+    std::optional<SharedPatch> unshared;
+    std::optional<SharedPatch>& known =
+        sharable ? shared[std::size_t(combinations.face_combination[std::size_t(f)])] : unshared;
+    if (sharable && known) {
+      PatchGroup& group = face.n == 4 ? out.quads : out.tris;
+      deferred.push_back({face, assembler.reserve(group), &*known});
+      if (known->fallback) ++out.fallback_faces;
+      continue;
+    }
+    const int fallback_before = out.fallback_faces;
+    build_face(ctx, face);
+    if (!sharable) continue;
+    const PatchGroup& group = face.n == 4 ? out.quads : out.tris;
+    const SubdPatch& p = group.patches.back();
+    if (p.face != f || p.precomputed >= 0 || p.averaged_edges != 0 || p.limit_corners != 0 || p.table < 0) continue;
+    if (SharedRing r = shared_ring(ctx, face); r.ring.size() == std::size_t(p.ring_size))
+      known = SharedPatch{p.table, p.kind, std::move(r.landed), out.fallback_faces != fallback_before};
+  }
+  // The reserved faces: their rings, in parallel. A ring whose structure differs from the combination's
+  // (a global coincidence the key cannot see) is built in full afterwards, in face order.
+  std::vector<char> folded(deferred.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, deferred.size(), 256), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const Deferred& d = deferred[i];
+      SharedRing r = shared_ring(ctx, d.face);
+      if (r.landed != d.patch->landed) {
+        folded[i] = 1;
+        continue;
+      }
+      assembler.place(d.slot, d.face.f, d.patch->kind, std::move(r.ring), d.patch->table, d.face.edges, d.face.rot);
+    }
+  });
+  for (std::size_t i = 0; i < deferred.size(); ++i) {
+    if (!folded[i]) continue;
+    if (deferred[i].patch->fallback) --out.fallback_faces;  // build_face counts it again
+    assembler.add_into(deferred[i].slot);
+    build_face(ctx, deferred[i].face);
   }
   assembler.finish();
   return out;

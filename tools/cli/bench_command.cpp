@@ -119,7 +119,7 @@ Runner add_bench_command(CLI::App& app, std::span<const BenchAdder> more) {
     if (const int rc = scaling(); rc >= 0) return rc;
     for (const Runner& other : others)
       if (const int rc = other(); rc >= 0) return rc;
-    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly, scaling, view)");
+    throw UsageError("bench: choose a benchmark (tessellator, torus, frog, dolly, scaling, view, load)");
   };
 }
 

@@ -8,7 +8,7 @@ namespace tessera::cli {
 namespace {
 
 Runner add_bench_commands(CLI::App& app) {
-  static constexpr BenchAdder kMore[] = {add_bench_view_command};
+  static constexpr BenchAdder kMore[] = {add_bench_view_command, add_bench_load_command};
   return add_bench_command(app, kMore);
 }
 

@@ -41,5 +41,6 @@ Runner add_bench_subd_command(CLI::App& bench);
 Runner add_bench_dolly_command(CLI::App& bench);
 Runner add_bench_scaling_command(CLI::App& bench);
 Runner add_bench_view_command(CLI::App& bench);  // tools/cli/bench_view.cpp
+Runner add_bench_load_command(CLI::App& bench);  // tools/cli/bench_load.cpp
 
 }  // namespace tessera::cli
