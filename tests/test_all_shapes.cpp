@@ -12,6 +12,7 @@
 
 #include "shaders_cpp/cage/cage_generators.h"
 #include "shaders_cpp/cage/cage_obj.h"
+#include "shaders_cpp/render/strayed_faces.h"
 #include "shaders_cpp/render/subd_model.h"
 #include "shaders_cpp/subdiv/control_point_prepass.h"
 #include "test_data.h"
@@ -115,6 +116,53 @@ TEST_CASE("A face whose masks' patch folds is fitted to the limit when the cage 
   CHECK(make_subd_model(torus_cage(8, 8, 1.0f, 0.25f), Scheme::gregory).patches.refit_faces == 0);
   CHECK(make_subd_model(load_obj_cage(std::string(TESSERA_TEST_DATA_DIR) + "/osd-shapes/catmark_cube.obj"),
                         Scheme::gregory).patches.refit_faces == 0);
+}
+
+TEST_CASE("Faces of one topology combination share its first face's table: the patches built face by face",
+          "[subd][data]") {
+  std::vector<std::pair<std::string, Cage>> cages;
+  for (const auto& e : fs::directory_iterator(fs::path(TESSERA_TEST_DATA_DIR) / "osd-shapes"))
+    if (e.path().extension() == ".obj" && e.path().stem().string().rfind("catmark_", 0) == 0)
+      cages.emplace_back(e.path().stem().string(), load_obj_cage(e.path().string()));
+  std::sort(cages.begin(), cages.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Tori small enough that a face's 1-ring wraps round (one vertex reached from two corners), and one
+  // whose faces all share one combination.
+  cages.emplace_back("torus 3x3", torus_cage(3, 3, 1.0f, 0.4f));
+  cages.emplace_back("torus 4x3", torus_cage(4, 3, 1.0f, 0.4f));
+  cages.emplace_back("torus 24x12", torus_cage(24, 12, 1.0f, 0.4f));
+  int compared = 0;
+  for (const auto& [name, cage] : cages)
+    for (const Scheme scheme : {Scheme::gregory, Scheme::bspline, Scheme::acc}) {
+      INFO(name << ", " << to_string(scheme));
+      const Topology t(cage);
+      // With the faces that fold fitted too, where some do.
+      std::vector<char> refit;
+      try {
+        refit = find_strayed_faces(make_subd_model(cage, scheme)).faces;
+      } catch (const CageError&) {
+        CHECK_THROWS_AS(build_patches(cage, t, scheme, {}, PatchBuild::per_face), CageError);
+        continue;  // acc refuses the cage
+      }
+      for (const bool with_refit : {false, true}) {
+        if (with_refit && std::count(refit.begin(), refit.end(), 1) == 0) continue;
+        const std::span<const char> r = with_refit ? std::span<const char>(refit) : std::span<const char>();
+        const SubdPatches a = build_patches(cage, t, scheme, r, PatchBuild::by_combination);
+        const SubdPatches b = build_patches(cage, t, scheme, r, PatchBuild::per_face);
+        INFO(a.tables.size() << " tables by combination, " << b.tables.size() << " face by face");
+        CHECK(a.tables == b.tables);
+        for (const auto& [ga, gb] : {std::pair{&a.quads, &b.quads}, std::pair{&a.tris, &b.tris}}) {
+          CHECK(ga->patches == gb->patches);
+          CHECK(ga->indices == gb->indices);
+          CHECK(ga->control_points == gb->control_points);
+        }
+        CHECK(a.precomputed_rows == b.precomputed_rows);
+        CHECK(a.fallback_faces == b.fallback_faces);
+        CHECK(a.refit_faces == b.refit_faces);
+        CHECK(a.holes == b.holes);
+        ++compared;
+      }
+    }
+  CHECK(compared > 200);
 }
 
 }  // namespace tessera

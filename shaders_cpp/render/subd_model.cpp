@@ -153,18 +153,25 @@ std::optional<std::string> dropped_sharpness(const Cage& cage, const Topology& t
 
 }  // namespace
 
-SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
+SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation, const PrepareStep& step) {
+  auto starting = [&](const char* name) {
+    if (step) step(name);
+  };
   SubdModel m;
   Stopwatch clock;
+  starting("topology");
   m.cage = std::move(cage);
   m.topology = std::make_unique<Topology>(m.cage);
   m.times.topology_s = clock.lap();
+  starting("patches");
   m.patches = build_patches(m.cage, *m.topology, scheme);
   if (auto w = dropped_sharpness(m.cage, *m.topology, scheme, isolation)) m.cage.warnings.push_back(std::move(*w));
   m.times.patches_s = clock.lap();
+  starting("pre-pass");
   if (scheme == Scheme::pn) m.normals = vertex_normals(m.cage, m.cage.positions, *m.topology);
   m.precomputed = precompute_control_points(m.patches, m.cage.positions);
   m.times.precompute_s = clock.lap();
+  starting("fold check");
   // Faces whose masks' patch folds are fitted to the limit (strayed_faces.h).
   if (const StrayedFaces strayed = find_strayed_faces(m); strayed.count() > 0) {
     m.patches = build_patches(m.cage, *m.topology, scheme, strayed.faces);
@@ -172,6 +179,7 @@ SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation) {
   }
   m.times.fold_check_s = clock.lap();
   if (uses_limit_surface(scheme)) {
+    starting("limit surface");
     int pole = 0;  // the vertex of highest valence
     for (int v = 1; v < m.topology->vertex_count(); ++v)
       if (m.topology->valence(v) > m.topology->valence(pole)) pole = v;
@@ -218,18 +226,20 @@ Cage load_cage(const std::string& path, const GltfSelection& selection) {
   return is_gltf_path(path) ? load_gltf_cage(path, selection).cage : load_obj_cage(path);
 }
 
-SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection, int isolation) {
+SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection, int isolation,
+                          const PrepareStep& step) {
+  if (step) step("reading");
   Stopwatch clock;
   if (!is_gltf_path(path)) {
     Cage cage = load_obj_cage(path);
     const double read_s = clock.lap();
-    SubdModel m = make_subd_model(std::move(cage), scheme, isolation);
+    SubdModel m = make_subd_model(std::move(cage), scheme, isolation, step);
     m.times.read_s = read_s;
     return m;
   }
   GltfCage g = load_gltf_cage(path, selection);
   const double read_s = clock.lap();
-  SubdModel m = make_subd_model(std::move(g.cage), scheme, isolation);
+  SubdModel m = make_subd_model(std::move(g.cage), scheme, isolation, step);
   m.times.read_s = read_s;
   m.rig = std::move(g.rig);
   m.material = std::move(g.maps);

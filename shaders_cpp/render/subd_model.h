@@ -7,6 +7,7 @@
 // quad-domain patches, then the tri-domain ones; within each, patches are in face order.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -67,13 +68,18 @@ struct SubdModel {
   }
 };
 
+// Called as each step of a model's preparation starts, with its name ("reading", "topology",
+// "patches", "fold check", "pre-pass", "limit surface"), for progress output; it cannot change the model.
+using PrepareStep = std::function<void(const char* step)>;
+
 // The cage of an OBJ file, or of a glTF one (`.gltf`, `.glb`; its rest pose).
 Cage load_cage(const std::string& path, const GltfSelection& selection = {});
 // Reads an OBJ cage, or a glTF one (`.gltf`, `.glb`: gltf_cage.h with `selection`, its rig kept).
 // `isolation`: the adaptive scheme's level (1..kMaxIsolation; others ignore it).
 SubdModel load_subd_model(const std::string& path, Scheme scheme, const GltfSelection& selection = {},
-                          int isolation = kDefaultIsolation);
-SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation = kDefaultIsolation);
+                          int isolation = kDefaultIsolation, const PrepareStep& step = {});
+SubdModel make_subd_model(Cage cage, Scheme scheme, int isolation = kDefaultIsolation,
+                          const PrepareStep& step = {});
 // Why `scheme` would refuse the cage (displaced or not), in words, or empty when it draws it: the
 // faces it cannot take (pn: more than 4 sides; acc: other than 4; flat, exact, adaptive: more than
 // kMaxPatchControlPoints) and, displaced, the schemes whose patches carry no 1-ring (flat, pn). What

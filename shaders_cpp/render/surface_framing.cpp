@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/task_arena.h>
+
 #include "shaders_cpp/cage/bounding_box.h"
 
 namespace tessera {
@@ -13,8 +15,10 @@ std::vector<glm::vec3> surface_points(const SubdModel& model) {
   const double patches = double(std::max<std::size_t>(1, model.patches.quads.size() + model.patches.tris.size()));
   const double fitting = std::floor(std::sqrt(double(kFramingPoints) / patches)) - 1.0;  // (f + 1)^2 points a quad
   const float factor = float(std::clamp(fitting, 2.0, 8.0));
+  // As many threads as the calling arena has: the stream hands patches over in order on this thread,
+  // so the points are the same for any count.
   DeviceOptions options;
-  options.threads = 1;
+  options.threads = std::max(1, tbb::this_task_arena::max_concurrency());
   Device device(options);
   std::vector<glm::vec3> points;
   const DrawResult r = stream_subd(device, model, base_factors(factor, 0.0f), ts::Partitioning::integer,

@@ -3,6 +3,7 @@
 #include "shaders_cpp/subdiv/patch_construction.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <utility>
 
@@ -41,7 +42,10 @@ SubdPatch& PatchAssembler::add(PatchGroup& group, int face, int sub, PatchKind k
       if (it == position.end())
         throw CageError(where(cage_, face) + ": internal error, a stencil reaches vertex " + std::to_string(v) +
                         " outside the face's 1-ring");
-      table.weights[r * ring.size() + std::size_t(it->second)] = static_cast<float>(w);
+      // A weight this small is the round-off left where a mask's terms cancel (exactly zero in exact
+      // arithmetic), and whether it is left depends on the order the cage's vertex numbering gave the
+      // terms: kept, two faces of one topology combination would get tables that differ in it.
+      if (std::abs(w) >= kResidualWeight) table.weights[r * ring.size() + std::size_t(it->second)] = static_cast<float>(w);
     }
   SubdPatch p;
   p.face = face;
@@ -109,6 +113,21 @@ void PatchAssembler::place(int slot, int face, PatchKind kind, std::vector<int> 
 }
 
 void PatchAssembler::finish() {
+  // Tables numbered in the order the patches (in slot order: face order) first use them, as add()
+  // alone would have numbered them: a slot filled by add_into() later interns its table late.
+  std::vector<int> number(out_.tables.size(), -1);
+  int next = 0;
+  for (std::size_t i = 0; i < rings_.size(); ++i)
+    if (const int t = groups_[i]->patches[index_[i]].table; t >= 0 && number[std::size_t(t)] < 0)
+      number[std::size_t(t)] = next++;
+  std::vector<StencilTable> tables(static_cast<std::size_t>(next));
+  for (std::size_t t = 0; t < number.size(); ++t)
+    if (number[t] >= 0) tables[std::size_t(number[t])] = std::move(out_.tables[t]);
+  out_.tables = std::move(tables);
+  for (PatchGroup* g : {&out_.quads, &out_.tris})
+    for (SubdPatch& p : g->patches)
+      if (p.table >= 0) p.table = number[std::size_t(p.table)];
+  interned_.clear();
   for (PatchGroup* g : {&out_.quads, &out_.tris}) {
     g->control_points = 1;
     for (const auto& p : g->patches) g->control_points = std::max(g->control_points, p.ring_size);

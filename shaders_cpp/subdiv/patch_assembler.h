@@ -5,14 +5,17 @@
 // Contract
 // - add() appends one patch to a group, in the order called: the constructions call it in face order,
 //   so each group's patches keep face order.
-// - Tables are interned by their weights, row count and ring size: equal tables share an index.
+// - Tables are interned by their weights, row count and ring size: equal tables share an index. Weights
+//   below kResidualWeight are zero, so that a table depends on its faces' structure, not on the order of
+//   their vertices' numbers.
 // - A patch's `order` lists its IA patch's positions by ascending cage vertex index (stencil.h: the
 //   hull shader sums in that order, so shared points come out bit-identical).
 // - reserve() holds a patch's place in face order for a patch whose table is already known (a face of
 //   a topology combination built before); place() fills it later, from any thread (one slot per call,
 //   nothing else written), and add_into() fills it with a full construction instead (one thread).
-// - finish() once, after the last add() and every reserved slot filled: it fills both groups' index
-//   buffers, each patch's ring padded with its first vertex to the group's largest ring.
+// - finish() once, after the last add() and every reserved slot filled: it numbers the tables in the
+//   order the patches first use them and fills both groups' index buffers, each patch's ring padded
+//   with its first vertex to the group's largest ring.
 // - A stencil reaching outside the ring, or a ring over 32 points that cannot be precomputed, is a
 //   construction's bug: a CageError naming the face (bad data never gets here).
 #pragma once
@@ -27,6 +30,10 @@
 #include "shaders_cpp/subdiv/subd_patches.h"
 
 namespace tessera::subdiv {
+
+// Table weights below this are taken as zero (round-off where a mask's terms cancel); the schemes'
+// smallest true weights (valence 360's Gregory masks, semi-sharp blends) are above 1e-9.
+inline constexpr double kResidualWeight = 1e-12;
 
 class PatchAssembler {
  public:

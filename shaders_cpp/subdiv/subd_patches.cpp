@@ -162,7 +162,8 @@ struct SharedPatch {
 
 }  // namespace
 
-SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, std::span<const char> refit) {
+SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, std::span<const char> refit,
+                          PatchBuild build) {
   SubdPatches out;
   out.scheme = scheme;
   out.quads.domain = ts::Domain::quad;
@@ -198,7 +199,7 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
     }
     const subdiv::FaceFrame face = face_frame(cage, t, f, pole.empty() ? -1 : pole[std::size_t(f)],
                                               stencil_scheme ? rotation[std::size_t(f)] : 0);
-    const bool sharable = shared_by_combination(ctx, face);
+    const bool sharable = build == PatchBuild::by_combination && shared_by_combination(ctx, face);
     std::optional<SharedPatch> unshared;
     std::optional<SharedPatch>& known =
         sharable ? shared[std::size_t(combinations.face_combination[std::size_t(f)])] : unshared;

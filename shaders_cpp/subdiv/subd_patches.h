@@ -85,6 +85,7 @@ struct EdgeFactorKey {
 struct StencilTable {
   int rows = 0, ring = 0;
   std::vector<float> weights;  // rows x ring, row-major
+  friend bool operator==(const StencilTable&, const StencilTable&) = default;
 };
 
 struct SubdPatch {
@@ -114,6 +115,7 @@ struct SubdPatch {
   // in the face's frame (two rows per corner, after the patch's own rows and any kCrossRows rows), whose
   // cross product is the normal the domain shader gives that corner.
   std::uint8_t limit_corners = 0;
+  friend bool operator==(const SubdPatch&, const SubdPatch&) = default;
 };
 
 // The rows a patch with averaged edges adds after its own (20 for a quad, 15 for a triangle): per patch
@@ -150,8 +152,12 @@ struct SubdPatches {
 // `refit`, when not empty (one entry per face): faces whose masks' patch folds (beside a
 // valence-2 vertex, a cusp; strayed_faces.h finds them), fitted to the limit under gregory,
 // bspline and acc as a tagged face is: its edges and face points (fitted_faces.h).
+// How faces a topology combination decides are built: the combination's first face in full, the rest
+// from its table, their rings gathered in parallel (by_combination); or every face in full (per_face,
+// for tests: the same patches, tables and indices, slower).
+enum class PatchBuild : std::uint8_t { by_combination, per_face };
 SubdPatches build_patches(const Cage& cage, const Topology& topology, Scheme scheme,
-                          std::span<const char> refit = {});
+                          std::span<const char> refit = {}, PatchBuild build = PatchBuild::by_combination);
 
 // Whether build_patches fits face f to the exact limit (limit_fit.h): under gregory, bspline and acc
 // (which draws it as that Gregory patch, its face points coinciding), a triangle or quad, not a hole,

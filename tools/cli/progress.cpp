@@ -74,4 +74,49 @@ void Progress::finish() {
   }
 }
 
+StepProgress::StepProgress(std::string what) : what_(std::move(what)), terminal_(::isatty(STDERR_FILENO) == 1) {
+  if (verbosity() >= 0) watcher_ = std::thread([this] { watch(); });
+}
+
+void StepProgress::step(const char* name) {
+  const std::lock_guard lock(mutex_);
+  current_ = name;
+  step_start_ = Clock::now();
+  if (verbosity() >= 1) std::cerr << "tessera: " << what_ << ": " << current_ << "\n" << std::flush;
+  wake_.notify_one();
+}
+
+void StepProgress::watch() {
+  constexpr double kShowAfter = 1.0;
+  std::unique_lock lock(mutex_);
+  std::string last_step;
+  double last_shown = 0.0;
+  while (!done_) {
+    wake_.wait_for(lock, std::chrono::milliseconds(terminal_ ? 200 : 500));
+    if (done_ || current_.empty() || verbosity() >= 1) continue;  // -v has a line per step already
+    const double elapsed = std::chrono::duration<double>(Clock::now() - step_start_).count();
+    if (elapsed < kShowAfter) continue;
+    const bool new_step = current_ != last_step;
+    if (!terminal_ && !new_step && elapsed - last_shown < kPlainPeriod) continue;
+    char line[256];
+    std::snprintf(line, sizeof line, terminal_ ? "\rtessera: %s: %s, %.1f s\033[K" : "tessera: %s: %s, %.1f s\n",
+                  what_.c_str(), current_.c_str(), elapsed);
+    std::cerr << line << std::flush;
+    shown_ = true;
+    last_step = current_;
+    last_shown = elapsed;
+  }
+}
+
+void StepProgress::finish() {
+  {
+    const std::lock_guard lock(mutex_);
+    if (done_) return;
+    done_ = true;
+    wake_.notify_one();
+  }
+  if (watcher_.joinable()) watcher_.join();
+  if (shown_ && terminal_) std::cerr << "\r\033[K" << std::flush;
+}
+
 }  // namespace tessera::cli

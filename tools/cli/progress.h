@@ -10,8 +10,13 @@
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <string>
+#include <thread>
+
+#include "shaders_cpp/render/subd_model.h"
 
 namespace tessera::cli {
 
@@ -37,6 +42,40 @@ class Progress {
   int pass_ = 1;
   Clock::time_point start_ = Clock::now(), last_shown_{};
   bool terminal_ = false, shown_ = false, finished_ = false;
+};
+
+// The steps of one job that has no count to show ("preparing frog.obj": reading, topology, patches,
+// ...): a step that has run for a second is shown, on a terminal as one line redrawn in place with its
+// elapsed time, otherwise as a line when it reaches a second and every five seconds after; nothing with
+// -q, every step with -v. A watcher thread does the showing, so a step that never returns control is
+// still reported; step() only records which step runs (from the thread doing the work).
+class StepProgress {
+ public:
+  explicit StepProgress(std::string what);
+  StepProgress(const StepProgress&) = delete;
+  StepProgress& operator=(const StepProgress&) = delete;
+  ~StepProgress() { finish(); }
+
+  void step(const char* name);
+  // step() as a PrepareStep, for load_subd_model and prepare_scene. Valid while this object lives.
+  PrepareStep hook() {
+    return [this](const char* name) { step(name); };
+  }
+  // Stops the watcher and clears the terminal's line. Idempotent.
+  void finish();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void watch();
+
+  std::string what_;
+  bool terminal_ = false;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::string current_;  // guarded by mutex_, as are the three below
+  Clock::time_point step_start_ = Clock::now();
+  bool done_ = false, shown_ = false;
+  std::thread watcher_;
 };
 
 }  // namespace tessera::cli

@@ -65,7 +65,9 @@ int render_sequence(const RenderOptions& o, bool orbit) {
   for (const std::string& p : paths)
     check_output_paths({{"-o", p}},
                        {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
-  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
+  StepProgress preparing("preparing " + o.s.cage);
+  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s, preparing.hook());
+  preparing.finish();
   if (!orbit && !scene->model.rig)
     throw UsageError("--frames: " + o.s.cage + " is not animated (no skin, morph target or animation)");
   const ViewSetup base = orbit ? orbit_base(scene->settings.camera, scene->model, scene->view, count) : scene->view;
@@ -202,7 +204,9 @@ int run_render(const RenderOptions& given, const CLI::App& cmd) {
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map, o.scene});
   const auto load_start = std::chrono::steady_clock::now();
-  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
+  StepProgress preparing("preparing " + o.s.cage);
+  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s, preparing.hook());
+  preparing.finish();
   log_debug(describe_scene(*scene) + ", prepared in " +
             float_text(float(std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count())) +
             " s");

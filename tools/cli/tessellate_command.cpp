@@ -11,6 +11,7 @@
 
 #include "shaders_cpp/render/subd_model.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/progress.h"
 #include "tools/cli/glb_writer.h"
 #include "tools/cli/ply_writer.h"
 #include "tools/scene/common.h"
@@ -52,7 +53,9 @@ int run_tessellate(const TessellateOptions& o) {
   check_output_paths({{"-o", o.output}, {"--stats", o.stats}},
                      {o.s.cage, o.s.factors_file, o.s.displacement.map, o.s.displacement.normal_map});
   // The scene library's one route from settings to a model, its view and factors.
-  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s);
+  StepProgress preparing("preparing " + o.s.cage);
+  const std::unique_ptr<PreparedScene> scene = prepare_scene(o.s, preparing.hook());
+  preparing.finish();
   const SubdModel& model = scene->model;
   std::optional<Displacement>& displacement = scene->displacement;
   if (model.patches.fallback_faces > 0)

@@ -144,11 +144,12 @@ GltfSelection gltf_selection(const std::string& path, const AssetSettings& a) {
   return selection;
 }
 
-SubdModel load_model(const std::string& path, Scheme scheme, const AssetSettings& asset, int isolation) {
+SubdModel load_model(const std::string& path, Scheme scheme, const AssetSettings& asset, int isolation,
+                     const PrepareStep& step) {
   const GltfSelection selection = gltf_selection(path, asset);
   SubdModel m;
   try {
-    m = load_subd_model(path, scheme, selection, isolation);
+    m = load_subd_model(path, scheme, selection, isolation, step);
   } catch (const CageError& e) {
     throw InputError(e.what());
   }

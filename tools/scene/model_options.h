@@ -30,7 +30,7 @@ GltfSelection gltf_selection(const std::string& path, const AssetSettings& a);
 // warnings logged; an animated glTF asset is posed at `asset.time` (pose_model). Asset options on an
 // OBJ cage, or a non-zero time on a static asset, are UsageErrors.
 SubdModel load_model(const std::string& path, Scheme scheme, const AssetSettings& asset = {},
-                     int isolation = kDefaultIsolation);
+                     int isolation = kDefaultIsolation, const PrepareStep& step = {});
 // Poses an animated model at `time` seconds of the animation `asset.animation` names (default: the
 // first); a time that is not finite or an unknown animation is a UsageError.
 void pose_model(SubdModel& m, const AssetSettings& asset, double time);

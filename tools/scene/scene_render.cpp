@@ -21,9 +21,9 @@ ViewInputs PreparedScene::inputs() const {
 
 namespace {
 // The model and its displacement, not yet configured (prepare_scene, prepare_bench_scene).
-std::unique_ptr<PreparedScene> load_scene(const RenderSettings& s) {
+std::unique_ptr<PreparedScene> load_scene(const RenderSettings& s, const PrepareStep& step = {}) {
   auto p = std::make_unique<PreparedScene>();
-  p->model = load_model(s.cage, s.scheme, s.asset, s.isolation);
+  p->model = load_model(s.cage, s.scheme, s.asset, s.isolation, step);
   p->settings.asset = s.asset;  // the pose load_model gave the model: configure_scene keeps it
   p->displacement = displacement_option(s.displacement, p->model);
   if (const UpAxisAdvice up = up_axis_advice(s.cage, p->model.cage); up.axis == 2) {
@@ -34,8 +34,9 @@ std::unique_ptr<PreparedScene> load_scene(const RenderSettings& s) {
 }
 }  // namespace
 
-std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s) {
-  auto p = load_scene(s);
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s, const PrepareStep& step) {
+  auto p = load_scene(s, step);
+  if (step) step("framing and factors");
   configure_scene(*p, s);
   return p;
 }

@@ -35,7 +35,8 @@ struct PreparedScene {
   std::optional<RenderSettings> derived_from;
   ViewInputs inputs() const;
 };
-std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s);
+// `step`: told as each step starts (subd_model.h's PrepareStep, then "framing and factors").
+std::unique_ptr<PreparedScene> prepare_scene(const RenderSettings& s, const PrepareStep& step = {});
 // prepare_scene for a benchmark: `s` with its cage, or the monster frog shipped with tessera when it
 // names none (cage_or_shipped_frog); without a camera position, the benchmarks' fixed camera (frame_cage
 // on the rest cage) instead of the surface framing, so times stay comparable across versions.
