@@ -20,7 +20,11 @@ std::vector<glm::vec3> surface_points(const SubdModel& model) {
   DeviceOptions options;
   options.threads = std::max(1, tbb::this_task_arena::max_concurrency());
   Device device(options);
+  // Reserved for every patch drawn uncut at the factor (grown copies would cost as much as the draw).
+  const std::size_t per_side = std::size_t(factor) + 1;
   std::vector<glm::vec3> points;
+  points.reserve(model.patches.quads.size() * per_side * per_side +
+                 model.patches.tris.size() * per_side * (per_side + 1) / 2);
   const DrawResult r = stream_subd(device, model, base_factors(factor, 0.0f), ts::Partitioning::integer,
                                    [&](const PatchOutput<SurfaceSample>& p, const PatchGroup&) {
                                      for (const SurfaceSample& s : p.points) points.push_back(s.position);
