@@ -1046,3 +1046,34 @@ TEST_CASE("creases in adaptive, acc, gregory and bspline: watertight to the bit,
     CHECK(shape_accuracy(shape)["max_relative"].get<double>() < bound);
   }
 }
+
+TEST_CASE("Preparing a cage names each step with -v and none with -q and bench load times each step", "[cli]") {
+  const std::string cage = test::data("sdk-cages/cube.obj");
+  const std::string png = (test::cli_temp_dir() / "steps.png").string();
+  auto r = test::run_cli("-v render " + cage + " --resolution 64x64 -o " + png);
+  REQUIRE(r.exit_code == 0);
+  for (const char* step : {": reading", ": topology", ": patches", ": pre-pass", ": fold check", ": framing and factors"})
+    CHECK(r.err.find("preparing " + cage + step) != std::string::npos);
+  r = test::run_cli("-q render " + cage + " --resolution 64x64 -o " + png);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("preparing") == std::string::npos);
+
+  r = test::run_cli("bench load " + cage + " --threads 1 --repeat 3 --json");
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["faces"] == 6);
+  CHECK(j["patches"] == 6);
+  CHECK(j["tables"] == 1);  // the cube's six faces are one topology combination
+  CHECK(j["threads"] == 1);
+  double steps = 0.0;
+  for (const char* k : {"read_s", "topology_s", "patches_s", "fold_check_s", "precompute_s", "limit_s", "scene_s"}) {
+    CHECK(j[k].get<double>() >= 0.0);
+    steps += j[k].get<double>();
+  }
+  CHECK(j["total_s"].get<double>() > 0.0);
+  CHECK(steps == Approx(j["total_s"].get<double>()).epsilon(1e-6));
+  CHECK(j["min_total_s"].get<double>() <= j["total_s"].get<double>());
+  CHECK(j["peak_rss_bytes"].get<double>() > 1e6);
+  CHECK(test::run_cli("bench load " + cage + " --repeat 0").exit_code != 0);
+  CHECK(test::run_cli("bench load").exit_code != 0);
+}
