@@ -1,12 +1,17 @@
 // Combination keys: per corner a self-delimiting word sequence (its length follows from the face count
 // it records), the smallest rotation chosen by comparing the concatenations, and a hash map from key
-// to combination so each face costs its 1-ring.
+// to combination so each face costs its 1-ring. Keys are read in parallel, a block of faces at a time,
+// and given their combinations in face order, so the numbering does not depend on the threads.
 #include "shaders_cpp/cage/topology_combinations.h"
 
 #include <algorithm>
 #include <bit>
 #include <map>
 #include <unordered_map>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace tessera {
 namespace {
@@ -73,6 +78,87 @@ PatchClass classify(const Topology& t, int f) {
   return plain && regular_boundary_corners ? PatchClass::regular_boundary : PatchClass::boundary;
 }
 
+// A face's key read from its canonical corner, and the rotation and symmetry that found it.
+struct FaceKey {
+  PatchClass cls = PatchClass::hole;
+  int rotation = 0, period = 1;
+  std::vector<std::int32_t> key;
+};
+
+// Working vectors of one thread, kept between faces.
+struct KeyScratch {
+  std::vector<std::vector<std::int32_t>> corners;
+  std::vector<std::int32_t> candidate;
+};
+
+void face_key(const Topology& t, const std::vector<int>& pos, int f, KeyScratch& w, FaceKey& out) {
+  out.cls = classify(t, f);
+  if (out.cls == PatchClass::hole) return;
+  const int n = t.face_size(f), h0 = t.face_half_edge(f);
+  w.corners.resize(std::size_t(n));
+  for (int k = 0; k < n; ++k) {
+    w.corners[std::size_t(k)].clear();
+    corner_words(t, h0 + k, pos[std::size_t(h0 + k)], w.corners[std::size_t(k)]);
+  }
+  auto read_from = [&](int r, std::vector<std::int32_t>& key) {
+    key.assign(1, n);
+    for (int i = 0; i < n; ++i) {
+      const auto& c = w.corners[std::size_t((r + i) % n)];
+      key.insert(key.end(), c.begin(), c.end());
+    }
+  };
+  out.rotation = 0;
+  for (int r = 0; r < n; ++r) {
+    read_from(r, w.candidate);
+    if (r == 0 || w.candidate < out.key) {
+      out.key.swap(w.candidate);
+      out.rotation = r;
+    }
+  }
+  // The face's symmetry: the smallest shift from the canonical corner that reads the same key.
+  out.period = n;
+  for (int p = 1; p < n && out.period == n; ++p) {
+    read_from(out.rotation + p, w.candidate);
+    if (w.candidate == out.key) out.period = p;
+  }
+}
+
+// Face f's combination (a new one for a new key), its rotation and symmetry, and the counts.
+void add_face(const Topology& t, int f, FaceKey& k, std::unordered_map<std::vector<std::int32_t>, int, KeyHash>& index,
+              TopologyCombinations& out) {
+  out.face_class[std::size_t(f)] = k.cls;
+  if (k.cls == PatchClass::hole) return;
+  const int n = t.face_size(f);
+  out.face_period[std::size_t(f)] = k.period;
+  auto [it, fresh] = index.try_emplace(k.key, int(out.combinations.size()));
+  if (fresh) {
+    Combination c;
+    c.key = std::move(k.key);
+    c.text = combination_text(t, f, k.rotation);
+    c.face_size = n;
+    c.patch_class = k.cls;
+    c.boundary = k.cls == PatchClass::boundary || k.cls == PatchClass::regular_boundary;
+    out.combinations.push_back(std::move(c));
+  }
+  Combination& c = out.combinations[std::size_t(it->second)];
+  ++c.count;
+  c.faces.push_back(f);
+  out.face_combination[std::size_t(f)] = it->second;
+  out.face_rotation[std::size_t(f)] = k.rotation;
+
+  CombinationStats& s = out.stats;
+  ++s.patches;
+  if (n == 3)
+    ++s.triangles;
+  else if (n == 4)
+    ++s.quads;
+  else
+    ++s.polygons;
+  if (k.cls == PatchClass::regular) ++s.regular;
+  if (k.cls == PatchClass::boundary || k.cls == PatchClass::regular_boundary) ++s.boundary;
+  if (k.cls == PatchClass::regular_boundary) ++s.regular_boundary;
+}
+
 }  // namespace
 
 TopologyCombinations analyze_combinations(const Topology& t) {
@@ -84,65 +170,20 @@ TopologyCombinations analyze_combinations(const Topology& t) {
   out.face_class.assign(std::size_t(nf), PatchClass::hole);
   const std::vector<int> pos = ring_positions(t);
   std::unordered_map<std::vector<std::int32_t>, int, KeyHash> index;
-  std::vector<std::vector<std::int32_t>> corners;
-  std::vector<std::int32_t> best, candidate;
-  for (int f = 0; f < nf; ++f) {
-    const PatchClass cls = classify(t, f);
-    out.face_class[f] = cls;
-    if (cls == PatchClass::hole) continue;
-    const int n = t.face_size(f), h0 = t.face_half_edge(f);
-    corners.resize(std::size_t(n));
-    for (int k = 0; k < n; ++k) {
-      corners[k].clear();
-      corner_words(t, h0 + k, pos[h0 + k], corners[k]);
+  // The keys a block of faces at a time, in parallel; then, in face order, each key's combination.
+  constexpr int kBlock = 8192;
+  std::vector<FaceKey> keys(std::size_t(std::min(nf, kBlock)));
+  tbb::enumerable_thread_specific<KeyScratch> scratch;
+  for (int first = 0; first < nf; first += kBlock) {
+    const int count = std::min(kBlock, nf - first);
+    tbb::parallel_for(tbb::blocked_range<int>(0, count, 256), [&](const tbb::blocked_range<int>& r) {
+      KeyScratch& w = scratch.local();
+      for (int i = r.begin(); i < r.end(); ++i) face_key(t, pos, first + i, w, keys[std::size_t(i)]);
+    });
+    for (int i = 0; i < count; ++i) {
+      const int f = first + i;
+      add_face(t, f, keys[std::size_t(i)], index, out);
     }
-    int rotation = 0;
-    for (int r = 0; r < n; ++r) {
-      candidate.assign(1, n);
-      for (int i = 0; i < n; ++i)
-        candidate.insert(candidate.end(), corners[(r + i) % n].begin(), corners[(r + i) % n].end());
-      if (r == 0 || candidate < best) {
-        best.swap(candidate);
-        rotation = r;
-      }
-    }
-    // The face's symmetry: the smallest shift from the canonical corner that reads the same key.
-    int period = n;
-    for (int p = 1; p < n && period == n; ++p) {
-      candidate.assign(1, n);
-      for (int i = 0; i < n; ++i)
-        candidate.insert(candidate.end(), corners[(rotation + p + i) % n].begin(),
-                         corners[(rotation + p + i) % n].end());
-      if (candidate == best) period = p;
-    }
-    out.face_period[f] = period;
-    auto [it, fresh] = index.try_emplace(best, int(out.combinations.size()));
-    if (fresh) {
-      Combination c;
-      c.key = best;
-      c.text = combination_text(t, f, rotation);
-      c.face_size = n;
-      c.patch_class = cls;
-      c.boundary = cls == PatchClass::boundary || cls == PatchClass::regular_boundary;
-      out.combinations.push_back(std::move(c));
-    }
-    Combination& c = out.combinations[it->second];
-    ++c.count;
-    c.faces.push_back(f);
-    out.face_combination[f] = it->second;
-    out.face_rotation[f] = rotation;
-
-    CombinationStats& s = out.stats;
-    ++s.patches;
-    if (n == 3)
-      ++s.triangles;
-    else if (n == 4)
-      ++s.quads;
-    else
-      ++s.polygons;
-    if (cls == PatchClass::regular) ++s.regular;
-    if (cls == PatchClass::boundary || cls == PatchClass::regular_boundary) ++s.boundary;
-    if (cls == PatchClass::regular_boundary) ++s.regular_boundary;
   }
   return out;
 }
