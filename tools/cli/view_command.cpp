@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/progress.h"
 #include "tools/scene/common.h"
 #include "tools/scene/scene_file.h"
 #include "tools/viewer/viewer_server.h"
@@ -50,7 +51,9 @@ int run_view(const ViewOptions& given, const CLI::App& cmd) {
   sigaddset(&stop_signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
-  ViewerSession session(s);
+  StepProgress preparing("preparing " + s.cage);
+  ViewerSession session(s, preparing.hook());
+  preparing.finish();
   // Settings the renderer refuses fail here, at start, rather than in the first request.
   session.frame(s, FrameFormat::png);
   ViewerServer server(session);

@@ -25,8 +25,9 @@ bool loads_alike(const RenderSettings& a, const RenderSettings& b) {
 
 }  // namespace
 
-ViewerSession::ViewerSession(RenderSettings base) : base_(std::move(base)), device_(device_options(base_.threads)) {
-  scenes_.push_front(prepare_scene(base_));
+ViewerSession::ViewerSession(RenderSettings base, const PrepareStep& step)
+    : base_(std::move(base)), device_(device_options(base_.threads)) {
+  scenes_.push_front(prepare_scene(base_, step));
 }
 
 PreparedScene& ViewerSession::scene_for(const RenderSettings& s) {

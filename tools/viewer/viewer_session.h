@@ -44,8 +44,9 @@ class ViewerSession {
  public:
   static constexpr std::size_t kKeptScenes = 3;
 
-  // Loads the asset of `base` (its errors as `tessera render` gives them).
-  explicit ViewerSession(scene::RenderSettings base);
+  // Loads the asset of `base` (its errors as `tessera render` gives them), telling `step` as each
+  // step of the preparation starts.
+  explicit ViewerSession(scene::RenderSettings base, const PrepareStep& step = {});
   ViewerSession(const ViewerSession&) = delete;
   ViewerSession& operator=(const ViewerSession&) = delete;
 
