@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "test_data.h"
+#include "shaders_cpp/cage/cage_generators.h"
 #include "shaders_cpp/cage/cage_obj.h"
 
 namespace fs = std::filesystem;
@@ -233,4 +234,52 @@ TEST_CASE("The monster frog: counts, UVs, and a tag-heavy shape", "[cage][data]"
   CHECK(car.tags.creases.size() >= 314);
   const Cage holes = load_obj_cage(data("osd-shapes/catmark_hole_test3.obj"));
   CHECK(holes.tags.holes == std::vector<int>{15, 2, 7, 8, 9, 5, 13, 14});
+}
+
+namespace {
+// The cage read both ways: in parallel chunks and whole.
+void check_same_cage(const std::string& text) {
+  const Cage a = parse_obj_cage(text, "t.obj", ObjParse::chunks);
+  const Cage b = parse_obj_cage(text, "t.obj", ObjParse::serial);
+  CHECK(a.positions == b.positions);
+  CHECK(a.face_sizes == b.face_sizes);
+  CHECK(a.face_offsets == b.face_offsets);
+  CHECK(a.face_vertices == b.face_vertices);
+  CHECK(a.uvs == b.uvs);
+  CHECK(a.face_uvs == b.face_uvs);
+  CHECK(a.tags.creases.size() == b.tags.creases.size());
+  CHECK(a.tags.boundary == b.tags.boundary);
+  CHECK(a.warnings == b.warnings);
+}
+// The error message of a text read both ways.
+std::string error_of(const std::string& text, ObjParse how) {
+  try {
+    parse_obj_cage(text, "t.obj", how);
+  } catch (const CageError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("OBJ text of several megabytes read in parallel chunks equals the whole text's reading", "[cage]") {
+  // 32,768 quads with UVs: about 3.4 MB, three chunks.
+  const std::string text = format_obj_cage(torus_cage(256, 128, 1.0f, 0.35f));
+  REQUIRE(text.size() > 3'000'000);
+  check_same_cage(text);
+  // What only the whole text's reading handles: a tag, a relative index, an unknown statement, a
+  // continued line; each in the last chunk.
+  check_same_cage(text + "t interpolateboundary 1/0/0 1\nt crease 2/1/0 0 1 2.5\n");
+  check_same_cage(text + "f -1/-1 -2/-2 -3/-3\n");
+  check_same_cage(text + "curv 0 1\n");
+  check_same_cage(text + "f 1/1 2/2 \\\n 3/3\n");
+  // Errors: the same line, the same face number, however far into the text.
+  for (const std::string bad : {"f 1 2 999999\n", "v 1 2 nan\n", "f 1 2\n", "f 1 2 0\n"}) {
+    const std::string e = error_of(text + bad, ObjParse::serial);
+    CHECK_FALSE(e.empty());
+    CHECK(error_of(text + bad, ObjParse::chunks) == e);
+  }
+  const std::size_t half = text.find('\n', text.size() / 2) + 1;
+  const std::string middle = text.substr(0, half) + "f 1/1 2 3\n" + text.substr(half);
+  CHECK(error_of(middle, ObjParse::chunks) == error_of(middle, ObjParse::serial));
 }

@@ -5,12 +5,16 @@
 #include "shaders_cpp/cage/non_manifold.h"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
+
+#include <tbb/parallel_for.h>
 
 namespace tessera {
 namespace {
@@ -25,11 +29,51 @@ class ObjParser {
  public:
   ObjParser(std::string_view text, std::string name) : text_(text) { cage_.name = std::move(name); }
 
+  // A chunk of the text, its first line numbered `first_line`: it takes positions, texture coordinates
+  // and faces with absolute indices only, and throws Unchunkable at anything else (a tag, a warning, a
+  // relative index, a continued line), which the whole text's serial parse then handles.
+  struct Unchunkable {};
+  static ObjParser chunk(std::string_view text, std::string name, int first_line) {
+    ObjParser p(text, std::move(name));
+    p.chunk_ = true;
+    p.first_line_ = first_line;
+    p.parse();
+    return p;
+  }
+
+  // Appends a chunk's elements (the chunk that follows this text).
+  void append(ObjParser&& c) {
+    if (c.cage_.face_count() > 0) {
+      if (cage_.face_count() > 0 && c.faces_have_uvs_ != faces_have_uvs_) throw Unchunkable{};
+      if (cage_.face_count() == 0) faces_have_uvs_ = c.faces_have_uvs_;
+    }
+    const int offset = int(cage_.face_vertices.size());
+    cage_.positions.insert(cage_.positions.end(), c.cage_.positions.begin(), c.cage_.positions.end());
+    cage_.uvs.insert(cage_.uvs.end(), c.cage_.uvs.begin(), c.cage_.uvs.end());
+    for (const int o : c.cage_.face_offsets) cage_.face_offsets.push_back(o + offset);
+    cage_.face_sizes.insert(cage_.face_sizes.end(), c.cage_.face_sizes.begin(), c.cage_.face_sizes.end());
+    cage_.face_vertices.insert(cage_.face_vertices.end(), c.cage_.face_vertices.begin(), c.cage_.face_vertices.end());
+    face_uvs_.insert(face_uvs_.end(), c.face_uvs_.begin(), c.face_uvs_.end());
+    face_lines_.insert(face_lines_.end(), c.face_lines_.begin(), c.face_lines_.end());
+  }
+
   Cage run() {
+    parse();
+    return finished();
+  }
+  // The range checks of the whole cage, after its last chunk.
+  Cage finished() {
+    chunk_ = false;
+    finish();
+    return std::move(cage_);
+  }
+
+ private:
+  void parse() {
     Statement st;
     std::string joined;  // storage for a statement continued over several lines
     std::size_t pos = 0;
-    int line = 0;
+    int line = first_line_ - 1;
     while (pos < text_.size()) {
       // Gather one logical line: physical lines joined while they end with a backslash.
       const int first_line = line + 1;
@@ -44,6 +88,7 @@ class ObjParser {
         ++line;
         if (!phys.empty() && phys.back() == '\r') phys.remove_suffix(1);
         const bool more = !phys.empty() && phys.back() == '\\';
+        if (more && chunk_) throw Unchunkable{};
         if (more) phys.remove_suffix(1);
         if (!more && !continued) {
           logical = phys;
@@ -60,15 +105,13 @@ class ObjParser {
       tokenize(logical, st.tokens);
       if (!st.tokens.empty()) statement(st);
     }
-    finish();
-    return std::move(cage_);
   }
 
- private:
   [[noreturn]] void fail(int line, const std::string& what) const {
     throw CageError(cage_.name + ":" + std::to_string(line) + ": " + what);
   }
   void warn(int line, const std::string& what) {
+    if (chunk_) throw Unchunkable{};
     cage_.warnings.push_back(cage_.name + ":" + std::to_string(line) + ": " + what);
   }
 
@@ -112,6 +155,8 @@ class ObjParser {
       texcoord(st);
     else if (kw == "f")
       face(st);
+    else if (kw == "t" && chunk_)
+      throw Unchunkable{};
     else if (kw == "t")
       tag(st);
     else if (kw == "vn" || kw == "g" || kw == "o" || kw == "s" || kw == "mtllib" || kw == "usemtl")
@@ -147,6 +192,7 @@ class ObjParser {
     const int i = integer(tok, line, what);
     if (i == 0) fail(line, "face " + std::to_string(face) + " has " + what + " index 0 (OBJ indices start at 1)");
     if (i > 0) return i - 1;
+    if (chunk_) throw Unchunkable{};  // relative to what the chunks before have read
     const long long r = static_cast<long long>(count) + i;
     if (r < 0)
       fail(line, "face " + std::to_string(face) + " has relative " + what + " index " + std::to_string(i) +
@@ -350,12 +396,57 @@ class ObjParser {
   bool faces_have_uvs_ = false;
   bool warned_w_ = false;
   std::set<std::string> warned_;
+  bool chunk_ = false;
+  int first_line_ = 1;
 };
+
+// Chunks of about this many bytes are parsed in parallel; a smaller text is parsed whole.
+constexpr std::size_t kChunkBytes = std::size_t(1) << 20;
+
+// The text parsed in chunks that end at line ends, in parallel, and appended in order; nullopt where
+// a chunk holds what only the whole text's parse handles (tags, warnings, relative indices, continued
+// lines) or an error (whose message the serial parse then gives, naming the right face and line).
+std::optional<ObjParser> parse_in_chunks(std::string_view text, const std::string& name) {
+  std::vector<std::size_t> starts{0};
+  while (text.size() - starts.back() > 2 * kChunkBytes) {
+    const std::size_t end = text.find('\n', starts.back() + kChunkBytes);
+    if (end == std::string_view::npos) break;
+    starts.push_back(end + 1);
+  }
+  if (starts.size() < 2) return std::nullopt;
+  std::vector<int> first_line(starts.size(), 1);
+  for (std::size_t c = 1; c < starts.size(); ++c)
+    first_line[c] = first_line[c - 1] +
+                    int(std::count(text.begin() + std::ptrdiff_t(starts[c - 1]), text.begin() + std::ptrdiff_t(starts[c]), '\n'));
+  std::vector<std::optional<ObjParser>> parts(starts.size());
+  std::atomic<bool> unchunkable = false;
+  tbb::parallel_for(std::size_t(0), starts.size(), [&](std::size_t c) {
+    if (unchunkable) return;
+    const std::size_t end = c + 1 < starts.size() ? starts[c + 1] : text.size();
+    try {
+      parts[c] = ObjParser::chunk(text.substr(starts[c], end - starts[c]), name, first_line[c]);
+    } catch (const ObjParser::Unchunkable&) {
+      unchunkable = true;
+    } catch (const CageError&) {
+      unchunkable = true;
+    }
+  });
+  if (unchunkable) return std::nullopt;
+  std::optional<ObjParser> whole = std::move(parts[0]);
+  try {
+    for (std::size_t c = 1; c < parts.size(); ++c) whole->append(std::move(*parts[c]));
+  } catch (const ObjParser::Unchunkable&) {
+    return std::nullopt;
+  }
+  return whole;
+}
 
 }  // namespace
 
-Cage parse_obj_cage(std::string_view text, std::string name) {
-  Cage cage = ObjParser(text, std::move(name)).run();
+Cage parse_obj_cage(std::string_view text, std::string name, ObjParse how) {
+  std::optional<ObjParser> chunks;
+  if (how == ObjParse::chunks) chunks = parse_in_chunks(text, name);
+  Cage cage = chunks ? chunks->finished() : ObjParser(text, std::move(name)).run();
   split_non_manifold(cage);
   return cage;
 }
@@ -365,10 +456,16 @@ Cage load_obj_cage(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) throw CageError(path + ": is a directory, not a cage file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CageError(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw CageError(path + ": cannot read the file");
-  return parse_obj_cage(text.str(), path);
+  // Read whole, in one call (a stream buffer's copy into a string stream costs as much as the parse).
+  std::string text;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) {
+    text.resize(std::size_t(size));
+    in.read(text.data(), std::streamsize(size));
+    text.resize(std::size_t(in.gcount()));
+  }
+  if (ec || in.bad()) throw CageError(path + ": cannot read the file");
+  return parse_obj_cage(text, path);
 }
 
 namespace {

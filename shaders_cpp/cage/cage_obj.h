@@ -29,7 +29,7 @@
 // vertices of several fans) are split as OpenSubdiv draws them (non_manifold.h), so the cage returned is
 // manifold; what is left (such as a face naming one vertex twice within one fan) Topology refuses.
 //
-// Cost: one pass over the text, O(size of the file).
+// Cost: one pass over the text, O(size of the file), in parallel where the text allows (ObjParse).
 #pragma once
 
 #include <string>
@@ -42,8 +42,14 @@ namespace tessera {
 // Reads the file at `path`; Cage::name is `path`. Throws CageError (also when the file cannot be read).
 Cage load_obj_cage(const std::string& path);
 
+// How a text is parsed: in chunks of about a megabyte, in parallel on the calling task arena's threads,
+// where it holds only positions, texture coordinates, faces with absolute indices and ignored
+// statements (else, and for a text under two megabytes, whole); or whole, on one thread (for tests:
+// the same cage, the same errors and warnings).
+enum class ObjParse : unsigned char { chunks, serial };
+
 // Parses OBJ text; `name` names the source in messages and becomes Cage::name.
-Cage parse_obj_cage(std::string_view text, std::string name);
+Cage parse_obj_cage(std::string_view text, std::string name, ObjParse how = ObjParse::chunks);
 
 // The OBJ text of a cage that parse_obj_cage reads back to the same positions (bit for bit: shortest
 // round-trip decimals), UVs, faces and tags (creases, corners, holes, boundary interpolation, crease method, smooth
