@@ -122,7 +122,8 @@ TEST_CASE("Faces of one topology combination share its first face's table: the p
           "[subd][data]") {
   std::vector<std::pair<std::string, Cage>> cages;
   for (const auto& e : fs::directory_iterator(fs::path(TESSERA_TEST_DATA_DIR) / "osd-shapes"))
-    if (e.path().extension() == ".obj" && e.path().stem().string().rfind("catmark_", 0) == 0)
+    if (e.path().extension() == ".obj" && e.path().stem().string().rfind("catmark_", 0) == 0 &&
+        e.path().stem() != "catmark_pole360")  // (high valence: catmark_pole64 builds the same way, faster)
       cages.emplace_back(e.path().stem().string(), load_obj_cage(e.path().string()));
   std::sort(cages.begin(), cages.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   // Tori small enough that a face's 1-ring wraps round (one vertex reached from two corners), and one
@@ -130,24 +131,33 @@ TEST_CASE("Faces of one topology combination share its first face's table: the p
   cages.emplace_back("torus 3x3", torus_cage(3, 3, 1.0f, 0.4f));
   cages.emplace_back("torus 4x3", torus_cage(4, 3, 1.0f, 0.4f));
   cages.emplace_back("torus 24x12", torus_cage(24, 12, 1.0f, 0.4f));
-  int compared = 0;
+  const std::set<std::string> kRefitShapes = {"catmark_val2_back2back", "catmark_val2_foldover",
+                                               "catmark_val2_interior", "catmark_nonman_quadpole8"};
+  int compared = 0, refitted = 0;
   for (const auto& [name, cage] : cages)
-    for (const Scheme scheme : {Scheme::gregory, Scheme::bspline, Scheme::acc}) {
+    // bspline builds its faces as gregory does and differs in its count of fallback faces, which
+    // a few cages with regular and irregular faces check.
+    for (const Scheme scheme : {Scheme::gregory, Scheme::acc, Scheme::bspline}) {
+      if (scheme == Scheme::bspline && !(name.rfind("torus", 0) == 0 || name == "catmark_nonquads" ||
+                                         name == "catmark_pole8" || name == "catmark_val2_interior"))
+        continue;
       INFO(name << ", " << to_string(scheme));
       const Topology t(cage);
-      // With the faces that fold fitted too, where some do.
+      // With the faces that fold fitted too, on shapes where some do (finding them is the costly part).
       std::vector<char> refit;
-      try {
-        refit = find_strayed_faces(make_subd_model(cage, scheme)).faces;
-      } catch (const CageError&) {
-        CHECK_THROWS_AS(build_patches(cage, t, scheme, {}, PatchBuild::per_face), CageError);
-        continue;  // acc refuses the cage
-      }
       for (const bool with_refit : {false, true}) {
+        if (with_refit && kRefitShapes.contains(name)) refit = find_strayed_faces(make_subd_model(cage, scheme)).faces;
         if (with_refit && std::count(refit.begin(), refit.end(), 1) == 0) continue;
+        refitted += with_refit;
         const std::span<const char> r = with_refit ? std::span<const char>(refit) : std::span<const char>();
+        SubdPatches b;
+        try {
+          b = build_patches(cage, t, scheme, r, PatchBuild::per_face);
+        } catch (const CageError&) {  // acc refuses the cage, both ways
+          CHECK_THROWS_AS(build_patches(cage, t, scheme, r, PatchBuild::by_combination), CageError);
+          break;
+        }
         const SubdPatches a = build_patches(cage, t, scheme, r, PatchBuild::by_combination);
-        const SubdPatches b = build_patches(cage, t, scheme, r, PatchBuild::per_face);
         INFO(a.tables.size() << " tables by combination, " << b.tables.size() << " face by face");
         CHECK(a.tables == b.tables);
         for (const auto& [ga, gb] : {std::pair{&a.quads, &b.quads}, std::pair{&a.tris, &b.tris}}) {
@@ -162,7 +172,8 @@ TEST_CASE("Faces of one topology combination share its first face's table: the p
         ++compared;
       }
     }
-  CHECK(compared > 200);
+  CHECK(compared > 150);
+  CHECK(refitted >= 4);
 }
 
 }  // namespace tessera
