@@ -131,8 +131,7 @@ TEST_CASE("Faces of one topology combination share its first face's table: the p
   cages.emplace_back("torus 3x3", torus_cage(3, 3, 1.0f, 0.4f));
   cages.emplace_back("torus 4x3", torus_cage(4, 3, 1.0f, 0.4f));
   cages.emplace_back("torus 24x12", torus_cage(24, 12, 1.0f, 0.4f));
-  const std::set<std::string> kRefitShapes = {"catmark_val2_back2back", "catmark_val2_foldover",
-                                               "catmark_val2_interior", "catmark_nonman_quadpole8"};
+  const std::set<std::string> kRefitShapes = {"catmark_val2_back2back", "catmark_val2_foldover"};
   int compared = 0, refitted = 0;
   for (const auto& [name, cage] : cages)
     // bspline builds its faces as gregory does and differs in its count of fallback faces, which
@@ -173,7 +172,7 @@ TEST_CASE("Faces of one topology combination share its first face's table: the p
       }
     }
   CHECK(compared > 150);
-  CHECK(refitted >= 4);
+  CHECK(refitted >= 2);  // val2_back2back and val2_foldover under gregory
 }
 
 }  // namespace tessera
