@@ -87,7 +87,9 @@ void StepProgress::step(const char* name) {
 }
 
 void StepProgress::watch() {
-  constexpr double kShowAfter = 1.0;
+  // A terminal shows a step once it has run a second; a log, once it has run as long as a line of its
+  // own is worth (kPlainPeriod), so that a slow build's log is not filled with steps of a second or two.
+  const double show_after = terminal_ ? 1.0 : kPlainPeriod;
   std::unique_lock lock(mutex_);
   std::string last_step;
   double last_shown = 0.0;
@@ -95,7 +97,7 @@ void StepProgress::watch() {
     wake_.wait_for(lock, std::chrono::milliseconds(terminal_ ? 200 : 500));
     if (done_ || current_.empty() || verbosity() >= 1) continue;  // -v has a line per step already
     const double elapsed = std::chrono::duration<double>(Clock::now() - step_start_).count();
-    if (elapsed < kShowAfter) continue;
+    if (elapsed < show_after) continue;
     const bool new_step = current_ != last_step;
     if (!terminal_ && !new_step && elapsed - last_shown < kPlainPeriod) continue;
     char line[256];

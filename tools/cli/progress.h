@@ -45,9 +45,9 @@ class Progress {
 };
 
 // The steps of one job that has no count to show ("preparing frog.obj": reading, topology, patches,
-// ...): a step that has run for a second is shown, on a terminal as one line redrawn in place with its
-// elapsed time, otherwise as a line when it reaches a second and every five seconds after; nothing with
-// -q, every step with -v. A watcher thread does the showing, so a step that never returns control is
+// ...): on a terminal a step that has run for a second is shown as one line redrawn in place with its
+// elapsed time; in a log a step that has run five seconds gets a line, and another every five seconds;
+// nothing with -q, every step with -v. A watcher thread does the showing, so a step that never returns control is
 // still reported; step() only records which step runs (from the thread doing the work).
 class StepProgress {
  public:
