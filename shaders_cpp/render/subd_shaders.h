@@ -328,8 +328,7 @@ struct SubdDS {
 
   // The limit's normal at fitted corner k, from the derivatives SubdHS stored there; zero where they are
   // parallel, as at a vertex of valence 2 (its two edges leave along one line), so that the patch's own
-  // normal stands. Out of line: rare, and the domain shader's common path must stay as GCC lays it out
-  // best (inlined, the check made the frog's domain shader 30 % slower).
+  // normal stands. Out of line: rare, and kept off the domain shader's common path.
   [[gnu::noinline]] static glm::vec3 fitted_corner_normal(std::span<const SubdControlPoint> cp, int k) {
     const glm::vec3 &a = cp[std::size_t(2 * k)].dv, &b = cp[std::size_t(2 * k + 1)].dv;
     const glm::vec3 n = glm::cross(a, b);

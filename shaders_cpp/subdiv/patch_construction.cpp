@@ -14,10 +14,12 @@ std::vector<int> FaceFrame::corners_from(int first) const {
   return ring;
 }
 
-std::vector<int> gather_ring(std::span<const CornerRing> rings) {
+std::vector<int> gather_ring(std::span<const CornerRing> rings, std::vector<std::uint8_t>* landed) {
   std::vector<int> ring;
   auto push = [&](int v) {
-    if (std::find(ring.begin(), ring.end(), v) == ring.end()) ring.push_back(v);
+    const auto it = std::find(ring.begin(), ring.end(), v);
+    if (landed) landed->push_back(std::uint8_t(std::min<std::ptrdiff_t>(it - ring.begin(), 255)));
+    if (it == ring.end()) ring.push_back(v);
   };
   for (const CornerRing& r : rings) push(r.center);
   for (const CornerRing& r : rings) {

@@ -66,8 +66,10 @@ struct FaceFrame {
 };
 
 // The IA patch: the patch's corners in order, then each corner's ring vertices not yet listed (edge
-// neighbours and far vertices, counter-clockwise from the face).
-std::vector<int> gather_ring(std::span<const CornerRing> rings);
+// neighbours and far vertices, counter-clockwise from the face). `landed`, when given, gets for each
+// vertex the traversal reaches (listed or not) its position in the IA patch (at most 255): the ring's
+// structure, global coincidences included.
+std::vector<int> gather_ring(std::span<const CornerRing> rings, std::vector<std::uint8_t>* landed = nullptr);
 
 // The SV_TessFactor keys of fan triangle k of face f (vertex k, vertex k + 1, centre): Ueq0 is the spoke
 // to vertex k, keyed by the two cage edges there; Veq0 the cage edge k -> k+1; Weq0 the spoke to

@@ -127,28 +127,11 @@ struct SharedRing {
   std::vector<int> ring;
   std::vector<std::uint8_t> landed;
 };
-template <std::size_t N>
-SharedRing shared_ring(const std::array<CornerRing, N>& rings) {
-  SharedRing out;
-  out.ring.reserve(kMaxPatchControlPoints + 8);
-  out.landed.reserve(64);
-  auto push = [&](int v) {
-    const auto it = std::find(out.ring.begin(), out.ring.end(), v);
-    out.landed.push_back(std::uint8_t(std::min<std::ptrdiff_t>(it - out.ring.begin(), 255)));
-    if (it == out.ring.end()) out.ring.push_back(v);
-  };
-  for (const CornerRing& r : rings) push(r.center);
-  for (const CornerRing& r : rings)
-    for (int j = 0; j < r.valence(); ++j) {
-      push(r.edges[std::size_t(j)]);
-      if (j < r.face_count())
-        for (const int v : r.face_others[std::size_t(j)]) push(v);
-    }
-  return out;
-}
 SharedRing shared_ring(const subdiv::PatchContext& ctx, const subdiv::FaceFrame& face) {
-  return face.n == 4 ? shared_ring(subdiv::face_rings<4>(ctx, face).whole)
-                     : shared_ring(subdiv::face_rings<3>(ctx, face).whole);
+  SharedRing out;
+  out.ring = face.n == 4 ? subdiv::gather_ring(subdiv::face_rings<4>(ctx, face).whole, &out.landed)
+                         : subdiv::gather_ring(subdiv::face_rings<3>(ctx, face).whole, &out.landed);
+  return out;
 }
 
 // What a combination's first face made: its table and kind, its ring's structure, and whether bspline
