@@ -417,7 +417,7 @@ TEST_CASE("The displaced pixel shader's quad form gives the per-pixel form's bit
     for (const bool seams : {true, false}) {
       o.seam_blending = seams;
       const Displacement d = make_displacement(m, o);
-      REQUIRE(d.normal_map.has_value() == !derived);
+      REQUIRE(d.normal_maps.empty() == derived);
       for (const int samples : {1, 4}) {
         const int w = 256, h = 160;
         const SubdCamera camera = frame_cage(m.cage, w, h, 35.0f, std::nullopt, std::nullopt);
@@ -439,12 +439,13 @@ TEST_CASE("The displaced pixel shader's quad form gives the per-pixel form's bit
               DisplacedPS& ps = per_pixel.ps;
               ps.light = glm::normalize(camera.eye - camera.target);
               ps.sides = face_sides(m);
-              if (d.seam_blending) ps.texcoords = d.texcoords;
-              if (d.normal_map) {
-                ps.normal_map = &d.normal_map->texture();
+              ps.texcoords = d.texcoords;
+              ps.seam_blending = d.seam_blending;
+              if (!d.normal_maps.empty()) {
+                ps.normal_maps = d.normal_maps;
                 ps.flip_green = d.flip_v;
               } else {
-                ps.height = &d.map->texture();
+                ps.heights = d.maps;
                 ps.height_scale = d.scale;
               }
               return draw_group_pass(device, m, g, ts, hs, project, per_pixel, st, *pixel);

@@ -163,7 +163,7 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
       break;
     case DebugView::uv: {
       glm::vec2 t;
-      if (height != nullptr) {
+      if (!heights.empty()) {
         t = {a[9], a[10]};
       } else {
         const float fu = a[7], fv = a[8];
@@ -184,10 +184,11 @@ glm::vec4 DebugPS::operator()(const PixelInput<kDebugAttributes>& in) const {
     }
     case DebugView::displacement: {
       float hgt = 0.0f;
-      if (height != nullptr) {
+      if (!heights.empty()) {
         Sampler s;
         s.address_u = s.address_v = AddressMode::clamp;
-        const glm::vec4 texel = height->sample_grad(s, glm::vec2(a[9], a[10]), glm::vec2(in.ddx(9), in.ddx(10)),
+        const std::size_t tile = id < texcoords.size() ? texcoords[id].tile : 0;
+        const glm::vec4 texel = heights[tile].texture().sample_grad(s, glm::vec2(a[9], a[10]), glm::vec2(in.ddx(9), in.ddx(10)),
                                                     glm::vec2(in.ddy(9), in.ddy(10)));
         hgt = height_scale * texel.x + height_bias;
       }

@@ -22,6 +22,8 @@
 #include "pipeline/stage_io.h"
 #include "pipeline/texture.h"
 #include "shaders_cpp/debug/patch_table.h"
+#include "shaders_cpp/displacement/displacement_map.h"
+#include "shaders_cpp/displacement/watertight_uv.h"
 #include "shaders_cpp/render/subd_shaders.h"
 
 namespace tessera {
@@ -96,7 +98,10 @@ struct DebugPS {
   glm::vec3 light{0.0f, 0.0f, 1.0f};
   bool processed = false;             // factors: processed rather than raw
   float edge_pixels = 8.0f;           // density: the target
-  const Texture2D* height = nullptr;  // displacement: the map (channel 0 scalar)
+  // displacement: the map per tile (channel 0 scalar) and each patch's tile (PatchTexcoords::tile; empty:
+  // tile 0). The uv view reads the displaced DS's texture coordinates when `heights` is given.
+  std::span<const DisplacementMap> heights;
+  std::span<const PatchTexcoords> texcoords;
   float height_scale = 1.0f, height_bias = 0.0f, height_range = 1.0f;
   bool paper = false;  // wire: a flat white surface (the wireframe view) instead of clay
   // patch_type under the adaptive scheme: the surface whose patch at each point is coloured (by kind,

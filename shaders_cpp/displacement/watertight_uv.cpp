@@ -19,7 +19,7 @@ int vertex_owner(const Topology& t, int v) {
 }
 
 std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topology& t, const PatchGroup& group,
-                                                  UvOwnership ownership, bool flip_v) {
+                                                  UvOwnership ownership, bool flip_v, const UvTiles* tiles) {
   if (!cage.has_uvs()) throw CageError(cage.name + ": has no texture coordinates (vt); a displacement map needs them");
   for (int f = 0; f < t.face_count(); ++f)
     if (!t.is_hole(f) && t.face_size(f) != 4)
@@ -27,10 +27,12 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
                       " sides; displacement handles quad faces only");
   // UV of corner k (mod 4) of face f.
   std::vector<glm::vec2> uvs = cage.uvs;
-  if (flip_v)
+  if (flip_v && tiles == nullptr)
     for (auto& x : uvs) x.y = 1.0f - x.y;
+  auto tile = [&](int f) { return tiles != nullptr ? tiles->face_tile[std::size_t(f)] : std::uint16_t(0); };
   auto uv = [&](int f, int k) {
-    return uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])];
+    const glm::vec2 x = uvs[std::size_t(cage.face_uvs[std::size_t(t.face_offset(f) + ((k % 4) + 4) % 4)])];
+    return tiles != nullptr ? tiles->local(x, tile(f), !flip_v) : x;  // UvTiles::local flips it
   };
   // Twice the signed area of face f's UV quad: its chart's orientation.
   auto uv_area = [&](int f) {
@@ -48,6 +50,7 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
     const int f = p.face;
     for (int k = 0; k < 4; ++k) {
       const int fk = k + p.rotation;  // face corner of patch corner k
+      tc.tile = tile(f);
       tc.interior[std::size_t(k)] = uv(f, fk);
       const int h = t.face_offset(f) + fk % 4;
       // Edge k: from patch corner k to k + 1, the face's half-edge h.
@@ -55,7 +58,9 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
       const int fo = t.face(ho), co = t.corner(ho);
       tc.edge[std::size_t(k)] = {uv(fo, co), uv(fo, co + 1), uv(fo, co + 2), uv(fo, co + 3)};
       tc.reversed[std::size_t(k)] = ho != h;
+      tc.edge_tile[std::size_t(k)] = tile(fo);
       if (ownership == UvOwnership::per_face) {
+        tc.edge_tile[std::size_t(k)] = tile(f);
         // The naive way: this face's own UVs (still in the owner's direction, which the frames use).
         const glm::vec2 a = uv(f, fk), b = uv(f, fk + 1), c = uv(f, fk + 2), d = uv(f, fk + 3);
         tc.edge[std::size_t(k)] = ho == h ? std::array<glm::vec2, 4>{a, b, c, d} : std::array<glm::vec2, 4>{b, a, d, c};
@@ -64,11 +69,13 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
       // The face across edge k: its half-edge runs k + 1 -> k.
       const int ht = t.twin(h);
       tc.twin[std::size_t(k)] = {uv(f, fk), uv(f, fk + 1)};
+      tc.twin_tile[std::size_t(k)] = tile(f);
       if (ht >= 0 && !t.is_hole(t.face(ht))) {
         const int ft = t.face(ht), ct = t.corner(ht);
         const glm::vec2 a = uv(ft, ct + 1), b = uv(ft, ct);
-        if (a != uv(f, fk) || b != uv(f, fk + 1)) {
+        if (a != uv(f, fk) || b != uv(f, fk + 1) || tile(ft) != tile(f)) {
           tc.twin[std::size_t(k)] = {a, b};
+          tc.twin_tile[std::size_t(k)] = tile(ft);
           tc.seam_edges |= std::uint8_t(1u << k);
           if ((uv_area(f) < 0.0) != (uv_area(ft) < 0.0)) tc.twin_mirrored |= std::uint8_t(1u << k);
         }
@@ -77,6 +84,7 @@ std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topolo
       const int hv = vertex_owner(t, t.origin(h));
       const int fv = t.face(hv), cv = t.corner(hv);
       tc.corner[std::size_t(k)] = ownership == UvOwnership::owned ? uv(fv, cv) : uv(f, fk);
+      tc.corner_tile[std::size_t(k)] = ownership == UvOwnership::owned ? tile(fv) : tile(f);
       tc.vertex_face[std::size_t(k)] = fv, tc.vertex_corner[std::size_t(k)] = std::uint8_t(cv);
       tc.corner_span[std::size_t(k)] = {uv(fv, cv + 1) - uv(fv, cv), uv(fv, cv + 3) - uv(fv, cv)};
       tc.corner_key[std::size_t(k)] = cage_edge_key(t.origin(hv), t.destination(hv));

@@ -39,6 +39,7 @@
 #include "shaders_cpp/cage/cage.h"
 #include "shaders_cpp/subdiv/subd_patches.h"
 #include "shaders_cpp/cage/topology.h"
+#include "shaders_cpp/displacement/udim_tiles.h"
 
 namespace tessera {
 
@@ -57,6 +58,10 @@ struct PatchTexcoords {
   // orientation (a mirrored chart). Not used for sampling positions.
   std::array<std::array<glm::vec2, 2>, 4> twin{};
   std::uint8_t seam_edges = 0, twin_mirrored = 0;
+  // UDIM (udim_tiles.h): the tile each slot's UVs are in, an index into the model's tiles; the UVs
+  // are in that tile's texture coordinates. Every tile 0 for a single map.
+  std::uint16_t tile = 0;  // interior
+  std::array<std::uint16_t, 4> edge_tile{}, corner_tile{}, twin_tile{};
 };
 
 enum class UvOwnership : std::uint8_t { owned, per_face };
@@ -68,8 +73,11 @@ int vertex_owner(const Topology& t, int v);
 // One entry per patch of the group, in patch order.
 // `flip_v` stores (u, 1 − v): OBJ texture coordinates have v = 0 at the bottom of the image, textures
 // (texture.h, D3D) have row 0 at v = 0. Each cage UV is flipped once, so shared slots stay identical.
+// With `tiles` (UDIM), each slot holds its face's UVs in that face's tile (UvTiles::local; v taken as
+// pointing down when `flip_v` is false) and names the tile; a UV seam is then a change of UV or of tile.
 std::vector<PatchTexcoords> build_patch_texcoords(const Cage& cage, const Topology& topology, const PatchGroup& group,
-                                                  UvOwnership ownership = UvOwnership::owned, bool flip_v = true);
+                                                  UvOwnership ownership = UvOwnership::owned, bool flip_v = true,
+                                                  const UvTiles* tiles = nullptr);
 
 // Bilinear interpolation of four corner values at (u, v), corner k at (0,0),(1,0),(1,1),(0,1).
 inline glm::vec2 bilerp_uv(const std::array<glm::vec2, 4>& c, float u, float v) {

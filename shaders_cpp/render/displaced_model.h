@@ -13,6 +13,11 @@
 // tangent-space normal in RGB), and derives normals from the height otherwise; "derived" always
 // derives them (scalar maps; vector maps shade with the base normal); any other value is a path
 // whose R, G, B (channels 0..2) are the normal map.
+//
+// UDIM (udim_tiles.h): a path with the <UDIM> token names one map per tile. Each face samples its UV
+// centre's tile; only the tiles the faces use are read, and a used tile without a file is an error
+// naming every missing tile. A normal map path then needs the token too ("auto" takes the RGB of each
+// displacement tile). Each tile is padded from its own charts and has its own mip chain.
 #pragma once
 
 #include <optional>
@@ -53,8 +58,11 @@ struct DisplacementOptions {
 inline constexpr int kChartBorderTexels = 2;
 
 struct Displacement {
-  std::optional<DisplacementMap> map;
-  std::optional<DisplacementMap> normal_map;  // empty: derived (scalar) or base normals
+  // One map per tile, in the order of PatchTexcoords' tile indices (a single map: one).
+  std::vector<DisplacementMap> maps;
+  std::vector<DisplacementMap> normal_maps;  // per tile as `maps`; empty: derived (scalar) or base normals
+  std::vector<int> udim;                     // the tiles' UDIM numbers; empty for a single map
+  std::size_t spanning_faces = 0;            // UDIM: faces whose UVs leave their centre's tile
   DisplacementKind kind = DisplacementKind::scalar;
   float scale = 1.0f, bias = 0.0f;
   bool shared_normals = true;
@@ -73,18 +81,22 @@ struct Displacement {
   // Mip levels blended (view-dependent LOD: displaced_shaders.h, DisplacementParams::trilinear).
   bool trilinear = false;
 
-  DisplacementParams params() const {
-    return {&map->texture(), kind, scale, bias, shared_normals, trilinear, own_chart_shading};
-  }
+  DisplacementParams params() const { return {maps, kind, scale, bias, shared_normals, trilinear, own_chart_shading}; }
+  // Level 0's size of each tile (DisplacedHS::map_sizes).
+  std::vector<glm::vec2> map_sizes() const;
 };
 
 Displacement make_displacement(const SubdModel& model, const DisplacementOptions& options);
 // The per-patch watertight texture coordinates of a model that a map named `map` will displace (and
 // `tessera bake` writes): CageError for a scheme without 1-rings (flat, pn), a cage without UVs or with
 // faces that are not quads; DisplacementMapError naming `map` for a UV outside [0, 1].
+// With `tiles` (UDIM) the UVs are in their faces' tiles (build_patch_texcoords) and not checked here.
 std::vector<PatchTexcoords> displacement_texcoords(const SubdModel& model, const std::string& map,
-                                                   UvOwnership ownership = UvOwnership::owned, bool flip_v = true);
+                                                   UvOwnership ownership = UvOwnership::owned, bool flip_v = true,
+                                                   const UvTiles* tiles = nullptr);
 float displacement_bound(const Texture2D& map, DisplacementKind kind, float scale, float bias);
+// The largest over the tiles.
+float displacement_bound(std::span<const DisplacementMap> maps, DisplacementKind kind, float scale, float bias);
 
 // The displaced hull and domain shaders of the model's (quad) patch group, handed to
 // draw(group, tessellator_state, hs, ds) -> DrawResult.
@@ -96,8 +108,9 @@ DrawResult with_displaced_group(const SubdModel& m, const Displacement& d, const
   const TessellatorState ts{g.domain, partitioning, ts::OutputPrimitive::triangle_cw};
   // The frames of precomputed patches follow the pose: summed here, before the draw.
   const std::vector<glm::vec3> frame_rows = precompute_rows(d.frames.precomputed, m.positions());
+  const std::vector<glm::vec2> map_sizes = d.map_sizes();
   const DisplacedHS hs{SubdHS{g.patches, m.patches.tables, factors, false, m.ring_boxes, partitioning, m.precomputed, cull},
-                       d.texcoords, &d.frames, glm::vec2(float(d.map->width()), float(d.map->height())), frame_rows};
+                       d.texcoords, &d.frames, map_sizes, frame_rows};
   const DisplacedDS ds{SubdDS{g.patches, m.limit.get(), m.cage.tags.left_handed, false}, d.texcoords, d.params()};
   return draw(g, ts, hs, ds);
 }

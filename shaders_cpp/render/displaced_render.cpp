@@ -16,12 +16,13 @@ DrawResult render_displaced(Device& device, const SubdModel& model, const Displa
           DisplacedPS ps;
           ps.light = light;
           ps.sides = face_sides(model);
-          if (displacement.seam_blending) ps.texcoords = displacement.texcoords;
-          if (displacement.normal_map) {
-            ps.normal_map = &displacement.normal_map->texture();
+          ps.texcoords = displacement.texcoords;
+          ps.seam_blending = displacement.seam_blending;
+          if (!displacement.normal_maps.empty()) {
+            ps.normal_maps = displacement.normal_maps;
             ps.flip_green = displacement.flip_v;
           } else if (displacement.kind == DisplacementKind::scalar) {
-            ps.height = &displacement.map->texture();
+            ps.heights = displacement.maps;
             ps.height_scale = displacement.scale;
           }
           return go(ps);

@@ -21,7 +21,9 @@
 //     interior:      log2(max(Lu / inside_u, Lv / inside_v)), Lu and Lv the longer texel length of
 //                    the patch's two UV edges in each direction;
 //   i.e. texels per tessellated segment; factors below 1 count as 1 and the sampler clamps the LOD to
-//   the map's levels. Interior points use their patch's LOD (no crack can come from it).
+//   the map's levels. Interior points use their patch's LOD (no crack can come from it);
+// - the map: with UDIM tiles (udim_tiles.h), the tile of the face whose UVs the point takes (its own
+//   inside, the owner's on edges and vertices), each slot's UVs in that tile's coordinates.
 // With the scheme's own watertight positions, the displaced positions are then bit-identical.
 #pragma once
 
@@ -36,6 +38,7 @@
 #include "pipeline/simd8.h"
 #include "pipeline/texture.h"
 #include "shaders_cpp/displacement/displacement_frames.h"
+#include "shaders_cpp/displacement/displacement_map.h"
 #include "shaders_cpp/displacement/watertight_uv.h"
 #include "shaders_cpp/render/subd_shaders.h"
 #include "shaders_cpp/subdiv/patch_eval.h"
@@ -45,7 +48,7 @@ namespace tessera {
 enum class DisplacementKind : std::uint8_t { scalar, vector_tangent, vector_object };
 
 struct DisplacementParams {
-  const Texture2D* map = nullptr;  // 1 channel (scalar) or 3 (vector)
+  std::span<const DisplacementMap> maps;  // per tile (PatchTexcoords' tile slots); 1 channel (scalar) or 3 (vector)
   DisplacementKind kind = DisplacementKind::scalar;
   float scale = 1.0f, bias = 0.0f;
   // Test knob: false displaces every point along its own patch's normal (cracks for acc and gregory).
@@ -77,6 +80,7 @@ inline float segments(float factor) { return factor > 1.0f ? factor : 1.0f; }
 inline float texels_per_segment_lod(float x) { return std::log2(x > 1e-20f ? x : 1e-20f); }
 
 // log2(texels per segment) of a UV step covering `factor` segments; see the LOD rule above.
+// (`map_size` is the size of the tile the step's UVs are in.)
 inline float displacement_lod(glm::vec2 duv, glm::vec2 map_size, float factor) {
   return texels_per_segment_lod(texel_length(duv, map_size) / segments(factor));
 }
@@ -86,7 +90,7 @@ struct DisplacedHS {
   SubdHS base;
   std::span<const PatchTexcoords> texcoords;
   const PatchFrames* frames = nullptr;
-  glm::vec2 map_size{1.0f};
+  std::span<const glm::vec2> map_sizes;  // per tile: level 0's width and height
   std::span<const glm::vec3> precomputed_frames{};  // precompute_rows(frames->precomputed, posed cage)
 
   SubdControlPoint control_point(std::span<const SubdVertex> in, int i, std::uint32_t patch_id) const {
@@ -123,10 +127,13 @@ struct DisplacedHS {
     for (int k = 0; k < 4; ++k) {
       const auto& e = tc.edge[std::size_t(k)];
       // Patch edge k is SV_TessFactor (k + 1) % 4.
-      pc.lod_edge[std::size_t(k)] = displacement_lod(e[1] - e[0], map_size, pc.factors.edge[std::size_t((k + 1) % 4)]);
-      pc.lod_corner[std::size_t(k)] = displacement_lod(tc.corner_span[std::size_t(k)][0], map_size,
-                                                       base.factors.edge(tc.corner_key[std::size_t(k)]));
+      pc.lod_edge[std::size_t(k)] = displacement_lod(e[1] - e[0], map_sizes[tc.edge_tile[std::size_t(k)]],
+                                                     pc.factors.edge[std::size_t((k + 1) % 4)]);
+      pc.lod_corner[std::size_t(k)] =
+          displacement_lod(tc.corner_span[std::size_t(k)][0], map_sizes[tc.corner_tile[std::size_t(k)]],
+                           base.factors.edge(tc.corner_key[std::size_t(k)]));
     }
+    const glm::vec2 map_size = map_sizes[tc.tile];
     const auto& c = tc.interior;
     const float lu = std::max(texel_length(c[1] - c[0], map_size), texel_length(c[2] - c[3], map_size));
     const float lv = std::max(texel_length(c[3] - c[0], map_size), texel_length(c[2] - c[1], map_size));
@@ -183,19 +190,21 @@ struct DisplacedDS {
   void samples(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp,
                std::span<const DomainLocation> locations, std::uint32_t patch_id, std::span<DisplacedPoint> out) const {
     const Sampler s = sampler();
-    std::array<std::size_t, 4> pending{};  // points prepared, not yet displaced, all at LOD `pending_lod`
+    // Points prepared, not yet displaced, all at LOD `pending_lod` in tile `pending_tile`.
+    std::array<std::size_t, 4> pending{};
     std::size_t held = 0;
     float pending_lod = 0.0f;
+    std::uint16_t pending_tile = 0;
     const auto displace_pending = [&] {
+      const Texture2D& map = params.maps[pending_tile].texture();
       if (held == 4) {
         std::array<glm::vec2, 4> uv;
         std::array<glm::vec4, 4> texel;
         for (std::size_t k = 0; k < 4; ++k) uv[k] = out[pending[k]].uv;
-        params.map->sample_level4(s, uv, pending_lod, texel);
+        map.sample_level4(s, uv, pending_lod, texel);
         for (std::size_t k = 0; k < 4; ++k) displace(out[pending[k]], texel[k]);
       } else {
-        for (std::size_t k = 0; k < held; ++k)
-          displace(out[pending[k]], params.map->sample_level(s, out[pending[k]].uv, pending_lod));
+        for (std::size_t k = 0; k < held; ++k) displace(out[pending[k]], map.sample_level(s, out[pending[k]].uv, pending_lod));
       }
       held = 0;
     };
@@ -225,11 +234,14 @@ struct DisplacedDS {
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = first + k;
         float lod = pc.lod_interior;
-        if (!prepared[k]) prepare(pc, cp, locations[i], patch_id, points ? &points[k] : nullptr, out[i], lod);
-        // A group holds one LOD's bits (a NaN LOD is its own group).
-        if (held != 0 && std::bit_cast<std::uint32_t>(lod) != std::bit_cast<std::uint32_t>(pending_lod))
+        std::uint16_t tile = texcoords[patch_id].tile;
+        if (!prepared[k]) prepare(pc, cp, locations[i], patch_id, points ? &points[k] : nullptr, out[i], lod, tile);
+        // A group holds one LOD's bits (a NaN LOD is its own group) in one tile.
+        if (held != 0 &&
+            (std::bit_cast<std::uint32_t>(lod) != std::bit_cast<std::uint32_t>(pending_lod) || tile != pending_tile))
           displace_pending();
         pending_lod = lod;
+        pending_tile = tile;
         pending[held++] = i;
         if (held == 4) displace_pending();
       }
@@ -241,9 +253,10 @@ struct DisplacedDS {
   DisplacedPoint operator()(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
                             std::uint32_t patch_id, const PatchPoint* evaluated = nullptr) const {
     float lod = 0.0f;
+    std::uint16_t tile = 0;
     DisplacedPoint out;
-    prepare(pc, cp, loc, patch_id, evaluated, out, lod);
-    displace(out, params.map->sample_level(sampler(), out.uv, lod));
+    prepare(pc, cp, loc, patch_id, evaluated, out, lod, tile);
+    displace(out, params.maps[tile].texture().sample_level(sampler(), out.uv, lod));
     return out;
   }
 
@@ -256,11 +269,12 @@ struct DisplacedDS {
   }
 
   // The point before displacement, every field of `out` written: `position` is the base surface's, and
-  // the map is to be sampled at `uv` and `sample_lod` (set here); displace() then moves it. (Written in
+  // the map is to be sampled at `uv`, `sample_lod` and in `sample_tile` (set here); displace() then moves it. (Written in
   // place: a returned point was built on the stack and copied into the caller's array, and the copy's
   // wide loads waited on the narrow stores that built it.)
   void prepare(const DisplacedPatchConstants& pc, std::span<const SubdControlPoint> cp, DomainLocation loc,
-               std::uint32_t patch_id, const PatchPoint* evaluated, DisplacedPoint& out, float& sample_lod) const {
+               std::uint32_t patch_id, const PatchPoint* evaluated, DisplacedPoint& out, float& sample_lod,
+               std::uint16_t& sample_tile) const {
     const SurfaceSample s = base(SubdPatchConstants{pc.factors, {}}, cp, loc, patch_id, evaluated);
     const PatchTexcoords& tc = texcoords[patch_id];
     const bool exact = base.patches[patch_id].kind == PatchKind::exact;
@@ -270,13 +284,15 @@ struct DisplacedDS {
     glm::vec3 n = s.normal, pa = s.du, pb = s.dv;
     glm::vec2 ja, jb, uv;
     float lod = pc.lod_interior;
+    std::uint16_t tile = tc.tile;
     const bool on_u = u == 0.0f || u == 1.0f, on_v = v == 0.0f || v == 1.0f;
     bool other_chart = false;  // the UV sampled here is in another face's chart (see DisplacedPoint)
     if (on_u && on_v) {
       const int k = v == 0.0f ? (u == 0.0f ? 0 : 1) : (u == 1.0f ? 2 : 3);
       const auto& t = pc.corner[std::size_t(k)];
       uv = tc.corner[std::size_t(k)];
-      other_chart = uv != tc.interior[std::size_t(k)];
+      tile = tc.corner_tile[std::size_t(k)];
+      other_chart = uv != tc.interior[std::size_t(k)] || tile != tc.tile;
       lod = pc.lod_corner[std::size_t(k)];
       pa = t[0], pb = t[1];
       ja = tc.corner_span[std::size_t(k)][0], jb = tc.corner_span[std::size_t(k)][1];
@@ -304,7 +320,8 @@ struct DisplacedDS {
       // This patch's own UVs at the owner's edge ends a and b.
       const glm::vec2 own_a = tc.interior[std::size_t(tc.reversed[std::size_t(k)] ? (k + 1) % 4 : k)];
       const glm::vec2 own_b = tc.interior[std::size_t(tc.reversed[std::size_t(k)] ? k : (k + 1) % 4)];
-      other_chart = own_a != e[0] || own_b != e[1];
+      tile = tc.edge_tile[std::size_t(k)];
+      other_chart = own_a != e[0] || own_b != e[1] || tile != tc.tile;
       lod = pc.lod_edge[std::size_t(k)];
       ja = e[1] - e[0];
       jb = so * (e[3] - e[0]) + to * (e[2] - e[1]);
@@ -340,6 +357,7 @@ struct DisplacedDS {
 
     out.position = s.position;
     sample_lod = lod;
+    sample_tile = tile;
   }
 
   // A prepared point moved by the map's `texel` (sampled at its uv and LOD) along its normal, tangent
@@ -496,14 +514,20 @@ using DisplacedProjectDS = ProjectingDS<Inner, DisplacedAttributes>;
 // frame there is this one's carried across by the similarity that maps this chart's edge onto the
 // other's (mirrored when the charts' orientations differ): exact for conformal charts, and the same
 // rule on both sides.
+//
+// With UDIM tiles a pixel reads its patch's tile (the texture coordinates it interpolates are the
+// patch's own, DisplacedPoint), the other chart of a seam the twin face's.
 struct DisplacedPS {
-  const Texture2D* normal_map = nullptr;
-  const Texture2D* height = nullptr;  // one channel; used when normal_map is null
+  std::span<const DisplacementMap> normal_maps;  // per tile
+  std::span<const DisplacementMap> heights;      // per tile, one channel; used when normal_maps is empty
   float height_scale = 1.0f;
   bool flip_green = false;
   glm::vec3 light{0.0f, 0.0f, 1.0f};
   glm::vec3 color = kClayColor;
-  std::span<const PatchTexcoords> texcoords{};  // per patch of the draw; empty: no seam blending
+  // Per patch of the draw: each patch's tile and, with `seam_blending`, its seams. Empty: every patch
+  // in tile 0, no seam blending.
+  std::span<const PatchTexcoords> texcoords{};
+  bool seam_blending = true;
   float seam_band_texels = 8.0f;
   FaceSides sides;
 
@@ -518,6 +542,7 @@ struct DisplacedPS {
   // written lanes are sampled.
   void shade_quad(const QuadInput<kDisplacedAttributes>& q, QuadColor& out) const {
     const glm::vec2 ddx(q.ddx(9), q.ddx(10)), ddy(q.ddy(9), q.ddy(10));
+    const Texture2D* normal_map = texture(normal_maps, tile_of(q.primitive_id));
     const float lod = normal_map ? normal_map->grad_lod(ddx, ddy) : 0.0f;
     for (std::size_t k = 0; k < 4; ++k) {
       if (!(q.mask >> k & 1u)) continue;
@@ -536,6 +561,12 @@ struct DisplacedPS {
     s.address_u = s.address_v = AddressMode::clamp;
     return s;
   }
+  std::uint16_t tile_of(std::uint32_t primitive_id) const {
+    return primitive_id < texcoords.size() ? texcoords[primitive_id].tile : std::uint16_t(0);
+  }
+  static const Texture2D* texture(std::span<const DisplacementMap> maps, std::uint16_t tile) {
+    return tile < maps.size() ? &maps[tile].texture() : nullptr;
+  }
 
   // One pixel; `texel`, when given, is the normal map's sample at its UV (sample_grad with ddx, ddy).
   glm::vec4 shade(const std::array<float, kDisplacedAttributes>& a, glm::vec2 ddx, glm::vec2 ddy, bool front_face,
@@ -543,10 +574,11 @@ struct DisplacedPS {
     const glm::vec3 n0 = unit_or_zero(glm::vec3(a[0], a[1], a[2]));
     const glm::vec3 dpdu(a[3], a[4], a[5]), dpdv(a[6], a[7], a[8]);
     const glm::vec2 uv(a[9], a[10]);
-    const Texture2D* map = normal_map ? normal_map : height;
+    const std::uint16_t tile = tile_of(primitive_id);
+    const Texture2D* map = normal_maps.empty() ? texture(heights, tile) : texture(normal_maps, tile);
     if (map == nullptr) return clay(sides.facing(n0, front_face), light, color);
-    glm::vec3 n = texel ? mapped_normal(*texel, n0, dpdu, dpdv) : surface_normal(n0, uv, dpdu, dpdv, ddx, ddy);
-    if (!texcoords.empty() && primitive_id < texcoords.size())
+    glm::vec3 n = texel ? mapped_normal(*texel, n0, dpdu, dpdv) : surface_normal(tile, n0, uv, dpdu, dpdv, ddx, ddy);
+    if (seam_blending && primitive_id < texcoords.size())
       n = blend_seams(n, n0, a[11], a[12], dpdu, dpdv, ddx, ddy, texcoords[primitive_id], *map);
     return clay(sides.facing(n, front_face), light, color);
   }
@@ -560,12 +592,15 @@ struct DisplacedPS {
     return shaded != glm::vec3(0.0f) ? shaded : n0;
   }
 
-  // The shading normal at `uv` of a chart whose dP/dU, dP/dV are `du`, `dv` (the base normal where the
-  // map gives none).
-  glm::vec3 surface_normal(const glm::vec3& n0, glm::vec2 uv, const glm::vec3& du, const glm::vec3& dv, glm::vec2 ddx,
-                           glm::vec2 ddy) const {
+  // The shading normal at `uv` of tile `tile` in a chart whose dP/dU, dP/dV are `du`, `dv` (the base
+  // normal where the map gives none).
+  glm::vec3 surface_normal(std::uint16_t tile, const glm::vec3& n0, glm::vec2 uv, const glm::vec3& du,
+                           const glm::vec3& dv, glm::vec2 ddx, glm::vec2 ddy) const {
     const Sampler sampler = DisplacedPS::sampler();
-    if (normal_map) return mapped_normal(normal_map->sample_grad(sampler, uv, ddx, ddy), n0, du, dv);
+    if (const Texture2D* normal_map = texture(normal_maps, tile))
+      return mapped_normal(normal_map->sample_grad(sampler, uv, ddx, ddy), n0, du, dv);
+    const Texture2D* height = texture(heights, tile);
+    if (height == nullptr) return n0;
     const float su = 1.0f / float(height->width()), sv = 1.0f / float(height->height());
     // The four central-difference taps share the pixel's derivatives, so one LOD: sampled at once.
     std::array<glm::vec4, 4> h;
@@ -622,11 +657,12 @@ struct DisplacedPS {
       const float mirror = orient_other * orient, r = lo / ls;
       const auto to_other = [&](glm::vec2 d) { return r * (glm::dot(d, xs) * xo + mirror * glm::dot(d, ys) * yo); };
       const glm::vec2 at_s = a0 + t * es, at_o = b0 + t * eo;
-      const glm::vec3 mean = unit_or_zero(surface_normal(n0, at_s, us, vs, ddx, ddy) +
-                                          surface_normal(n0, at_o, uo, vo, to_other(ddx), to_other(ddy)));
+      const glm::vec3 mean =
+          unit_or_zero(surface_normal(tc.tile, n0, at_s, us, vs, ddx, ddy) +
+                       surface_normal(tc.twin_tile[std::size_t(k)], n0, at_o, uo, vo, to_other(ddx), to_other(ddy)));
       if (mean == glm::vec3(0.0f)) continue;
       // This side's own normal at the seam point, in its own frame: the pixel's normal tends to it.
-      const glm::vec3 ns = surface_normal(n0, at_s, du, dv, ddx, ddy);
+      const glm::vec3 ns = surface_normal(tc.tile, n0, at_s, du, dv, ddx, ddy);
       const float s = dist * span / band, w = 1.0f - s * s * (3.0f - 2.0f * s);
       n += w * (mean - ns);
     }

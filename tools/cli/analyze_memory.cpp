@@ -65,12 +65,14 @@ MapFacts load_map_facts(const std::string& path, const std::string& channel, con
       d.channel = channel;
       d.normal_map = "derived";  // the normal map is not part of the comparison (memory_model.h)
       displacement = make_displacement(model, d);
-      f.patch_data_bytes = displacement->bytes() - displacement->map->bytes();
+      std::size_t patch_bytes = displacement->bytes();
+      for (const DisplacementMap& m : displacement->maps) patch_bytes -= m.bytes();
+      f.patch_data_bytes = patch_bytes;
     } catch (const CageError& e) {
       map_only = DisplacementMap::load(path, channel);
       estimated = "; per-patch data estimated (" + std::string(e.what()) + ")";
     }
-    const DisplacementMap& map = displacement ? *displacement->map : *map_only;
+    const DisplacementMap& map = displacement ? displacement->maps.front() : *map_only;
     std::string names;
     for (const std::string& n : map.selected()) names += (names.empty() ? "" : ",") + n;
     f.description = std::filesystem::path(path).filename().string() + " " + std::to_string(map.width()) + "x" +

@@ -269,7 +269,7 @@ DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTab
     case ViewKind::uv: {
       r.ps.view = DebugView::uv;
       if (!in.model.cage.has_uvs()) throw UsageError("--view uv: " + in.model.cage.name + " has no UVs");
-      if (in.displacement) r.ps.height = &in.displacement->map->texture();
+      if (in.displacement) r.ps.heights = in.displacement->maps;
       std::size_t seams = 0;
       tables.for_each([&](const PatchInfo& p) { seams += std::size_t(std::popcount(unsigned(p.seam_edges))); });
       legend.title = "texture coordinates: 16 x 16 checks, red = u, green = v";
@@ -280,7 +280,7 @@ DebugRender debug_view_setup(ViewKind kind, const ViewInputs& in, const PatchTab
       r.ps.view = DebugView::displacement;
       const Displacement& d = *in.displacement;
       if (d.kind != DisplacementKind::scalar) throw UsageError("--view displacement shows scalar maps only");
-      r.ps.height = &d.map->texture();
+      r.ps.heights = d.maps, r.ps.texcoords = d.texcoords;
       r.ps.height_scale = d.scale, r.ps.height_bias = d.bias, r.ps.height_range = d.bound;
       legend.title = "signed displacement (scale * texel + bias), object units";
       legend.ramp = sample_ramp([](float t) { return diverging_color(t); });

@@ -130,10 +130,15 @@ std::string describe_scene(const PreparedScene& p) {
                   std::to_string(p.model.patches.quads.size()) + " quad, " +
                   std::to_string(p.model.patches.tris.size()) + " triangle), scheme " + to_string(p.settings.scheme);
   if (p.model.rig) s += ", animated (t " + float_text(float(p.settings.asset.time)) + " s)";
-  if (p.displacement && p.displacement->map)
-    s += ", displacement " + std::to_string(p.displacement->map->width()) + "x" +
-         std::to_string(p.displacement->map->height()) + " (bound " + float_text(p.displacement->bound) + ")";
-  if (p.displacement && p.displacement->normal_map) s += ", normal map";
+  if (p.displacement && !p.displacement->maps.empty()) {
+    const Displacement& d = *p.displacement;
+    s += ", displacement " + std::to_string(d.maps.front().width()) + "x" + std::to_string(d.maps.front().height());
+    if (!d.udim.empty())
+      s += " x " + std::to_string(d.udim.size()) + " UDIM tile" + (d.udim.size() > 1 ? "s " : " ") +
+           std::to_string(d.udim.front()) + (d.udim.size() > 1 ? "-" + std::to_string(d.udim.back()) : "");
+    s += " (bound " + float_text(d.bound) + ")";
+  }
+  if (p.displacement && !p.displacement->normal_maps.empty()) s += ", normal map";
   s += "; view " + std::to_string(p.view.width) + "x" + std::to_string(p.view.height) + " from " +
        vec(p.view.camera.eye) + " to " + vec(p.view.camera.target) + ", up " + vec(p.view.camera.up);
   return s;
