@@ -198,6 +198,51 @@ check([int(t.split("/")[0]) - 1 for t in first.split()[1:]] == list(reversed(pol
 mirrored.modifiers["Subdivision"].subdivision_type = "SIMPLE"
 check("Simple" in cancelled(bpy.ops.tessera.compare), "a Simple modifier: compare refuses, naming it")
 
+# A displaced grid whose UVs span two UDIM tiles (u in [0, 2]): the material's Displacement node fed by
+# a tiled image becomes the scene's <UDIM> map, and the render is the CLI's.
+bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=4, size=2, location=(0, 0, 0))
+grid = bpy.context.active_object
+grid.name = "UdimGrid"
+uv_layer = grid.data.uv_layers.active  # the grid's own UV map, the one exported
+for loop in grid.data.loops:
+    co = grid.data.vertices[loop.vertex_index].co
+    uv_layer.data[loop.index].uv = (co.x + 1.0, (co.y + 1.0) / 2.0)
+grid.modifiers.new("Subdivision", "SUBSURF")
+for tile, frequency in ((1001, 2.0), (1002, 5.0)):
+    img = bpy.data.images.new("bump.%d" % tile, 32, 32)
+    px = []
+    for y in range(32):
+        for x in range(32):
+            h = 0.5 + 0.5 * math.sin(frequency * x / 32.0 * math.pi) * math.cos(frequency * y / 32.0 * math.pi)
+            px += [h, h, h, 1.0]
+    img.pixels = px
+    img.filepath_raw = os.path.join(out, "bump.%d.png" % tile)
+    img.file_format = "PNG"
+    img.save()
+tiled = bpy.data.images.load(os.path.join(out, "bump.1001.png"))
+tiled.source = "TILED"
+mat = bpy.data.materials.new("Displaced")
+mat.use_nodes = True
+nodes = mat.node_tree.nodes
+tex, disp = nodes.new("ShaderNodeTexImage"), nodes.new("ShaderNodeDisplacement")
+tex.image = tiled
+disp.inputs["Scale"].default_value, disp.inputs["Midlevel"].default_value = 0.3, 0.5
+mat.node_tree.links.new(tex.outputs["Color"], disp.inputs["Height"])
+output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+mat.node_tree.links.new(disp.outputs["Displacement"], output.inputs["Displacement"])
+grid.data.materials.append(mat)
+sc, res = render_equals_scene(grid, "udim")
+d = sc.get("displacement", {})
+check(d.get("map", "").endswith("bump.<UDIM>.png") and d.get("channel") == "R",
+      "udim: the tiled image is the scene's <UDIM> map")
+with open(res["cage"]) as f:
+    us = [float(l.split()[1]) for l in f if l.startswith("vt ")]
+check(min(us) == 0.0 and max(us) == 2.0, "udim: the exported UVs span tiles 1001 and 1002")
+check(abs(d["scale"] - 0.3) < 1e-6 and abs(d["bias"] + 0.15) < 1e-6, "udim: scale and bias from the Displacement node")
+mat.node_tree.links.remove(disp.inputs["Height"].links[0])
+check("Image Texture" in cancelled(bpy.ops.tessera.render), "udim: a Height that is not an image is one report")
+bpy.data.objects.remove(grid)
+
 # Bad cases are reports, not tracebacks.
 bpy.ops.mesh.primitive_uv_sphere_add(location=(0, -6, 0))
 plain = bpy.context.active_object

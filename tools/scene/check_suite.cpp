@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "shaders_cpp/displacement/udim_tiles.h"
 #include "tessellator/fnv1a.h"
 #include "tools/scene/check_report.h"
 #include "tools/scene/common.h"
@@ -96,10 +97,15 @@ GeometryDigest digest_of(Device& device, const PreparedScene& scene, const Scene
 // A file a scene names, as the scene resolves it, else the file of that name in the suite's assets
 // folder (a suite copied without the tree its scenes came from); InputError naming both when neither
 // exists.
+// A file, or a UDIM set (udim_tiles.h) with at least one tile, at `path`.
+bool asset_exists(const std::string& path) {
+  return has_udim_token(path) ? !udim_tiles_on_disk(path).empty() : fs::exists(path);
+}
+
 std::string suite_asset(const Suite& suite, const SuiteCase& c, const std::string& path, const char* field) {
-  if (path.empty() || fs::exists(path)) return path;
+  if (path.empty() || asset_exists(path)) return path;
   const fs::path copy = fs::path(suite_assets_dir(suite)) / fs::path(path).filename();
-  if (fs::exists(copy)) return copy.lexically_normal().string();
+  if (asset_exists(copy.string())) return copy.lexically_normal().string();
   throw InputError(c.scene + ": \"" + field + "\": " + path + " does not exist, nor " + copy.string() +
                    " (tessera check --collect-assets copies a suite's assets into it)");
 }
@@ -166,6 +172,13 @@ std::vector<std::string> collect_suite_assets(const Suite& suite) {
     const auto collect = [&](std::string& path) {
       if (path.empty() || path == "none" || path == "auto" || path == "derived") return;
       const fs::path from = fs::absolute(path).lexically_normal(), to = assets / from.filename();
+      if (has_udim_token(path)) {  // every tile of the set
+        for (int tile : udim_tiles_on_disk(from.string()))
+          copy_asset(udim_tile_path(from.string(), tile), udim_tile_path(to.string(), tile));
+        path = to.string();
+        ++copied;
+        return;
+      }
       copy_asset(from, to);
       for (const std::string& uri : gltf_relative_uris(from.string()))
         copy_asset((from.parent_path() / uri).lexically_normal(), (assets / uri).lexically_normal());

@@ -171,8 +171,9 @@ void pose_or_refuse(SubdModel& m, const std::string& path, const AssetSettings& 
 
 void add_displacement_options(CLI::App& cmd, DisplacementSettings& d) {
   cmd.add_option("--displacement", d.map,
-                 "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs; default: a glTF "
-                 "material's KHR_materials_displacement texture; none: no displacement");
+                 "displacement map (EXR, TIFF, PNG, DDS, ...), sampled at the cage's UVs; UDIM tiles as "
+                 "name.<UDIM>.exr (1001 + u + 10 v); default: a glTF material's KHR_materials_displacement "
+                 "texture; none: no displacement");
   cmd.add_option("--displacement-channel", d.channel,
                  "channel(s) of the map: a name or letter (A, height) for a scalar, three (RGB, 'X,Y,Z') for a vector");
   cmd.add_option("--displacement-scale", d.scale,
@@ -244,7 +245,12 @@ std::optional<Displacement> displacement_option(const DisplacementSettings& d, c
     o.normal_map_format = format_of(*material.normal);
   }
   try {
-    return make_displacement(model, o);
+    Displacement displacement = make_displacement(model, o);
+    if (displacement.spanning_faces != 0)
+      log_info("warning: " + o.map + ": " + std::to_string(displacement.spanning_faces) + " of " +
+               std::to_string(model.cage.face_count()) +
+               " faces have UVs in more than one UDIM tile; each is sampled from the tile of its UV centre");
+    return displacement;
   } catch (const DisplacementMapError& e) {
     throw InputError(e.what());
   } catch (const CageError& e) {

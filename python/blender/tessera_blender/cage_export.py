@@ -12,12 +12,17 @@ of Blender 3.4):
   ..._JUNCTIONS_AND_CONCAVE CORNERS_PLUS2, PRESERVE_BOUNDARIES BOUNDARIES, SMOOTH_ALL NONE;
 - loop UVs at one vertex within STD_UV_CONNECT_LIMIT (1e-4) of each other are one UV vertex.
 
+The active material's displacement (a Displacement node fed by an Image Texture, tiled images as UDIM
+sets) becomes the scene's displacement map.
+
 Coordinates are world space turned from Blender's Z-up to glTF's Y-up ((x, y, z) -> (x, z, -y)), as
 Blender's glTF exporter does, so that Tessera's default up is the scene's and a GLB it writes imports
 back in place.
 """
 
 import math
+import os
+import re
 
 import bpy
 from mathutils import Vector
@@ -222,3 +227,50 @@ def camera_settings(scene, target_hint):
         "fov": math.degrees(2.0 * half),
     }
     return camera, (width, height)
+
+
+def _udim_path(image):
+    """The file path of `image` for Tessera: absolute, a tiled image's tile number as the <UDIM> token."""
+    path = bpy.path.abspath(image.filepath_raw or image.filepath)
+    if image.source == "TILED" and "<UDIM>" not in path.upper():
+        # A tiled image's path may name one of its tiles (name.1001.png): the tile number becomes the token.
+        path = re.sub(r"(?<![0-9])(1[0-9]{3})(?=[^0-9/\\]*$)", "<UDIM>", path, count=1)
+    return os.path.normpath(path)
+
+
+def material_displacement(ob):
+    """The displacement of `ob`'s active material as Tessera's scene settings, or None; raises ValueError
+    for a displacement Tessera cannot read. Blender's Displacement node moves a point along its normal by
+    (height - midlevel) * scale; its height read from an Image Texture node (a tiled image: UDIM) is
+    Tessera's map, scale * texel + bias with bias = -midlevel * scale. World space: the scale times the
+    object's (uniform) scale."""
+    mat = ob.active_material
+    if mat is None or not mat.use_nodes or mat.node_tree is None:
+        return None
+    nodes = mat.node_tree.nodes
+    output = next((n for n in nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output), None)
+    if output is None or not output.inputs["Displacement"].is_linked:
+        return None
+    node = output.inputs["Displacement"].links[0].from_node
+    if node.type != "DISPLACEMENT":
+        raise ValueError("%s: the material output's Displacement comes from a %s node; Tessera reads a Displacement "
+                         "node fed by an Image Texture" % (mat.name, node.bl_label))
+    height = node.inputs["Height"]
+    if not height.is_linked or height.links[0].from_node.type != "TEX_IMAGE":
+        raise ValueError("%s: the Displacement node's Height is not an Image Texture" % mat.name)
+    link = height.links[0]
+    image = link.from_node.image
+    if image is None:
+        raise ValueError("%s: the displacement Image Texture has no image" % mat.name)
+    if image.packed_file is not None or image.source not in ("FILE", "TILED"):
+        raise ValueError("%s: the displacement image %s is not a file on disk (unpack or save it)" % (mat.name, image.name))
+    if node.space != "OBJECT":
+        raise ValueError("%s: the Displacement node is in %s space; Tessera reads object space" % (mat.name, node.space))
+    scale = node.inputs["Scale"].default_value * abs(ob.matrix_world.to_3x3().determinant()) ** (1.0 / 3.0)
+    midlevel = node.inputs["Midlevel"].default_value
+    return {
+        "map": _udim_path(image),
+        "channel": "A" if link.from_socket.name == "Alpha" else "R",
+        "scale": scale,
+        "bias": -midlevel * scale,
+    }

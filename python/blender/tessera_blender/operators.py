@@ -93,6 +93,9 @@ class _Export:
             scene["isolation"] = s.isolation
         if camera is not None:
             scene["camera"] = camera
+        displacement = cage_export.material_displacement(ob) if self.cage.subdivided else None
+        if displacement is not None:
+            scene["displacement"] = displacement
         self.scene = scene
         with open(self.scene_path, "w") as f:
             json.dump(scene, f, indent=2)
