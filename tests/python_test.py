@@ -88,4 +88,20 @@ with tempfile.TemporaryDirectory() as tmp:
     except tessera.UsageError as e:
         check(isinstance(e, ValueError), "threads=-1: UsageError (a ValueError)")
 
+    # UDIM: a tile set named with <UDIM> (one tile 1001 here) draws the single map's image; a missing
+    # tile is an InputError naming it.
+    import shutil
+    frog = os.path.join(SOURCE, "tests", "data", "sdk-cages", "monsterfrog_mapped_00.obj")
+    dds = os.path.join(SOURCE, "tests", "data", "sdk-cages", "monsterfrog.dds")
+    shutil.copyfile(dds, os.path.join(tmp, "frog.1001.dds"))
+    single = tessera.render(frog, displacement={"map": dds, "channel": "A"}, factor=4, resolution=[160, 120])
+    tiled = tessera.render(frog, displacement={"map": os.path.join(tmp, "frog.<UDIM>.dds"), "channel": "A"},
+                           factor=4, resolution=[160, 120])
+    check(numpy.array_equal(single, tiled), "UDIM: tile 1001 of a <UDIM> set draws the single map's image")
+    try:
+        tessera.render(frog, displacement={"map": os.path.join(tmp, "none.<UDIM>.dds"), "channel": "A"})
+        check(False, "a missing UDIM tile raises")
+    except tessera.InputError as e:
+        check("1001" in str(e), "UDIM: a missing tile is an InputError naming it")
+
 sys.exit(1 if failures else 0)

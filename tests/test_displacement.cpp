@@ -9,7 +9,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
+#include <sstream>
 
 #include "cli_runner.h"
 #include "shaders_cpp/render/displaced_model.h"
@@ -550,4 +552,137 @@ TEST_CASE("tessera with --displacement: watertight frog, render, and one-line er
     CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
     CHECK(e.err.find("cannot be displaced") != std::string::npos);
   }
+}
+
+namespace {
+
+// The frog with its UVs doubled (u, v in [0, 2]: UDIM tiles 1001, 1002, 1011, 1012), written once.
+std::string frog_in_four_tiles() {
+  static const std::string path = [] {
+    const std::string p = (temp_dir() / "frog-udim.obj").string();
+    std::ifstream in(kFrog);
+    std::ofstream o(p);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("vt ", 0) == 0) {
+        std::istringstream s(line.substr(3));
+        float u = 0, v = 0;
+        s >> u >> v;
+        o << "vt " << std::setprecision(9) << 2.0f * u << " " << 2.0f * v << "\n";
+      } else {
+        o << line << "\n";
+      }
+    }
+    return p;
+  }();
+  return path;
+}
+
+// A hash-noise height tile (as noise_map) seeded by `seed`, written as `folder/noise.<tile>.exr`.
+void write_noise_tile(const fs::path& folder, int tile, std::uint32_t seed, int size = 128) {
+  fs::create_directories(folder);
+  std::vector<float> px(std::size_t(size * size));
+  for (std::uint32_t i = 0; i < px.size(); ++i) {
+    std::uint32_t x = (i + seed * 7919u) * 2654435761u;
+    x ^= x >> 15;
+    x *= 2246822519u;
+    x ^= x >> 13;
+    px[i] = float(x % 1000u) / 1000.0f;
+  }
+  write_image((folder / ("noise." + std::to_string(tile) + ".exr")).lexically_relative(temp_dir()).string(), size,
+              size, 1, OIIO::TypeDesc::FLOAT, px);
+}
+
+}  // namespace
+
+TEST_CASE("UDIM: one tile 1001 draws the single map's bits", "[disp][udim]") {
+  const fs::path folder = temp_dir() / "udim-one";
+  fs::create_directories(folder);
+  fs::copy_file(noise_map(), folder / "noise.1001.exr", fs::copy_options::overwrite_existing);
+  for (Scheme s : {Scheme::gregory, Scheme::exact}) {
+    INFO(to_string(s));
+    const SubdModel m = load_subd_model(kFrog, s);
+    DisplacementOptions o = noise_options();
+    const Displacement single = make_displacement(m, o);
+    o.map = (folder / "noise.<UDIM>.exr").string();
+    const Displacement tiled = make_displacement(m, o);
+    REQUIRE(tiled.udim == std::vector<int>{1001});
+    CHECK(tiled.maps.size() == 1);
+    std::uint64_t a = 0, b = 0;
+    weld_displaced(m, single, 2.3f, 1.7f, ts::Partitioning::fractional_odd, 2, &a);
+    weld_displaced(m, tiled, 2.3f, 1.7f, ts::Partitioning::fractional_odd, 2, &b);
+    CHECK(a == b);
+  }
+}
+
+TEST_CASE("UDIM: the frog over four tiles is watertight on exact bits across tile borders", "[disp][udim]") {
+  const fs::path folder = temp_dir() / "udim-four";
+  for (const int tile : {1001, 1002, 1011, 1012}) write_noise_tile(folder, tile, std::uint32_t(tile));
+  DisplacementOptions o = noise_options();
+  o.map = (folder / "noise.<UDIM>.exr").string();
+  for (Scheme s : {Scheme::gregory, Scheme::acc, Scheme::exact}) {
+    const SubdModel m = load_subd_model(frog_in_four_tiles(), s);
+    const Displacement d = make_displacement(m, o);
+    REQUIRE(d.udim == std::vector<int>{1001, 1002, 1011, 1012});
+    // Charts meet across the tile borders along seams of their own: some patch edges take their owner's
+    // tile, another than the patch's.
+    std::size_t other_tile = 0;
+    for (const PatchTexcoords& tc : d.texcoords)
+      for (int k = 0; k < 4; ++k) other_tile += tc.edge_tile[std::size_t(k)] != tc.tile ? 1 : 0;
+    CHECK(other_tile > 0);
+    for (const VaryingFactors c : kVaryingFactors) {
+      INFO(to_string(s) << " " << ts::to_string(c.partitioning));
+      check_watertight(weld_displaced(m, d, c.factor, c.vary, c.partitioning));
+    }
+  }
+  // Each tile is read: another tile 1012 moves the surface.
+  const SubdModel m = load_subd_model(frog_in_four_tiles(), Scheme::gregory);
+  std::uint64_t before = 0, after = 0;
+  weld_displaced(m, make_displacement(m, o), 3.0f, 0.0f, ts::Partitioning::integer, 2, &before);
+  write_noise_tile(folder, 1012, 99u);
+  weld_displaced(m, make_displacement(m, o), 3.0f, 0.0f, ts::Partitioning::integer, 2, &after);
+  CHECK(before != after);
+}
+
+TEST_CASE("UDIM from the command line: render, scene file, and one-line errors naming the missing tiles",
+          "[disp][udim][cli]") {
+  const fs::path folder = temp_dir() / "udim-cli";
+  for (const int tile : {1001, 1002, 1011, 1012}) write_noise_tile(folder, tile, std::uint32_t(tile), 32);
+  const std::string pattern = (folder / "noise.<UDIM>.exr").string();
+  const std::string out = (folder / "frog.png").string();
+  auto r = run_cli("render '" + frog_in_four_tiles() + "' --scheme gregory --factor 3 --resolution 96x64 -v " +
+                   "--displacement '" + pattern + "' --displacement-scale 0.8 --displacement-bias -0.4 -o " + out);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("4 UDIM tiles 1001-1012") != std::string::npos);
+  CHECK(fs::exists(out));
+  // A scene file names the set relative to itself.
+  const std::string scene = (folder / "frog.tessera.json").string();
+  {
+    std::ofstream s(scene);
+    s << R"({"tessera_scene": 1, "asset": ")" << frog_in_four_tiles() << R"(", "scheme": "gregory", "factor": 3,
+      "resolution": [96, 64], "displacement": {"map": "noise.<UDIM>.exr", "scale": 0.8, "bias": -0.4}})";
+  }
+  r = run_cli("render --scene " + scene + " -o " + out + ".scene.png");
+  CHECK(r.exit_code == 0);
+  CHECK(test::slurp(out + ".scene.png") == test::slurp(out));
+
+  fs::remove(folder / "noise.1011.exr");
+  fs::remove(folder / "noise.1002.exr");
+  r = run_cli("render '" + frog_in_four_tiles() + "' --resolution 32x32 --displacement '" + pattern + "' -o " + out +
+              ".bad.png");
+  CHECK(r.exit_code == 1);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(r.err.find("2 tiles") != std::string::npos);
+  CHECK(r.err.find("1002, 1011") != std::string::npos);
+  CHECK(!fs::exists(out + ".bad.png"));
+  // The doubled UVs with a single map: the error says how to name tiles.
+  r = run_cli("render '" + frog_in_four_tiles() + "' --resolution 32x32 --displacement " + noise_map() + " -o " + out +
+              ".bad.png");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("<UDIM>") != std::string::npos);
+  // A normal map must be a tile set too.
+  r = run_cli("render " + kFrog + " --resolution 32x32 --displacement '" + (folder / "noise.<UDIM>.exr").string() +
+              "' --normal-map " + kFrogMap + " -o " + out + ".bad.png");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("needs the <UDIM> token") != std::string::npos);
 }

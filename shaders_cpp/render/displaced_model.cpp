@@ -88,18 +88,20 @@ namespace {
 // The files of a UDIM set for the given tiles; one error naming every missing tile.
 std::vector<std::string> tile_paths(const std::string& pattern, const std::vector<int>& numbers, const char* what) {
   const std::vector<int> on_disk = udim_tiles_on_disk(pattern);
-  std::string missing;
+  std::string missing, first;
   std::size_t count = 0;
   std::vector<std::string> paths;
   for (int n : numbers) {
     paths.push_back(udim_tile_path(pattern, n));
-    if (!std::binary_search(on_disk.begin(), on_disk.end(), n)) missing += (count++ ? ", " : "") + std::to_string(n);
+    if (std::binary_search(on_disk.begin(), on_disk.end(), n)) continue;
+    if (count == 0) first = paths.back();
+    missing += (count++ ? ", " : "") + std::to_string(n);
   }
   if (count != 0)
     throw DisplacementMapError(pattern + ": " + std::to_string(count) + " tile" + (count > 1 ? "s" : "") +
                                " the cage's faces use " + (count > 1 ? "have" : "has") + " no file (" + what +
-                               "): " + missing + " (looked for " + udim_tile_path(pattern, numbers.front()) +
-                               " and the like; found " + std::to_string(on_disk.size()) + ")");
+                               "): " + missing + " (no " + first + "; " + std::to_string(on_disk.size()) + " tile" +
+                               (on_disk.size() == 1 ? "" : "s") + " on disk)");
   return paths;
 }
 
