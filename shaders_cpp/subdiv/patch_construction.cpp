@@ -32,6 +32,44 @@ std::vector<int> gather_ring(std::span<const CornerRing> rings, std::vector<std:
   return ring;
 }
 
+bool gather_ring_landing(const Cage& cage, const Topology& t, const FaceFrame& face, std::vector<int>& ring,
+                         std::span<const std::uint8_t> landed) {
+  ring.clear();
+  std::size_t step = 0;
+  // gather_ring's push, checked against the expected landing place.
+  const auto push = [&](int v) {
+    const auto it = std::find(ring.begin(), ring.end(), v);
+    if (step >= landed.size() || landed[step++] != std::uint8_t(std::min<std::ptrdiff_t>(it - ring.begin(), 255)))
+      return false;
+    if (it == ring.end()) ring.push_back(v);
+    return true;
+  };
+  const int n = face.n;
+  const auto half_edge = [&](int k) { return t.face_offset(face.f) + (k + face.rot) % n; };
+  for (int k = 0; k < n; ++k)
+    if (!push(t.origin(half_edge(k)))) return false;
+  for (int k = 0; k < n; ++k) {
+    // gather_corner_ring's order: the ring's edges and faces from the face's own (interior), or from
+    // the first (boundary), each face's vertices between its two ring edges after its first edge.
+    const int h = half_edge(k), v = t.origin(h);
+    const auto r = t.ring(v);
+    const std::size_t m = r.size();
+    const bool boundary = t.is_boundary_vertex(v);
+    std::size_t slot = 0;
+    if (!boundary)
+      while (slot < m && r[slot] != h) ++slot;
+    for (std::size_t i = 0; i < m; ++i) {
+      const int g = r[(slot + i) % m];
+      if (!push(t.destination(g))) return false;
+      const int f = t.face(g), size = t.face_size(f), c = t.corner(g);
+      for (int j = 2; j + 1 < size; ++j)
+        if (!push(cage.face_vertex(f, (c + j) % size))) return false;
+    }
+    if (boundary && !push(t.origin(t.prev(r.back())))) return false;
+  }
+  return step == landed.size();
+}
+
 std::array<EdgeFactorKey, 4> fan_edge_keys(const Cage& cage, int f, int k) {
   const int n = cage.face_sizes[std::size_t(f)];
   auto vertex = [&](int j) { return cage.face_vertex(f, ((j % n) + n) % n); };

@@ -207,12 +207,13 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, deferred.size(), 256), [&](const auto& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const Deferred& d = deferred[i];
-      SharedRing r = shared_ring(ctx, d.face);
-      if (r.landed != d.patch->landed) {
+      std::vector<int> ring;
+      ring.reserve(d.patch->landed.size());
+      if (!subdiv::gather_ring_landing(cage, t, d.face, ring, d.patch->landed)) {
         folded[i] = 1;
         continue;
       }
-      assembler.place(d.slot, d.face.f, d.patch->kind, std::move(r.ring), d.patch->table, d.face.edges, d.face.rot);
+      assembler.place(d.slot, d.face.f, d.patch->kind, std::move(ring), d.patch->table, d.face.edges, d.face.rot);
     }
   });
   for (std::size_t i = 0; i < deferred.size(); ++i) {
