@@ -175,7 +175,6 @@ struct HullPhase {
       const auto range_start = Clock::now();
       std::array<VsOut, 32> inputs;
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
-        const auto start = Clock::now();
         const auto patch_id = static_cast<std::uint32_t>(first + p);
         for (std::size_t i = 0; i < n_in; ++i) inputs[i] = vs_out[vcache.slots[p * n_in + i]];
         const std::span<const VsOut> in(inputs.data(), n_in);
@@ -183,10 +182,11 @@ struct HullPhase {
         for (int i = 0; i < kOut; ++i) out[i] = hs.control_point(in, i, patch_id);
         constants[p] = hs.patch_constants(in, std::span<const ControlPoint>(out, kOut), patch_id);
         processed[p] = ts::process_factors(tstate.partitioning, factor_set(tstate.domain, constants[p].factors));
-        times.hs += seconds_since(start);
         // Counted, not tessellated: the pattern is made once, when the DS needs it.
         cost[p] = static_cast<std::uint32_t>(ts::primitive_count(processed[p], tstate.output));
       }
+      // Timed per range of patches: a clock read per patch cost as much as a small patch's HS.
+      times.hs += seconds_since(range_start);
       if (trace)
         trace->record(TraceStage::hull_shader, trace_worker(), range_start, Clock::now(),
                       std::uint32_t(first + r.begin()), std::uint32_t(first + r.end()));
@@ -287,10 +287,8 @@ class PatchFrontEnd {
     const auto [begin, end] = s_.chunks[c];
     for (std::uint32_t p = begin; p < end; ++p) {
       if (s_.hull.processed[p].culled) continue;
-      const auto start = Clock::now();
       bool hit = false;
-      const ts::Pattern& pattern = cache.get(s_.hull.processed[p], tstate_.output, hit);
-      if (!hit) tessellator_seconds += seconds_since(start);
+      const ts::Pattern& pattern = cache.get(s_.hull.processed[p], tstate_.output, hit, &tessellator_seconds);
       visit(Work{static_cast<std::uint32_t>(first_ + p), pattern,
                  std::span<const ControlPoint>(s_.hull.control_points.data() + p * kOut, kOut), s_.hull.constants[p]});
     }

@@ -1,8 +1,11 @@
 #include "pipeline/pattern_cache.h"
 
+#include <chrono>
+
 namespace tessera {
 
-const ts::Pattern& PatternCache::get(const ts::ProcessedFactors& key, ts::OutputPrimitive output, bool& hit) {
+const ts::Pattern& PatternCache::get(const ts::ProcessedFactors& key, ts::OutputPrimitive output, bool& hit,
+                                     double* miss_seconds) {
   const std::uint64_t h = ts::hash(key, output);
   for (const Entry& e : entries_) {
     if (e.hash == h && e.output == output && e.key == key) {
@@ -24,7 +27,10 @@ const ts::Pattern& PatternCache::get(const ts::ProcessedFactors& key, ts::Output
   slot->key = key;
   slot->output = output;
   slot->shape.reset();
+  const auto start = std::chrono::steady_clock::now();
   ts::generate(key, output, slot->pattern);
+  if (miss_seconds != nullptr)
+    *miss_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return slot->pattern;
 }
 

@@ -20,7 +20,9 @@ class PatternCache {
   static constexpr std::size_t kEntries = 16;
 
   // The pattern for `key`; valid until the next call. `hit` tells whether it was cached.
-  const ts::Pattern& get(const ts::ProcessedFactors& key, ts::OutputPrimitive output, bool& hit);
+  // `miss_seconds`, when given, gets the time a miss spent tessellating added (hits read no clock).
+  const ts::Pattern& get(const ts::ProcessedFactors& key, ts::OutputPrimitive output, bool& hit,
+                         double* miss_seconds = nullptr);
   // The shape (pattern_shape.h) of a pattern get() returned last, computed once per entry when first
   // asked for: only the back-patch test needs it.
   const ts::PatternShape& shape(const ts::Pattern& pattern);

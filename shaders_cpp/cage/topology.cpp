@@ -4,15 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 namespace tessera {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
 
 std::string join(const std::vector<int>& xs) {
   std::string s;
@@ -31,9 +25,9 @@ Topology::Topology(const Cage& cage) {
   if (cage.face_offsets.size() != cage.face_sizes.size())
     fail(cage.name, "face_offsets and face_sizes differ in length");
   read_faces(cage);
-  const EdgeIndex edge_of = build_edges(cage);
+  build_edges(cage);
   build_rings(cage.name, cage.vertex_count());
-  read_tags(cage, edge_of);
+  read_tags(cage);
 }
 
 // Faces: sizes, offsets, vertex range, repeated vertices (a per-vertex stamp of the last face seen), holes.
@@ -78,28 +72,52 @@ void Topology::read_faces(const Cage& cage) {
 
 // Half-edges and edges: each undirected vertex pair once; non-manifold edges are refused first (they
 // also look like orientation errors), then two half-edges running the same way.
-Topology::EdgeIndex Topology::build_edges(const Cage& cage) {
-  const int nf = cage.face_count(), nh = int(cage.face_vertices.size());
+// Edges are numbered in the order of their first half-edge. The half-edges are bucketed by their lower
+// vertex (counting sort, ascending half-edge within a bucket), so a half-edge finds the earlier ones of
+// its edge among the few of its bucket: no hash map, and linear in the cage.
+void Topology::build_edges(const Cage& cage) {
+  const int nf = cage.face_count(), nh = int(cage.face_vertices.size()), nv = cage.vertex_count();
   origin_.assign(cage.face_vertices.begin(), cage.face_vertices.end());
   face_.resize(std::size_t(nh));
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < face_sizes_[f]; ++k) face_[face_offsets_[f] + k] = f;
   edge_.assign(std::size_t(nh), -1);
   twin_.assign(std::size_t(nh), -1);
-  EdgeIndex edge_of;
-  edge_of.reserve(std::size_t(nh));
+  std::vector<int> start(std::size_t(nv) + 1, 0);
+  for (int h = 0; h < nh; ++h) ++start[std::size_t(std::min(origin_[h], destination(h))) + 1];
+  for (int v = 0; v < nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+  std::vector<int> bucket(static_cast<std::size_t>(nh));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int h = 0; h < nh; ++h) bucket[std::size_t(fill[std::size_t(std::min(origin_[h], destination(h)))]++)] = h;
+  }
+  // first[h]: the first half-edge of h's edge.
+  std::vector<int> first(static_cast<std::size_t>(nh));
+  for (int v = 0; v < nv; ++v)
+    for (int i = start[std::size_t(v)]; i < start[std::size_t(v) + 1]; ++i) {
+      const int h = bucket[std::size_t(i)], far = std::max(origin_[h], destination(h));
+      first[std::size_t(h)] = h;
+      for (int j = start[std::size_t(v)]; j < i; ++j) {
+        const int g = bucket[std::size_t(j)];
+        if (std::max(origin_[g], destination(g)) == far) {
+          first[std::size_t(h)] = first[std::size_t(g)];
+          break;
+        }
+      }
+    }
   std::vector<int> uses;  // per edge: half-edges on it (beyond 2 means non-manifold)
   for (int h = 0; h < nh; ++h) {
-    const auto [it, fresh] = edge_of.try_emplace(edge_key(origin_[h], destination(h)), edge_count());
-    const int e = it->second;
-    edge_[h] = e;
-    if (fresh) {
+    const int f = first[std::size_t(h)];
+    if (f == h) {
+      edge_[h] = edge_count();
       edge_half_edges_.push_back({h, -1});
       uses.push_back(1);
-    } else {
-      if (uses[e] == 1) edge_half_edges_[e][1] = h;
-      ++uses[e];
+      continue;
     }
+    const int e = edge_[f];
+    edge_[h] = e;
+    if (uses[e] == 1) edge_half_edges_[e][1] = h;
+    ++uses[e];
   }
   for (int e = 0; e < edge_count(); ++e)
     if (uses[e] > 2) {
@@ -121,7 +139,14 @@ Topology::EdgeIndex Topology::build_edges(const Cage& cage) {
     twin_[h0] = h1;
     twin_[h1] = h0;
   }
-  return edge_of;
+}
+
+int Topology::edge_between(int a, int b) const {
+  for (int h : ring(a))
+    if (destination(h) == b) return edge_[h];
+  for (int h : ring(b))
+    if (destination(h) == a) return edge_[h];
+  return -1;
 }
 
 // Rings: outgoing half-edges grouped by vertex (CSR), then each fan walked counter-clockwise.
@@ -170,7 +195,7 @@ void Topology::build_rings(const std::string& name, int nv) {
 }
 
 // Sharpness from the tags; a crease on two vertices that share no edge is left out with a warning.
-void Topology::read_tags(const Cage& cage, const EdgeIndex& edge_of) {
+void Topology::read_tags(const Cage& cage) {
   const int nv = cage.vertex_count();
   corner_sharpness_.assign(std::size_t(nv), 0.0f);
   edge_sharpness_.assign(std::size_t(edge_count()), 0.0f);
@@ -194,12 +219,12 @@ void Topology::read_tags(const Cage& cage, const EdgeIndex& edge_of) {
       fail(cage.name, "crease names vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) +
                           ", but the cage has " + std::to_string(nv) + " vertices");
     check_sharpness(c.sharpness, "crease " + std::to_string(c.v0) + "-" + std::to_string(c.v1));
-    const auto it = edge_of.find(edge_key(c.v0, c.v1));
-    if (c.v0 == c.v1 || it == edge_of.end()) {
+    const int e = c.v0 == c.v1 ? -1 : edge_between(c.v0, c.v1);
+    if (e < 0) {
       if (missing++ == 0) first_missing = std::to_string(c.v0) + "-" + std::to_string(c.v1);
       continue;
     }
-    edge_sharpness_[it->second] = c.sharpness;
+    edge_sharpness_[e] = c.sharpness;
     if (c.sharpness > 0) sharp_at_[c.v0] = sharp_at_[c.v1] = 1;
   }
   if (missing)

@@ -28,7 +28,6 @@
 #include <cstdint>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "shaders_cpp/cage/cage.h"
@@ -96,12 +95,13 @@ class Topology {
   const std::vector<int>& isolated_vertices() const { return isolated_; }
 
  private:
-  using EdgeIndex = std::unordered_map<std::uint64_t, int>;  // undirected vertex pair -> edge
   // The constructor's stages, in order; each throws CageError for what it finds wrong.
   void read_faces(const Cage& cage);
-  EdgeIndex build_edges(const Cage& cage);
+  void build_edges(const Cage& cage);
   void build_rings(const std::string& name, int vertex_count);
-  void read_tags(const Cage& cage, const EdgeIndex& edge_of);
+  void read_tags(const Cage& cage);
+  // The edge between vertices a and b (from their rings), or -1.
+  int edge_between(int a, int b) const;
 
   std::vector<int> face_sizes_, face_offsets_;
   std::vector<char> hole_;
