@@ -368,12 +368,17 @@ class ObjParser {
   // its line, as OpenSubdiv's own tools do (OpenSubdiv's regression shapes hold such tags), so no
   // reader or library downstream ever sees it.
   void drop_creases_on_no_edge() {
-    std::set<std::pair<int, int>> edges;
+    if (cage_.tags.creases.empty()) return;
+    // The creases' vertex pairs that some face has as an edge (a scan of the faces, a lookup among the
+    // creases' pairs: cheap however large the cage).
+    std::set<std::pair<int, int>> wanted, edges;
+    for (const Crease& c : cage_.tags.creases) wanted.insert({std::min(c.v0, c.v1), std::max(c.v0, c.v1)});
     for (int f = 0; f < cage_.face_count(); ++f) {
       const int n = cage_.face_sizes[std::size_t(f)];
       for (int k = 0; k < n; ++k) {
         const int a = cage_.face_vertex(f, k), b = cage_.face_vertex(f, (k + 1) % n);
-        edges.insert({std::min(a, b), std::max(a, b)});
+        const std::pair<int, int> e{std::min(a, b), std::max(a, b)};
+        if (wanted.count(e)) edges.insert(e);
       }
     }
     std::vector<Crease> kept;

@@ -1,6 +1,6 @@
 // Combination keys: per corner a self-delimiting word sequence (its length follows from the face count
-// it records), the smallest rotation chosen by comparing the concatenations, and a hash map from key
-// to combination so each face costs its 1-ring. Keys are read in parallel, a block of faces at a time,
+// it records), the smallest rotation chosen by comparing the concatenations, and a hash map from the
+// key's hash to combination so each face costs its 1-ring. Keys are read in parallel, a block of faces at a time,
 // and given their combinations in face order, so the numbering does not depend on the threads.
 #include "shaders_cpp/cage/topology_combinations.h"
 
@@ -16,21 +16,30 @@
 namespace tessera {
 namespace {
 
-struct KeyHash {
-  std::size_t operator()(const std::vector<std::int32_t>& k) const {
-    std::size_t h = 1469598103934665603ull;
-    for (std::int32_t w : k) h = (h ^ std::uint32_t(w)) * 1099511628211ull;
-    return h;
-  }
+std::uint64_t key_hash(const std::vector<std::int32_t>& k) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (std::int32_t w : k) h = (h ^ std::uint32_t(w)) * 1099511628211ull;
+  return h;
+}
+
+// Combinations by their key's hash (computed with the key, in parallel): the combinations whose keys
+// hash alike, compared word by word; and the last face's, which most faces of a regular cage repeat.
+struct KeyIndex {
+  std::unordered_map<std::uint64_t, std::vector<int>> by_hash;
+  std::uint64_t last_hash = 0;
+  int last = -1;
 };
 
 // Where each half-edge sits in its origin's ring.
+// (Each half-edge is in one ring: vertices in parallel write disjoint entries.)
 std::vector<int> ring_positions(const Topology& t) {
   std::vector<int> pos(std::size_t(t.half_edge_count()), 0);
-  for (int v = 0; v < t.vertex_count(); ++v) {
-    const auto r = t.ring(v);
-    for (std::size_t i = 0; i < r.size(); ++i) pos[r[i]] = int(i);
-  }
+  tbb::parallel_for(tbb::blocked_range<int>(0, t.vertex_count(), 4096), [&](const tbb::blocked_range<int>& range) {
+    for (int v = range.begin(); v < range.end(); ++v) {
+      const auto r = t.ring(v);
+      for (std::size_t i = 0; i < r.size(); ++i) pos[std::size_t(r[i])] = int(i);
+    }
+  });
   return pos;
 }
 
@@ -83,6 +92,7 @@ struct FaceKey {
   PatchClass cls = PatchClass::hole;
   int rotation = 0, period = 1;
   std::vector<std::int32_t> key;
+  std::uint64_t hash = 0;
 };
 
 // Working vectors of one thread, kept between faces.
@@ -121,29 +131,39 @@ void face_key(const Topology& t, const std::vector<int>& pos, int f, KeyScratch&
     read_from(out.rotation + p, w.candidate);
     if (w.candidate == out.key) out.period = p;
   }
+  out.hash = key_hash(out.key);
 }
 
 // Face f's combination (a new one for a new key), its rotation and symmetry, and the counts.
-void add_face(const Topology& t, int f, FaceKey& k, std::unordered_map<std::vector<std::int32_t>, int, KeyHash>& index,
-              TopologyCombinations& out) {
+void add_face(const Topology& t, int f, FaceKey& k, KeyIndex& index, TopologyCombinations& out) {
   out.face_class[std::size_t(f)] = k.cls;
   if (k.cls == PatchClass::hole) return;
   const int n = t.face_size(f);
   out.face_period[std::size_t(f)] = k.period;
-  auto [it, fresh] = index.try_emplace(k.key, int(out.combinations.size()));
-  if (fresh) {
-    Combination c;
-    c.key = std::move(k.key);
-    c.text = combination_text(t, f, k.rotation);
-    c.face_size = n;
-    c.patch_class = k.cls;
-    c.boundary = k.cls == PatchClass::boundary || k.cls == PatchClass::regular_boundary;
-    out.combinations.push_back(std::move(c));
+  int found = -1;
+  if (index.last >= 0 && index.last_hash == k.hash && out.combinations[std::size_t(index.last)].key == k.key) {
+    found = index.last;
+  } else {
+    std::vector<int>& alike = index.by_hash[k.hash];
+    for (int i : alike)
+      if (out.combinations[std::size_t(i)].key == k.key) found = i;
+    if (found < 0) {
+      found = int(out.combinations.size());
+      alike.push_back(found);
+      Combination c;
+      c.key = std::move(k.key);
+      c.text = combination_text(t, f, k.rotation);
+      c.face_size = n;
+      c.patch_class = k.cls;
+      c.boundary = k.cls == PatchClass::boundary || k.cls == PatchClass::regular_boundary;
+      out.combinations.push_back(std::move(c));
+    }
+    index.last = found, index.last_hash = k.hash;
   }
-  Combination& c = out.combinations[std::size_t(it->second)];
+  Combination& c = out.combinations[std::size_t(found)];
   ++c.count;
   c.faces.push_back(f);
-  out.face_combination[std::size_t(f)] = it->second;
+  out.face_combination[std::size_t(f)] = found;
   out.face_rotation[std::size_t(f)] = k.rotation;
 
   CombinationStats& s = out.stats;
@@ -169,7 +189,7 @@ TopologyCombinations analyze_combinations(const Topology& t) {
   out.face_period.assign(std::size_t(nf), 1);
   out.face_class.assign(std::size_t(nf), PatchClass::hole);
   const std::vector<int> pos = ring_positions(t);
-  std::unordered_map<std::vector<std::int32_t>, int, KeyHash> index;
+  KeyIndex index;
   // The keys a block of faces at a time, in parallel; then, in face order, each key's combination.
   constexpr int kBlock = 8192;
   std::vector<FaceKey> keys(std::size_t(std::min(nf, kBlock)));
