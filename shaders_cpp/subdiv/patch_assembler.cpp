@@ -1,5 +1,8 @@
 #include "shaders_cpp/subdiv/patch_assembler.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "shaders_cpp/subdiv/patch_construction.h"
 
 #include <algorithm>
@@ -132,12 +135,17 @@ void PatchAssembler::finish() {
     g->control_points = 1;
     for (const auto& p : g->patches) g->control_points = std::max(g->control_points, p.ring_size);
   }
-  for (std::size_t i = 0; i < rings_.size(); ++i) {
-    PatchGroup& g = *groups_[i];
-    const auto& ring = rings_[i];
-    for (int k = 0; k < g.control_points; ++k)
-      g.indices.push_back(std::uint32_t(ring[std::size_t(k) < ring.size() ? std::size_t(k) : 0]));
-  }
+  // Slot i is patch index_[i] of its group: its indices' place is known, so the slots fill in parallel.
+  for (PatchGroup* g : {&out_.quads, &out_.tris}) g->indices.resize(g->patches.size() * std::size_t(g->control_points));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rings_.size(), 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      PatchGroup& g = *groups_[i];
+      const auto& ring = rings_[i];
+      const std::size_t cp = std::size_t(g.control_points);
+      std::uint32_t* out = g.indices.data() + index_[i] * cp;
+      for (std::size_t k = 0; k < cp; ++k) out[k] = std::uint32_t(ring[k < ring.size() ? k : 0]);
+    }
+  });
 }
 
 int PatchAssembler::intern(StencilTable&& table) {

@@ -50,6 +50,10 @@ class PatchAssembler {
   // A place for one patch in `group`, after those added so far; returns its slot for place() or
   // add_into().
   int reserve(PatchGroup& group);
+  // Storage for `count` slots (add() or reserve() calls) ahead: a hint, no slot is made.
+  void reserve_slots(std::size_t count) {
+    rings_.reserve(count), groups_.reserve(count), index_.reserve(count);
+  }
   // Slot `slot` becomes the patch of `face` over `ring` with stencil table `table` (an index returned
   // in an earlier patch's `table`): what add() makes of the same ring and of stencils whose table that
   // is, without building them. Safe to call concurrently for different slots.

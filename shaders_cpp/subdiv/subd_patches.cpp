@@ -175,6 +175,18 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
     const SharedPatch* patch;
   };
   std::vector<Deferred> deferred;
+  {  // Storage for every patch at once: grown copies of a large cage's patches cost as much as building them.
+    std::size_t quads = 0, tris = 0;
+    for (int f = 0; f < t.face_count(); ++f) {
+      const int n = t.face_size(f);
+      if (t.is_hole(f)) continue;
+      (n == 4 ? quads : tris) += std::size_t(n == 4 || n == 3 ? 1 : n);
+    }
+    out.quads.patches.reserve(quads);
+    out.tris.patches.reserve(tris);
+    assembler.reserve_slots(quads + tris);
+    deferred.reserve(quads + tris);
+  }
   for (int f = 0; f < t.face_count(); ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
