@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes the README's example image of each `tessera render --view` into docs/images/ (1280x720) and
-# the UV-seams before/after mosaic and a screenshot of `tessera view`,
+# the UV-seams before/after mosaic, a screenshot of `tessera view` and the library examples' images,
 # from the bundled monster frog (displaced, but for the culled view). Run after building (scripts/test.sh or scripts/run.sh).
 #
 #   scripts/readme_images.sh [BUILD_DIR]     (default build/)
@@ -60,4 +60,15 @@ shapes="$root/tests/data/osd-shapes"
 "$bin" -q render "$shapes/catmark_gregory_test6.obj" --resolution 640x480 -o "$out/assets-open-sheet.png" >/dev/null
 # tessera view's page after the browser test's orbit, view change and pick (needs chromium).
 /usr/bin/python3 "$root/tests/viewer_browser_test.py" "$bin" "$root" --screenshot "$out/viewer.png" >/dev/null
+# docs/library.md: the examples' own images, built against an installed tree as a user builds them.
+build=$(cd "${1:-$root/build}" && pwd)
+tmp=$(mktemp -d)
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
+cmake -S "$root/examples" -B "$tmp/examples" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+cmake --build "$tmp/examples" >/dev/null
+for e in distance_factors parametric_torus statistics_and_weld; do
+  (cd "$tmp" && "$tmp/examples/$e" >/dev/null)
+  cp "$tmp/$e.png" "$out/example-${e//_/-}.png"
+done
+rm -r "$tmp"
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2
