@@ -19,7 +19,7 @@
 //   (a tagged corner, fits_limit) may stray too: refit, all its edges are fitted, not only those at a
 //   tag. n-gon fans and the other schemes give no faces.
 // - The rest pose: a fitted face is a stencil, so it follows any pose.
-// - Deterministic; the cost is one Bfr surface per irregular face (the frog: docs/guide.md, "Faces that
+// - Deterministic; the cost is one Bfr surface per irregular face (the frog: docs/reference-renders.md, "Faces that
 //   fold are fitted too").
 #pragma once
 
