@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The numbers of the crease work (issue 34), measured on this machine:
+# The crease numbers of the per-face schemes, measured on this machine:
 #  1. accuracy (max and rms distance, fraction of the bounding-box diagonal; mean and max normal
 #     error, degrees) of every scheme against the exact limit on every creased OpenSubdiv shape in
 #     tests/data/osd-shapes (creases or corner tags), the bishop included;

@@ -11,8 +11,10 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/out}
-"$root/scripts/setup.sh" "$root/build"
-cmake --build "$root/build" --parallel "$(nproc)" >&2
+# Only what the main job runs: the tessera command and its modules (the test suite, the Python
+# package and the add-on's Blender belong to scripts/test.sh).
+"$root/scripts/setup.sh" --main "$root/build"
+cmake --build "$root/build" --parallel "$(nproc)" --target tessera >&2
 bin="$root/build/bin/tessera"
 mkdir -p "$out"
 frog="$root/tests/data/sdk-cages/monsterfrog_mapped_00.obj"

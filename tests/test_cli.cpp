@@ -943,7 +943,7 @@ TEST_CASE("creases: gregory, bspline and acc fit a creased face's patch to the e
 }
 
 TEST_CASE("creases: gregory, bspline and acc are within 2e-2 and 3 degrees on every creased shape", "[cli]") {
-  // Issue 34's goal for the per-face schemes: on creased cages, the range they reach on smooth ones (the
+  // The goal for the per-face schemes: on creased cages, the range they reach on smooth ones (the
   // cube: 9.2e-3 of the diagonal, mean normal error 2.2 degrees). Every OpenSubdiv shape here with a crease
   // or corner tag; the worst before the fitted faces' smooth edges took the limit's normal and only
   // edges with a tag or the boundary at an end were fitted: catmark_cube_corner4 3.7 degrees (gregory)
