@@ -60,6 +60,36 @@ shapes="$root/tests/data/osd-shapes"
 "$bin" -q render "$shapes/catmark_gregory_test6.obj" --resolution 640x480 -o "$out/assets-open-sheet.png" >/dev/null
 # tessera view's page after the browser test's orbit, view change and pick (needs chromium).
 /usr/bin/python3 "$root/tests/viewer_browser_test.py" "$bin" "$root" --screenshot "$out/viewer.png" >/dev/null
+# docs/debugging.md: the adaptive patch types, and the cage view's crease colours.
+shapes="$root/tests/data/osd-shapes"
+"$bin" -q render "$shapes/catmark_single_crease.obj" --scheme adaptive --isolation 4 --view patch-type \
+  --resolution 800x600 --camera-position 0.8,-2.2,1.6 --camera-target -0.3,-0.25,0 \
+  -o "$out/view-patch-type-adaptive.png" >/dev/null
+"$bin" -q render "$shapes/catmark_cubes_semisharp.obj" --scheme exact --view cage --resolution 800x450 \
+  -o "$out/view-cage-creases.png" >/dev/null
+# docs/reference-renders.md: gregory and exact on four creased shapes (a row each), the glTF frog posed
+# and morphed, and --msaa 1 against 8.
+tmp=$(mktemp -d)
+rows=()
+for shape in catmark_cube_creases1 catmark_cube_corner4 catmark_cube_creases0 catmark_chaikin0; do
+  for scheme in gregory exact; do
+    "$bin" -q render "$shapes/$shape.obj" --scheme "$scheme" --factor 16 --resolution 320x240 -o "$tmp/$shape-$scheme.png" >/dev/null
+  done
+  rows+=("$tmp/$shape-gregory.png" "$tmp/$shape-exact.png")
+done
+oiiotool "${rows[@]}" --mosaic:pad=0 2x4 -o "$out/creases-fitted.png"
+gltf="$root/tests/data/gltf-cages"
+dds=(--displacement "$root/tests/data/sdk-cages/monsterfrog.dds" --displacement-channel A --displacement-scale 1.2
+     --displacement-bias -0.6)
+"$bin" -q render "$gltf/frog-skinned.gltf" --time 0 "${dds[@]}" --resolution 640x400 -o "$tmp/g0.png" >/dev/null
+"$bin" -q render "$gltf/frog-skinned.gltf" --time 1 "${dds[@]}" --resolution 640x400 -o "$tmp/g1.png" >/dev/null
+"$bin" -q render "$gltf/frog-morph.gltf" --time 1 "${dds[@]}" --resolution 640x400 -o "$tmp/g2.png" >/dev/null
+oiiotool "$tmp/g0.png" "$tmp/g1.png" "$tmp/g2.png" --mosaic:pad=0 3x1 -o "$out/gltf-animation.png"
+near=(--camera-position 26,6,30 --camera-target -6,-4,0 --factor 8 --resolution 480x360)
+"$bin" -q render "$frog" "${dds[@]}" "${near[@]}" --msaa 1 -o "$tmp/m1.png" >/dev/null
+"$bin" -q render "$frog" "${dds[@]}" "${near[@]}" --msaa 8 -o "$tmp/m8.png" >/dev/null
+oiiotool "$tmp/m1.png" "$tmp/m8.png" --mosaic:pad=8 2x1 -o "$out/msaa.png"
+rm -r "$tmp"
 # docs/library.md: the examples' own images, built against an installed tree as a user builds them.
 build=$(cd "${1:-$root/build}" && pwd)
 tmp=$(mktemp -d)

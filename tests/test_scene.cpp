@@ -310,3 +310,34 @@ TEST_CASE("A legend takes the first corner where it covers no surface, and keeps
 }
 
 }  // namespace tessera::scene
+
+namespace tessera::scene {
+
+TEST_CASE("The cage view frames the control cage as well as the surface", "[scene]") {
+  // Three cubes' cages reach far beyond their rounded surfaces: framed on the surface alone, corners of
+  // the cage fall outside the image the cage view draws them in.
+  RenderSettings s;
+  s.cage = test::data("osd-shapes/catmark_cubes_semisharp.obj");
+  s.scheme = Scheme::exact;
+  s.camera.width = 800;
+  s.camera.height = 450;
+  const auto outside = [](const PreparedScene& p) {
+    int n = 0;
+    for (const glm::vec3& v : p.model.positions()) {
+      const glm::vec4 c = p.view.camera.view_projection * glm::vec4(v, 1.0f);
+      n += std::abs(c.x) > c.w || std::abs(c.y) > c.w ? 1 : 0;
+    }
+    return n;
+  };
+  s.view = ViewKind::shaded;
+  const std::unique_ptr<PreparedScene> shaded = prepare_scene(s);
+  CHECK(outside(*shaded) > 0);
+  s.view = ViewKind::cage;
+  const std::unique_ptr<PreparedScene> cage = prepare_scene(s);
+  CHECK(outside(*cage) == 0);
+  // A prepared scene switched to the cage view is framed again, as a fresh one.
+  configure_scene(*shaded, s);
+  CHECK(shaded->view.camera.eye == cage->view.camera.eye);
+}
+
+}  // namespace tessera::scene

@@ -78,12 +78,14 @@ void configure_scene(PreparedScene& p, const RenderSettings& given) {
   const bool same_view = same_base && p.derived_from && p.derived_from->camera == s.camera &&
                          p.derived_from->lod == s.lod && p.derived_from->asset == s.asset &&
                          p.derived_from->two_sided == s.two_sided &&
-                         legend_band(p.derived_from->view, s.camera.height) == legend_band(s.view, s.camera.height);
+                         legend_band(p.derived_from->view, s.camera.height) == legend_band(s.view, s.camera.height) &&
+                         (p.derived_from->view == ViewKind::cage) == (s.view == ViewKind::cage);
   // Before the LOD: back-patch culling follows the rasterizer's cull mode.
   p.model.two_sided = s.two_sided;
   if (!same_view) {
     SubdFactors base = same_base ? p.base_factors : factors_option(s.factor, s.vary, s.factors_file, p.model.cage);
-    ViewSetup view = view_option(s.camera, p.model, legend_band(s.view, s.camera.height));
+    ViewSetup view =
+        view_option(s.camera, p.model, legend_band(s.view, s.camera.height), s.view == ViewKind::cage);
     SubdFactors factors = base;
     PatchCull cull;
     LodResult lod =

@@ -62,7 +62,7 @@ void check_camera_orientation(const SubdCamera& camera, const CameraSettings& c)
                      "), which leaves its orientation undefined; move it off that axis or give --camera-up");
 }
 
-ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bottom_band) {
+ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bottom_band, bool with_cage) {
   ViewSetup v = view_frame(c);
   if (c.eye && c.target && glm::length(*c.eye - *c.target) <= 0.0f)
     throw UsageError("camera position and target coincide");
@@ -73,7 +73,8 @@ ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bot
     if (glm::length(v.camera.eye - v.camera.target) <= 0.0f)
       throw UsageError("--camera-position: equal to the model's centre (give --camera-target)");
   } else {
-    const std::vector<glm::vec3> points = surface_points(model);
+    std::vector<glm::vec3> points = surface_points(model);
+    if (with_cage) points.insert(points.end(), posed.begin(), posed.end());
     v.camera =
         fit_camera(points, posed, v.width, v.height, v.fov, framing_direction(model, unit_up(c)), c.target, unit_up(c),
                    kFrameFill, bottom_band);

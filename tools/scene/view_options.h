@@ -31,8 +31,10 @@ struct ViewSetup {
   SubdCamera camera;
 };
 // `bottom_band`: the fraction of the image height automatic framing keeps clear at the bottom, for a
-// legend (legend_band); a given camera position ignores it.
-ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bottom_band = 0.0f);
+// legend (legend_band); a given camera position ignores it. `with_cage`: automatic framing holds the
+// posed control cage as well as the surface (the cage view draws it, and it reaches beyond the surface).
+ViewSetup view_option(const CameraSettings& c, const SubdModel& model, float bottom_band = 0.0f,
+                      bool with_cage = false);
 // --camera-up as a unit vector (+y when not given).
 glm::vec3 unit_up(const CameraSettings& c);
 // The same with the camera's position and target given (a path of cameras).
