@@ -101,4 +101,10 @@ for e in distance_factors parametric_torus statistics_and_weld; do
   cp "$tmp/$e.png" "$out/example-${e//_/-}.png"
 done
 rm -r "$tmp"
+# docs/blender.md: Blender's own window, under Xvfb (not a Tessera dependency: apt-get install xvfb).
+if command -v Xvfb >/dev/null; then
+  "$root/scripts/blender-addon-screenshot.sh" "$build"
+else
+  echo "readme_images: docs/images/blender-addon*.png kept (no Xvfb for Blender's window)" >&2
+fi
 echo "readme_images: $(ls "$out" | wc -l) images in $out" >&2
