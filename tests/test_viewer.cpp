@@ -3,6 +3,7 @@
 // The page itself is tested in headless Chromium (viewer_browser_test.py).
 #include <httplib.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -296,6 +297,10 @@ TEST_CASE("viewer HTTP API: frames, picks and commands, one-line 400s for bad re
     const Json info = Json::parse(get("/api/info").body);
     CHECK(info["patches"] == 1292);
     CHECK(info["settings"]["resolution"] == "320x180");
+    const httplib::Response progress = get("/api/progress");
+    CHECK(progress.status == 200);
+    CHECK(Json::parse(progress.body)["busy"] == false);
+    CHECK(get("/viewer.js").body.find("api/progress") != std::string::npos);
   }
   const httplib::Response frame = get("/api/frame?factor=4&view=density&lod=screen");
   CHECK(frame.status == 200);
@@ -396,6 +401,31 @@ TEST_CASE("tessera view: bad ports and addresses, and --scene with settings, fai
   CHECK(scene.exit_code == 2);
   CHECK(scene.err.find("--factor with --scene") != std::string::npos);
   for (const auto* r : {&port, &bind, &bad, &scene}) CHECK(std::count(r->err.begin(), r->err.end(), '\n') == 1);
+}
+
+TEST_CASE("viewer progress names the steps of each load of the asset, and is idle between frames", "[viewer]") {
+  ViewerSession session(frog(false));
+  Json p = session.progress();
+  CHECK(p["busy"] == false);
+  CHECK(p["loads"] == 1);
+  const auto steps = [&] { return session.progress()["last_load"].get<std::vector<std::string>>(); };
+  const std::vector<std::string> first = steps();
+  REQUIRE(first.size() >= 3);
+  CHECK(first[0] == "reading");
+  CHECK(std::find(first.begin(), first.end(), "patches") != first.end());
+  // A camera change reconfigures the kept scene: no load.
+  RenderSettings s = session.base();
+  s.camera.eye = glm::vec3(10, 5, 60);
+  REQUIRE(session.frame(s, FrameFormat::png));
+  CHECK(session.progress()["loads"] == 1);
+  // Another scheme loads the asset again; exact builds the limit surface.
+  s.scheme = Scheme::exact;
+  REQUIRE(session.frame(s, FrameFormat::png));
+  p = session.progress();
+  CHECK(p["busy"] == false);
+  CHECK(p["loads"] == 2);
+  const std::vector<std::string> second = steps();
+  CHECK(std::find(second.begin(), second.end(), "limit surface") != second.end());
 }
 
 }  // namespace tessera::viewer

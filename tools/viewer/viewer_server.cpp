@@ -120,6 +120,13 @@ struct ViewerServer::Impl {
     http.Get("/api/frame", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(req, res, [&] { frame(req, res); });
     });
+    // Not serialised with the frames: a page polls it while its frame is being prepared.
+    http.Get("/api/progress", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(req, res, [&] {
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(json_text(session.progress()), "application/json");
+      });
+    });
     http.Get("/api/pick", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(req, res, [&] {
         const RenderSettings s = settings(req);

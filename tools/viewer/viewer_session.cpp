@@ -23,21 +23,57 @@ bool loads_alike(const RenderSettings& a, const RenderSettings& b) {
          a.asset.scene_index == b.asset.scene_index && a.asset.mesh == b.asset.mesh;
 }
 
+// Runs `f` when the scope ends, however it ends.
+template <class F>
+struct AtExit {
+  F f;
+  ~AtExit() { f(); }
+};
+template <class F>
+AtExit(F) -> AtExit<F>;
+
 }  // namespace
 
 ViewerSession::ViewerSession(RenderSettings base, const PrepareStep& step)
     : base_(std::move(base)), device_(device_options(base_.threads)) {
-  scenes_.push_front(prepare_scene(base_, step));
+  scenes_.push_front(prepare_scene(base_, [&](const char* name) {
+    begin_step(name, true);
+    if (step) step(name);
+  }));
+  end_steps();
+}
+
+void ViewerSession::begin_step(const std::string& step, bool loading) {
+  std::lock_guard lock(progress_mutex_);
+  if (loading && load_steps_.empty()) ++loads_;
+  if (loading) load_steps_.push_back(step);
+  step_ = step;
+  step_start_ = std::chrono::steady_clock::now();
+}
+
+void ViewerSession::end_steps() {
+  std::lock_guard lock(progress_mutex_);
+  if (!load_steps_.empty()) last_load_ = std::move(load_steps_);
+  load_steps_.clear();
+  step_.clear();
+}
+
+Json ViewerSession::progress() const {
+  std::lock_guard lock(progress_mutex_);
+  const double s =
+      step_.empty() ? 0.0 : std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start_).count();
+  return Json{{"busy", !step_.empty()}, {"step", step_}, {"step_s", s}, {"loads", loads_}, {"last_load", last_load_}};
 }
 
 PreparedScene& ViewerSession::scene_for(const RenderSettings& s) {
   for (auto it = scenes_.begin(); it != scenes_.end(); ++it) {
     if (!loads_alike((*it)->settings, s)) continue;
+    begin_step("framing and factors");
     configure_scene(**it, s);
     scenes_.splice(scenes_.begin(), scenes_, it);
     return *scenes_.front();
   }
-  auto fresh = prepare_scene(s);
+  auto fresh = prepare_scene(s, [this](const char* name) { begin_step(name, true); });
   scenes_.push_front(std::move(fresh));
   while (scenes_.size() > kKeptScenes) scenes_.pop_back();
   return *scenes_.front();
@@ -45,6 +81,7 @@ PreparedScene& ViewerSession::scene_for(const RenderSettings& s) {
 
 std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, int frames) {
   std::lock_guard lock(mutex_);
+  const AtExit idle{[this] { end_steps(); }};
   PreparedScene& p = scene_for(s);
   std::vector<RenderSettings> out;
   const ViewSetup base = orbit_base(p.settings.camera, p.model, p.view, frames);
@@ -60,6 +97,7 @@ std::vector<RenderSettings> ViewerSession::turntable(const RenderSettings& s, in
 
 Json ViewerSession::info() {
   std::lock_guard lock(mutex_);
+  const AtExit idle{[this] { end_steps(); }};
   PreparedScene& p = scene_for(base_);
   const Cage& cage = p.model.cage;
   const Box3 box = bounding_box(p.model.positions());
@@ -102,6 +140,7 @@ std::optional<ViewerFrame> ViewerSession::frame(const RenderSettings& s, FrameFo
                                                 const std::function<bool()>& wanted) {
   std::lock_guard lock(mutex_);
   if (wanted && !wanted()) return std::nullopt;
+  const AtExit idle{[this] { end_steps(); }};  // progress() goes back to idle however the call ends
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
@@ -109,11 +148,13 @@ std::optional<ViewerFrame> ViewerSession::frame(const RenderSettings& s, FrameFo
   const auto t0 = Clock::now();
   PreparedScene& p = scene_for(s);
   const auto t1 = Clock::now();
+  begin_step("drawing");
   SceneImage image = render_scene(device_, p, false, std::move(spare_));
   spare_.reset();
   const auto t2 = Clock::now();
   // Encoded by render's own writer, in memory, so the bytes are the ones `tessera render` writes.
   ViewerFrame f;
+  begin_step("encoding");
   write_scene_image(image, {format == FrameFormat::png ? "frame.png" : "frame.jpg", &f.bytes});
   f.configure_s = seconds(t0, t1);
   f.render_s = seconds(t1, t2);
@@ -128,6 +169,7 @@ std::optional<ViewerFrame> ViewerSession::frame(const RenderSettings& s, FrameFo
 
 Json ViewerSession::pick(const RenderSettings& s, int x, int y) {
   std::lock_guard lock(mutex_);
+  const AtExit idle{[this] { end_steps(); }};
   PreparedScene& p = scene_for(s);
   if (x < 0 || y < 0 || x >= p.view.width || y >= p.view.height)
     throw RequestError("x, y: (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the " +

@@ -14,6 +14,7 @@
 //   anything else is the asset's or the machine's (HTTP 500).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -22,6 +23,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "pipeline/device.h"
 #include "tools/scene/scene_render.h"
@@ -70,6 +72,12 @@ class ViewerSession {
   // The reproducing command (as words and as one shell line) and the scene file of `s`.
   scene::Json command(const scene::RenderSettings& s) const;
 
+  // What the session is doing, for a page waiting on a frame; safe to call while a frame is drawn (it
+  // takes none of the draws' locks): {"busy", "step" (a load's steps as `tessera render -v` names them,
+  // "framing and factors" for a kept scene, "drawing", "encoding"), "step_s" (seconds in it), "loads"
+  // (loads of the asset so far, the first included) and "last_load" (the steps of the last one)}.
+  scene::Json progress() const;
+
  private:
   scene::PreparedScene& scene_for(const scene::RenderSettings& s);
 
@@ -85,6 +93,15 @@ class ViewerSession {
   };
   std::optional<PickBuffer> pick_;
   std::optional<Framebuffer> spare_;  // the last frame's target, drawn into again at the same size
+
+  // progress(): written by the call that holds `mutex_`, read by anyone under `progress_mutex_`.
+  void begin_step(const std::string& step, bool loading = false);
+  void end_steps();
+  mutable std::mutex progress_mutex_;
+  std::string step_;
+  std::chrono::steady_clock::time_point step_start_{};
+  std::vector<std::string> load_steps_, last_load_;
+  int loads_ = 0;
 };
 
 }  // namespace tessera::viewer

@@ -75,7 +75,9 @@ async function pump() {
   try {
     const sep = job.query ? '&' : '';
     const asked = performance.now();
-    const r = await fetch('/api/frame?' + job.query + sep + 'client=' + client + '&seq=' + seq);
+    const watch = watchProgress();
+    const r = await fetch('/api/frame?' + job.query + sep + 'client=' + client + '&seq=' + seq)
+      .finally(() => clearInterval(watch));
     if (r.ok) {
       const blob = await r.blob();
       const roundTrip = (performance.now() - asked) / 1e3;
@@ -101,6 +103,19 @@ async function pump() {
     inflight = false;
     pump();
   }
+}
+
+// While a frame takes more than half a second (a scheme's first load of a large cage, say), the
+// status line says which step the server is in, as `tessera render` does on stderr (GET /api/progress).
+function watchProgress() {
+  const started = performance.now();
+  return setInterval(async () => {
+    if (performance.now() - started < 500) return;
+    try {
+      const p = await (await fetch('/api/progress')).json();
+      if (p.busy && inflight) status(p.step + ' (' + p.step_s.toFixed(1) + ' s)');
+    } catch (e) { /* the frame request reports a server that is gone */ }
+  }, 250);
 }
 
 function ms(seconds) { return (seconds * 1e3).toFixed(1) + ' ms'; }
