@@ -1071,3 +1071,46 @@ TEST_CASE("PatchLanes evaluates ACC, Gregory and triangular Gregory patches with
   CHECK(tu.size() % 8 != 0);  // a short last group
   CHECK(triangle_wrong == 0);
 }
+
+#include <set>
+
+#include "shaders_cpp/render/surface_framing.h"
+#include "test_data.h"
+
+TEST_CASE("Framing's surface points are the point set the stream draws, each shared point once", "[subd]") {
+  using namespace tessera;
+  // Quads, triangles and n-gon fans, creases, the exact and adaptive limit, a small wrapping torus.
+  struct Case {
+    std::string path;
+    Scheme scheme;
+  };
+  const std::vector<Case> cases = {{test::data("sdk-cages/monsterfrog_mapped_00.obj"), Scheme::gregory},
+                                   {test::data("osd-shapes/catmark_nonquads.obj"), Scheme::gregory},
+                                   {test::data("osd-shapes/catmark_cube_creases1.obj"), Scheme::exact},
+                                   {test::data("osd-shapes/catmark_single_crease.obj"), Scheme::adaptive},
+                                   {test::data("osd-shapes/catmark_pyramid.obj"), Scheme::bspline}};
+  const auto bits = [](const glm::vec3& p) {
+    return std::array<std::uint32_t, 3>{std::bit_cast<std::uint32_t>(p.x), std::bit_cast<std::uint32_t>(p.y),
+                                        std::bit_cast<std::uint32_t>(p.z)};
+  };
+  for (const Case& c : cases) {
+    INFO(c.path << " " << to_string(c.scheme));
+    const SubdModel m = load_subd_model(c.path, c.scheme);
+    const std::size_t patches = m.patches.quads.size() + m.patches.tris.size();
+    const float factor =
+        float(std::clamp(std::floor(std::sqrt(double(kFramingPoints) / double(patches))) - 1.0, 2.0, 8.0));
+    Device device(DeviceOptions{.threads = 2});
+    std::set<std::array<std::uint32_t, 3>> streamed;
+    std::size_t drawn = 0;
+    REQUIRE(stream_subd(device, m, base_factors(factor, 0.0f), ts::Partitioning::integer,
+                        [&](const PatchOutput<SurfaceSample>& p, const PatchGroup&) {
+                          for (const SurfaceSample& s : p.points) streamed.insert(bits(s.position)), ++drawn;
+                        })
+                .ok());
+    const std::vector<glm::vec3> points = surface_points(m);
+    std::set<std::array<std::uint32_t, 3>> framed;
+    for (const glm::vec3& p : points) framed.insert(bits(p));
+    CHECK(framed == streamed);
+    CHECK(points.size() < drawn);
+  }
+}

@@ -1,13 +1,45 @@
 #include "shaders_cpp/render/surface_framing.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
-#include <tbb/task_arena.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "pipeline/front_end.h"
+#include "pipeline/pattern_cache.h"
+#include "shaders_cpp/displacement/watertight_uv.h"
 
 #include "shaders_cpp/cage/bounding_box.h"
 
 namespace tessera {
+
+namespace {
+
+// Which of a quad patch's edge and corner points it reports: bit k, patch edge k (its half-edge owns
+// the cage edge); bit 4 + k, patch corner k (its half-edge is the vertex's owner). The other patches
+// that hold such a point compute the same bits (the surface is watertight to the bit), so the point set
+// is the same with each point once. Fan triangles and n-gon faces report every point.
+std::uint8_t owned_points(const Topology& t, const SubdPatch& p, bool quads) {
+  if (!quads || p.sub != 0 || t.face_size(p.face) != 4) return 0xFF;
+  std::uint8_t mask = 0;
+  for (int k = 0; k < 4; ++k) {
+    const int h = t.face_offset(p.face) + (k + p.rotation) % 4;
+    if (edge_owner(t, h) == h) mask = std::uint8_t(mask | (1u << k));
+    if (vertex_owner(t, t.origin(h)) == h) mask = std::uint8_t(mask | (1u << (4 + k)));
+  }
+  return mask;
+}
+
+bool reported(const DomainLocation& l, std::uint8_t mask) {
+  const bool on_u = l.u == 0.0f || l.u == 1.0f, on_v = l.v == 0.0f || l.v == 1.0f;
+  if (on_u && on_v) return (mask >> (4 + (l.v == 0.0f ? (l.u == 0.0f ? 0 : 1) : (l.u == 1.0f ? 2 : 3))) & 1u) != 0;
+  if (on_u || on_v) return (mask >> (l.v == 0.0f ? 0 : l.u == 1.0f ? 1 : l.v == 1.0f ? 2 : 3) & 1u) != 0;
+  return true;
+}
+
+}  // namespace
 
 std::vector<glm::vec3> surface_points(const SubdModel& model) {
   // Factor 8 follows a patch that bulges between its corners as a render draws it; factor 2 (corners,
@@ -15,22 +47,52 @@ std::vector<glm::vec3> surface_points(const SubdModel& model) {
   const double patches = double(std::max<std::size_t>(1, model.patches.quads.size() + model.patches.tris.size()));
   const double fitting = std::floor(std::sqrt(double(kFramingPoints) / patches)) - 1.0;  // (f + 1)^2 points a quad
   const float factor = float(std::clamp(fitting, 2.0, 8.0));
-  // As many threads as the calling arena has: the stream hands patches over in order on this thread,
-  // so the points are the same for any count.
-  DeviceOptions options;
-  options.threads = std::max(1, tbb::this_task_arena::max_concurrency());
-  Device device(options);
-  // Reserved for every patch drawn uncut at the factor (grown copies would cost as much as the draw).
-  const std::size_t per_side = std::size_t(factor) + 1;
+  // What stream_subd draws at the factor, evaluated patch by patch without the pipeline's windows and
+  // chunks: the same vertex, hull and domain shader calls on the same inputs (so the same bits), on the
+  // calling arena's threads, in blocks whose points are joined in patch order.
+  constexpr std::size_t kBlock = 1024;
   std::vector<glm::vec3> points;
-  points.reserve(model.patches.quads.size() * per_side * per_side +
-                 model.patches.tris.size() * per_side * (per_side + 1) / 2);
-  const DrawResult r = stream_subd(device, model, base_factors(factor, 0.0f), ts::Partitioning::integer,
-                                   [&](const PatchOutput<SurfaceSample>& p, const PatchGroup&) {
-                                     for (const SurfaceSample& s : p.points) points.push_back(s.position);
-                                   });
-  // The draw that follows would report the same error; framing on the control points loses nothing.
-  if (!r.ok() || points.empty()) return model.positions();
+  const SubdVS vs = model.vertex_shader();
+  const std::span<const glm::vec3> vertices = model.vertex_buffer();
+  const Topology& topology = *model.topology;
+  for_each_patch_group(
+      model, base_factors(factor, 0.0f), PatchCull{}, ts::Partitioning::integer,
+      [&](const PatchGroup& g, const TessellatorState& ts, const SubdHS& hs, const SubdDS& ds) {
+        const std::size_t n = g.patches.size(), cp = std::size_t(g.control_points);
+        const bool quads = g.domain == ts::Domain::quad;
+        std::vector<std::vector<glm::vec3>> blocks((n + kBlock - 1) / kBlock);
+        tbb::enumerable_thread_specific<PatternCache> patterns;
+        tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t b) {
+          PatternCache& cache = patterns.local();
+          std::array<SubdVertex, 32> in;
+          std::array<SubdControlPoint, SubdHS::kOutputControlPoints> out;
+          std::vector<glm::vec3>& block = blocks[b];
+          for (std::size_t p = b * kBlock; p < std::min(n, (b + 1) * kBlock); ++p) {
+            const auto id = std::uint32_t(p);
+            for (std::size_t i = 0; i < cp; ++i) {
+              const std::uint32_t v = g.indices[p * cp + i];
+              in[i] = vs(v < vertices.size() ? vertices[v] : glm::vec3(0.0f), v);
+            }
+            const std::span<const SubdVertex> ins(in.data(), cp);
+            for (int j = 0; j < SubdHS::kOutputControlPoints; ++j) out[std::size_t(j)] = hs.control_point(ins, j, id);
+            const SubdPatchConstants pc = hs.patch_constants(ins, out, id);
+            const ts::ProcessedFactors processed =
+                ts::process_factors(ts.partitioning, detail::factor_set(ts.domain, pc.factors));
+            if (processed.culled) continue;
+            bool hit = false;
+            const ts::Pattern& pattern = cache.get(processed, ts.output, hit);
+            const std::uint8_t mask = owned_points(topology, g.patches[p], quads);
+            for (const ts::DomainPoint q : pattern.points) {
+              const DomainLocation l = detail::domain_location(q, ts.domain);
+              if (reported(l, mask)) block.push_back(ds(pc, out, l, id).position);
+            }
+          }
+        });
+        for (const auto& block : blocks) points.insert(points.end(), block.begin(), block.end());
+        return DrawResult{};
+      });
+  // A model drawing nothing is framed on its control points, as the draw that follows would report.
+  if (points.empty()) return model.positions();
   return points;
 }
 

@@ -5,8 +5,10 @@
 // Contract
 // - surface_points: the domain shader's positions of every patch at a uniform factor of 8 (the surface
 //   as drawn at 8; a lower factor, down to 2, on a cage so large that 8 would give over kFramingPoints
-//   points), in the model's current pose, without displacement, in draw order. Deterministic; runs its
-//   own device, with the calling task arena's threads (the points do not depend on their number).
+//   points), in the model's current pose, without displacement: the point set stream_subd draws, each
+//   point on a cage edge or vertex once (from its owner quad), in patch order. Deterministic, on the
+//   calling task arena's threads (the points do not depend on their number). The framing below depends
+//   on the set alone.
 // - framing_direction: the default view direction for `up`, unless the cage is a sheet that mostly
 //   faces one way (its vector area at least half its area: an open, nearly flat or gently curved
 //   surface), which back-face culling would hide from behind or show edge-on; then a direction on its

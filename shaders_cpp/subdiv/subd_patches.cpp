@@ -169,15 +169,26 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
   // In face order, each face's patches are built, or, when its combination's patch is known, its place
   // is reserved and filled below, in parallel: per face only its ring is gathered.
   std::vector<std::optional<SharedPatch>> shared(combinations.combinations.size());
+  const auto frame_of = [&](int f) {
+    return face_frame(cage, t, f, pole.empty() ? -1 : pole[std::size_t(f)], stencil_scheme ? rotation[std::size_t(f)] : 0);
+  };
+  // Whether each face's combination decides its patch: a pure function of the face (the fitted faces
+  // are known before any is built), found in parallel.
+  const int nf = t.face_count();
+  std::vector<char> sharable(std::size_t(nf), 0);
+  if (build == PatchBuild::by_combination && stencil_scheme)
+    tbb::parallel_for(tbb::blocked_range<int>(0, nf, 4096), [&](const tbb::blocked_range<int>& range) {
+      for (int f = range.begin(); f < range.end(); ++f)
+        if (!t.is_hole(f)) sharable[std::size_t(f)] = shared_by_combination(ctx, frame_of(f));
+    });
   struct Deferred {
-    subdiv::FaceFrame face;
-    int slot;
+    int face, slot;
     const SharedPatch* patch;
   };
   std::vector<Deferred> deferred;
   {  // Storage for every patch at once: grown copies of a large cage's patches cost as much as building them.
     std::size_t quads = 0, tris = 0;
-    for (int f = 0; f < t.face_count(); ++f) {
+    for (int f = 0; f < nf; ++f) {
       const int n = t.face_size(f);
       if (t.is_hole(f)) continue;
       (n == 4 ? quads : tris) += std::size_t(n == 4 || n == 3 ? 1 : n);
@@ -187,26 +198,23 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
     assembler.reserve_slots(quads + tris);
     deferred.reserve(quads + tris);
   }
-  for (int f = 0; f < t.face_count(); ++f) {
+  for (int f = 0; f < nf; ++f) {
     if (t.is_hole(f)) {
       ++out.holes;
       continue;
     }
-    const subdiv::FaceFrame face = face_frame(cage, t, f, pole.empty() ? -1 : pole[std::size_t(f)],
-                                              stencil_scheme ? rotation[std::size_t(f)] : 0);
-    const bool sharable = build == PatchBuild::by_combination && shared_by_combination(ctx, face);
+    const bool share = sharable[std::size_t(f)] != 0;
     std::optional<SharedPatch> unshared;
-    std::optional<SharedPatch>& known =
-        sharable ? shared[std::size_t(combinations.face_combination[std::size_t(f)])] : unshared;
-    if (sharable && known) {
-      PatchGroup& group = face.n == 4 ? out.quads : out.tris;
-      deferred.push_back({face, assembler.reserve(group), &*known});
+    std::optional<SharedPatch>& known = share ? shared[std::size_t(combinations.face_combination[std::size_t(f)])] : unshared;
+    if (share && known) {
+      deferred.push_back({f, assembler.reserve(t.face_size(f) == 4 ? out.quads : out.tris), &*known});
       if (known->fallback) ++out.fallback_faces;
       continue;
     }
+    const subdiv::FaceFrame face = frame_of(f);
     const int fallback_before = out.fallback_faces;
     build_face(ctx, face);
-    if (!sharable) continue;
+    if (!share) continue;
     const PatchGroup& group = face.n == 4 ? out.quads : out.tris;
     const SubdPatch& p = group.patches.back();
     if (p.face != f || p.precomputed >= 0 || p.averaged_edges != 0 || p.limit_corners != 0 || p.table < 0) continue;
@@ -217,22 +225,24 @@ SubdPatches build_patches(const Cage& cage, const Topology& t, Scheme scheme, st
   // (a global coincidence the key cannot see) is built in full afterwards, in face order.
   std::vector<char> folded(deferred.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, deferred.size(), 256), [&](const auto& range) {
+    std::vector<int> ring;
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const Deferred& d = deferred[i];
-      std::vector<int> ring;
+      const subdiv::FaceFrame face = frame_of(d.face);
+      ring.clear();
       ring.reserve(d.patch->landed.size());
-      if (!subdiv::gather_ring_landing(cage, t, d.face, ring, d.patch->landed)) {
+      if (!subdiv::gather_ring_landing(cage, t, face, ring, d.patch->landed)) {
         folded[i] = 1;
         continue;
       }
-      assembler.place(d.slot, d.face.f, d.patch->kind, std::move(ring), d.patch->table, d.face.edges, d.face.rot);
+      assembler.place(d.slot, face.f, d.patch->kind, std::move(ring), d.patch->table, face.edges, face.rot);
     }
   });
   for (std::size_t i = 0; i < deferred.size(); ++i) {
     if (!folded[i]) continue;
     if (deferred[i].patch->fallback) --out.fallback_faces;  // build_face counts it again
     assembler.add_into(deferred[i].slot);
-    build_face(ctx, deferred[i].face);
+    build_face(ctx, frame_of(deferred[i].face));
   }
   assembler.finish();
   return out;
