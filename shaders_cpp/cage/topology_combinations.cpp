@@ -97,40 +97,42 @@ struct FaceKey {
 
 // Working vectors of one thread, kept between faces.
 struct KeyScratch {
-  std::vector<std::vector<std::int32_t>> corners;
-  std::vector<std::int32_t> candidate;
+  std::vector<std::int32_t> words;  // the corners' words, corner 0 first
+  std::vector<std::size_t> starts;  // where each corner's words start
 };
 
 void face_key(const Topology& t, const std::vector<int>& pos, int f, KeyScratch& w, FaceKey& out) {
   out.cls = classify(t, f);
   if (out.cls == PatchClass::hole) return;
   const int n = t.face_size(f), h0 = t.face_half_edge(f);
-  w.corners.resize(std::size_t(n));
+  w.words.clear();
+  w.starts.resize(std::size_t(n));
   for (int k = 0; k < n; ++k) {
-    w.corners[std::size_t(k)].clear();
-    corner_words(t, h0 + k, pos[std::size_t(h0 + k)], w.corners[std::size_t(k)]);
+    w.starts[std::size_t(k)] = w.words.size();
+    corner_words(t, h0 + k, pos[std::size_t(h0 + k)], w.words);
   }
-  auto read_from = [&](int r, std::vector<std::int32_t>& key) {
-    key.assign(1, n);
-    for (int i = 0; i < n; ++i) {
-      const auto& c = w.corners[std::size_t((r + i) % n)];
-      key.insert(key.end(), c.begin(), c.end());
-    }
+  // Read from corner r, the key is the words from corner r's on, round to the start: the words twice
+  // over hold every rotation as one run, compared in place; only the chosen one is written out.
+  const std::size_t size = w.words.size();
+  w.words.insert(w.words.end(), w.words.begin(), w.words.end());
+  const auto run = [&](int r) { return w.words.begin() + std::ptrdiff_t(w.starts[std::size_t(r)]); };
+  const auto compare = [&](int a, int b) {  // < 0, 0, > 0 as rotation a's key is below, equal to, above b's
+    const auto x = run(a), y = run(b);
+    if (std::equal(x, x + std::ptrdiff_t(size), y)) return 0;
+    return std::lexicographical_compare(x, x + std::ptrdiff_t(size), y, y + std::ptrdiff_t(size)) ? -1 : 1;
   };
   out.rotation = 0;
-  for (int r = 0; r < n; ++r) {
-    read_from(r, w.candidate);
-    if (r == 0 || w.candidate < out.key) {
-      out.key.swap(w.candidate);
-      out.rotation = r;
-    }
-  }
+  for (int r = 1; r < n; ++r)
+    if (compare(r, out.rotation) < 0) out.rotation = r;
   // The face's symmetry: the smallest shift from the canonical corner that reads the same key.
   out.period = n;
-  for (int p = 1; p < n && out.period == n; ++p) {
-    read_from(out.rotation + p, w.candidate);
-    if (w.candidate == out.key) out.period = p;
-  }
+  for (int p = 1; p < n; ++p)
+    if (compare((out.rotation + p) % n, out.rotation) == 0) {
+      out.period = p;
+      break;
+    }
+  out.key.assign(1, n);
+  out.key.insert(out.key.end(), run(out.rotation), run(out.rotation) + std::ptrdiff_t(size));
   out.hash = key_hash(out.key);
 }
 
