@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 
+#include <span>
+
 #include <tbb/parallel_for.h>
 
 namespace tessera {
@@ -41,8 +43,23 @@ class ObjParser {
     return p;
   }
 
-  // Appends a chunk's elements (the chunk that follows this text).
-  void append(ObjParser&& c) {
+  // Room for `more` chunks' elements after this one's.
+  void reserve_for(std::span<const std::optional<ObjParser>> more) {
+    std::size_t positions = cage_.positions.size(), uvs = cage_.uvs.size(), faces = cage_.face_sizes.size(),
+                corners = cage_.face_vertices.size(), face_uvs = face_uvs_.size();
+    for (const auto& c : more)
+      if (c) {
+        positions += c->cage_.positions.size(), uvs += c->cage_.uvs.size(), faces += c->cage_.face_sizes.size();
+        corners += c->cage_.face_vertices.size(), face_uvs += c->face_uvs_.size();
+      }
+    cage_.positions.reserve(positions), cage_.uvs.reserve(uvs), cage_.face_offsets.reserve(faces);
+    cage_.face_sizes.reserve(faces), cage_.face_vertices.reserve(corners), face_uvs_.reserve(face_uvs);
+    face_lines_.reserve(faces);
+  }
+
+  // Appends a chunk's elements (the chunk that follows this text), its line numbers `lines` on (the
+  // chunk was parsed as if its first line were line 1).
+  void append(ObjParser&& c, int lines) {
     if (c.cage_.face_count() > 0) {
       if (cage_.face_count() > 0 && c.faces_have_uvs_ != faces_have_uvs_) throw Unchunkable{};
       if (cage_.face_count() == 0) faces_have_uvs_ = c.faces_have_uvs_;
@@ -54,7 +71,7 @@ class ObjParser {
     cage_.face_sizes.insert(cage_.face_sizes.end(), c.cage_.face_sizes.begin(), c.cage_.face_sizes.end());
     cage_.face_vertices.insert(cage_.face_vertices.end(), c.cage_.face_vertices.begin(), c.cage_.face_vertices.end());
     face_uvs_.insert(face_uvs_.end(), c.face_uvs_.begin(), c.face_uvs_.end());
-    face_lines_.insert(face_lines_.end(), c.face_lines_.begin(), c.face_lines_.end());
+    for (const int l : c.face_lines_) face_lines_.push_back(l + lines);
   }
 
   Cage run() {
@@ -419,17 +436,18 @@ std::optional<ObjParser> parse_in_chunks(std::string_view text, const std::strin
     starts.push_back(end + 1);
   }
   if (starts.size() < 2) return std::nullopt;
-  std::vector<int> first_line(starts.size(), 1);
-  for (std::size_t c = 1; c < starts.size(); ++c)
-    first_line[c] = first_line[c - 1] +
-                    int(std::count(text.begin() + std::ptrdiff_t(starts[c - 1]), text.begin() + std::ptrdiff_t(starts[c]), '\n'));
+  // Each chunk is parsed from its own line 1 and counts its lines; its faces' line numbers are moved on
+  // by the lines before it as it is appended.
+  std::vector<int> lines(starts.size(), 0);
   std::vector<std::optional<ObjParser>> parts(starts.size());
   std::atomic<bool> unchunkable = false;
   tbb::parallel_for(std::size_t(0), starts.size(), [&](std::size_t c) {
     if (unchunkable) return;
     const std::size_t end = c + 1 < starts.size() ? starts[c + 1] : text.size();
+    const std::string_view part = text.substr(starts[c], end - starts[c]);
+    lines[c] = int(std::count(part.begin(), part.end(), '\n'));
     try {
-      parts[c] = ObjParser::chunk(text.substr(starts[c], end - starts[c]), name, first_line[c]);
+      parts[c] = ObjParser::chunk(part, name, 1);
     } catch (const ObjParser::Unchunkable&) {
       unchunkable = true;
     } catch (const CageError&) {
@@ -438,8 +456,13 @@ std::optional<ObjParser> parse_in_chunks(std::string_view text, const std::strin
   });
   if (unchunkable) return std::nullopt;
   std::optional<ObjParser> whole = std::move(parts[0]);
+  whole->reserve_for(std::span<const std::optional<ObjParser>>(parts).subspan(1));
   try {
-    for (std::size_t c = 1; c < parts.size(); ++c) whole->append(std::move(*parts[c]));
+    int before = lines[0];
+    for (std::size_t c = 1; c < parts.size(); ++c) {
+      whole->append(std::move(*parts[c]), before);
+      before += lines[c];
+    }
   } catch (const ObjParser::Unchunkable&) {
     return std::nullopt;
   }
