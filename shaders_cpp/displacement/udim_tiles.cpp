@@ -7,6 +7,7 @@
 #include <map>
 #include <system_error>
 
+#include "shaders_cpp/cage/one_line.h"
 #include "shaders_cpp/displacement/displacement_map.h"
 
 namespace tessera {
@@ -21,13 +22,6 @@ std::size_t token_at(std::string_view path) {
     if (k == kToken.size()) return i;
   }
   return std::string_view::npos;
-}
-
-std::string number_text(float x) {
-  std::string s = std::to_string(x);
-  while (s.size() > 1 && s.back() == '0') s.pop_back();
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  return s;
 }
 
 }  // namespace
@@ -79,7 +73,7 @@ UvTiles udim_face_tiles(const Cage& cage, const Topology& t, const std::string& 
     const float u = cage.uvs[i].x, v = v_down ? 1.0f - cage.uvs[i].y : cage.uvs[i].y;
     if (!(u >= 0.0f && u <= kColumns && v >= 0.0f && v <= kRows))
       throw DisplacementMapError(map + ": the cage " + cage.name + " has vt " + std::to_string(i + 1) + " (" +
-                                 number_text(cage.uvs[i].x) + ", " + number_text(cage.uvs[i].y) +
+                                 float_text(cage.uvs[i].x) + ", " + float_text(cage.uvs[i].y) +
                                  ") outside UDIM space (u in [0, 10], v in [0, 100])");
   }
   UvTiles out;

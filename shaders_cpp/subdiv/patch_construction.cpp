@@ -33,13 +33,16 @@ std::vector<int> gather_ring(std::span<const CornerRing> rings, std::vector<std:
 }
 
 bool gather_ring_landing(const Cage& cage, const Topology& t, const FaceFrame& face, std::vector<int>& ring,
-                         std::span<const std::uint8_t> landed) {
+                         std::span<const std::uint8_t> landed, std::vector<std::uint8_t>* record) {
   ring.clear();
   std::size_t step = 0;
-  // gather_ring's push, checked against the expected landing place.
+  // gather_ring's push, its landing place recorded or checked against the expected one.
   const auto push = [&](int v) {
     const auto it = std::find(ring.begin(), ring.end(), v);
-    if (step >= landed.size() || landed[step++] != std::uint8_t(std::min<std::ptrdiff_t>(it - ring.begin(), 255)))
+    const auto place = std::uint8_t(std::min<std::ptrdiff_t>(it - ring.begin(), 255));
+    if (record != nullptr)
+      record->push_back(place);
+    else if (step >= landed.size() || landed[step++] != place)
       return false;
     if (it == ring.end()) ring.push_back(v);
     return true;
@@ -67,7 +70,7 @@ bool gather_ring_landing(const Cage& cage, const Topology& t, const FaceFrame& f
     }
     if (boundary && !push(t.origin(t.prev(r.back())))) return false;
   }
-  return step == landed.size();
+  return record != nullptr || step == landed.size();
 }
 
 std::array<EdgeFactorKey, 4> fan_edge_keys(const Cage& cage, int f, int k) {

@@ -71,10 +71,11 @@ struct FaceFrame {
 // structure, global coincidences included.
 std::vector<int> gather_ring(std::span<const CornerRing> rings, std::vector<std::uint8_t>* landed = nullptr);
 // gather_ring of the face's whole corner rings (face_rings' `whole`), traversed in place with no
-// allocation but the ring itself: `ring` gets the IA patch, and the result says whether the traversal's
-// landing places equal `landed` (false stops it early; `ring` is then incomplete).
+// allocation but the ring itself: `ring` gets the IA patch. With `record`, the landing places are
+// appended there; otherwise the result says whether they equal `landed` (false stops it early; `ring`
+// is then incomplete).
 bool gather_ring_landing(const Cage& cage, const Topology& t, const FaceFrame& face, std::vector<int>& ring,
-                         std::span<const std::uint8_t> landed);
+                         std::span<const std::uint8_t> landed, std::vector<std::uint8_t>* record = nullptr);
 
 // The SV_TessFactor keys of fan triangle k of face f (vertex k, vertex k + 1, centre): Ueq0 is the spoke
 // to vertex k, keyed by the two cage edges there; Veq0 the cage edge k -> k+1; Weq0 the spoke to

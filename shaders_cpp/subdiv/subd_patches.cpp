@@ -129,8 +129,7 @@ struct SharedRing {
 };
 SharedRing shared_ring(const subdiv::PatchContext& ctx, const subdiv::FaceFrame& face) {
   SharedRing out;
-  out.ring = face.n == 4 ? subdiv::gather_ring(subdiv::face_rings<4>(ctx, face).whole, &out.landed)
-                         : subdiv::gather_ring(subdiv::face_rings<3>(ctx, face).whole, &out.landed);
+  subdiv::gather_ring_landing(ctx.cage, ctx.t, face, out.ring, {}, &out.landed);
   return out;
 }
 
