@@ -192,9 +192,10 @@ Displacement make_displacement(const SubdModel& model, const DisplacementOptions
     // along the seams. Only the displacement map: a normal map's border texels are its bake's own.
     // Each tile from the charts of the faces it serves.
     for (std::size_t t = 0; t < d.maps.size(); ++t) {
-      std::vector<PatchTexcoords> in_tile;
-      for (const PatchTexcoords& tc : d.texcoords)
-        if (tc.tile == t) in_tile.push_back(tc);
+      std::vector<PatchTexcoords> in_tile;  // a single map's charts are all the patches: no copy
+      if (d.maps.size() > 1)
+        for (const PatchTexcoords& tc : d.texcoords)
+          if (tc.tile == t) in_tile.push_back(tc);
       DisplacementMap& m = d.maps[t];
       m = m.padded(chart_coverage(d.maps.size() == 1 ? std::span<const PatchTexcoords>(d.texcoords) : in_tile,
                                   m.width(), m.height(), kChartBorderTexels));
